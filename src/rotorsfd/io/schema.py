@@ -1,0 +1,848 @@
+"""The configuration schema: a rotor, its squeeze film damper, base motion and analyses.
+
+Every physical field is declared with :func:`quantity`: its kind (SI unit) and allowed
+range go into the field's description, so the generated documentation cannot drift.
+Values are stored in SI; a TOML value may be an SI number or a string with units
+(see :mod:`rotorsfd.io.units`). Unknown keys are errors. Alternatives (a disk by geometry
+or by inertias, C with C/R or R, ...) are optional fields that default to ``None``; a
+validator checks that exactly one form is given.
+
+Errors raised here are pydantic errors whose context carries the offending sub-field
+(``path``); :mod:`rotorsfd.io.config` turns the first one into a one-line ConfigError.
+"""
+
+import math
+import re
+from typing import Annotated, Any, Literal
+
+from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, model_validator
+from pydantic_core import PydanticCustomError
+
+from rotorsfd.io.units import KINDS, UnitError, describe, to_si
+
+# ---- field helpers ---------------------------------------------------------------------
+
+
+def fail(path: str | tuple[str | int, ...], value: Any, allowed: str) -> PydanticCustomError:
+    """A validation error about ``path`` (relative to the model that raises it)."""
+    if isinstance(path, str):
+        path = tuple(path.split("."))
+    return PydanticCustomError("rotorsfd", "{allowed}", {"path": path, "value": value,
+                                                         "allowed": allowed})
+
+
+def range_text(unit: str, gt=None, ge=None, lt=None, le=None) -> str:
+    """``"> 0 m"``, ``"0 < value < 1"``, or ``"any value"``."""
+    u = "" if unit == "1" else f" {unit}"
+    low = f"{gt} <" if gt is not None else (f"{ge} <=" if ge is not None else "")
+    high = f"< {lt}" if lt is not None else (f"<= {le}" if le is not None else "")
+    if low and high:
+        return f"{low} value {high}{u}"
+    if low:
+        op, num = low.split()[1], low.split()[0]
+        return f"{'>' if op == '<' else '>='} {num}{u}"
+    if high:
+        return f"{high}{u}"
+    return "any value"
+
+
+def _in_range(x: float, gt, ge, lt, le) -> bool:
+    return ((gt is None or x > gt) and (ge is None or x >= ge)
+            and (lt is None or x < lt) and (le is None or x <= le))
+
+
+def quantity(kind: str, doc: str, *, gt: float | None = None, ge: float | None = None,
+             lt: float | None = None, le: float | None = None, optional: bool = False) -> Any:
+    """Annotated float field of physical ``kind`` (a key of ``units.KINDS``) in SI.
+
+    Accepts an SI number or a string with units; checks the dimension and the range.
+    """
+    unit = KINDS[kind].unit
+    allowed_range = range_text(unit, gt, ge, lt, le)
+
+    def parse(value: Any) -> Any:
+        if value is None and optional:
+            return None
+        try:
+            return to_si(value, kind)
+        except UnitError as exc:
+            raise PydanticCustomError("rotorsfd", "{allowed}",
+                                      {"allowed": str(exc), "value": value}) from None
+
+    def check(value: float | None) -> float | None:
+        if value is not None and not _in_range(value, gt, ge, lt, le):
+            raise PydanticCustomError(
+                "rotorsfd", "{allowed}",
+                {"allowed": f"must be {allowed_range}", "value": value})
+        return value
+
+    unit_text = "dimensionless" if unit == "1" else unit
+    description = f"{doc} [{unit_text}]; allowed: {allowed_range}"
+    extra = {"unit": unit, "kind": kind}
+    return Annotated[
+        float | None if optional else float,
+        BeforeValidator(parse), AfterValidator(check),
+        Field(description=description, json_schema_extra=extra),
+    ]
+
+
+def integer(doc: str, *, ge: int | None = None, le: int | None = None) -> Any:
+    """Annotated int field with its range in the description."""
+    return Annotated[int, Field(ge=ge, le=le,
+                                description=f"{doc}; allowed: {range_text('1', ge=ge, le=le)}")]
+
+
+def text(doc: str) -> Any:
+    return Annotated[str, Field(description=doc)]
+
+
+NODE = integer("node number (1-based, as in the paper)", ge=1)
+NAME = Annotated[str, Field(pattern=r"^[A-Za-z_][A-Za-z0-9_\-]*$",
+                            description="a name: letters, digits, '_' and '-'")]
+CALLABLE = Annotated[str | None, Field(
+    pattern=r"^[A-Za-z_][\w.]*:[A-Za-z_]\w*$",
+    description="a Python callable as 'module:function' (importable, e.g. from the "
+                "config file's folder)")]
+
+
+class Section(BaseModel):
+    """Base of every config table: unknown keys are errors, values are frozen."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+def _given(model: BaseModel, names: tuple[str, ...]) -> list[str]:
+    return [n for n in names if getattr(model, n) is not None]
+
+
+def _exactly_one_form(model: BaseModel, forms: dict[str, tuple[str, ...]],
+                      required: dict[str, tuple[str, ...]] | None = None) -> str:
+    """The one form (a named group of fields) given in ``model``; error otherwise."""
+    required = required or forms
+    used = {name: _given(model, fields) for name, fields in forms.items()}
+    chosen = [name for name, fields in used.items() if fields]
+    text_forms = " or ".join("(" + ", ".join(f) + ")" for f in required.values())
+    if len(chosen) != 1:
+        first = used[chosen[1]][0] if len(chosen) > 1 else next(iter(required.values()))[0]
+        value = getattr(model, first)
+        raise fail(first, value, f"give exactly one of {text_forms}")
+    form = chosen[0]
+    for name in required[form]:
+        if getattr(model, name) is None:
+            raise fail(name, None, f"required with {', '.join(used[form])}: "
+                       f"give all of ({', '.join(required[form])})")
+    return form
+
+
+# ---- materials and rotor -----------------------------------------------------------------
+
+
+class MaterialConfig(Section):
+    """Isotropic material; give the shear modulus or Poisson's ratio."""
+
+    density: quantity("density", "mass density rho", gt=0)
+    young_modulus: quantity("modulus", "Young's modulus E", gt=0)
+    shear_modulus: quantity("modulus", "shear modulus G (or give poisson_ratio)", gt=0,
+                            optional=True) = None
+    poisson_ratio: quantity("ratio", "Poisson's ratio nu (G = E / (2 (1 + nu)))",
+                            gt=-1, le=0.5, optional=True) = None
+
+    @model_validator(mode="after")
+    def _one_shear_form(self):
+        _exactly_one_form(self, {"G": ("shear_modulus",), "nu": ("poisson_ratio",)})
+        if self.shear_modulus is not None:
+            nu = self.young_modulus / (2 * self.shear_modulus) - 1
+            if not -1 < nu <= 0.5:
+                raise fail("shear_modulus", self.shear_modulus,
+                           f"E/(2G) - 1 = {nu:.4g} must lie in (-1, 0.5]")
+        return self
+
+    @property
+    def resolved_shear_modulus(self) -> float:
+        """G, given or from E and nu."""
+        if self.shear_modulus is not None:
+            return self.shear_modulus
+        return self.young_modulus / (2.0 * (1.0 + self.poisson_ratio))
+
+
+class ShaftSectionConfig(Section):
+    """A uniform hollow shaft section, meshed into ``n_elements`` equal Timoshenko elements.
+    Sections follow each other along x; element i joins nodes i and i+1."""
+
+    length: quantity("length", "section length", gt=0)
+    n_elements: integer("number of equal finite elements in the section", ge=1, le=2000)
+    inner_radius: quantity("length", "bore radius (0 for a solid shaft)", ge=0) = 0.0
+    outer_radius: quantity("length", "outer radius", gt=0)
+    material: NAME
+    shear_coefficient: quantity("ratio", "Timoshenko shear coefficient kappa (default: "
+                                "hollow-circle formula of Hutchinson)", gt=0, le=1,
+                                optional=True) = None
+
+    @model_validator(mode="after")
+    def _radii(self):
+        if not self.inner_radius < self.outer_radius:
+            raise fail("inner_radius", self.inner_radius,
+                       f"must be < outer_radius = {self.outer_radius:g} m")
+        return self
+
+
+class DiskConfig(Section):
+    """Rigid disk: by geometry (radii, thickness, material) or by mass and inertias."""
+
+    node: NODE
+    name: str = ""
+    material: NAME | None = None
+    inner_radius: quantity("length", "bore radius (geometry form)", ge=0, optional=True) = None
+    outer_radius: quantity("length", "outer radius (geometry form)", gt=0, optional=True) = None
+    thickness: quantity("length", "axial thickness (geometry form)", gt=0, optional=True) = None
+    mass: quantity("mass", "mass (inertia form)", ge=0, optional=True) = None
+    polar_inertia: quantity("inertia", "polar moment of inertia Ip (inertia form)", ge=0,
+                            optional=True) = None
+    diametral_inertia: quantity("inertia", "diametral moment of inertia Id (inertia form)",
+                                ge=0, optional=True) = None
+
+    @model_validator(mode="after")
+    def _one_form(self):
+        form = _exactly_one_form(
+            self,
+            {"geometry": ("material", "inner_radius", "outer_radius", "thickness"),
+             "inertia": ("mass", "polar_inertia", "diametral_inertia")},
+            {"geometry": ("material", "inner_radius", "outer_radius", "thickness"),
+             "inertia": ("mass", "polar_inertia", "diametral_inertia")},
+        )
+        if form == "geometry" and not self.inner_radius < self.outer_radius:
+            raise fail("inner_radius", self.inner_radius,
+                       f"must be < outer_radius = {self.outer_radius:g} m")
+        return self
+
+
+class PointMassConfig(Section):
+    """Lumped mass on the lateral DOFs of a node (no rotary inertia)."""
+
+    node: NODE
+    mass: quantity("mass", "mass", ge=0)
+
+
+class SupportConfig(Section):
+    """Linear support to ground: isotropic (stiffness, damping) or by coefficients
+    (kyy, kzz, kyz, kzy; cyy, czz, cyz, czy). Cross terms may be negative."""
+
+    node: NODE
+    name: str = ""
+    stiffness: quantity("stiffness", "isotropic stiffness kyy = kzz", ge=0,
+                        optional=True) = None
+    kyy: quantity("stiffness", "direct stiffness along y", ge=0, optional=True) = None
+    kzz: quantity("stiffness", "direct stiffness along z", ge=0, optional=True) = None
+    kyz: quantity("stiffness", "cross stiffness (Fy from z)", optional=True) = None
+    kzy: quantity("stiffness", "cross stiffness (Fz from y)", optional=True) = None
+    damping: quantity("damping", "isotropic damping cyy = czz", ge=0, optional=True) = None
+    cyy: quantity("damping", "direct damping along y", ge=0, optional=True) = None
+    czz: quantity("damping", "direct damping along z", ge=0, optional=True) = None
+    cyz: quantity("damping", "cross damping (Fy from z')", optional=True) = None
+    czy: quantity("damping", "cross damping (Fz from y')", optional=True) = None
+
+    @model_validator(mode="after")
+    def _forms(self):
+        _exactly_one_form(self, {"isotropic": ("stiffness",),
+                                 "coefficients": ("kyy", "kzz", "kyz", "kzy")},
+                          {"isotropic": ("stiffness",), "coefficients": ("kyy", "kzz")})
+        if self.damping is not None and _given(self, ("cyy", "czz", "cyz", "czy")):
+            raise fail("damping", self.damping,
+                       "give either damping or (cyy, czz, cyz, czy), not both")
+        if _given(self, ("cyy", "czz", "cyz", "czy")) and (self.cyy is None or self.czz is None):
+            raise fail("cyy" if self.cyy is None else "czz", None,
+                       "required with damping coefficients: give both cyy and czz")
+        return self
+
+    def coefficients(self) -> dict[str, float]:
+        """All eight coefficients, SI, zeros where not given."""
+        k = self.stiffness
+        c = self.damping
+        out = {"kyy": k, "kzz": k, "cyy": c, "czz": c} if k is not None else {}
+        if c is not None:
+            out.update(cyy=c, czz=c)
+        for name in ("kyy", "kzz", "kyz", "kzy", "cyy", "czz", "cyz", "czy"):
+            if getattr(self, name) is not None:
+                out[name] = getattr(self, name)
+        return {name: float(out.get(name) or 0.0)
+                for name in ("kyy", "kzz", "kyz", "kzy", "cyy", "czz", "cyz", "czy")}
+
+
+class DampingConfig(Section):
+    """Structural damping of the shaft: none, Rayleigh (C = alpha M + beta K) or an equal
+    modal damping ratio on the undamped non-rotating modes."""
+
+    kind: Literal["none", "rayleigh", "modal"] = "none"
+    alpha: quantity("rayleigh_alpha", "Rayleigh mass coefficient alpha", ge=0,
+                    optional=True) = None
+    beta: quantity("rayleigh_beta", "Rayleigh stiffness coefficient beta", ge=0,
+                   optional=True) = None
+    ratio: quantity("ratio", "modal damping ratio zeta", ge=0, lt=1, optional=True) = None
+
+    @model_validator(mode="after")
+    def _fields_of_kind(self):
+        needs = {"none": (), "rayleigh": ("alpha", "beta"), "modal": ("ratio",)}[self.kind]
+        for name in ("alpha", "beta", "ratio"):
+            given = getattr(self, name) is not None
+            if given and name not in needs:
+                raise fail(name, getattr(self, name), f"not used with kind = {self.kind!r}")
+        if self.kind == "rayleigh" and not _given(self, ("alpha", "beta")):
+            raise fail("alpha", None, "kind = 'rayleigh' needs alpha and/or beta")
+        if self.kind == "modal" and self.ratio is None:
+            raise fail("ratio", None, "kind = 'modal' needs the damping ratio")
+        return self
+
+
+class RotorConfig(Section):
+    """The finite-element rotor. Nodes are numbered 1..N along x from ``x_start``."""
+
+    x_start: quantity("length", "axial position of node 1") = 0.0
+    shaft: list[ShaftSectionConfig] = Field(min_length=1, description="shaft sections, "
+                                            "left to right")
+    disks: list[DiskConfig] = []
+    point_masses: list[PointMassConfig] = []
+    supports: list[SupportConfig] = []
+    damping: DampingConfig = DampingConfig()
+
+    @property
+    def n_nodes(self) -> int:
+        """Number of nodes: total elements + 1."""
+        return sum(s.n_elements for s in self.shaft) + 1
+
+
+# ---- squeeze film damper -----------------------------------------------------------------
+
+
+class SFDConfig(Section):
+    """Short-bearing squeeze film damper at a node, with an optional centring spring.
+
+    Geometry: give the clearance C with C/R (radius derived, as in the paper, which varies
+    C/R at fixed C) or with R, or R with C/R; and L or L/D.
+    """
+
+    node: NODE
+    viscosity: quantity("viscosity", "oil dynamic viscosity mu", gt=0)
+    clearance: quantity("length", "radial clearance C", gt=0, optional=True) = None
+    clearance_ratio: quantity("ratio", "clearance ratio C/R", gt=0, lt=1,
+                              optional=True) = None
+    radius: quantity("length", "journal radius R", gt=0, optional=True) = None
+    length: quantity("length", "land length L", gt=0, optional=True) = None
+    length_to_diameter: quantity("ratio", "land length to diameter L/D = L/(2R)", gt=0,
+                                 le=10, optional=True) = None
+    cavitation: Literal["pi", "none", "guembel"] = Field(
+        "pi", description="film model: 'pi' (half-Sommerfeld, theta in [pi, 2pi]), "
+                          "'none' (full 2pi film), 'guembel' (film where pressure > 0)")
+    centring_stiffness: quantity("stiffness", "centring spring stiffness (isotropic, in "
+                                 "parallel with the film)", ge=0) = 0.0
+    centring_damping: quantity("damping", "centring spring damping (isotropic)", ge=0) = 0.0
+
+    @model_validator(mode="after")
+    def _geometry(self):
+        given = _given(self, ("clearance", "clearance_ratio", "radius"))
+        if len(given) != 2:
+            name = given[-1] if given else "clearance"
+            raise fail(name, getattr(self, name),
+                       "give exactly two of clearance, clearance_ratio, radius "
+                       f"(given: {', '.join(given) or 'none'})")
+        if (self.length is None) == (self.length_to_diameter is None):
+            name = "length" if self.length is not None else "length_to_diameter"
+            raise fail(name, getattr(self, name),
+                       "give exactly one of length, length_to_diameter")
+        if self.resolved_clearance >= self.resolved_radius:
+            raise fail("clearance", self.resolved_clearance,
+                       f"must be < radius = {self.resolved_radius:g} m")
+        return self
+
+    @property
+    def resolved_clearance(self) -> float:
+        """C [m]."""
+        if self.clearance is not None:
+            return self.clearance
+        return self.clearance_ratio * self.radius
+
+    @property
+    def resolved_radius(self) -> float:
+        """R [m], given or C / (C/R)."""
+        if self.radius is not None:
+            return self.radius
+        return self.clearance / self.clearance_ratio
+
+    @property
+    def resolved_length(self) -> float:
+        """L [m], given or (L/D) * 2R."""
+        if self.length is not None:
+            return self.length
+        return self.length_to_diameter * 2.0 * self.resolved_radius
+
+
+# ---- loads: unbalance, base motion, gravity ---------------------------------------------------
+
+
+class UnbalanceConfig(Section):
+    """Unbalance U = m e at a node; force U Omega^2 rotating with the shaft, at angle
+    Omega t + phase from +y towards +z."""
+
+    node: NODE
+    magnitude: quantity("unbalance", "unbalance m*e", ge=0)
+    phase: quantity("angle", "angular position at t = 0") = 0.0
+
+
+_LAW_DOC = ("time law: 'off'; 'constant' (value); 'harmonic' (value + amplitude * "
+            "sin(frequency t + phase)); 'callable' (a Python function of t)")
+
+
+class _Component(Section):
+    law: Literal["off", "constant", "harmonic", "callable"] = Field("off", description=_LAW_DOC)
+    frequency: quantity("angular_velocity", "angular frequency of the harmonic law", ge=0,
+                        optional=True) = None
+    phase: quantity("angle", "phase of the harmonic law", optional=True) = None
+    callable: CALLABLE = None
+
+    _alt_amplitude: str = ""  # name of the alternative amplitude field
+
+    @model_validator(mode="after")
+    def _fields_of_law(self):
+        amps = ("amplitude", self._alt_amplitude)
+        uses = {"off": (), "constant": ("value",),
+                "harmonic": ("value", "frequency", "phase", *amps),
+                "callable": ("callable",)}[self.law]
+        for name in ("value", "frequency", "phase", "callable", *amps):
+            if getattr(self, name) is not None and name not in uses:
+                raise fail(name, getattr(self, name), f"not used with law = {self.law!r}")
+        if self.law == "constant" and self.value is None:
+            raise fail("value", None, "law = 'constant' needs a value")
+        if self.law == "callable" and self.callable is None:
+            raise fail("callable", None, "law = 'callable' needs callable = 'module:function'")
+        if self.law == "harmonic":
+            if self.frequency is None:
+                raise fail("frequency", None, "law = 'harmonic' needs a frequency")
+            if (self.amplitude is None) == (getattr(self, self._alt_amplitude) is None):
+                raise fail("amplitude", self.amplitude,
+                           f"law = 'harmonic' needs exactly one of amplitude, "
+                           f"{self._alt_amplitude}")
+        return self
+
+
+class RotationComponent(_Component):
+    """A base rotation rate w_b(t) [rad/s] in the base frame. For the harmonic law the
+    rate amplitude may be given as the angle amplitude A0: w_b = A0 w sin(w t + phase)."""
+
+    value: quantity("angular_velocity", "constant rate, or mean rate of the harmonic law",
+                    optional=True) = None
+    amplitude: quantity("angular_velocity", "rate amplitude", ge=0, optional=True) = None
+    angle_amplitude: quantity("angle", "angle amplitude A0 (rate amplitude = A0 * frequency)",
+                              ge=0, optional=True) = None
+    _alt_amplitude: str = "angle_amplitude"
+
+    def rate_amplitude(self) -> float:
+        """Amplitude of the rate [rad/s] for the harmonic law."""
+        if self.amplitude is not None:
+            return self.amplitude
+        return (self.angle_amplitude or 0.0) * (self.frequency or 0.0)
+
+
+class TranslationComponent(_Component):
+    """Base-origin acceleration a(t) [m/s^2] along a base axis (only the acceleration enters
+    the equations in the base frame). For the harmonic law the amplitude may be given as a
+    displacement amplitude d: a = d w^2 sin(w t + phase + pi)."""
+
+    value: quantity("acceleration", "constant acceleration, or mean of the harmonic law",
+                    optional=True) = None
+    amplitude: quantity("acceleration", "acceleration amplitude", ge=0, optional=True) = None
+    displacement_amplitude: quantity("length", "displacement amplitude d "
+                                     "(acceleration amplitude = d * frequency^2)", ge=0,
+                                     optional=True) = None
+    _alt_amplitude: str = "displacement_amplitude"
+
+
+class BaseConfig(Section):
+    """Base motion in the base frame: rotation rates (rolling about the shaft axis x,
+    pitching about y, yawing about z) and translational accelerations along x, y, z."""
+
+    rolling: RotationComponent = RotationComponent()
+    pitching: RotationComponent = RotationComponent()
+    yawing: RotationComponent = RotationComponent()
+    x: TranslationComponent = TranslationComponent()
+    y: TranslationComponent = TranslationComponent()
+    z: TranslationComponent = TranslationComponent()
+
+    @property
+    def is_fixed(self) -> bool:
+        """True when every component is off."""
+        return all(getattr(self, c).law == "off"
+                   for c in ("rolling", "pitching", "yawing", "x", "y", "z"))
+
+
+class GravityConfig(Section):
+    """Gravity, applied as a base translational acceleration (it tilts with the base)."""
+
+    enabled: bool = Field(False, description="include gravity (the paper neglects it)")
+    magnitude: quantity("acceleration", "gravitational acceleration g", ge=0) = 9.80665
+    direction: list[float] = Field([0.0, 0.0, -1.0], min_length=3, max_length=3,
+                                   description="direction of g in the base frame (x, y, z); "
+                                               "normalised on use")
+
+    @model_validator(mode="after")
+    def _direction(self):
+        if not math.hypot(*self.direction) > 0 or not all(map(math.isfinite, self.direction)):
+            raise fail("direction", self.direction, "must be a finite nonzero 3-vector")
+        return self
+
+
+def _speed_or_keyword(value: Any) -> Any:
+    if isinstance(value, str) and value.strip() == "first_critical":
+        return "first_critical"
+    try:
+        return to_si(value, "angular_velocity")
+    except UnitError:
+        raise PydanticCustomError("rotorsfd", "{allowed}", {
+            "allowed": f"expected 'first_critical' or {describe('angular_velocity')}"}) \
+            from None
+
+
+class ReferenceConfig(Section):
+    """Reference speed of the dimensionless speed Omega~ = Omega / Omega_ref."""
+
+    speed: Annotated[float | Literal["first_critical"], BeforeValidator(_speed_or_keyword),
+                     Field(description="Omega_ref [rad/s] > 0, or 'first_critical' (the "
+                                       "first forward critical speed, computed)")
+                     ] = "first_critical"
+
+    @model_validator(mode="after")
+    def _positive(self):
+        if isinstance(self.speed, float) and not self.speed > 0:
+            raise fail("speed", self.speed, "must be > 0 rad/s or 'first_critical'")
+        return self
+
+
+# ---- analyses ------------------------------------------------------------------------------
+
+
+class SpeedRange(Section):
+    """A range of rotor speeds, in rad/s (start, stop) or as Omega~ = Omega/Omega_ref
+    (start_ratio, stop_ratio)."""
+
+    start: quantity("angular_velocity", "first speed", ge=0, optional=True) = None
+    stop: quantity("angular_velocity", "last speed", gt=0, optional=True) = None
+    start_ratio: quantity("ratio", "first speed / reference speed", ge=0, optional=True) = None
+    stop_ratio: quantity("ratio", "last speed / reference speed", gt=0, optional=True) = None
+    n: integer("number of speeds (grids only)", ge=2, le=100000) = 101
+
+    @model_validator(mode="after")
+    def _one_form(self):
+        form = _exactly_one_form(self, {"rad/s": ("start", "stop"),
+                                        "ratio": ("start_ratio", "stop_ratio")})
+        a, b = (("start", "stop") if form == "rad/s" else ("start_ratio", "stop_ratio"))
+        if getattr(self, a) == getattr(self, b):
+            raise fail(b, getattr(self, b), f"must differ from {a}")
+        return self
+
+    def bounds(self, reference_speed: float) -> tuple[float, float]:
+        """(start, stop) in rad/s."""
+        if self.start is not None:
+            return self.start, self.stop
+        return self.start_ratio * reference_speed, self.stop_ratio * reference_speed
+
+
+def _path_field(doc: str) -> Any:
+    return Annotated[str, Field(pattern=r"^[A-Za-z_][\w]*(\[\d+\]|\.\w+)*$", description=doc)]
+
+
+PARAMETER_DOC = ("'speed' or the dotted path of a scalar config field, e.g. "
+                 "'base.pitching.value', 'unbalance[0].magnitude', 'sfd.clearance_ratio'")
+
+
+class ParameterAxis(Section):
+    """A grid over one scalar config field (or 'speed'); values take that field's units."""
+
+    parameter: _path_field(PARAMETER_DOC)
+    start: Any = Field(None, description="first value (units of the parameter)")
+    stop: Any = Field(None, description="last value (units of the parameter)")
+    n: integer("number of grid values", ge=1, le=100000) = 11
+    values: list[Any] | None = Field(None, description="explicit values instead of "
+                                     "start/stop/n (units of the parameter)")
+
+    @model_validator(mode="after")
+    def _form(self):
+        if self.values is not None:
+            if self.start is not None or self.stop is not None:
+                raise fail("values", self.values, "give values or start/stop/n, not both")
+            if not self.values:
+                raise fail("values", self.values, "must not be empty")
+        elif self.start is None or self.stop is None:
+            raise fail("start" if self.start is None else "stop", None,
+                       "give start and stop (or values)")
+        return self
+
+
+class ModalAnalysis(Section):
+    """Campbell diagram and critical speeds of the linear rotor (SFD film excluded; its
+    centring spring included)."""
+
+    speeds: list[quantity("angular_velocity", "speed", ge=0)] | None = Field(
+        None, description="explicit list of speeds [rad/s] (instead of speed_range)")
+    speed_range: SpeedRange = SpeedRange(start_ratio=0.0, stop_ratio=4.0, n=81)
+    n_modes: integer("number of modes per speed", ge=1, le=200) = 8
+    n_critical: integer("number of critical speeds to locate", ge=1, le=50) = 2
+    whirl: Literal["forward", "backward"] = "forward"
+    critical_speed_max: quantity("angular_velocity", "upper end of the critical-speed search",
+                                 gt=0) = 2.0e4
+
+
+class ResponseAnalysis(Section):
+    """Periodic response by harmonic balance (HB-AFT) with arc-length continuation."""
+
+    harmonics: integer("number of harmonics H", ge=1, le=64) = 3
+    n_samples: integer("time samples per period N_f of the AFT (default: chosen free of "
+                       "aliasing)", ge=3, le=65536) | None = None
+    parameter: _path_field("continuation parameter: " + PARAMETER_DOC) = "speed"
+    speed_range: SpeedRange = SpeedRange(start_ratio=0.5, stop_ratio=1.6)
+    speed: quantity("angular_velocity", "fixed speed when the parameter is not 'speed'",
+                    gt=0, optional=True) = None
+    speed_ratio: quantity("ratio", "fixed speed / reference speed when the parameter is "
+                          "not 'speed'", gt=0, optional=True) = None
+    parameter_range: list[Any] | None = Field(
+        None, min_length=2, max_length=2,
+        description="[start, stop] of a non-speed parameter (its units)")
+    step_initial: quantity("ratio", "initial arc-length step (scaled variables)", gt=0) = 0.01
+    step_min: quantity("ratio", "smallest step before the branch stops", gt=0) = 1e-6
+    step_max: quantity("ratio", "largest step", gt=0) = 0.1
+    max_points: integer("maximum number of continuation points", ge=2, le=1000000) = 5000
+    tolerance: quantity("ratio", "Newton convergence threshold (scaled residual)", gt=0,
+                        lt=1) = 1e-6
+    max_iterations: integer("Newton iterations per point", ge=1, le=1000) = 20
+    max_tangent_angle: quantity("angle", "largest angle between successive tangents", gt=0,
+                                le=math.pi / 2) = math.radians(10.0)
+    max_eccentricity: quantity("ratio", "step limiter: SFD eccentricity ratio kept below",
+                               gt=0, lt=1) = 0.95
+    condensed: bool = Field(True, description="condense exactly onto the SFD DOFs")
+    nodes: list[NODE] = Field([], description="output nodes (default: SFD and disk nodes)")
+    directions: list[Literal["y", "z"]] = Field(["y", "z"], min_length=1,
+                                                description="output directions")
+
+    @model_validator(mode="after")
+    def _parameter(self):
+        if self.parameter == "speed":
+            for name in ("speed", "speed_ratio", "parameter_range"):
+                if getattr(self, name) is not None:
+                    raise fail(name, getattr(self, name),
+                               "only used when the parameter is not 'speed'")
+        else:
+            if (self.speed is None) == (self.speed_ratio is None):
+                raise fail("speed", self.speed, f"parameter = {self.parameter!r} needs "
+                           "exactly one fixed speed: speed or speed_ratio")
+            if self.parameter_range is None:
+                raise fail("parameter_range", None,
+                           f"parameter = {self.parameter!r} needs parameter_range")
+        if not self.step_min <= self.step_initial <= self.step_max:
+            raise fail("step_initial", self.step_initial,
+                       f"must lie in [step_min, step_max] = [{self.step_min:g}, "
+                       f"{self.step_max:g}]")
+        return self
+
+
+class StabilityAnalysis(Section):
+    """Floquet stability of periodic solutions."""
+
+    enabled: bool = Field(True, description="compute the stability of every point")
+    method: Literal["newmark", "hill"] = Field("newmark", description="monodromy by "
+                                               "Newmark (paper), or Hill's method")
+    intervals: integer("Newmark intervals per period M (paper: 400)", ge=10,
+                       le=100000) = 400
+    tolerance: quantity("ratio", "unstable when |mu|max > 1 + tolerance", ge=0, lt=1) = 1e-6
+    locate_tolerance: quantity("ratio", "relative parameter tolerance of located "
+                               "bifurcations", gt=0, lt=1) = 1e-6
+    n_modes: integer("linear modes kept with the SFD DOFs in the reduced model (default: "
+                     "full model)", ge=1, le=10000) | None = None
+
+
+class StabilityChartAnalysis(Section):
+    """Stability chart of the linear rotor under time-periodic base motion (paper Fig. 6):
+    the maximum Floquet multiplier over a grid of two parameters at a fixed speed."""
+
+    x: ParameterAxis | None = None
+    y: ParameterAxis | None = None
+    speed: quantity("angular_velocity", "rotor speed", gt=0, optional=True) = None
+    intervals: integer("Newmark intervals per base period", ge=10, le=100000) = 400
+
+
+class SimulateAnalysis(Section):
+    """Time integration of the nonlinear rotor (Newmark)."""
+
+    speed: quantity("angular_velocity", "rotor speed (or give speed_ratio)", gt=0,
+                    optional=True) = None
+    speed_ratio: quantity("ratio", "rotor speed / reference speed", gt=0,
+                          optional=True) = None
+    scheme: Literal["newmark", "hht", "generalized-alpha"] = "newmark"
+    alpha: quantity("ratio", "HHT alpha / generalized-alpha spectral radius parameter",
+                    ge=-1 / 3, le=1) = 0.0
+    steps_per_period: integer("time steps per rotor period (paper: 200)", ge=8,
+                              le=1000000) = 200
+    periods: integer("number of rotor periods (paper: 2000)", ge=1, le=10000000) = 2000
+    poincare_periods: integer("last periods kept for Poincare sections (paper: 100)", ge=1,
+                              le=10000000) = 100
+    initial_displacement: quantity("length", "initial displacement of every node in y and "
+                                   "z (paper: 1 um)") = 1e-6
+    nodes: list[NODE] = Field([], description="output nodes (default: SFD and disk nodes)")
+
+    @model_validator(mode="after")
+    def _checks(self):
+        if self.speed is not None and self.speed_ratio is not None:
+            raise fail("speed", self.speed, "give speed or speed_ratio, not both")
+        if self.poincare_periods > self.periods:
+            raise fail("poincare_periods", self.poincare_periods,
+                       f"must be <= periods = {self.periods}")
+        return self
+
+
+class BifurcationDiagramAnalysis(Section):
+    """Brute-force bifurcation diagram: speed swept up then down, each point starting from
+    the previous end state."""
+
+    speed_range: SpeedRange = SpeedRange(start_ratio=0.9, stop_ratio=1.3, n=41)
+    direction: Literal["up", "down", "up-down"] = "up-down"
+    settle_periods: integer("periods discarded at each speed", ge=0, le=10000000) = 400
+    record_periods: integer("periods recorded at each speed", ge=1, le=10000000) = 100
+
+
+class SweepAnalysis(Section):
+    """A grid over config fields; each point runs ``task``."""
+
+    task: Literal["response", "simulate", "stability-chart"] = "response"
+    axes: list[ParameterAxis] = []
+
+
+class AnalysisConfig(Section):
+    """Settings of every analysis; each command reads its own table."""
+
+    modal: ModalAnalysis = ModalAnalysis()
+    response: ResponseAnalysis = ResponseAnalysis()
+    stability: StabilityAnalysis = StabilityAnalysis()
+    stability_chart: StabilityChartAnalysis = StabilityChartAnalysis()
+    simulate: SimulateAnalysis = SimulateAnalysis()
+    bifurcation_diagram: BifurcationDiagramAnalysis = BifurcationDiagramAnalysis()
+    sweep: SweepAnalysis = SweepAnalysis()
+
+
+# ---- the whole configuration ---------------------------------------------------------------
+
+
+class Config(Section):
+    """A rotor-SFD system on a (possibly moving) base and the settings of its analyses."""
+
+    title: str = Field("", description="a one-line title")
+    description: str = Field("", description="free text")
+    materials: dict[str, MaterialConfig] = Field(min_length=1,
+                                                 description="named materials")
+    rotor: RotorConfig
+    sfd: SFDConfig | None = None
+    unbalance: list[UnbalanceConfig] = []
+    base: BaseConfig = BaseConfig()
+    gravity: GravityConfig = GravityConfig()
+    reference: ReferenceConfig = ReferenceConfig()
+    analysis: AnalysisConfig = AnalysisConfig()
+
+    @model_validator(mode="after")
+    def _cross_checks(self):
+        names = sorted(self.materials)
+        for key in self.materials:
+            if not re.match(r"^[A-Za-z_][A-Za-z0-9_\-]*$", key):
+                raise fail(("materials", key), key, "a name: letters, digits, '_' and '-'")
+        refs = [(("rotor", "shaft", i, "material"), s.material)
+                for i, s in enumerate(self.rotor.shaft)]
+        refs += [(("rotor", "disks", i, "material"), d.material)
+                 for i, d in enumerate(self.rotor.disks) if d.material is not None]
+        for path, name in refs:
+            if name not in self.materials:
+                raise fail(path, name, f"must name a material: {', '.join(names)}")
+        n = self.rotor.n_nodes
+        nodes = [(("rotor", kind, i, "node"), item.node)
+                 for kind in ("disks", "point_masses", "supports")
+                 for i, item in enumerate(getattr(self.rotor, kind))]
+        nodes += [(("unbalance", i, "node"), u.node) for i, u in enumerate(self.unbalance)]
+        if self.sfd is not None:
+            nodes.append((("sfd", "node"), self.sfd.node))
+        for section in ("response", "simulate"):
+            nodes += [(("analysis", section, "nodes", i), node)
+                      for i, node in enumerate(getattr(self.analysis, section).nodes)]
+        for path, node in nodes:
+            if not 1 <= node <= n:
+                raise fail(path, node, f"must be a node of the rotor, 1..{n} "
+                           f"({n - 1} shaft elements)")
+        for path in _parameter_paths(self):
+            if path[1] != "speed":
+                try:
+                    resolve_kind(self, path[1])
+                except KeyError as exc:
+                    raise fail(path[0], path[1], exc.args[0]) from None
+        return self
+
+
+def _parameter_paths(config: Config):
+    """(where, dotted path) of every parameter named in the analyses."""
+    a = config.analysis
+    yield ("analysis", "response", "parameter"), a.response.parameter
+    for axis_name in ("x", "y"):
+        axis = getattr(a.stability_chart, axis_name)
+        if axis is not None:
+            yield ("analysis", "stability_chart", axis_name, "parameter"), axis.parameter
+    for i, axis in enumerate(a.sweep.axes):
+        yield ("analysis", "sweep", "axes", i, "parameter"), axis.parameter
+
+
+_TOKEN = re.compile(r"([A-Za-z_]\w*)|\[(\d+)\]|\.(\d+)")
+
+
+def split_path(path: str) -> tuple[str | int, ...]:
+    """``"rotor.shaft[0].length"`` (or ``rotor.shaft.0.length``) -> ``("rotor", "shaft", 0,
+    "length")``. Raise ValueError on a malformed path."""
+    parts: list[str | int] = []
+    pos = 0
+    path = path.strip()
+    while pos < len(path):
+        if parts and path[pos] == "." and pos + 1 < len(path) and not path[pos + 1].isdigit():
+            pos += 1
+        m = _TOKEN.match(path, pos)
+        if not m or (m.group(1) and parts and path[pos - 1] not in "."):
+            raise ValueError(f"malformed dotted path {path!r}")
+        parts.append(m.group(1) if m.group(1) else int(m.group(2) or m.group(3)))
+        pos = m.end()
+    if not parts or not isinstance(parts[0], str):
+        raise ValueError(f"malformed dotted path {path!r}")
+    return tuple(parts)
+
+
+def resolve_kind(config: BaseModel, path: str) -> str:
+    """Physical kind (``units.KINDS`` key) of the scalar quantity field at dotted ``path``
+    of ``config``. Raise KeyError with a message if the path names no such field."""
+    obj: Any = config
+    parts = split_path(path)
+    for i, part in enumerate(parts):
+        if isinstance(obj, BaseModel):
+            fields = type(obj).model_fields
+            if not isinstance(part, str) or part not in fields:
+                raise KeyError(f"{path!r} names no config field ({part!r} unknown)")
+            if i == len(parts) - 1:
+                extra = fields[part].json_schema_extra or {}
+                if "kind" not in extra:
+                    raise KeyError(f"{path!r} is not a scalar physical quantity")
+                return extra["kind"]
+            obj = getattr(obj, part)
+        elif isinstance(obj, list | dict):
+            try:
+                obj = obj[part]
+            except (IndexError, KeyError, TypeError):
+                raise KeyError(f"{path!r} names no config field ({part!r} not present)") \
+                    from None
+        else:
+            raise KeyError(f"{path!r} names no config field")
+    raise KeyError(f"{path!r} is not a scalar physical quantity")
+
+
+def parameter_values(config: Config, path: str, values: list[Any]) -> list[float]:
+    """Values of the parameter at ``path`` converted to SI ('speed' means rad/s)."""
+    kind = "angular_velocity" if path == "speed" else resolve_kind(config, path)
+    return [to_si(v, kind) for v in values]
+
+
+__all__ = ["Config", "describe", "fail", "parameter_values", "resolve_kind", "split_path"]
