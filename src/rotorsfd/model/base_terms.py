@@ -1,0 +1,294 @@
+"""Base-motion terms C_base, K_base, F_base of the rotor, as constant bases times scalars.
+
+Derived with sympy in ``derivations/base_motion.py`` (Lagrange's equations in the base
+frame, linearised in the DOFs, base rates kept exactly; ``--check`` compares with this
+module). For a slice of the rotor at axial position x with mass m, diametral inertia Id,
+polar inertia Ip (a rigid disk; or rho A dx, rho I dx, 2 rho I dx of a shaft slice), in
+the DOFs ``(y, z)`` and ``(ty, tz)``, base rates w = (wx, wy, wz), spin Omega:
+
+    C_b = m [[0, -2 wx], [2 wx, 0]]  (+)  (Ip - 2 Id) wx [[0, 1], [-1, 0]]
+
+    K_b(y,z)   = m [[-(wx^2 + wz^2), wy wz - wx'], [wy wz + wx', -(wx^2 + wy^2)]]
+    K_b(ty,tz) = [[Ip Omega wx + (Ip-Id)(wx^2 - wz^2),  (Ip-Id) wy wz - Id wx'],
+                  [(Ip-Id) wy wz - (Ip-Id) wx',  Ip Omega wx + (Ip-Id)(wx^2 - wy^2)]]
+
+    F_b(y)  = -m [a_y + x (wz' + wx wy)]         F_b(z)  = -m [a_z + x (wx wz - wy')]
+    F_b(ty) = -Ip (Omega + wx) wz - Id (wy' - wx wz)
+    F_b(tz) = +Ip (Omega + wx) wy - Id (wz' + wx wy)
+
+with a = a0 - g the effective base acceleration (base components). The (Ip - Id) wx' entry
+follows from the angle sequence of docs/INTERFACES.md (tz, then ty, then spin).
+
+Every term is a sum of scalar coefficients times constant patterns: writing
+``E11, E22, S = E12 + E21, J = E21 - E12`` on a DOF pair, and
+``T_*`` = int rho A N_t^T E N_t dx (+ m E at disks, point masses) on (y, z),
+``D_*`` = int rho I N_r^T E N_r dx (+ Id E at disks) and
+``P_*`` = int 2 rho I N_r^T E N_r dx (+ Ip E at disks) on (ty, tz):
+
+    K_base = -(wx^2+wz^2) T11 - (wx^2+wy^2) T22 + wy wz TS + wx' TJ
+             + (Omega wx + wx^2 - wz^2) P11 + (Omega wx + wx^2 - wy^2) P22
+             + (wy wz - wx'/2) PS - wx'/2 PJ
+             - (wx^2 - wz^2) D11 - (wx^2 - wy^2) D22 - wy wz DS + wx' DJ
+    C_base = 2 wx TJ - wx PJ + 2 wx DJ              (note Omega G = -Omega PJ)
+    F_base = -a_y fy - a_z fz - (wz' + wx wy) gy - (wx wz - wy') gz
+             - (Omega + wx) wz pty + (Omega + wx) wy ptz + (wx wz - wy') dty - (wz' + wx wy) dtz
+
+with the load vectors fy = int rho A N_y^T dx, gy = int rho A x N_y^T dx, pty = int 2 rho I
+N_ty^T dx, dty = int rho I N_ty^T dx (+ the disk values m, m x_d, Ip, Id), and so on.
+:func:`base_basis` builds the 12 matrices and 8 vectors once per rotor,
+:func:`base_coefficients` the scalars per base state (vectorised over time).
+
+Shaft elements: the patterns follow from the element's own mass matrices, since the
+Timoshenko interpolation is the same in both planes (``N_z = N_y R``, ``N_ty = -N_tz R``
+with R the 90-degree rotation of the DOFs about x) and reproduces rigid-body motions
+(``N_y r_t = 1``, ``N_y r_r = s``, ``N_tz r_r = 1``), so that int N^T dx = M r.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rotorsfd.model import dofs
+from rotorsfd.model.base_motion import BaseState
+
+MATRIX_NAMES: tuple[str, ...] = (
+    "T11", "T22", "TS", "TJ", "P11", "P22", "PS", "PJ", "D11", "D22", "DS", "DJ",
+)
+VECTOR_NAMES: tuple[str, ...] = ("fy", "fz", "gy", "gz", "pty", "ptz", "dty", "dtz")
+
+# 8-DOF element: [y1, z1, ty1, tz1, y2, z2, ty2, tz2]
+_Y_PLANE = np.array([0, 3, 4, 7])
+_R8 = np.zeros((8, 8))  # (R q) in the x-y plane slots: y <- z, tz <- -ty
+for _n in (0, 4):
+    _R8[_n + 0, _n + 1] = 1.0
+    _R8[_n + 3, _n + 2] = -1.0
+
+
+def _pair_patterns(a11: np.ndarray, a12: np.ndarray, a21: np.ndarray,
+                   a22: np.ndarray) -> tuple[np.ndarray, ...]:
+    """(E11, E22, S, J) patterns from the four int N_i^T N_j blocks."""
+    return a11, a22, a12 + a21, a21 - a12
+
+
+def shaft_element_basis(element, x_left: float) -> tuple[np.ndarray, np.ndarray]:
+    """Local basis of a shaft element: (12, 8, 8) matrices and (8, 8) vectors.
+
+    Uses ``element.translational_mass_matrix()`` = rho A int N_t^T N_t and
+    ``element.rotational_mass_matrix()`` = rho I int N_r^T N_r (polar 2 rho I).
+    """
+    mt = np.asarray(element.translational_mass_matrix(), dtype=float)
+    mr = np.asarray(element.rotational_mass_matrix(), dtype=float)
+    length = float(element.length)
+    mask = np.zeros((8, 8))
+    mask[np.ix_(_Y_PLANE, _Y_PLANE)] = 1.0
+    tyy = mt * mask            # rho A int N_y^T N_y
+    dzz = mr * mask            # rho I int N_tz^T N_tz
+    R = _R8
+    # translations: N_z = N_y R
+    t_pat = _pair_patterns(tyy, tyy @ R, R.T @ tyy, R.T @ tyy @ R)
+    # rotations (ty, tz): N_ty = -N_tz R
+    d_pat = _pair_patterns(R.T @ dzz @ R, -R.T @ dzz, -dzz @ R, dzz)
+    mats = np.array(list(t_pat) + [2.0 * p for p in d_pat] + list(d_pat))
+    r_t = np.array([1.0, 0, 0, 0, 1.0, 0, 0, 0])        # y = 1
+    r_r = np.array([0.0, 0, 0, 1.0, length, 0, 0, 1.0])  # y = s, tz = 1
+    fy = tyy @ r_t
+    gy = tyy @ (x_left * r_t + r_r)
+    dtz = dzz @ r_r
+    dty = -R.T @ dtz
+    vecs = np.array([fy, R.T @ fy, gy, R.T @ gy, 2.0 * dty, 2.0 * dtz, dty, dtz])
+    return mats, vecs
+
+
+def disk_basis(mass: float, polar_inertia: float, diametral_inertia: float,
+               x_d: float) -> tuple[np.ndarray, np.ndarray]:
+    """Local basis of a rigid disk (or point mass with zero inertias) on [y, z, ty, tz]."""
+    mats = np.zeros((12, 4, 4))
+    vecs = np.zeros((8, 4))
+    e11, e22 = np.diag([1.0, 0.0]), np.diag([0.0, 1.0])
+    s, j = np.array([[0.0, 1.0], [1.0, 0.0]]), np.array([[0.0, -1.0], [1.0, 0.0]])
+    for k, (w, sl) in enumerate(((mass, slice(0, 2)), (polar_inertia, slice(2, 4)),
+                                 (diametral_inertia, slice(2, 4)))):
+        for i, pat in enumerate((e11, e22, s, j)):
+            mats[4 * k + i][sl, sl] = w * pat
+    vecs[0, 0] = vecs[1, 1] = mass
+    vecs[2, 0] = vecs[3, 1] = mass * x_d
+    vecs[4, 2] = vecs[5, 3] = polar_inertia
+    vecs[6, 2] = vecs[7, 3] = diametral_inertia
+    return mats, vecs
+
+
+# ---------------------------------------------------------------------------------------
+# scalar coefficients
+# ---------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class BaseCoefficients:
+    """Scalars multiplying the basis: c_C, c_K (12, ...) and c_F (8, ...)."""
+
+    c_C: np.ndarray
+    c_K: np.ndarray
+    c_F: np.ndarray
+
+
+def base_coefficients(state: BaseState, speed: float) -> BaseCoefficients:
+    """Coefficients of C_base, K_base, F_base (module docstring); vectorised over time."""
+    wx, wy, wz = np.asarray(state.w, dtype=float)
+    dwx, dwy, dwz = np.asarray(state.dw, dtype=float)
+    ay, az = np.asarray(state.a_eff, dtype=float)[1:]
+    om = float(speed)
+    zero = np.zeros_like(wx)
+    c_C = np.array([zero, zero, zero, 2.0 * wx, zero, zero, zero, -wx,
+                    zero, zero, zero, 2.0 * wx])
+    c_K = np.array([
+        -(wx**2 + wz**2), -(wx**2 + wy**2), wy * wz, dwx,
+        om * wx + wx**2 - wz**2, om * wx + wx**2 - wy**2, wy * wz - 0.5 * dwx, -0.5 * dwx,
+        -(wx**2 - wz**2), -(wx**2 - wy**2), -wy * wz, dwx,
+    ])
+    c_F = np.array([
+        -ay, -az, -(dwz + wx * wy), -(wx * wz - dwy),
+        -(om + wx) * wz, (om + wx) * wy, wx * wz - dwy, -(dwz + wx * wy),
+    ])
+    return BaseCoefficients(c_C, c_K, c_F)
+
+
+RATE_NAMES: tuple[str, ...] = ("speed", "wx", "wy", "wz", "dwx", "dwy", "dwz", "ay", "az")
+
+
+def base_coefficient_derivatives(state: BaseState, speed: float) -> dict[str, BaseCoefficients]:
+    """d(coefficients)/d(p) for p in RATE_NAMES (speed, rates, rate derivatives, a_eff)."""
+    wx, wy, wz = (float(v) for v in np.asarray(state.w, dtype=float))
+    om = float(speed)
+    z12, z8 = np.zeros(12), np.zeros(8)
+
+    def co(c=None, k=None, f=None) -> BaseCoefficients:
+        return BaseCoefficients(z12.copy() if c is None else np.asarray(c, float),
+                                z12.copy() if k is None else np.asarray(k, float),
+                                z8.copy() if f is None else np.asarray(f, float))
+
+    return {
+        "speed": co(k=[0, 0, 0, 0, wx, wx, 0, 0, 0, 0, 0, 0],
+                    f=[0, 0, 0, 0, -wz, wy, 0, 0]),
+        "wx": co(c=[0, 0, 0, 2, 0, 0, 0, -1, 0, 0, 0, 2],
+                 k=[-2 * wx, -2 * wx, 0, 0, om + 2 * wx, om + 2 * wx, 0, 0,
+                    -2 * wx, -2 * wx, 0, 0],
+                 f=[0, 0, -wy, -wz, -wz, wy, wz, -wy]),
+        "wy": co(k=[0, -2 * wy, wz, 0, 0, -2 * wy, wz, 0, 0, 2 * wy, -wz, 0],
+                 f=[0, 0, -wx, 0, 0, om + wx, 0, -wx]),
+        "wz": co(k=[-2 * wz, 0, wy, 0, -2 * wz, 0, wy, 0, 2 * wz, 0, -wy, 0],
+                 f=[0, 0, 0, -wx, -(om + wx), 0, wx, 0]),
+        "dwx": co(k=[0, 0, 0, 1, 0, 0, -0.5, -0.5, 0, 0, 0, 1]),
+        "dwy": co(f=[0, 0, 0, 1, 0, 0, -1, 0]),
+        "dwz": co(f=[0, 0, -1, 0, 0, 0, 0, -1]),
+        "ay": co(f=[-1, 0, 0, 0, 0, 0, 0, 0]),
+        "az": co(f=[0, -1, 0, 0, 0, 0, 0, 0]),
+    }
+
+
+# ---------------------------------------------------------------------------------------
+# element-level terms
+# ---------------------------------------------------------------------------------------
+def _combine(mats: np.ndarray, vecs: np.ndarray,
+             co: BaseCoefficients) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    return (np.tensordot(co.c_C, mats, axes=(0, 0)), np.tensordot(co.c_K, mats, axes=(0, 0)),
+            np.tensordot(co.c_F, vecs, axes=(0, 0)))
+
+
+def disk_base_terms(disk, x_d: float, state: BaseState,
+                    speed: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(C_b, K_b, F_b) of a rigid disk at axial position x_d, local [y, z, ty, tz]."""
+    mats, vecs = disk_basis(disk.mass, getattr(disk, "polar_inertia", 0.0),
+                            getattr(disk, "diametral_inertia", 0.0), x_d)
+    return _combine(mats, vecs, base_coefficients(state, speed))
+
+
+def shaft_base_terms(element, x_left: float, state: BaseState,
+                     speed: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(C_b, K_b, F_b) of a Timoshenko shaft element with left end at x_left (8 local DOFs)."""
+    mats, vecs = shaft_element_basis(element, x_left)
+    return _combine(mats, vecs, base_coefficients(state, speed))
+
+
+# ---------------------------------------------------------------------------------------
+# global assembly
+# ---------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class BaseBasis:
+    """Global basis of a rotor: ``matrices`` (12, n, n) and ``vectors`` (8, n)."""
+
+    matrices: np.ndarray
+    vectors: np.ndarray
+
+    @property
+    def n_dof(self) -> int:
+        return self.vectors.shape[1]
+
+    def matrix(self, name: str) -> np.ndarray:
+        return self.matrices[MATRIX_NAMES.index(name)]
+
+    def vector(self, name: str) -> np.ndarray:
+        return self.vectors[VECTOR_NAMES.index(name)]
+
+    def combine(self, co: BaseCoefficients) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(C_base, K_base, F_base) = (sum c_C B, sum c_K B, sum c_F f); F has shape (n,)
+        or (n, nt) for time-vectorised coefficients (the matrices need scalar ones)."""
+        C = np.tensordot(co.c_C, self.matrices, axes=(0, 0))
+        K = np.tensordot(co.c_K, self.matrices, axes=(0, 0))
+        F = np.tensordot(self.vectors, co.c_F, axes=(0, 0))
+        return C, K, F
+
+
+def base_basis(rotor) -> BaseBasis:
+    """Assemble the 12 constant matrices and 8 vectors of a rotor (shaft, disks, masses)."""
+    n = rotor.n_dof
+    mats = np.zeros((12, n, n))
+    vecs = np.zeros((8, n))
+    for i, el in enumerate(rotor.shaft_elements):
+        idx = np.arange(4 * i, 4 * i + 8)
+        me, ve = shaft_element_basis(el, float(rotor.element_x[i]))
+        mats[:, idx[:, None], idx[None, :]] += me
+        vecs[:, idx] += ve
+    lumped = [(d.node, d.mass, d.polar_inertia, d.diametral_inertia) for d in rotor.disks]
+    lumped += [(p.node, p.mass, 0.0, 0.0) for p in getattr(rotor, "point_masses", ())]
+    for node, m, ip, idi in lumped:
+        idx = dofs.node_dofs(node)
+        me, ve = disk_basis(m, ip, idi, float(rotor.node_x[node - 1]))
+        mats[:, idx[:, None], idx[None, :]] += me
+        vecs[:, idx] += ve
+    return BaseBasis(mats, vecs)
+
+
+def assemble_base(rotor, state: BaseState, speed: float,
+                  basis: BaseBasis | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Global (C_base, K_base, F_base) for one base state (scalar time)."""
+    basis = base_basis(rotor) if basis is None else basis
+    return basis.combine(base_coefficients(state, speed))
+
+
+def base_static_deflection(rotor, state: BaseState, speed: float = 0.0,
+                           force: np.ndarray | None = None,
+                           basis: BaseBasis | None = None) -> np.ndarray:
+    """Static offset under constant base motion: solve (K + K_base) q = F_base (+ force)."""
+    _, K_b, F_b = assemble_base(rotor, state, speed, basis)
+    rhs = F_b if force is None else F_b + np.asarray(force, dtype=float)
+    return np.linalg.solve(rotor.K + K_b, rhs)
+
+
+class MovingBaseRotor:
+    """LinearDynamics view of a rotor on a base in a constant state.
+
+    ``matrices(speed) -> (M, C + speed G + C_base, K + K_base)``; ``force(speed) -> F_base``.
+    """
+
+    def __init__(self, rotor, state: BaseState) -> None:
+        self.rotor = rotor
+        self.state = state
+        self.basis = base_basis(rotor)
+        self.n_dof = rotor.n_dof
+
+    def matrices(self, speed: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        C_b, K_b, _ = assemble_base(self.rotor, self.state, speed, self.basis)
+        return self.rotor.M, self.rotor.C + speed * self.rotor.G + C_b, self.rotor.K + K_b
+
+    def force(self, speed: float) -> np.ndarray:
+        return assemble_base(self.rotor, self.state, speed, self.basis)[2]
