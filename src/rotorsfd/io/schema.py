@@ -388,25 +388,32 @@ class UnbalanceConfig(Section):
 
 
 _LAW_DOC = ("time law: 'off'; 'constant' (value); 'harmonic' (value + amplitude * "
-            "sin(frequency t + phase)); 'callable' (a Python function of t)")
+            "sin(frequency t + phase)); 'callable' (a Python function f(t), vectorised "
+            "over numpy arrays of t)")
+_TRANSLATION_LAW_DOC = _LAW_DOC + "; 'uniform_acceleration' (value + velocity t + " \
+    "acceleration t^2 / 2)"
 
 
 class _Component(Section):
-    law: Literal["off", "constant", "harmonic", "callable"] = Field("off", description=_LAW_DOC)
-    frequency: quantity("angular_velocity", "angular frequency of the harmonic law", ge=0,
+    frequency: quantity("angular_velocity", "angular frequency w of the harmonic law", ge=0,
                         optional=True) = None
     phase: quantity("angle", "phase of the harmonic law", optional=True) = None
     callable: CALLABLE = None
+    derivative: CALLABLE = Field(None, description="optional 'module:function' giving "
+                                 "f'(t) of the callable law (default: complex step)")
 
     _alt_amplitude: str = ""  # name of the alternative amplitude field
+    _law_fields: dict[str, tuple[str, ...]] = {}
 
     @model_validator(mode="after")
     def _fields_of_law(self):
         amps = ("amplitude", self._alt_amplitude)
         uses = {"off": (), "constant": ("value",),
                 "harmonic": ("value", "frequency", "phase", *amps),
-                "callable": ("callable",)}[self.law]
-        for name in ("value", "frequency", "phase", "callable", *amps):
+                "callable": ("callable", "derivative"), **self._law_fields}[self.law]
+        names = ("value", "frequency", "phase", "callable", "derivative", *amps,
+                 *{f for fields in self._law_fields.values() for f in fields})
+        for name in names:
             if getattr(self, name) is not None and name not in uses:
                 raise fail(name, getattr(self, name), f"not used with law = {self.law!r}")
         if self.law == "constant" and self.value is None:
@@ -425,8 +432,10 @@ class _Component(Section):
 
 class RotationComponent(_Component):
     """A base rotation rate w_b(t) [rad/s] in the base frame. For the harmonic law the
-    rate amplitude may be given as the angle amplitude A0: w_b = A0 w sin(w t + phase)."""
+    rate amplitude may be given as the angle amplitude A0 (paper section 3.3):
+    w_b = A0 w sin(w t + phase)."""
 
+    law: Literal["off", "constant", "harmonic", "callable"] = Field("off", description=_LAW_DOC)
     value: quantity("angular_velocity", "constant rate, or mean rate of the harmonic law",
                     optional=True) = None
     amplitude: quantity("angular_velocity", "rate amplitude", ge=0, optional=True) = None
@@ -442,22 +451,47 @@ class RotationComponent(_Component):
 
 
 class TranslationComponent(_Component):
-    """Base-origin acceleration a(t) [m/s^2] along a base axis (only the acceleration enters
-    the equations in the base frame). For the harmonic law the amplitude may be given as a
-    displacement amplitude d: a = d w^2 sin(w t + phase + pi)."""
+    """Base-origin displacement x0(t) [m] along a base axis (its derivatives enter the
+    equations; a constant displacement has no effect). For the harmonic law the amplitude
+    may be given as an acceleration amplitude a: x0 = -(a / w^2) sin(w t + phase)."""
 
-    value: quantity("acceleration", "constant acceleration, or mean of the harmonic law",
+    law: Literal["off", "constant", "uniform_acceleration", "harmonic", "callable"] = Field(
+        "off", description=_TRANSLATION_LAW_DOC)
+    value: quantity("length", "constant displacement, or mean / initial displacement",
                     optional=True) = None
-    amplitude: quantity("acceleration", "acceleration amplitude", ge=0, optional=True) = None
-    displacement_amplitude: quantity("length", "displacement amplitude d "
-                                     "(acceleration amplitude = d * frequency^2)", ge=0,
+    amplitude: quantity("length", "displacement amplitude", ge=0, optional=True) = None
+    acceleration_amplitude: quantity("acceleration", "acceleration amplitude a "
+                                     "(displacement amplitude = a / frequency^2)", ge=0,
                                      optional=True) = None
-    _alt_amplitude: str = "displacement_amplitude"
+    acceleration: quantity("acceleration", "constant acceleration (uniform_acceleration law)",
+                           optional=True) = None
+    velocity: quantity("velocity", "initial velocity (uniform_acceleration law)",
+                       optional=True) = None
+    _alt_amplitude: str = "acceleration_amplitude"
+    _law_fields: dict[str, tuple[str, ...]] = {
+        "uniform_acceleration": ("value", "velocity", "acceleration")}
+
+    @model_validator(mode="after")
+    def _uniform(self):
+        if self.law == "uniform_acceleration" and self.acceleration is None:
+            raise fail("acceleration", None, "law = 'uniform_acceleration' needs acceleration")
+        if self.law == "harmonic" and self.acceleration_amplitude is not None \
+                and not self.frequency > 0:
+            raise fail("frequency", self.frequency,
+                       "must be > 0 with acceleration_amplitude")
+        return self
+
+    def displacement_amplitude(self) -> tuple[float, float]:
+        """(amplitude [m], phase [rad]) of the harmonic law, from either amplitude form."""
+        phase = self.phase or 0.0
+        if self.amplitude is not None:
+            return self.amplitude, phase
+        return (self.acceleration_amplitude or 0.0) / self.frequency**2, phase + math.pi
 
 
 class BaseConfig(Section):
     """Base motion in the base frame: rotation rates (rolling about the shaft axis x,
-    pitching about y, yawing about z) and translational accelerations along x, y, z."""
+    pitching about y, yawing about z) and translations of the origin along x, y, z."""
 
     rolling: RotationComponent = RotationComponent()
     pitching: RotationComponent = RotationComponent()
@@ -479,8 +513,11 @@ class GravityConfig(Section):
     enabled: bool = Field(False, description="include gravity (the paper neglects it)")
     magnitude: quantity("acceleration", "gravitational acceleration g", ge=0) = 9.80665
     direction: list[float] = Field([0.0, 0.0, -1.0], min_length=3, max_length=3,
-                                   description="direction of g in the base frame (x, y, z); "
-                                               "normalised on use")
+                                   description="direction of g in the base frame at t = 0 "
+                                               "(x, y, z); normalised on use")
+    frame: Literal["inertial", "base"] = Field(
+        "inertial", description="'inertial': g fixed in space (turns in the base frame as "
+                                "the base rotates); 'base': g fixed to the base")
 
     @model_validator(mode="after")
     def _direction(self):

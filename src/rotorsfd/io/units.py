@@ -47,6 +47,7 @@ KINDS: dict[str, Kind] = {
         Kind("viscosity", "Pa*s", "0.0051 Pa*s"),
         Kind("angular_velocity", "rad/s", "3000 rpm"),
         Kind("angle", "rad", "90 deg"),
+        Kind("velocity", "m/s", "0.1 m/s"),
         Kind("acceleration", "m/s^2", "9.81 m/s^2"),
         Kind("time", "s", "0.1 s"),
         Kind("ratio", "1", "0.485 %"),
@@ -117,7 +118,8 @@ def describe(kind: str) -> str:
         return f"a dimensionless {k.name} (a number, or a string like {k.example!r})"
     name = k.name.replace("_", " ")
     article = "an" if name[0] in "aeiou" else "a"
-    return f"{article} {name} in {k.unit} (a number in {k.unit}, or a string with units like {k.example!r})"
+    return (f"{article} {name} in {k.unit} (a number in {k.unit}, or a string with units "
+            f"like {k.example!r})")
 
 
 def _dim_name(q: pint.Quantity) -> str:
