@@ -1,0 +1,126 @@
+"""Pseudo arc-length continuation (Keller) with tangent predictor and step control.
+
+From a converged point z_i with unit tangent t_i (null vector of ``J = [dR/dx, dR/dlam]``,
+oriented by ``t_i . t_{i-1} > 0``, so turning points are passed in both directions):
+
+- predictor ``z = z_i + ds t_i``;
+- corrector: Newton on ``R(z) = 0, t_i . (z - z_i) - ds = 0`` (:func:`newton_extended`),
+  converged when the 2-norm of the scaled extended residual is <= tol;
+- step control: reject and halve ds if the corrector fails (no convergence, state limit,
+  contact) or if the new tangent turns by more than ``max_angle`` (folds are not jumped);
+  grow ds by ``grow`` after an easy convergence (<= ``easy_iter`` iterations), shrink it by
+  0.7 after a hard one; ``ds_min <= ds <= ds_max``. Below ds_min the branch stops with
+  ``success = False`` and a message that says where and why.
+
+The continuation works on a scaled :class:`~rotorsfd.continuation.newton.ContinuationSystem`
+and knows nothing of harmonic balance.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rotorsfd.continuation.newton import ContinuationSystem, newton_extended, tangent
+
+FloatArray = NDArray[np.float64]
+
+#: ``on_point(z, t, J, iterations, ds) -> stop``, called at every accepted point.
+PointHandler = Callable[[FloatArray, FloatArray, FloatArray, int, float], bool]
+
+
+@dataclass
+class ArcLengthOptions:
+    """Step control of :func:`arclength` (lengths in scaled units)."""
+
+    ds: float = 0.01
+    ds_min: float = 1e-6
+    ds_max: float = 0.05
+    tol: float = 1e-6
+    max_iter: int = 8
+    max_points: int = 2000
+    max_angle: float = float(np.radians(20.0))
+    grow: float = 1.5
+    shrink: float = 0.5
+    easy_iter: int = 3
+    max_halvings: int = 10
+
+
+@dataclass
+class ArcLengthStatus:
+    """How the continuation ended."""
+
+    success: bool
+    message: str
+    n_points: int
+
+
+def arclength(system: ContinuationSystem, z0: FloatArray, J0: FloatArray, lam_end: float,
+              on_point: PointHandler, options: ArcLengthOptions | None = None,
+              lam_physical: Callable[[float], float] = float) -> ArcLengthStatus:
+    """Continue the converged point z0 (Jacobian J0) towards ``z[-1] = lam_end``.
+
+    Ends with success when lam_end is reached (the last point solved at lam_end exactly),
+    or when ``on_point`` returns True; ends with ``success = False`` when the corrector
+    fails below ds_min, when the branch turns back out of the range, or at max_points.
+    """
+    o = options or ArcLengthOptions()
+    lam0 = float(z0[-1])
+    direction = 1.0 if lam_end >= lam0 else -1.0
+    e = np.zeros(system.n + 1)
+    e[-1] = 1.0
+    z = np.asarray(z0, dtype=float)
+    t = tangent(J0, direction * e)
+    n_points = 1
+
+    def at(zz: FloatArray) -> str:
+        return f"lam={lam_physical(float(zz[-1])):.8g}"
+
+    if on_point(z, t, J0, 0, 0.0):
+        return ArcLengthStatus(True, f"stopped by the callback at {at(z)}", n_points)
+    ds = o.ds
+    while n_points < o.max_points:
+        res = newton_extended(system, z + ds * t, t, float(t @ z) + ds, o.tol, o.max_iter,
+                              o.max_halvings)
+        if res.converged:
+            t_new = tangent(res.J, t)
+            angle = float(np.arccos(np.clip(t_new @ t, -1.0, 1.0)))
+            if angle > o.max_angle and ds > o.ds_min:
+                ds = max(ds * o.shrink, o.ds_min)
+                continue
+        else:
+            if ds <= o.ds_min:
+                return ArcLengthStatus(
+                    False, f"corrector failed after the point at {at(z)} with the minimum "
+                    f"step ds={ds:.3g}: {res.message}", n_points)
+            ds = max(ds * o.shrink, o.ds_min)
+            continue
+        lam_new = float(res.z[-1])
+        if (lam_new - lam_end) * direction >= 0.0:
+            frac = (lam_end - z[-1]) / (lam_new - z[-1])
+            fin = newton_extended(system, z + frac * (res.z - z), e, lam_end, o.tol,
+                                  o.max_iter, o.max_halvings)
+            if fin.converged:
+                on_point(fin.z, tangent(fin.J, t_new), fin.J, fin.iterations,
+                         float(np.linalg.norm(fin.z - z)))
+                return ArcLengthStatus(True, f"reached the end of the range, {at(fin.z)}",
+                                       n_points + 1)
+            on_point(res.z, t_new, res.J, res.iterations, ds)
+            return ArcLengthStatus(True, f"passed the end of the range at {at(res.z)}",
+                                   n_points + 1)
+        stop = on_point(res.z, t_new, res.J, res.iterations, ds)
+        n_points += 1
+        z, t = res.z, t_new
+        if stop:
+            return ArcLengthStatus(True, f"stopped by the callback at {at(z)}", n_points)
+        if (lam_new - lam0) * direction < 0.0:
+            return ArcLengthStatus(False, f"the branch turned back out of the range at {at(z)}",
+                                   n_points)
+        if res.iterations <= o.easy_iter:
+            ds = min(ds * o.grow, o.ds_max)
+        else:
+            ds = max(ds * 0.7, o.ds_min)
+    return ArcLengthStatus(False, f"max_points={o.max_points} reached at {at(z)}", n_points)

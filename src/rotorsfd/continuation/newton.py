@@ -1,0 +1,119 @@
+"""Newton corrector on an extended system and the tangent of a solution curve.
+
+A *continuation system* is any object with
+
+- ``n`` : number of unknowns besides the parameter; points are ``z = (x, lam)`` (n+1,),
+  already scaled so that a unit change means the same in every component;
+- ``evaluate(z) -> (R (n,), J (n, n+1))``: residual and exact Jacobian ``[dR/dx, dR/dlam]``;
+  may raise ``FloatingPointError`` (e.g. ``rotorsfd.errors.JournalContactError``) where
+  the residual is not defined;
+- ``admissible(z) -> bool``: False where the state must not go (e.g. ``nl_limit >= 1``).
+
+The extended system is ``R(z) = 0, a . z - b = 0`` (pseudo arc-length: ``a`` the previous
+tangent and ``b = a . z_prev + ds``; fixed parameter: ``a = e_lam``, ``b = lam``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+from numpy.typing import NDArray
+
+FloatArray = NDArray[np.float64]
+
+
+class ContinuationSystem(Protocol):
+    """Scaled nonlinear system ``R(x, lam) = 0`` (module docstring)."""
+
+    n: int
+
+    def evaluate(self, z: FloatArray) -> tuple[FloatArray, FloatArray]: ...
+
+    def admissible(self, z: FloatArray) -> bool: ...
+
+
+@dataclass
+class NewtonResult:
+    """Outcome of :func:`newton_extended`; ``J`` is the Jacobian (n, n+1) at ``z``."""
+
+    z: FloatArray
+    R: FloatArray | None
+    J: FloatArray | None
+    iterations: int
+    converged: bool
+    norm: float
+    message: str
+
+
+def _safe_evaluate(system: ContinuationSystem, z: FloatArray
+                   ) -> tuple[FloatArray, FloatArray] | str:
+    """Evaluate if admissible; return the reason as a string otherwise."""
+    if not system.admissible(z):
+        return "state limit reached (nl_limit >= limit)"
+    try:
+        R, J = system.evaluate(z)
+    except (FloatingPointError, np.linalg.LinAlgError, ZeroDivisionError) as err:
+        return f"evaluation failed: {err}"
+    if not (np.all(np.isfinite(R)) and np.all(np.isfinite(J))):
+        return "non-finite residual or Jacobian"
+    return R, J
+
+
+def newton_extended(system: ContinuationSystem, z0: FloatArray, a: FloatArray, b: float,
+                    tol: float = 1e-6, max_iter: int = 10, max_halvings: int = 10
+                    ) -> NewtonResult:
+    """Solve ``R(z) = 0, a.z = b`` by Newton from z0, converged when
+    ``||(R, a.z - b)||_2 <= tol``. A step that leaves the admissible set or where the
+    residual cannot be evaluated is halved (damped) up to ``max_halvings`` times."""
+    z = np.array(z0, dtype=float)
+    ev = _safe_evaluate(system, z)
+    if isinstance(ev, str):
+        return NewtonResult(z, None, None, 0, False, np.inf, f"at the initial guess: {ev}")
+    R, J = ev
+    norm = np.inf
+    for it in range(max_iter + 1):
+        Rext = np.append(R, a @ z - b)
+        norm = float(np.linalg.norm(Rext))
+        if norm <= tol:
+            return NewtonResult(z, R, J, it, True, norm, "converged")
+        if it == max_iter:
+            break
+        try:
+            dz = np.linalg.solve(np.vstack([J, a]), -Rext)
+        except np.linalg.LinAlgError:
+            return NewtonResult(z, R, J, it, False, norm, "singular extended Jacobian")
+        alpha, reason = 1.0, ""
+        for _ in range(max_halvings + 1):
+            ev = _safe_evaluate(system, z + alpha * dz)
+            if not isinstance(ev, str):
+                break
+            reason = ev
+            alpha *= 0.5
+        else:
+            return NewtonResult(z, R, J, it + 1, False, norm,
+                                f"Newton step damped {max_halvings} times: {reason}")
+        z = z + alpha * dz
+        R, J = ev
+    return NewtonResult(z, R, J, max_iter, False, norm,
+                        f"no convergence in {max_iter} iterations (residual {norm:.3g} > {tol:g})")
+
+
+def tangent(J: FloatArray, t_prev: FloatArray) -> FloatArray:
+    """Unit null vector t of J (n, n+1), oriented so that ``t . t_prev > 0``.
+
+    Solves the bordered system ``[J; t_prev^T] t = e_{n+1}``; falls back to the last right
+    singular vector when that system is singular.
+    """
+    n = J.shape[0]
+    rhs = np.zeros(n + 1)
+    rhs[-1] = 1.0
+    try:
+        t = np.linalg.solve(np.vstack([J, t_prev]), rhs)
+        if not np.all(np.isfinite(t)):
+            raise np.linalg.LinAlgError
+    except np.linalg.LinAlgError:
+        t = np.linalg.svd(J)[2][-1]
+    t = t / np.linalg.norm(t)
+    return t if t @ t_prev >= 0 else -t

@@ -1,0 +1,175 @@
+"""Exact condensation of the HB equations onto the nonlinear DOFs (receptance form).
+
+Per harmonic, ``Z_k X_k = F_k + S^T G_k``. Adding a constant fictitious spring/damper
+``Delta_k = K_r + i k w_r C_r`` (m x m, on nl_dofs only) to both sides keeps the equations
+exact and keeps ``Zt_k = Z_k + S^T Delta_k S`` regular even when the linear part alone is
+undamped at a resonance. With one complex LU of ``Zt_k`` per harmonic and lam value:
+
+    X_k = u_k + C_k (G_k + Delta_k Xs_k),   u_k = Zt_k^{-1} F_k,   C_k = Zt_k^{-1} S^T,
+
+and on the nonlinear DOFs (``Ht_k = S C_k`` the receptance, ``Pt_k = S u_k``)
+
+    R_k(Xs, lam) = Xs_k - Pt_k - Ht_k (G_k(Xs) + Delta_k Xs_k) = 0        (m(2H+1) reals).
+
+Exact derivatives: ``dR/dXs = I - Ht (dG/dXs + Delta)`` (real layout) and, with
+``d(Zt^-1) = -Zt^-1 dZ Zt^-1``, ``dHt_k = -S Zt^-1 dZ_k C_k``,
+``dPt_k = S Zt^-1 (dF_k - dZ_k u_k)``, ``dR/dlam = -dPt - dHt (G + Delta Xs) - Ht dG/dlam``.
+
+``R = Ht R_schur`` with the Schur-complement (dynamic-stiffness) residual
+``R_schur = (Ht^-1 - Delta) Xs - Ht^-1 Pt - G``, independent of Delta; it is the full
+residual at nl_dofs once the linear DOFs are eliminated. Both share their zeros and Newton
+iterates; the receptance form is used for solving (units of length, finite at any
+resonance of the linear part), the Schur form is reported for stability analyses.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.linalg import lapack
+
+from rotorsfd.harmonic.fourier import aft_matrices, to_complex, to_real
+from rotorsfd.harmonic.problem import PeriodicProblem
+from rotorsfd.harmonic.residual import (
+    dynamic_stiffness,
+    dynamic_stiffness_derivative,
+    nonlinear_coefficients,
+    real_blocks,
+)
+
+FloatArray = NDArray[np.float64]
+ComplexArray = NDArray[np.complex128]
+
+
+@dataclass
+class Condensed:
+    """Condensed operators at one lam: receptance Ht (H+1, m, m), particular response Pt
+    (H+1, m), their lam-derivatives, and u (H+1, n), C (H+1, n, m) for recovery."""
+
+    lam: float
+    Ht: ComplexArray
+    Pt: ComplexArray
+    u: ComplexArray
+    C: ComplexArray
+    dHt: ComplexArray | None = None
+    dPt: ComplexArray | None = None
+
+
+def _psd_part(A: FloatArray) -> FloatArray:
+    """Positive semi-definite part of the symmetric part of A (eigenvalues clipped at 0)."""
+    lam, V = np.linalg.eigh(0.5 * (A + A.T))
+    return (V * np.maximum(lam, 0.0)) @ V.T
+
+
+class CondensedHB:
+    """HB-AFT residual condensed exactly onto nl_dofs (module docstring)."""
+
+    def __init__(self, problem: PeriodicProblem, H: int, N: int) -> None:
+        self.problem = problem
+        self.H = H
+        self.aft = aft_matrices(H, N)
+        self.n_unknowns = (2 * H + 1) * problem.m
+        m = problem.m
+        self.delta = np.zeros((H + 1, m, m), dtype=complex)
+        self._cache: Condensed | None = None
+
+    # -- shift --------------------------------------------------------------------------
+    def set_shift(self, xs: FloatArray, lam: float) -> None:
+        """Delta_k = K_r + i k w C_r from the nonlinearity's Jacobian averaged over the
+        period at xs (PSD parts of -<dF/dq> and -<dF/dv>); held fixed until the next call."""
+        p = self.problem
+        w = p.frequency(lam)
+        q = self.aft.E @ xs
+        v = w * (self.aft.Ed @ xs)
+        dfq, dfv = p.nl_jacobian(q, v)
+        Kr = _psd_part(-np.mean(dfq, axis=0))
+        Cr = _psd_part(-np.mean(dfv, axis=0))
+        if not (np.all(np.isfinite(Kr)) and np.all(np.isfinite(Cr))):
+            return
+        k = np.arange(self.H + 1)[:, None, None]
+        self.delta = Kr[None] + 1j * k * w * Cr[None]
+        self._cache = None
+
+    # -- condensation -------------------------------------------------------------------
+    def condense(self, lam: float, deriv: bool = True) -> Condensed:
+        """Receptances and particular responses at lam (one complex LU per harmonic)."""
+        c = self._cache
+        if c is not None and c.lam == lam and (c.dHt is not None or not deriv):
+            return c
+        p, H, s, m = self.problem, self.H, self.problem.nl_dofs, self.problem.m
+        M, D, K = p.matrices(lam)
+        w = p.frequency(lam)
+        Z = dynamic_stiffness(M, D, K, w, H)
+        Z[:, s[:, None], s[None, :]] += self.delta
+        F = p.forcing(lam, H)
+        rhs = np.zeros((p.n_dof, m + 1), dtype=complex, order="F")
+        rhs[s, np.arange(m)] = 1.0
+        sel = np.asfortranarray(rhs[:, :m])
+        sol = np.empty((H + 1, p.n_dof, m + 1), dtype=complex)
+        rows = np.empty((H + 1, m, p.n_dof), dtype=complex)
+        for k in range(H + 1):
+            lu, piv, info = lapack.zgetrf(np.asfortranarray(Z[k]), overwrite_a=True)
+            if info != 0:
+                raise FloatingPointError(f"singular dynamic stiffness Z_{k} at lam={lam:.6g}")
+            rhs[:, m] = F[k]
+            sol[k] = lapack.zgetrs(lu, piv, rhs)[0]
+            if deriv:
+                rows[k] = lapack.zgetrs(lu, piv, sel, trans=1)[0].T
+        C, u = sol[:, :, :m], sol[:, :, m]
+        if not np.all(np.isfinite(sol)):
+            raise FloatingPointError(f"singular dynamic stiffness at lam={lam:.6g}")
+        out = Condensed(lam, C[:, s, :], u[:, s], u, C)
+        if deriv:
+            dZ = dynamic_stiffness_derivative(p, lam, H)
+            T = rows @ dZ                                   # (H+1, m, n)
+            out.dHt = -T @ C
+            out.dPt = np.einsum("kmn,kn->km", rows, p.dforcing(lam, H)) \
+                - np.einsum("kmn,kn->km", T, u)
+        self._cache = out
+        return out
+
+    # -- residual -----------------------------------------------------------------------
+    def residual(self, xs: FloatArray, lam: float, jac: bool = True
+                 ) -> tuple[FloatArray, FloatArray | None, FloatArray | None]:
+        """Receptance-form residual R (2H+1, m); with jac also dR/dxs (nu, nu), dR/dlam."""
+        p, H = self.problem, self.H
+        xs = xs.reshape(2 * H + 1, p.m)
+        w = p.frequency(lam)
+        cd = self.condense(lam, deriv=jac)
+        nl = nonlinear_coefficients(p, self.aft, xs, w, jac)
+        Xs = to_complex(xs)
+        Gt = to_complex(nl.G) + np.einsum("kij,kj->ki", self.delta, Xs)
+        R = xs - to_real(cd.Pt + np.einsum("kij,kj->ki", cd.Ht, Gt))
+        if not jac:
+            return R, None, None
+        nu = self.n_unknowns
+        Hr = real_blocks(cd.Ht)
+        J = np.eye(nu) - Hr @ (nl.dG.reshape(nu, nu) + real_blocks(self.delta))
+        dGdl = p.dfrequency(lam) * to_complex(nl.dGdw)
+        dR = -to_real(cd.dPt + np.einsum("kij,kj->ki", cd.dHt, Gt)
+                      + np.einsum("kij,kj->ki", cd.Ht, dGdl))
+        return R, J, dR.reshape(nu)
+
+    def schur_jacobian(self, J: FloatArray, dR: FloatArray, lam: float) -> FloatArray:
+        """Jacobian [dR_schur/dxs, dR_schur/dlam] (nu, nu+1) from the receptance-form one
+        at a solution (where R = 0): ``R_schur = Ht^-1 R``."""
+        cd = self.condense(lam, deriv=False)
+        S = real_blocks(np.linalg.inv(cd.Ht))
+        return S @ np.column_stack([J, dR])
+
+    def recover(self, xs: FloatArray, lam: float) -> ComplexArray:
+        """All DOFs: ``X_k = u_k + C_k (G_k + Delta_k Xs_k)`` (H+1, n) complex."""
+        p, H = self.problem, self.H
+        xs = xs.reshape(2 * H + 1, p.m)
+        cd = self.condense(lam, deriv=False)
+        nl = nonlinear_coefficients(p, self.aft, xs, p.frequency(lam), jac=False)
+        Gt = to_complex(nl.G) + np.einsum("kij,kj->ki", self.delta, to_complex(xs))
+        X = cd.u + np.einsum("knm,km->kn", cd.C, Gt)
+        X[0] = X[0].real
+        return X
+
+    def nl_part(self, xs: FloatArray) -> FloatArray:
+        """The unknowns are the nonlinear-DOF coefficients themselves (2H+1, m)."""
+        return xs.reshape(2 * self.H + 1, self.problem.m)

@@ -1,0 +1,86 @@
+"""Definition of a periodic problem for harmonic balance (generic: knows nothing of rotors).
+
+    M(lam) q'' + D(lam) q' + K(lam) q = f(t; lam) + F_nl(q[nl_dofs], q'[nl_dofs])
+
+periodic with fundamental angular frequency w(lam); lam is the continuation parameter
+(a rotor speed, a base rate, an unbalance, a clearance ratio, ...).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+FloatArray = NDArray[np.float64]
+ComplexArray = NDArray[np.complex128]
+Matrices = tuple[FloatArray, FloatArray, FloatArray]
+
+
+def _zero_limit(q_nl: FloatArray) -> float:
+    return 0.0
+
+
+@dataclass
+class PeriodicProblem:
+    """Second-order system with a local nonlinearity, for HB-AFT and continuation.
+
+    Fields
+    ------
+    n_dof : number of DOFs n.
+    nl_dofs : (m,) int indices of the DOFs the nonlinear force acts on (and depends on).
+    matrices(lam) -> (M, D, K), each (n, n) float.
+    dmatrices(lam) -> (dM, dD, dK), their derivatives with respect to lam.
+    forcing(lam, H) -> (H+1, n) complex Fourier coefficients F_k of f(t), with
+        ``f(t) = Re(sum_k F_k exp(i k w t))`` (F_0 real).
+    dforcing(lam, H) -> (H+1, n) complex, dF_k/dlam.
+    frequency(lam) -> w [rad/s];  dfrequency(lam) -> dw/dlam.
+    nl_force(q_nl, v_nl) -> (..., m) force, vectorised over leading axes.
+    nl_jacobian(q_nl, v_nl) -> (dF/dq, dF/dv), each (..., m, m).
+    scaling : length scale c [m] (e.g. the SFD clearance) or an (n,) array of per-DOF
+        scales: unknowns are judged as q/c, so the convergence threshold means the same in
+        any units.
+    nl_limit(q_nl_samples (N, m)) -> float, optional: a measure that must stay < 1 (e.g.
+        the largest eccentricity ratio over the period); solvers damp steps to keep it.
+    name : label for messages.
+    """
+
+    n_dof: int
+    nl_dofs: NDArray[np.int64]
+    matrices: Callable[[float], Matrices]
+    dmatrices: Callable[[float], Matrices]
+    forcing: Callable[[float, int], ComplexArray]
+    dforcing: Callable[[float, int], ComplexArray]
+    frequency: Callable[[float], float]
+    dfrequency: Callable[[float], float]
+    nl_force: Callable[[FloatArray, FloatArray], FloatArray]
+    nl_jacobian: Callable[[FloatArray, FloatArray], tuple[FloatArray, FloatArray]]
+    scaling: float | FloatArray = 1.0
+    nl_limit: Callable[[FloatArray], float] | None = None
+    name: str = field(default="periodic problem")
+
+    def __post_init__(self) -> None:
+        self.nl_dofs = np.atleast_1d(np.asarray(self.nl_dofs, dtype=np.int64))
+        if self.nl_dofs.size and (self.nl_dofs.min() < 0 or self.nl_dofs.max() >= self.n_dof):
+            raise ValueError(f"nl_dofs {self.nl_dofs} out of range for n_dof={self.n_dof}")
+        if len(np.unique(self.nl_dofs)) != len(self.nl_dofs):
+            raise ValueError(f"nl_dofs {self.nl_dofs} has repeated entries")
+        c = np.broadcast_to(np.asarray(self.scaling, dtype=float), (self.n_dof,))
+        if not np.all(np.isfinite(c)) or np.any(c <= 0):
+            raise ValueError(f"scaling must be positive and finite, got {self.scaling!r}")
+
+    @property
+    def m(self) -> int:
+        """Number of nonlinear DOFs."""
+        return int(self.nl_dofs.size)
+
+    @property
+    def dof_scale(self) -> FloatArray:
+        """Per-DOF length scale (n,)."""
+        return np.broadcast_to(np.asarray(self.scaling, dtype=float), (self.n_dof,)).copy()
+
+    def limit(self, q_nl_samples: FloatArray) -> float:
+        """nl_limit of the samples, 0 when the problem has none."""
+        return float((self.nl_limit or _zero_limit)(q_nl_samples))
