@@ -27,6 +27,7 @@ equivalent to a base accelerating with -g).
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -193,10 +194,12 @@ def numerical_derivative(f: Callable, t: ArrayLike) -> np.ndarray:
     t = np.asarray(t, dtype=float)
     h = 1e-20
     try:
-        fc = np.asarray(f(t + 1j * h))
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", np.exceptions.ComplexWarning)
+            fc = np.asarray(f(t + 1j * h))
         if np.iscomplexobj(fc) and fc.shape == t.shape and np.any(fc.imag != 0.0):
             return fc.imag / h
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, np.exceptions.ComplexWarning):
         pass
     hc = _EPS ** (1.0 / 3.0) * np.maximum(1.0, np.abs(t))
     return (_call(f, t + hc) - _call(f, t - hc)) / (2.0 * hc)
