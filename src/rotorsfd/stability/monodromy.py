@@ -160,13 +160,14 @@ def monodromy_magnus4(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, *
         return _first_order(Minv, Dt, Kt)
 
     c1, c2 = 0.5 - np.sqrt(3) / 6, 0.5 + np.sqrt(3) / 6
+    A1 = np.array([A((j + c1) * h) for j in range(N)])
+    A2 = np.array([A((j + c2) * h) for j in range(N)])
+    Om = 0.5 * h * (A1 + A2) + np.sqrt(3) / 12 * h**2 * (A2 @ A1 - A1 @ A2)
+    E = sla.expm(Om)  # batched over the N steps
     Phi = np.eye(2 * n)
-    log_det = 0.0
     for j in range(N):
-        A1, A2 = A((j + c1) * h), A((j + c2) * h)
-        Om = 0.5 * h * (A1 + A2) + np.sqrt(3) / 12 * h**2 * (A2 @ A1 - A1 @ A2)
-        Phi = sla.expm(Om) @ Phi
-        log_det += 0.5 * h * (np.trace(A1) + np.trace(A2))
+        Phi = E[j] @ Phi
+    log_det = float(0.5 * h * np.trace(A1 + A2, axis1=1, axis2=2).sum())
     mu = sort_multipliers(np.linalg.eigvals(Phi))
     return FloquetResult(mu, float(period), "magnus4", log_det, Phi, tol,
                          {"n_intervals": N, "n_dof": n})
