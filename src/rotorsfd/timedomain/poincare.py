@@ -1,0 +1,103 @@
+"""Poincare sections: periodicity, clusters, closed curves, correlation dimension.
+
+Points are rows of ``P (N, d)`` sampled once per forcing period, in coordinates
+normalised by the spread of the orbit (``normalise``), so every tolerance below is
+relative: a period-n orbit has ``|P[k+n] - P[k]| <= rtol`` for all ``k``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.spatial.distance import pdist
+
+
+def normalise(points: np.ndarray, scale: np.ndarray | float | None = None) -> np.ndarray:
+    """``(P - mean P) / scale`` per coordinate; ``scale`` defaults to the peak-to-peak
+    of the points (use the spread of the whole orbit, not of the section, for periodic
+    motion); zero scales are replaced by 1."""
+    P = np.asarray(points, dtype=float)
+    if P.ndim == 1:
+        P = P[:, None]
+    s = np.ptp(P, axis=0) if scale is None else np.broadcast_to(
+        np.asarray(scale, dtype=float), (P.shape[1],)).copy()
+    s = np.where(s > 0.0, s, 1.0)
+    return (P - P.mean(axis=0)) / s
+
+
+def poincare_period(P: np.ndarray, rtol: float = 1e-3, n_max: int = 16) -> int | None:
+    """Smallest ``n <= n_max`` with ``max_k |P[k+n] - P[k]|_inf <= rtol`` (normalised
+    points), or ``None`` (not periodic within the data). Needs ``N >= 2 n + 1``."""
+    P = np.asarray(P, dtype=float)
+    N = P.shape[0]
+    for n in range(1, n_max + 1):
+        if N < 2 * n + 1:
+            return None
+        if np.max(np.abs(P[n:] - P[:-n])) <= rtol:
+            return n
+    return None
+
+
+def distinct_points(P: np.ndarray, tol: float = 1e-3) -> np.ndarray:
+    """Greedy clustering: representatives of the groups of points closer than ``tol``
+    (inf-norm) to their first member; returns their coordinates ``(n_clusters, d)``."""
+    P = np.asarray(P, dtype=float)
+    centers: list[np.ndarray] = []
+    for p in P:
+        if not any(np.max(np.abs(p - c)) <= tol for c in centers):
+            centers.append(p)
+            if len(centers) > 1000:
+                break
+    return np.array(centers).reshape(-1, P.shape[1])
+
+
+def closed_curve_test(P: np.ndarray, max_roughness: float = 0.1,
+                      max_gap_fraction: float = 0.25) -> dict[str, float | bool]:
+    """Do the points lie on a smooth closed curve around their centroid?
+
+    Projects on the two principal axes, orders the points by angle about the centroid
+    and measures the radial ``roughness = median |r_{i+1} - r_i| / median r`` (small on
+    a smooth curve, O(0.3) for a cloud) and the largest angular gap over ``2 pi`` (a
+    closed curve is visited all round). Assumes the curve winds once around its
+    centroid, as an invariant circle born at a secondary Hopf (Neimark-Sacker) does.
+    """
+    P = np.asarray(P, dtype=float)
+    if P.shape[0] < 12:
+        return {"roughness": math.nan, "max_gap_fraction": math.nan, "passed": False}
+    X = P - P.mean(axis=0)
+    _, s, vt = np.linalg.svd(X, full_matrices=False)
+    if s[0] == 0.0:
+        return {"roughness": 0.0, "max_gap_fraction": 1.0, "passed": False}
+    Y = X @ vt[:2].T if vt.shape[0] >= 2 else np.column_stack([X @ vt[0], np.zeros(len(X))])
+    Y = Y / np.where(Y.std(axis=0) > 0, Y.std(axis=0), 1.0)
+    ang = np.arctan2(Y[:, 1], Y[:, 0])
+    order = np.argsort(ang)
+    r = np.hypot(Y[order, 0], Y[order, 1])
+    dr = np.abs(np.diff(np.append(r, r[0])))
+    rough = float(np.median(dr) / max(np.median(r), 1e-300))
+    a = np.sort(ang)
+    gaps = np.diff(np.append(a, a[0] + 2.0 * math.pi))
+    gap = float(gaps.max() / (2.0 * math.pi))
+    return {"roughness": rough, "max_gap_fraction": gap,
+            "passed": bool(rough <= max_roughness and gap <= max_gap_fraction)}
+
+
+def correlation_dimension(P: np.ndarray, quantiles: tuple[float, float] = (0.02, 0.2),
+                          ) -> float:
+    """Grassberger-Procaccia estimate: slope of ``log C(r)`` against ``log r`` between
+    the given quantiles of the pair distances (``C`` the fraction of pairs closer than
+    ``r``). About 1 for points on a curve, 0 for a finite set, larger for a cloud."""
+    P = np.asarray(P, dtype=float)
+    if P.shape[0] < 10:
+        return math.nan
+    d = np.sort(pdist(P))
+    d = d[d > 0.0]
+    if d.size < 10:
+        return 0.0
+    r = np.quantile(d, np.linspace(quantiles[0], quantiles[1], 12))
+    C = np.searchsorted(d, r, side="right") / d.size
+    ok = (r > 0) & (C > 0)
+    if ok.sum() < 3 or np.ptp(np.log(r[ok])) == 0.0:
+        return 0.0
+    return float(np.polyfit(np.log(r[ok]), np.log(C[ok]), 1)[0])
