@@ -32,12 +32,7 @@ from scipy.linalg import lapack
 
 from rotorsfd.harmonic.fourier import aft_matrices, to_complex, to_real
 from rotorsfd.harmonic.problem import PeriodicProblem
-from rotorsfd.harmonic.residual import (
-    dynamic_stiffness,
-    dynamic_stiffness_derivative,
-    nonlinear_coefficients,
-    real_blocks,
-)
+from rotorsfd.harmonic.residual import nonlinear_coefficients, real_blocks
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -57,10 +52,19 @@ class Condensed:
     dPt: ComplexArray | None = None
 
 
-def _psd_part(A: FloatArray) -> FloatArray:
-    """Positive semi-definite part of the symmetric part of A (eigenvalues clipped at 0)."""
-    lam, V = np.linalg.eigh(0.5 * (A + A.T))
-    return (V * np.maximum(lam, 0.0)) @ V.T
+def _positive_diagonal(A: FloatArray) -> FloatArray:
+    """Diagonal matrix of the positive part of diag(A)."""
+    return np.diag(np.maximum(np.diag(A), 0.0))
+
+
+def _bandwidth(*mats: FloatArray) -> tuple[int, int]:
+    """Lower and upper bandwidths (kl, ku) of the union of the nonzero patterns."""
+    kl = ku = 0
+    for A in mats:
+        r, c = np.nonzero(A)
+        if r.size:
+            kl, ku = max(kl, int((r - c).max())), max(ku, int((c - r).max()))
+    return kl, ku
 
 
 class CondensedHB:
@@ -78,14 +82,15 @@ class CondensedHB:
     # -- shift --------------------------------------------------------------------------
     def set_shift(self, xs: FloatArray, lam: float) -> None:
         """Delta_k = K_r + i k w C_r from the nonlinearity's Jacobian averaged over the
-        period at xs (PSD parts of -<dF/dq> and -<dF/dv>); held fixed until the next call."""
+        period at xs (positive parts of the diagonals of -<dF/dq> and -<dF/dv>; diagonal, so
+        a banded Z_k stays banded); held fixed until the next call."""
         p = self.problem
         w = p.frequency(lam)
         q = self.aft.E @ xs
         v = w * (self.aft.Ed @ xs)
         dfq, dfv = p.nl_jacobian(q, v)
-        Kr = _psd_part(-np.mean(dfq, axis=0))
-        Cr = _psd_part(-np.mean(dfv, axis=0))
+        Kr = _positive_diagonal(-np.mean(dfq, axis=0))
+        Cr = _positive_diagonal(-np.mean(dfv, axis=0))
         if not (np.all(np.isfinite(Kr)) and np.all(np.isfinite(Cr))):
             return
         k = np.arange(self.H + 1)[:, None, None]
@@ -101,34 +106,82 @@ class CondensedHB:
         p, H, s, m = self.problem, self.H, self.problem.nl_dofs, self.problem.m
         M, D, K = p.matrices(lam)
         w = p.frequency(lam)
-        Z = dynamic_stiffness(M, D, K, w, H)
-        Z[:, s[:, None], s[None, :]] += self.delta
+        n = p.n_dof
         F = p.forcing(lam, H)
-        rhs = np.zeros((p.n_dof, m + 1), dtype=complex, order="F")
+        rhs = np.zeros((n, m + 1), dtype=complex, order="F")
         rhs[s, np.arange(m)] = 1.0
         sel = np.asfortranarray(rhs[:, :m])
-        sol = np.empty((H + 1, p.n_dof, m + 1), dtype=complex)
-        rows = np.empty((H + 1, m, p.n_dof), dtype=complex)
-        for k in range(H + 1):
-            lu, piv, info = lapack.zgetrf(np.asfortranarray(Z[k]), overwrite_a=True)
-            if info != 0:
-                raise FloatingPointError(f"singular dynamic stiffness Z_{k} at lam={lam:.6g}")
-            rhs[:, m] = F[k]
-            sol[k] = lapack.zgetrs(lu, piv, rhs)[0]
-            if deriv:
-                rows[k] = lapack.zgetrs(lu, piv, sel, trans=1)[0].T
+        sol = np.empty((H + 1, n, m + 1), dtype=complex)
+        rows = np.empty((H + 1, m, n), dtype=complex)
+        kl, ku = _bandwidth(M, D, K)
+        if 3 * (kl + ku + 1) < n:
+            self._banded_solves(M, D, K, w, kl, ku, rhs, sel, F, sol, rows if deriv else None)
+        else:
+            self._dense_solves(M, D, K, w, rhs, sel, F, sol, rows if deriv else None)
         C, u = sol[:, :, :m], sol[:, :, m]
         if not np.all(np.isfinite(sol)):
             raise FloatingPointError(f"singular dynamic stiffness at lam={lam:.6g}")
         out = Condensed(lam, C[:, s, :], u[:, s], u, C)
         if deriv:
-            dZ = dynamic_stiffness_derivative(p, lam, H)
-            T = rows @ dZ                                   # (H+1, m, n)
+            # T_k = S Zt_k^-1 dZ_k, dZ_k = dK - (kw)^2 dM - 2k^2 w w' M + ik(w' D + w dD)
+            dM, dD, dK = p.dmatrices(lam)
+            dw = p.dfrequency(lam)
+            R2 = np.concatenate([rows.real, rows.imag]).reshape(-1, n)
+
+            def prod(A: FloatArray) -> ComplexArray:
+                P = (R2 @ A).reshape(2, H + 1, m, n)
+                return P[0] + 1j * P[1]
+
+            k = np.arange(H + 1)[:, None, None]
+            T = (prod(dK) - (k * w) ** 2 * prod(dM) - 2 * k**2 * w * dw * prod(M)
+                 + 1j * k * prod(dw * D + w * dD))
             out.dHt = -T @ C
             out.dPt = np.einsum("kmn,kn->km", rows, p.dforcing(lam, H)) \
                 - np.einsum("kmn,kn->km", T, u)
         self._cache = out
         return out
+
+    def _dense_solves(self, M, D, K, w, rhs, sel, F, sol, rows) -> None:
+        """Dense complex LU of Zt_k per harmonic; fills sol = Zt^-1 [S^T, F_k], rows."""
+        s, m, n = self.problem.nl_dofs, self.problem.m, self.problem.n_dof
+        Zk = np.empty((n, n), dtype=complex)
+        for k in range(self.H + 1):
+            # Zk is C-ordered, so Zk.T is Fortran-contiguous: LAPACK factors Z_k^T in place
+            Zk.real = K - (k * w) ** 2 * M
+            Zk.imag = (k * w) * D
+            Zk[s, s] += np.diag(self.delta[k])
+            lu, piv, info = lapack.zgetrf(Zk.T, overwrite_a=True)
+            if info != 0:
+                raise FloatingPointError(f"singular dynamic stiffness Z_{k} (w={w:.6g})")
+            rhs[:, m] = F[k]
+            sol[k] = lapack.zgetrs(lu, piv, rhs, trans=1)[0]       # Z_k x = rhs
+            if rows is not None:
+                rows[k] = lapack.zgetrs(lu, piv, sel)[0].T        # rows s of Z_k^-1
+
+    def _banded_solves(self, M, D, K, w, kl, ku, rhs, sel, F, sol, rows) -> None:
+        """Banded complex LU (LAPACK gbtrf) of Zt_k per harmonic; same outputs."""
+        s, m, n = self.problem.nl_dofs, self.problem.m, self.problem.n_dof
+        key = (n, kl, ku)
+        if getattr(self, "_band_key", None) != key:
+            off = np.arange(-ku, kl + 1)                       # i - j
+            jj = (np.arange(n)[None, :] + 0 * off[:, None])
+            ii = jj + off[:, None]
+            ok = (ii >= 0) & (ii < n)
+            self._band = (ii[ok], jj[ok], (kl + ku + ii - jj)[ok])
+            self._band_key = key
+        ii, jj, rr = self._band
+        Kb, Mb, Db = K[ii, jj], M[ii, jj], D[ii, jj]
+        for k in range(self.H + 1):
+            ab = np.zeros((2 * kl + ku + 1, n), dtype=complex, order="F")
+            ab[rr, jj] = Kb - (k * w) ** 2 * Mb + 1j * (k * w) * Db
+            ab[kl + ku, s] += np.diag(self.delta[k])
+            lu, piv, info = lapack.zgbtrf(ab, kl, ku, overwrite_ab=True)
+            if info != 0:
+                raise FloatingPointError(f"singular dynamic stiffness Z_{k} (w={w:.6g})")
+            rhs[:, m] = F[k]
+            sol[k] = lapack.zgbtrs(lu, kl, ku, rhs, piv)[0]
+            if rows is not None:
+                rows[k] = lapack.zgbtrs(lu, kl, ku, sel, piv, trans=1)[0].T
 
     # -- residual -----------------------------------------------------------------------
     def residual(self, xs: FloatArray, lam: float, jac: bool = True
