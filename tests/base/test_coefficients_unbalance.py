@@ -139,3 +139,26 @@ def test_unbalance_validation():
         Unbalance(0, 1e-4)
     with pytest.raises(ConfigError):
         Unbalance(2, -1.0)
+
+
+def test_time_varying_terms_and_unbalance_series(rotor):
+    from rotorsfd.model.base_terms import time_varying_terms
+    from rotorsfd.model.unbalance import unbalance_series
+
+    motion = BaseMotion(wy=Harmonic(2.0, 9.0, 0.2), z0=Harmonic(1e-3, 50.0))
+    basis = base_basis(rotor)
+    damping, stiffness, force = time_varying_terms(basis, motion, 400.0)
+    assert len(damping) == 0  # no rolling: no Coriolis matrix
+    t = np.linspace(0.0, 0.3, 4)
+    for i, ti in enumerate(t):
+        _, K, F = assemble_base(rotor, motion.state(ti), 400.0, basis)
+        K_s = sum(c(t)[i] * A for c, A in stiffness)
+        F_s = sum(c(t)[i] * f for c, f in force)
+        np.testing.assert_allclose(K_s, K, atol=1e-12 * np.abs(K).max())
+        np.testing.assert_allclose(F_s, F, atol=1e-12 * np.abs(F).max())
+    unb = [Unbalance(3, 1e-4, 0.5)]
+    series = unbalance_series(unb, rotor, 400.0, motion)
+    F_u = sum(np.outer(v, c(t)) for c, v in series)
+    np.testing.assert_allclose(F_u, unbalance_force(unb, rotor, 400.0, motion.state(t), t),
+                               rtol=1e-14, atol=1e-14)
+    assert time_varying_terms(basis, BaseMotion(), 400.0) == ([], [], [])

@@ -292,3 +292,40 @@ class MovingBaseRotor:
 
     def force(self, speed: float) -> np.ndarray:
         return assemble_base(self.rotor, self.state, speed, self.basis)[2]
+
+
+# ---------------------------------------------------------------------------------------
+# time-varying terms for time stepping
+# ---------------------------------------------------------------------------------------
+def time_varying_terms(basis: BaseBasis, motion, speed: float, probe_times: int = 7):
+    """Base terms of a time-varying base motion as ``(coefficient(t), array)`` pairs.
+
+    Returns ``(damping, stiffness, force)``: lists of pairs with vectorised callables
+    ``c(t) -> (nt,)`` such that C_base(t) = sum c_i(t) C_i, K_base(t) = sum k_i(t) K_i,
+    F_base(t) = sum f_j(t) f_j (the shape of ``timedomain.forcing.TimeVaryingMatrices`` and
+    ``Forcing.series``). Coefficients that vanish at ``probe_times`` irrational sample times
+    in [0, 10] s are dropped (exact for the built-in laws).
+    """
+    cache: dict[bytes, BaseCoefficients] = {}
+
+    def coeffs(t: np.ndarray) -> BaseCoefficients:
+        t = np.asarray(t, dtype=float)
+        key = t.tobytes() + bytes(str(t.shape), "ascii")
+        if key not in cache:
+            cache.clear()
+            cache[key] = base_coefficients(motion.state(t), speed)
+        return cache[key]
+
+    probe = np.sqrt(2.0) * (1.0 + np.arange(probe_times)) * 10.0 / (probe_times * np.sqrt(2.0) + 1)
+    probe_co = base_coefficients(motion.state(probe), speed)
+
+    def make(attr: str, i: int):
+        return lambda t: getattr(coeffs(t), attr)[i]
+
+    def pairs(attr: str, arrays: np.ndarray) -> list:
+        values = np.asarray(getattr(probe_co, attr))
+        return [(make(attr, i), arrays[i]) for i in range(arrays.shape[0])
+                if np.any(values[i] != 0.0)]
+
+    return (pairs("c_C", basis.matrices), pairs("c_K", basis.matrices),
+            pairs("c_F", basis.vectors))

@@ -120,3 +120,34 @@ def unbalance_harmonics_derivatives(
         "dwx": (0.0, 1.0, 0.0, 1.0),
     }
     return {k: _harmonic_vectors(unbalances, rotor.n_dof, *v) for k, v in partials.items()}
+
+
+def unbalance_series(unbalances: Sequence[Unbalance], rotor, speed: float,
+                     motion=None) -> list[tuple]:
+    """F_mu(t) as ``(coefficient(t), vector)`` pairs (``timedomain.forcing.Forcing.series``):
+    per unbalance, ``U (A_y cos + B_y sin)`` on y and ``U (A_z sin - B_z cos)`` on z, with the
+    rates of ``motion`` (a BaseMotion; None: fixed base) evaluated at t."""
+    out: list[tuple] = []
+
+    def factors(t: np.ndarray) -> tuple[np.ndarray, ...]:
+        t = np.asarray(t, dtype=float)
+        st = BaseState.fixed() if motion is None else motion.state(t)
+        return tuple(np.broadcast_to(f, t.shape) for f in _factors(speed, st))
+
+    for u in unbalances:
+        ey, ez = np.zeros(rotor.n_dof), np.zeros(rotor.n_dof)
+        ey[dofs.dof_index(u.node, "y")] = u.magnitude
+        ez[dofs.dof_index(u.node, "z")] = u.magnitude
+
+        def cy(t, u=u):
+            ay, by, _, _ = factors(t)
+            th = speed * np.asarray(t, dtype=float) + u.phase
+            return ay * np.cos(th) + by * np.sin(th)
+
+        def cz(t, u=u):
+            _, _, az, bz = factors(t)
+            th = speed * np.asarray(t, dtype=float) + u.phase
+            return az * np.sin(th) - bz * np.cos(th)
+
+        out += [(cy, ey), (cz, ez)]
+    return out
