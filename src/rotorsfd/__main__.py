@@ -1,0 +1,7 @@
+"""``python -m rotorsfd``: the command line."""
+
+import sys
+
+from rotorsfd.cli import main
+
+sys.exit(main())

@@ -1,0 +1,145 @@
+"""The Python API behind the command line: everything ``rotorsfd`` does, a script can do.
+
+>>> from rotorsfd import api
+>>> config = api.load_config("examples/paper_rotor.toml", ["sfd.clearance_ratio=0.61 %"])
+>>> result = api.run_modal(config)
+>>> result.critical_speeds[0].speed_rad_s, result.write("out")
+
+Each ``run_*`` takes a validated :class:`~rotorsfd.io.schema.Config` and returns a result
+object with its data, ``write(directory)`` (atomic files) and plot methods.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from rotorsfd.errors import ConfigError
+from rotorsfd.io import atomic
+from rotorsfd.io.config import dump_config, load_config, show_config, with_values
+from rotorsfd.io.schema import Config
+from rotorsfd.linear import CampbellResult, CriticalSpeed, campbell, critical_speeds
+from rotorsfd.model.build import Model, build_model, build_rotor, build_sfd
+
+__all__ = [
+    "ModalRunResult",
+    "build_model",
+    "build_rotor",
+    "build_sfd",
+    "dump_config",
+    "linear_system",
+    "load_config",
+    "reference_speed",
+    "run_modal",
+    "show_config",
+    "with_values",
+]
+
+
+def linear_system(config: Config, model: Model | None = None) -> Any:
+    """The linear rotor for modal analysis (``LinearDynamics``): the rotor with its supports
+    and SFD centring spring (no film), plus the base terms of constant base rotation rates.
+    ConfigError if a base rate varies in time (no eigenvalues then)."""
+    model = build_model(config) if model is None else model
+    base = model.base_motion
+    if base is None or not base.rates_constant:
+        for name in ("rolling", "pitching", "yawing"):
+            if getattr(config.base, name).law not in ("off", "constant"):
+                raise ConfigError(f"base.{name}.law", getattr(config.base, name).law,
+                                  "modal analysis needs constant base rates ('off' or "
+                                  "'constant'); time-varying rates: use a stability chart")
+    if base is None or not np.any(base.rates(0.0) != 0.0):
+        return model.rotor
+    from rotorsfd.model.base_terms import MovingBaseRotor
+
+    return MovingBaseRotor(model.rotor, base.state(0.0))
+
+
+def reference_speed(config: Config, system: Any | None = None) -> float:
+    """Omega_ref [rad/s]: ``reference.speed``, or the first forward critical speed."""
+    if isinstance(config.reference.speed, float):
+        return config.reference.speed
+    system = linear_system(config) if system is None else system
+    top = config.analysis.modal.critical_speed_max
+    found = critical_speeds(system, n=1, whirl="forward", speed_range=(0.0, top))
+    if not found:
+        raise ConfigError("reference.speed", "first_critical",
+                          f"no forward critical speed below analysis.modal.critical_speed_max"
+                          f" = {top:g} rad/s; give reference.speed in rad/s")
+    return found[0].speed_rad_s
+
+
+@dataclass(frozen=True)
+class ModalRunResult:
+    """Campbell diagram and critical speeds of a configuration."""
+
+    config: Config
+    campbell: CampbellResult
+    critical_speeds: list[CriticalSpeed]
+    reference_speed: float
+
+    FILES = ("critical_speeds.csv", "campbell.csv", "campbell.png")
+
+    def critical_speeds_rows(self) -> list[tuple[int, str, float]]:
+        """Rows ``(mode, whirl, speed_rad_s)``."""
+        return [(c.mode, c.whirl, float(c.speed_rad_s)) for c in self.critical_speeds]
+
+    def plot(self, ax: Any = None) -> Any:
+        """Campbell diagram with the critical speeds marked; returns the Axes."""
+        ax = self.campbell.plot(ax=ax)
+        for c in self.critical_speeds:
+            ax.plot([c.speed_rad_s], [c.speed_rad_s], "ko", ms=5)
+            ax.annotate(f"{c.speed_rad_s:.1f} rad/s", (c.speed_rad_s, c.speed_rad_s),
+                        textcoords="offset points", xytext=(6, -12), fontsize=8)
+        title = self.config.title or "Campbell diagram"
+        ax.set_title(title if len(title) < 70 else title[:67] + "...", fontsize=9)
+        return ax
+
+    def write(self, directory: str | Path) -> dict[str, Path]:
+        """Write ``critical_speeds.csv`` (mode, whirl, speed_rad_s), ``campbell.csv`` and
+        ``campbell.png`` atomically into ``directory`` (created if missing)."""
+        from matplotlib.figure import Figure
+
+        out = Path(directory)
+        paths = {name: out / name for name in self.FILES}
+        atomic.write_csv(paths["critical_speeds.csv"], ("mode", "whirl", "speed_rad_s"),
+                         self.critical_speeds_rows())
+        with atomic.atomic_path(paths["campbell.csv"]) as tmp:
+            self.campbell.to_csv(tmp)
+        fig = Figure(figsize=(7, 5), layout="constrained")
+        self.plot(fig.add_subplot())
+        atomic.save_figure(fig, paths["campbell.png"], dpi=120)
+        return paths
+
+    def summary(self) -> str:
+        """Human-readable lines: the critical speeds (rad/s, rpm, Omega/Omega_ref)."""
+        lines = [f"reference speed: {self.reference_speed:.6g} rad/s"]
+        for c in self.critical_speeds:
+            lines.append(f"critical speed {c.mode} ({c.whirl}): {c.speed_rad_s:.6g} rad/s = "
+                         f"{c.speed_rad_s * 30 / np.pi:.6g} rpm = "
+                         f"{c.speed_rad_s / self.reference_speed:.4f} x reference")
+        return "\n".join(lines)
+
+
+def modal_speeds(config: Config, ref: float) -> np.ndarray:
+    """The speeds of the Campbell diagram [rad/s]."""
+    m = config.analysis.modal
+    if m.speeds is not None:
+        return np.asarray(m.speeds, dtype=float)
+    start, stop = m.speed_range.bounds(ref)
+    return np.linspace(start, stop, m.speed_range.n)
+
+
+def run_modal(config: Config, search_path: Path | None = None) -> ModalRunResult:
+    """Campbell diagram over ``analysis.modal`` speeds and the first ``n_critical``
+    critical speeds (film excluded, centring spring included, constant base rates)."""
+    m = config.analysis.modal
+    system = linear_system(config, build_model(config, search_path))
+    ref = reference_speed(config, system)
+    camp = campbell(system, modal_speeds(config, ref), m.n_modes)
+    crit = critical_speeds(system, n=m.n_critical, whirl=m.whirl,
+                           speed_range=(0.0, m.critical_speed_max))
+    return ModalRunResult(config, camp, crit, ref)

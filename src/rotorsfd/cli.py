@@ -1,0 +1,248 @@
+"""Command-line interface: parse, call :mod:`rotorsfd.api`, print. No physics here.
+
+Exit status: 0 success; 2 bad input (config, ``--set``, arguments: one line naming the
+field); 1 any other rotorsfd error (numerical failure: one line); 130 interrupted.
+``--debug`` adds the traceback.
+
+Adding a command: register a function with :func:`command`; the registry builds the
+parser, loads the config (``CONFIG`` and ``--set`` when ``config=True``), adds ``-o DIR``
+(``output=True``) and ``--quiet`` (``quiet=True``), and handles errors::
+
+    @command("response", "periodic response by harmonic balance", output=True, quiet=True,
+             arguments=[arg("--harmonics", type=int, help="override H")])
+    def _response(args: argparse.Namespace, config: Config) -> int:
+        result = api.run_response(config, progress=not args.quiet)
+        result.write(args.output)
+        return 0
+
+A name with a space (``"config show"``) is a subcommand of a group (``config``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import traceback
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from rotorsfd import __version__
+from rotorsfd.errors import ConfigError, RotorsfdError
+
+Handler = Callable[[argparse.Namespace, Any], "int | None"]
+
+
+@dataclass(frozen=True)
+class Arg:
+    """One extra argparse argument of a command: ``parser.add_argument(*flags, **kwargs)``."""
+
+    flags: tuple[str, ...]
+    kwargs: dict[str, Any] = field(default_factory=dict)
+
+
+def arg(*flags: str, **kwargs: Any) -> Arg:
+    """An extra argument of a command (same signature as ``add_argument``)."""
+    return Arg(flags, kwargs)
+
+
+@dataclass(frozen=True)
+class Command:
+    """A registered subcommand."""
+
+    name: str
+    help: str
+    handler: Handler
+    config: bool = True
+    output: bool = False
+    quiet: bool = False
+    arguments: tuple[Arg, ...] = ()
+
+
+COMMANDS: dict[str, Command] = {}
+GROUPS: dict[str, str] = {"config": "inspect and check configuration files"}
+
+
+def command(name: str, help: str, *, config: bool = True, output: bool = False,
+            quiet: bool = False, arguments: Iterable[Arg] = ()) -> Callable[[Handler], Handler]:
+    """Register ``handler(args, config) -> exit status`` as the subcommand ``name``."""
+
+    def register(handler: Handler) -> Handler:
+        if name in COMMANDS:
+            raise ValueError(f"command {name!r} registered twice")
+        COMMANDS[name] = Command(name, help, handler, config, output, quiet, tuple(arguments))
+        return handler
+
+    return register
+
+
+class UsageError(Exception):
+    """Bad command-line arguments (exit status 2)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> None:  # type: ignore[override]
+        raise UsageError(f"{self.prog}: {message} (see '{self.prog} --help')")
+
+
+def _add_common(p: argparse.ArgumentParser, spec: Command) -> None:
+    if spec.config:
+        p.add_argument("config", metavar="CONFIG", help="TOML configuration file")
+        p.add_argument("--set", metavar="KEY=VALUE", action="append", default=[],
+                       dest="overrides",
+                       help="override a config field by its dotted path, e.g. "
+                            "--set sfd.clearance_ratio='0.61 %%' (repeatable)")
+    if spec.output:
+        p.add_argument("-o", "--output", metavar="DIR", required=True, type=Path,
+                       help="output folder (created if missing)")
+    if spec.quiet:
+        p.add_argument("-q", "--quiet", action="store_true", help="no progress or summary")
+    p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
+                   help="show tracebacks")
+    for a in spec.arguments:
+        p.add_argument(*a.flags, **a.kwargs)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The full parser, built from the command registry."""
+    parser = _Parser(prog="rotorsfd", description="Nonlinear dynamics of flexible rotors with "
+                     "squeeze film dampers on moving bases.")
+    parser.add_argument("--version", action="version", version=f"rotorsfd {__version__}")
+    parser.add_argument("--debug", action="store_true", help="show tracebacks on errors")
+    top = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+    groups: dict[str, Any] = {}
+    for name, spec in COMMANDS.items():
+        head, _, sub = name.partition(" ")
+        if sub:
+            if head not in groups:
+                gp = top.add_parser(head, help=GROUPS.get(head, ""),
+                                    description=GROUPS.get(head, ""))
+                groups[head] = gp.add_subparsers(dest="subcommand", metavar="SUBCOMMAND",
+                                                 required=True)
+            p = groups[head].add_parser(sub, help=spec.help, description=spec.help)
+        else:
+            p = top.add_parser(name, help=spec.help, description=spec.help)
+        _add_common(p, spec)
+        p.set_defaults(_command=spec)
+    return parser
+
+
+def _one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split("\n"))
+
+
+BLAS_THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "BLIS_NUM_THREADS",
+                         "VECLIB_MAXIMUM_THREADS")
+
+
+def _single_threaded_blas() -> None:
+    """Default the BLAS libraries to one thread (unless the user set them): the matrices
+    here are small (hundreds of DOFs), where threaded LAPACK is slower, and on a busy
+    machine it can be 10-40 times slower. Effective only before numpy is first imported."""
+    for name in BLAS_THREAD_VARIABLES:
+        os.environ.setdefault(name, "1")
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; return the exit status."""
+    _single_threaded_blas()
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+    except UsageError as exc:
+        print(f"error: {_one_line(exc)}", file=sys.stderr)
+        return 2
+    except SystemExit as exc:  # --help, --version
+        return int(exc.code or 0)
+    spec: Command = args._command
+    debug = bool(getattr(args, "debug", False))
+    try:
+        config = None
+        if spec.config:
+            from rotorsfd import api
+
+            config = api.load_config(args.config, args.overrides)
+        return int(spec.handler(args, config) or 0)
+    except ConfigError as exc:
+        return _report(exc, 2, debug)
+    except RotorsfdError as exc:
+        return _report(exc, 1, debug)
+    except KeyboardInterrupt:
+        print("rotorsfd: interrupted", file=sys.stderr)
+        return 130
+    except Exception as exc:
+        return _report(exc, 1, debug, f"internal error ({type(exc).__name__}), please "
+                       "report it; run with --debug for the traceback: ")
+
+
+def _report(exc: BaseException, status: int, debug: bool, prefix: str = "") -> int:
+    if debug:
+        traceback.print_exc()
+    print(f"rotorsfd: error: {prefix}{_one_line(exc)}", file=sys.stderr)
+    return status
+
+
+def progress(iterable: Iterable[Any], *, quiet: bool = False, total: int | None = None,
+             desc: str = "") -> Iterable[Any]:
+    """A tqdm progress bar on stderr (none with ``--quiet``), for long-running commands."""
+    from tqdm import tqdm
+
+    return tqdm(iterable, total=total, desc=desc, disable=quiet, file=sys.stderr,
+                dynamic_ncols=True)
+
+
+# ---- commands ----------------------------------------------------------------------------------
+
+
+@command("config show", "print the resolved configuration (SI units, defaults filled in)",
+         arguments=[arg("--format", choices=("toml", "json"), default="toml",
+                        help="output format (default: toml)")])
+def _config_show(args: argparse.Namespace, config: Any) -> int:
+    from rotorsfd.io.config import show_config
+
+    sys.stdout.write(show_config(config, args.format))
+    return 0
+
+
+@command("config check", "validate a configuration and build its model")
+def _config_check(args: argparse.Namespace, config: Any) -> int:
+    from rotorsfd.io.config import derived_values
+    from rotorsfd.model.build import build_model
+
+    build_model(config, Path(args.config).parent)
+    notes = "; ".join(f"{k}: {v}" for k, v in derived_values(config).items())
+    print(f"{args.config}: ok ({notes})")
+    return 0
+
+
+@command("config schema", "print the JSON schema of configuration files", config=False)
+def _config_schema(args: argparse.Namespace, config: Any) -> int:
+    from rotorsfd.io.schema import Config
+
+    print(json.dumps(Config.model_json_schema(), indent=2))
+    return 0
+
+
+@command("modal", "Campbell diagram and critical speeds of the linear rotor (SFD film "
+         "excluded, centring spring included): critical_speeds.csv, campbell.csv, "
+         "campbell.png", output=True, quiet=True)
+def _modal(args: argparse.Namespace, config: Any) -> int:
+    from rotorsfd import api
+
+    result = api.run_modal(config, search_path=Path(args.config).parent)
+    paths = result.write(args.output)
+    if not args.quiet:
+        print(result.summary())
+        if len(result.critical_speeds) < config.analysis.modal.n_critical:
+            print(f"note: {len(result.critical_speeds)} of "
+                  f"{config.analysis.modal.n_critical} critical speeds found below "
+                  f"{config.analysis.modal.critical_speed_max:g} rad/s")
+        print("wrote " + ", ".join(str(p) for p in paths.values()))
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
