@@ -154,3 +154,25 @@ def test_rolling_equals_fixed_rotor_at_absolute_spin_seen_from_rotating_frame():
     np.testing.assert_allclose(np.sort(np.imag(s_b)), np.sort(np.imag(shifted)),
                                rtol=1e-7, atol=1e-6)
     assert np.abs(s_b.real).max() < 1e-6 * np.abs(s_b).max()
+
+
+def test_rolling_unbalance_response_equals_fixed_base_at_absolute_speed():
+    """Undamped isotropic rotor: under constant rolling wx the synchronous unbalance orbit
+    (base frame, frequency Omega) equals the fixed-base orbit at spin Omega + wx, so the
+    resonance peak moves to Omega = Omega_crit - wx (the unbalance force carries
+    m e (Omega + wx)^2)."""
+    from rotorsfd.model.unbalance import Unbalance, unbalance_harmonics
+
+    rotor = make_rotor(n_elements=4, disk_node=2, stiffness=3e6)
+    unb = [Unbalance(2, 1e-4, 0.4)]
+    om, wx = 500.0, 30.0
+
+    def orbit(speed, state):
+        M, D, K = MovingBaseRotor(rotor, state).matrices(speed)
+        Fc, Fs = unbalance_harmonics(unb, rotor, speed, state)
+        X = np.linalg.solve(K - speed**2 * M + 1j * speed * D, Fc - 1j * Fs)
+        return X
+
+    X_b = orbit(om, BaseState.constant(w=(wx, 0.0, 0.0)))
+    X_f = orbit(om + wx, BaseState.fixed())
+    np.testing.assert_allclose(np.abs(X_b), np.abs(X_f), rtol=1e-9)

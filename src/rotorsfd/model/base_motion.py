@@ -294,7 +294,7 @@ class BaseState:
     @classmethod
     def constant(cls, w: ArrayLike = (0.0, 0.0, 0.0), a0: ArrayLike = (0.0, 0.0, 0.0),
                  g: ArrayLike = (0.0, 0.0, 0.0)) -> BaseState:
-        """Constant rates w and effective acceleration a0 (with w' = 0)."""
+        """Constant rates w (w' = 0), origin acceleration a0 and gravity g (a_eff = a0 - g)."""
         return cls(np.asarray(w, float), np.zeros(3), np.asarray(a0, float), None,
                    np.asarray(g, float))
 
