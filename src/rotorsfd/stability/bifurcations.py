@@ -130,21 +130,26 @@ def critical_value(kind: CrossingType, multipliers: ArrayLike) -> tuple[float, c
     return (c - 1.0 if target > 0 else -c - 1.0), complex(c)
 
 
+def _changes(x: float, y: float) -> bool:
+    """Sign change from x to y; a zero at y counts (once), a zero at x does not."""
+    return (x * y < 0) or (y == 0 and x != 0)
+
+
 def detect(samples: Sequence[BranchSample]) -> list[Bracket]:
     """Brackets of crossings between consecutive samples (sign changes of the tests)."""
     out: list[Bracket] = []
     for a, b in pairwise(samples):
         sa, sb = crossing_signs(a.multipliers), crossing_signs(b.multipliers)
         fold_tangent = (a.dlam_ds is not None and b.dlam_ds is not None
-                        and a.dlam_ds * b.dlam_ds < 0)
-        if sa["saddle-node"] * sb["saddle-node"] < 0:
+                        and _changes(a.dlam_ds, b.dlam_ds))
+        if _changes(sa["saddle-node"], sb["saddle-node"]):
             out.append(Bracket("saddle-node", a, b, "tangent" if fold_tangent
                                else "multiplier"))
         elif fold_tangent:
             out.append(Bracket("saddle-node", a, b, "tangent"))
-        if sa["period-doubling"] * sb["period-doubling"] < 0:
+        if _changes(sa["period-doubling"], sb["period-doubling"]):
             out.append(Bracket("period-doubling", a, b))
-        if (sa["secondary-hopf"] * sb["secondary-hopf"] < 0
+        if (_changes(sa["secondary-hopf"], sb["secondary-hopf"])
                 and _n_complex_outside(a.multipliers) != _n_complex_outside(b.multipliers)):
             out.append(Bracket("secondary-hopf", a, b))
     return out
@@ -173,6 +178,10 @@ def locate(bracket: Bracket, solve_at: SolveAt, *, rtol: float = 1e-6,
         fa = float(crossing_signs(a.multipliers)[kind])
         fb = float(crossing_signs(b.multipliers)[kind])
         via = "sign"
+    if fb == 0.0:  # the sample lies on the crossing
+        _, crit = critical_value(kind, b.multipliers)
+        return Bifurcation(kind, b.s, b.lam, b.multipliers, crit, bracket.via, 0,
+                           (b.lam, b.lam))
     scale = lam_scale if lam_scale is not None else 0.0
     side = 0
     for it in range(1, max_iter + 1):
