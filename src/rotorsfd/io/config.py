@@ -121,7 +121,7 @@ def set_path(data: dict[str, Any], key: str, value: Any) -> None:
         else:
             if not isinstance(node, list):
                 raise ConfigError(key, value, f"{where} is not a list")
-            if part == len(node) and not last:
+            if part == len(node):  # one past the end appends (a new [[table]])
                 node.append({})
             if not 0 <= part < len(node):
                 raise ConfigError(key, value, f"index {part} out of range: {where} has "

@@ -1,0 +1,224 @@
+"""Loading, validation, overrides and `config show` of configuration files."""
+
+import json
+import math
+import tomllib
+from pathlib import Path
+
+import pytest
+
+from rotorsfd.errors import ConfigError
+from rotorsfd.io.config import (
+    config_from_dict,
+    dump_config,
+    load_config,
+    parse_override,
+    read_toml,
+    show_config,
+    with_values,
+)
+from rotorsfd.io.schema import Config, parameter_values, resolve_kind, split_path
+
+PAPER = Path(__file__).parents[2] / "examples" / "paper_rotor.toml"
+
+
+@pytest.fixture(scope="module")
+def paper():
+    return load_config(PAPER)
+
+
+@pytest.fixture
+def raw():
+    return read_toml(PAPER)
+
+
+def test_paper_example_values(paper):
+    assert paper.rotor.n_nodes == 21
+    assert paper.rotor.shaft[0].inner_radius == pytest.approx(20.65e-3)
+    assert paper.materials["steel"].shear_modulus == pytest.approx(81.783e9)
+    assert paper.unbalance[0].magnitude == pytest.approx(360.04e-6)
+    sfd = paper.sfd
+    assert sfd.resolved_clearance == pytest.approx(0.127e-3)
+    assert sfd.resolved_radius == pytest.approx(0.127e-3 / 0.00485)
+    assert sfd.resolved_length == pytest.approx(0.325 * 2 * 0.127e-3 / 0.00485)
+    assert paper.reference.speed == pytest.approx(811.3)
+    assert paper.base.is_fixed and not paper.gravity.enabled
+
+
+def test_defaults_filled_in(raw):
+    del raw["analysis"]
+    cfg = config_from_dict(raw)
+    assert cfg.analysis.response.harmonics == 3
+    assert cfg.analysis.stability.intervals == 400
+    assert cfg.sfd.cavitation == "pi"
+
+
+@pytest.mark.parametrize(("override", "check"), [
+    ('sfd.clearance_ratio=0.61 %', lambda c: c.sfd.resolved_radius == pytest.approx(
+        0.127e-3 / 0.0061)),
+    ('sfd.clearance_ratio="0.728 %"', lambda c: c.sfd.clearance_ratio == pytest.approx(
+        0.00728)),
+    ("unbalance[0].magnitude=144.02 g*mm", lambda c: c.unbalance[0].magnitude == pytest.approx(
+        144.02e-6)),
+    ("unbalance.0.magnitude=252e-6", lambda c: c.unbalance[0].magnitude == 252e-6),
+    ("rotor.shaft[0].n_elements=10", lambda c: c.rotor.n_nodes == 11),
+    ("analysis.response.harmonics=8", lambda c: c.analysis.response.harmonics == 8),
+    ("sfd.cavitation=none", lambda c: c.sfd.cavitation == "none"),
+    ("gravity.enabled=true", lambda c: c.gravity.enabled),
+    ("gravity.direction=[0, 1, 0]", lambda c: c.gravity.direction == [0, 1, 0]),
+    ("reference.speed=first_critical", lambda c: c.reference.speed == "first_critical"),
+    ("reference.speed=3000 rpm", lambda c: c.reference.speed == pytest.approx(100 * math.pi)),
+    ("unbalance[1]={node = 8, magnitude = 1e-5}", lambda c: len(c.unbalance) == 2),
+])
+def test_set_overrides(raw, override, check):
+    if override.startswith("rotor.shaft[0].n_elements"):
+        raw["rotor"]["disks"][0]["node"] = 4
+        raw["rotor"]["supports"][0]["node"] = 11
+        raw["analysis"]["response"]["nodes"] = [1, 4]
+    assert check(config_from_dict(raw, [override]))
+
+
+def test_set_constant_pitching(raw):
+    cfg = config_from_dict(raw, ["base.pitching.law=constant", "base.pitching.value=6 rad/s"])
+    assert cfg.base.pitching.value == 6.0 and not cfg.base.is_fixed
+
+
+@pytest.mark.parametrize(("override", "field"), [
+    ("no_equals_sign", "--set"),
+    ("=3", "--set"),
+    ("sfd.viscosity=", "sfd.viscosity"),
+    ("a..b=3", "a..b"),
+    ("sfd.node.x=3", "sfd.node.x"),
+    ("unbalance[5].node=3", "unbalance[5].node"),
+])
+def test_bad_set(raw, override, field):
+    with pytest.raises(ConfigError) as info:
+        config_from_dict(raw, [override])
+    assert info.value.field == field
+
+
+@pytest.mark.parametrize(("override", "field", "words"), [
+    # wrong type
+    ("rotor.shaft[0].n_elements=abc", "rotor.shaft[0].n_elements", "integer"),
+    ("gravity.enabled=3", "gravity.enabled", "true or false"),
+    # out of range
+    ("sfd.viscosity=-1", "sfd.viscosity", "> 0"),
+    ("sfd.clearance_ratio=150 %", "sfd.clearance_ratio", "< 1"),
+    ("analysis.response.harmonics=0", "analysis.response.harmonics", ">= 1"),
+    # unknown key (with a suggestion)
+    ("rotor.shaft[0].lenght=0.5", "rotor.shaft[0].lenght", "did you mean 'length'"),
+    ("sfd.clearence=1e-4", "sfd.clearence", "unknown key"),
+    # wrong choice
+    ("sfd.cavitation=half", "sfd.cavitation", "'pi', 'none' or 'guembel'"),
+    # bad node, bad material
+    ("rotor.disks[0].node=22", "rotor.disks[0].node", "1..21"),
+    ("sfd.node=0", "sfd.node", ">= 1"),
+    ("rotor.shaft[0].material=alu", "rotor.shaft[0].material", "steel"),
+    # cross-field checks
+    ("rotor.shaft[0].inner_radius=40 mm", "rotor.shaft[0].inner_radius", "outer_radius"),
+    ("rotor.disks[0].outer_radius=20 mm", "rotor.disks[0].inner_radius", "outer_radius"),
+    ("sfd.radius=30 mm", "sfd.radius", "exactly two of clearance, clearance_ratio, radius"),
+    ("sfd.length=20 mm", "sfd.length", "exactly one of length, length_to_diameter"),
+    ("rotor.disks[0].mass=10", "rotor.disks[0].mass", "exactly one of"),
+    ("base.pitching.law=harmonic", "base.pitching.frequency", "needs a frequency"),
+    ("base.yawing.amplitude=1", "base.yawing.amplitude", "not used with law = 'off'"),
+    ("rotor.damping.kind=modal", "rotor.damping.ratio", "needs the damping ratio"),
+    ("analysis.response.parameter=base.pitching.valu", "analysis.response.speed",
+     "needs exactly one fixed speed"),
+    ("reference.speed=fast", "reference.speed", "first_critical"),
+])
+def test_bad_values_name_field(raw, override, field, words):
+    with pytest.raises(ConfigError) as info:
+        config_from_dict(raw, [override])
+    assert info.value.field == field
+    assert words in str(info.value)
+    assert "\n" not in str(info.value)
+
+
+def test_missing_required(raw):
+    del raw["sfd"]["viscosity"]
+    with pytest.raises(ConfigError, match=r"^sfd\.viscosity: got nothing; required: oil"):
+        config_from_dict(raw)
+    del raw["rotor"]
+    with pytest.raises(ConfigError, match=r"^rotor: got nothing; required"):
+        config_from_dict(raw)
+
+
+def test_parameter_path_checked(raw):
+    sets = ["analysis.response.speed_ratio=1.1", "analysis.response.parameter_range=[0, 10]"]
+    cfg = config_from_dict(raw, ["analysis.response.parameter=base.pitching.value", *sets])
+    assert cfg.analysis.response.parameter == "base.pitching.value"
+    with pytest.raises(ConfigError, match="names no config field"):
+        config_from_dict(raw, ["analysis.response.parameter=base.pitching.valu", *sets])
+    with pytest.raises(ConfigError, match="not a scalar physical quantity"):
+        config_from_dict(raw, ["analysis.response.parameter=sfd.cavitation", *sets])
+
+
+def test_missing_file_and_bad_toml(tmp_path):
+    with pytest.raises(ConfigError, match="no such file"):
+        load_config(tmp_path / "nope.toml")
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[sfd\nnode = 1\n")
+    with pytest.raises(ConfigError, match="valid TOML") as info:
+        load_config(bad)
+    assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("fmt", ["toml", "json"])
+def test_show_round_trips(paper, raw, fmt):
+    text = show_config(paper, fmt)
+    data = tomllib.loads(text) if fmt == "toml" else json.loads(text)
+    again = config_from_dict(data)
+    assert again == paper
+    assert dump_config(again) == dump_config(paper)
+    # a config with the alternative forms round-trips too
+    variant = config_from_dict(raw, [
+        "sfd.clearance_ratio=0.61 %", "rotor.damping.kind=rayleigh", "rotor.damping.beta=1e-5",
+        "base.pitching.law=harmonic", "base.pitching.frequency=20", "base.pitching.angle_amplitude"
+        "=0.5 deg", "base.z.law=uniform_acceleration", "base.z.acceleration=-9.81",
+        "unbalance[0].phase=30 deg"])
+    text = show_config(variant, fmt)
+    data = tomllib.loads(text) if fmt == "toml" else json.loads(text)
+    assert config_from_dict(data) == variant
+
+
+def test_show_is_si_with_derived_comment(paper):
+    text = show_config(paper)
+    assert "clearance = 0.000127" in text
+    assert "# derived: C = 0.000127 m, R = 0.0261856 m" in text
+
+
+def test_with_values(paper):
+    cfg = with_values(paper, {"sfd.clearance_ratio": "0.728 %", "unbalance[0].magnitude": 252e-6})
+    assert cfg.sfd.clearance_ratio == pytest.approx(0.00728)
+    assert cfg.unbalance[0].magnitude == 252e-6
+    assert paper.sfd.clearance_ratio == pytest.approx(0.00485)      # unchanged
+
+
+def test_paths_and_kinds(paper):
+    assert split_path("rotor.shaft[0].length") == ("rotor", "shaft", 0, "length")
+    assert split_path("rotor.shaft.0.length") == ("rotor", "shaft", 0, "length")
+    assert resolve_kind(paper, "unbalance[0].magnitude") == "unbalance"
+    assert resolve_kind(paper, "base.pitching.value") == "angular_velocity"
+    assert parameter_values(paper, "sfd.clearance_ratio", ["0.485 %", 0.0061]) == \
+        pytest.approx([0.00485, 0.0061])
+    assert parameter_values(paper, "speed", ["3000 rpm"]) == pytest.approx([100 * math.pi])
+    assert parse_override("a.b = 0.5 mm") == ("a.b", "0.5 mm")
+    assert parse_override("a.b=[1, 2]") == ("a.b", [1, 2])
+
+
+def _walk_properties(schema, defs):
+    yield from schema.get("properties", {}).values()
+    for d in defs.values():
+        yield from d.get("properties", {}).values()
+
+
+def test_every_quantity_documents_unit_and_range():
+    schema = Config.model_json_schema()
+    props = list(_walk_properties(schema, schema["$defs"]))
+    quantities = [p for p in props if "kind" in p]
+    assert len(quantities) > 60
+    for p in quantities:
+        unit = "dimensionless" if p["unit"] == "1" else p["unit"]
+        assert f"[{unit}]" in p["description"]
+        assert "allowed:" in p["description"]
