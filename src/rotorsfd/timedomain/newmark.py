@@ -9,22 +9,24 @@ Generalized-alpha (Chung & Hulbert 1993), force-averaged::
     (1-am) M a1 + am M a0 + (1-af)(D v1 + K q1) + af (D v0 + K q0) = (1-af) g1 + af g0
     q1 = q0 + h v0 + h^2 ((1/2-b) a0 + b a1),   v1 = v0 + h ((1-c) a0 + c a1)
 
-which is linear in ``q1`` apart from ``g1``::
+which is linear in the increment ``d = q1 - q0`` apart from ``g1``::
 
-    K_eff q1 = [Cq Cv Ca] [q0; v0; a0] + (1-af) g1 + af g0
+    K_eff d = [-K Cv Ca] [q0; v0; a0] + (1-af) g1 + af g0
     K_eff = (1-am) M/(b h^2) + (1-af) (c/(b h) D + K)
 
 HHT-alpha is ``am = 0``. Newmark average acceleration (``b = 1/4, c = 1/2``) is the
 trapezoidal rule; written on the state ``(q, v)`` only (two matrix-vector products a step)::
 
-    (4/h^2 M + 2/h D + K)(q1 - q0) = g0 + g1 + 4/h M v0 - 2 K q0,   v1 = 2 (q1 - q0)/h - v0
+    (4/h^2 M + 2/h D + K) d = g0 + g1 + 4/h M v0 - 2 K q0,   v1 = 2 d/h - v0
 
-Both read ``q1 = A x0 + wn1 Kinv g1 + wn Kinv g0`` and ``v1 = vhat + cv q1``. ``A``,
+Both read ``d = A x0 + wn1 Kinv g1 + wn Kinv g0`` and ``v1 = vhat + cv d`` (the increment
+form keeps the velocity free of the cancellation in ``cv (q1 - q0)``). ``A``,
 ``Kinv f_j`` and ``Kinv D_i``, ``Kinv K_i`` are formed once per run (one LU). With
 ``B = Kinv[:, nl]``, ``S = Kinv[nl, nl]`` the nonlinear DOFs solve the exact condensed
-m-dimensional equation ``y = ql[nl] + wn1 S F(y, vhat[nl] + cv y)`` by Newton, then
-``q1 = ql + wn1 B F``. Time-varying matrices add ``Kinv g_tv(q1, v1)`` to ``ql``, found by
-fixed-point iteration (each pass: one product with each ``Kinv D_i``, ``Kinv K_i``).
+m-dimensional equation ``y = dl[nl] + wn1 S F(q0[nl] + y, vhat[nl] + cv y)`` by Newton,
+then ``d = dl + wn1 B F``. Time-varying matrices add ``Kinv g_tv(q1, v1)`` to ``dl``,
+found by fixed-point iteration (each pass: one product with each ``Kinv D_i``,
+``Kinv K_i``).
 """
 
 from __future__ import annotations
@@ -120,7 +122,7 @@ def build_operators(M: np.ndarray, D: np.ndarray, K: np.ndarray, nl_dofs: np.nda
         c1 = c / (b * h)
         k_eff = (1.0 - am) * c0 * M + (1.0 - af) * (c1 * D + K)
         blocks = [
-            (1.0 - am) * c0 * M + (1.0 - af) * c1 * D - af * K,
+            -K,
             (1.0 - am) * c0 * h * M + ((1.0 - af) * c1 * h - 1.0) * D,
             ((1.0 - am) * c0 * h * h * (0.5 - b) - am) * M
             + (1.0 - af) * (c1 * h * h * (0.5 - b) - h * (1.0 - c)) * D,
@@ -128,8 +130,6 @@ def build_operators(M: np.ndarray, D: np.ndarray, K: np.ndarray, nl_dofs: np.nda
         wn1, wn, cv = 1.0 - af, af, c1
     lu = scipy.linalg.lu_factor(k_eff, check_finite=True)
     A = scipy.linalg.lu_solve(lu, np.hstack(blocks))
-    if scheme.kind == NEWMARK:
-        A[:, :n] += np.eye(n)
     eye_nl = np.zeros((n, nl.size))
     eye_nl[nl, np.arange(nl.size)] = 1.0
     B = scipy.linalg.lu_solve(lu, eye_nl)
@@ -175,38 +175,42 @@ def _solve_small(J: np.ndarray, r: np.ndarray, x: np.ndarray) -> bool:
 
 
 @njit(cache=True, fastmath=_FASTMATH)
-def _newton_nl(kernel, params, ql, vhat, cv, wn1, S, nl, y, yprev, F, dq, dv,
+def _newton_nl(kernel, params, q0, dl, vhat, cv, wn1, S, nl, y, yprev, qy, F, dq, dv,
                J, r, dy, vy, rtol, atol, max_newton):
-    """Solve ``y = ql[nl] + wn1 S F(y, vhat[nl] + cv y)`` by Newton from the given ``y``.
+    """Solve ``y = dl[nl] + wn1 S F(q0[nl] + y, vhat[nl] + cv y)`` for the increment ``y``
+    of the nonlinear DOFs by Newton from the given ``y``.
 
-    Returns ``(status, iterations, touched_contact)``; ``F`` holds the force at ``y``.
-    A trial point in contact is pulled back halfway towards the last valid point.
+    Converged when ``|residual|_inf <= rtol max(|y|, |dl[nl]|) + atol``. Returns
+    ``(status, iterations, touched_contact)``; ``F`` holds the force at ``y``. A trial
+    point in contact is pulled back halfway towards the last valid point (``yprev``).
     """
     m = nl.shape[0]
     touched = False
     for it in range(max_newton):
         for a in range(m):
+            qy[a] = q0[nl[a]] + y[a]
             vy[a] = vhat[nl[a]] + cv * y[a]
-        st = kernel(y, vy, params, F, dq, dv)
+        st = kernel(qy, vy, params, F, dq, dv)
         n_back = 0
         while st != 0 and n_back < 40:
             touched = True
             for a in range(m):
                 y[a] = yprev[a] + 0.5 * (y[a] - yprev[a])
+                qy[a] = q0[nl[a]] + y[a]
                 vy[a] = vhat[nl[a]] + cv * y[a]
-            st = kernel(y, vy, params, F, dq, dv)
+            st = kernel(qy, vy, params, F, dq, dv)
             n_back += 1
         if st != 0:
             return 1, it + 1, touched
         rn = 0.0
         scale = 0.0
         for a in range(m):
-            s = y[a] - ql[nl[a]]
+            s = y[a] - dl[nl[a]]
             for b in range(m):
                 s -= wn1 * S[a, b] * F[b]
             r[a] = -s
             rn = max(rn, abs(s))
-            scale = max(scale, abs(y[a]), abs(ql[nl[a]]))
+            scale = max(scale, abs(y[a]), abs(dl[nl[a]]))
         if not np.isfinite(rn):
             return 4, it + 1, touched
         if rn <= rtol * scale + atol:
@@ -257,18 +261,20 @@ def run_steps(kernel, params, kind, coef, A, B, S, nl,
     gamma = coef[7]
     nr = rec_dofs.shape[0]
 
-    qf = np.empty(n)
-    ql = np.empty(n)
-    qn = np.empty(n)
+    df = np.empty(n)    # increment predictor (linear part)
+    dl = np.empty(n)    # ... plus the time-varying terms
+    dn = np.empty(n)    # increment q1 - q0
     vn = np.empty(n)
+    qn = np.empty(n)
     vhat = np.empty(n)
-    qtil = np.empty(n)
+    dtil = np.empty(n)
     vtil = np.empty(n)
     Gf = np.empty(n)
     T = np.zeros(n)
     Tnew = np.empty(n)
     y = np.empty(m)
     yprev = np.empty(m)
+    qy = np.empty(m)
     F = np.empty(m)
     dq = np.empty((m, m))
     dv = np.empty((m, m))
@@ -281,7 +287,7 @@ def run_steps(kernel, params, kind, coef, A, B, S, nl,
     for i in range(n_steps):
         k1 = step0 + i + 1
         t1 = t0 + k1 * h
-        # -- linear predictor: qf = A x + wn Kinv g_n + wn1 Kinv f(t1)
+        # -- linear predictor: df = A x + wn Kinv g_n + wn1 Kinv f(t1)
         for j in range(n):
             Gf[j] = KF0[j]
         for hh in range(H):
@@ -298,16 +304,16 @@ def run_steps(kernel, params, kind, coef, A, B, S, nl,
             s = 0.0
             for c in range(sn):
                 s += A[rr, c] * X[c]
-            qf[rr] = s + wn * Gn[rr] + wn1 * Gf[rr]
-        # -- velocity relation v1 = vhat + cv q1
+            df[rr] = s + wn * Gn[rr] + wn1 * Gf[rr]
+        # -- velocity relation v1 = vhat + cv d
         if kind == 0:
             for j in range(n):
-                vhat[j] = -X[n + j] - cv * X[j]
+                vhat[j] = -X[n + j]
         else:
             for j in range(n):
-                qtil[j] = X[j] + h * X[n + j] + h * h * (0.5 - beta) * X[2 * n + j]
+                dtil[j] = h * X[n + j] + h * h * (0.5 - beta) * X[2 * n + j]
                 vtil[j] = X[n + j] + h * (1.0 - gamma) * X[2 * n + j]
-                vhat[j] = vtil[j] - cv * qtil[j]
+                vhat[j] = vtil[j] - cv * dtil[j]
         # -- Newton on the nonlinear DOFs, inside the fixed point of the varying matrices
         for j in range(n):
             T[j] = Tn[j] if P > 0 else 0.0
@@ -315,17 +321,17 @@ def run_steps(kernel, params, kind, coef, A, B, S, nl,
             s = 0.0
             for b in range(m):
                 s += S[a, b] * Fn[b]
-            y[a] = qf[nl[a]] + wn1 * (s + T[nl[a]])
-            yprev[a] = X[nl[a]]
+            y[a] = df[nl[a]] + wn1 * (s + T[nl[a]])
+            yprev[a] = 0.0
         converged = P == 0
         it_tv = 0
         while True:
             for j in range(n):
-                ql[j] = qf[j] + wn1 * T[j]
+                dl[j] = df[j] + wn1 * T[j]
             if m > 0:
-                st, its, touched = _newton_nl(kernel, params, ql, vhat, cv, wn1, S, nl, y,
-                                              yprev, F, dq, dv, J, r, dy, vy, rtol, atol,
-                                              max_newton)
+                st, its, touched = _newton_nl(kernel, params, X, dl, vhat, cv, wn1, S, nl,
+                                              y, yprev, qy, F, dq, dv, J, r, dy, vy, rtol,
+                                              atol, max_newton)
                 info[I_NEWTON_TOTAL] += its
                 if its > info[I_NEWTON_MAX]:
                     info[I_NEWTON_MAX] = its
@@ -335,10 +341,10 @@ def run_steps(kernel, params, kind, coef, A, B, S, nl,
                     status = st
                     break
             for j in range(n):
-                s = ql[j]
+                s = dl[j]
                 for a in range(m):
                     s += wn1 * B[j, a] * F[a]
-                qn[j] = s
+                dn[j] = s
             if converged:
                 break
             # time-varying matrices: T = Kinv g_tv(q1, v1)
@@ -347,7 +353,8 @@ def run_steps(kernel, params, kind, coef, A, B, S, nl,
                 status = 3
                 break
             for j in range(n):
-                vn[j] = vhat[j] + cv * qn[j]
+                vn[j] = vhat[j] + cv * dn[j]
+                qn[j] = X[j] + dn[j]
                 Tnew[j] = 0.0
             for p in range(P):
                 cp = tvcoef[k1, p]
@@ -366,7 +373,7 @@ def run_steps(kernel, params, kind, coef, A, B, S, nl,
             scale = 0.0
             for j in range(n):
                 diff = max(diff, abs(Tnew[j] - T[j]))
-                scale = max(scale, abs(qn[j]))
+                scale = max(scale, abs(dn[j]))
                 T[j] = Tnew[j]
             if not np.isfinite(diff):
                 status = 4
@@ -377,7 +384,7 @@ def run_steps(kernel, params, kind, coef, A, B, S, nl,
             info[I_TV_MAX] = it_tv
         if status != 0:
             for a in range(m):
-                fail_state[a] = y[a]
+                fail_state[a] = X[nl[a]] + y[a]
                 fail_state[m + a] = vhat[nl[a]] + cv * y[a]
             info[I_STEP] = k1 - 1
             break
@@ -385,18 +392,18 @@ def run_steps(kernel, params, kind, coef, A, B, S, nl,
         chk = 0.0
         if kind == 0:
             for j in range(n):
-                v1 = vhat[j] + cv * qn[j]
-                X[j] = qn[j]
+                v1 = vhat[j] + cv * dn[j]
+                X[j] += dn[j]
                 X[n + j] = v1
-                chk += qn[j] + v1
+                chk += dn[j] + v1
         else:
             for j in range(n):
-                a1 = c0 * (qn[j] - qtil[j])
+                a1 = c0 * (dn[j] - dtil[j])
                 v1 = vtil[j] + gh * a1
-                X[j] = qn[j]
+                X[j] += dn[j]
                 X[n + j] = v1
                 X[2 * n + j] = a1
-                chk += qn[j] + v1
+                chk += dn[j] + v1
         if not np.isfinite(chk):
             status = 4
             info[I_STEP] = k1 - 1
