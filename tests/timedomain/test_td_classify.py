@@ -1,0 +1,133 @@
+"""Motion classification on systems with known answers; spectra; Poincare tools."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from rotorsfd.timedomain import (
+    Forcing,
+    HarmonicLoad,
+    amplitude_spectrum,
+    classify_motion,
+    classify_result,
+    closed_curve_test,
+    correlation_dimension,
+    cubic_spring_kernel,
+    integrate,
+    largest_lyapunov,
+    poincare_period,
+    spectral_lines,
+)
+
+SPP = 200  # steps per forcing period
+
+
+def _duffing(c: float, k1: float, k3: float, F: float, w: float, q0: float,
+             n_periods: int = 600, keep: int = 200):
+    """``x'' + c x' + k1 x + k3 x^3 = F cos(w t)`` (``k1, k3`` in the cubic kernel)."""
+    fo = Forcing(omega=w, harmonics=[HarmonicLoad(1.0, np.array([F]))])
+    sys_ = (np.eye(1), np.array([[c]]), np.zeros((1, 1)), [0], cubic_spring_kernel,
+            [k1, k3], fo)
+    r = integrate(*sys_, steps_per_period=SPP, n_periods=n_periods, q0=q0,
+                  record_start=(n_periods - keep) * SPP)
+    return sys_, r
+
+
+def _lyapunov(sys_, q0: float):
+    return largest_lyapunov(*sys_, steps_per_period=SPP, n_periods=300, q0=q0,
+                            transient_steps=100 * SPP)
+
+
+def test_ueda_oscillator_is_chaotic() -> None:
+    """Ueda: ``x'' + 0.05 x' + x^3 = 7.5 cos t``, chaotic (lambda about 0.1 1/s)."""
+    sys_, r = _duffing(0.05, 0.0, 1.0, 7.5, 1.0, 0.1)
+    ly = _lyapunov(sys_, 0.1)
+    assert 0.05 < ly.exponent < 0.2
+    mc = classify_result(r, ly)
+    assert mc.motion == "chaotic"
+    assert mc.evidence["lyapunov_exponent"] == ly.exponent
+    assert mc.evidence["n_distinct_poincare"] > 100
+    assert classify_result(r).motion == "chaotic"  # spectrum alone agrees
+
+
+@pytest.mark.parametrize(("F", "expected"), [(0.20, "period-1"), (0.28, "period-2"),
+                                             (0.29, "period-4"), (0.35, "period-5")])
+def test_double_well_duffing_periodic_windows(F: float, expected: str) -> None:
+    """``x'' + 0.3 x' - x + x^3 = F cos(1.2 t)`` from ``x0 = 1``: the period-doubling
+    route (period 1, 2, 4) and the period-5 window (Guckenheimer & Holmes)."""
+    _, r = _duffing(0.3, -1.0, 1.0, F, 1.2, 1.0)
+    mc = classify_result(r)
+    assert mc.motion == expected
+    n = mc.period
+    assert mc.evidence["n_distinct_poincare"] == n
+    ratios = np.array(mc.evidence["frequency_ratios"])
+    assert np.all(np.abs(ratios * n - np.round(ratios * n)) < 1e-3)  # lines at k/n
+    assert np.min(ratios) == pytest.approx(1.0 / n, abs=1e-3)
+
+
+def test_double_well_duffing_chaotic() -> None:
+    """F = 0.5: the Poincare section folds into a thin curve, the Lyapunov exponent is
+    positive and decides."""
+    sys_, r = _duffing(0.3, -1.0, 1.0, 0.5, 1.2, 1.0)
+    ly = _lyapunov(sys_, 1.0)
+    assert ly.per_period > 0.2
+    assert classify_result(r, ly).motion == "chaotic"
+
+
+def test_two_frequency_linear_is_quasi_periodic() -> None:
+    """Linear 2-DOF forced at ``w`` and ``sqrt(2) w``: a closed curve in the section,
+    incommensurate line at ratio sqrt(2), negative Lyapunov exponent."""
+    M = np.diag([1.0, 2.0])
+    K = np.array([[3.0, -1.0], [-1.0, 2.0]])
+    D = 0.05 * K
+    fo = Forcing(omega=1.0, harmonics=[HarmonicLoad(1.0, np.array([1.0, 0.0])),
+                                       HarmonicLoad(np.sqrt(2.0), np.array([0.0, 1.0]))])
+    r = integrate(M, D, K, [], None, None, fo, steps_per_period=SPP, n_periods=600,
+                  record_start=400 * SPP, record_dofs=[0, 1])
+    mc = classify_result(r)
+    assert mc.motion == "quasi-periodic"
+    assert mc.evidence["closed_curve"]["passed"]
+    assert any(abs(x - np.sqrt(2.0)) < 1e-3 for x in mc.evidence["incommensurate_ratios"])
+    assert 0.8 < mc.evidence["correlation_dimension"] < 1.2
+    ly = largest_lyapunov(M, D, K, [], None, None, fo, steps_per_period=SPP, n_periods=50)
+    assert ly.exponent < 0.0
+    mc = classify_result(r, ly)
+    assert mc.motion == "quasi-periodic"
+    assert mc.evidence["basis"].startswith("non-periodic")
+
+
+def test_amplitude_spectrum_line_amplitudes_and_ratios() -> None:
+    """``0.3 + 2 cos(w t) + 0.5 sin(2.5 w t + 1)``: amplitudes (half peak-to-peak) and
+    ratios 1 and 5/2 to ``w``; the DC term excluded after detrending."""
+    w, dt = 3.0, 2 * np.pi / 3.0 / 64
+    t = dt * np.arange(64 * 100)
+    x = 0.3 + 2.0 * np.cos(w * t) + 0.5 * np.sin(2.5 * w * t + 1.0)
+    freq, amp = amplitude_spectrum(x, dt)
+    k = np.argmin(np.abs(freq - w))
+    assert amp[k] == pytest.approx(2.0, rel=1e-6)
+    assert amp[0] == pytest.approx(0.3, rel=1e-6)
+    spec = spectral_lines(x, dt, w)
+    assert [round(ln.ratio, 6) for ln in spec.lines] == [1.0, 2.5]
+    assert spec.lines[1].amplitude == pytest.approx(0.5, rel=1e-6)
+    assert not spec.incommensurate and spec.broadband_fraction < 1e-6
+    # off-bin line: frequency and amplitude refined from the three bins around the peak
+    x2 = np.cos(1.2345 * w * t)
+    ln = spectral_lines(x2, dt, w).lines[0]
+    assert ln.ratio == pytest.approx(1.2345, abs=1e-4)
+    assert ln.amplitude == pytest.approx(1.0, rel=2e-2)
+
+
+def test_poincare_tools() -> None:
+    rng = np.random.default_rng(0)
+    pts = np.tile(np.array([[0.0, 1.0], [1.0, 0.0], [0.5, 0.5]]), (10, 1))
+    assert poincare_period(pts + 1e-6 * rng.normal(size=pts.shape)) == 3
+    assert poincare_period(rng.normal(size=(50, 2))) is None
+    th = 2 * np.pi * np.sqrt(2) * np.arange(300)
+    circle = np.column_stack([np.cos(th), 0.5 * np.sin(th)])
+    assert closed_curve_test(circle)["passed"]
+    assert not closed_curve_test(rng.normal(size=(300, 2)))["passed"]
+    assert correlation_dimension(circle) == pytest.approx(1.0, abs=0.15)
+    assert correlation_dimension(rng.uniform(size=(600, 2))) > 1.6
+    with pytest.raises(ValueError):
+        classify_motion(np.zeros((3, 2)))
