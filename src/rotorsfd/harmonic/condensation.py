@@ -213,13 +213,15 @@ class CondensedHB:
         return S @ np.column_stack([J, dR])
 
     def recover(self, xs: FloatArray, lam: float) -> ComplexArray:
-        """All DOFs: ``X_k = u_k + C_k (G_k + Delta_k Xs_k)`` (H+1, n) complex."""
+        """All DOFs: ``X_k = u_k + C_k (G_k + Delta_k Xs_k)`` (H+1, n) complex; the
+        nonlinear DOFs keep the solved values Xs."""
         p, H = self.problem, self.H
         xs = xs.reshape(2 * H + 1, p.m)
         cd = self.condense(lam, deriv=False)
         nl = nonlinear_coefficients(p, self.aft, xs, p.frequency(lam), jac=False)
         Gt = to_complex(nl.G) + np.einsum("kij,kj->ki", self.delta, to_complex(xs))
         X = cd.u + np.einsum("knm,km->kn", cd.C, Gt)
+        X[:, p.nl_dofs] = to_complex(xs)    # = the recovered values up to the residual
         X[0] = X[0].real
         return X
 

@@ -1,0 +1,71 @@
+"""Duffing oscillator: branch through both folds against long time integration."""
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from rotorsfd.harmonic import continue_periodic, solve_periodic
+from rotorsfd.harmonic.examples import duffing
+
+C, K, K3, F = 0.05, 1.0, 0.1, 0.1
+H = 7
+
+
+@pytest.fixture(scope="module")
+def branch():
+    return continue_periodic(duffing(C, K, K3, F), 0.5, 2.0, H)
+
+
+def _steady_amplitude(w, q0, v0, periods=200):
+    """|X_1| and max|x| over the last period of a long solve_ivp run."""
+    def rhs(t, y):
+        return [y[1], F * np.cos(w * t) - C * y[1] - K * y[0] - K3 * y[0] ** 3]
+
+    T = 2 * np.pi / w
+    sol = solve_ivp(rhs, (0, periods * T), [q0, v0], method="DOP853", rtol=1e-10,
+                    atol=1e-12, dense_output=True)
+    t = (periods - 1) * T + np.arange(512) * T / 512
+    x = sol.sol(t)[0]
+    X1 = 2 / 512 * np.sum(x * np.exp(-1j * w * t))
+    return abs(X1), np.abs(x).max()
+
+
+def test_branch_passes_both_folds(branch):
+    assert branch.success, branch.message
+    folds = branch.folds()
+    assert len(folds) == 2
+    lam_f = branch.lam[folds]
+    assert lam_f[0] > lam_f[1]                      # upper fold first, then lower
+    t = branch.tangents
+    angles = np.degrees(np.arccos(np.clip(np.sum(t[1:] * t[:-1], axis=1), -1, 1)))
+    assert angles.max() <= 20.0 + 1e-9
+    assert branch.lam[-1] == pytest.approx(2.0, abs=1e-12)
+
+
+def _pick(branch, w, part):
+    """Point near w on the upper (before fold 1) or lower (after fold 2) stable part."""
+    f1, f2 = branch.folds()
+    sl = slice(0, f1 + 1) if part == "upper" else slice(f2 + 1, None)
+    lam = branch.lam[sl]
+    i = np.argmin(np.abs(lam - w))
+    return branch.X[sl][i]
+
+
+@pytest.mark.parametrize(("w", "part"), [(0.8, "upper"), (1.05, "upper"), (1.1, "upper"),
+                                          (1.09, "lower"), (1.3, "lower")])
+def test_against_time_integration(branch, w, part):
+    s = solve_periodic(duffing(C, K, K3, F), w, H, _pick(branch, w, part), tol=1e-10)
+    t = np.linspace(0, 2 * np.pi / w, 512, endpoint=False)
+    x_hb = (np.exp(1j * w * np.outer(t, np.arange(H + 1))) @ s.X[:, 0]).real
+    # start 1e-3 away from the HB state: the attractor must pull it back
+    q0 = x_hb[0] * 1.001
+    v0 = (1j * w * np.arange(H + 1) @ s.X[:, 0]).real
+    a1, amax = _steady_amplitude(w, q0, v0)
+    assert a1 == pytest.approx(abs(s.X[1, 0]), rel=1e-4)
+    assert amax == pytest.approx(np.abs(x_hb).max(), rel=1e-4)
+
+
+def test_bistable_frequency_has_two_stable_amplitudes(branch):
+    up = abs(_pick(branch, 1.09, "upper")[1, 0])
+    lo = abs(_pick(branch, 1.09, "lower")[1, 0])
+    assert up > 2 * lo
