@@ -226,6 +226,15 @@ def _config_schema(args: argparse.Namespace, config: Any) -> int:
     return 0
 
 
+@command("config fields", "print the reference of every config field (Markdown table: "
+         "type, SI unit, default, allowed range)", config=False)
+def _config_fields(args: argparse.Namespace, config: Any) -> int:
+    from rotorsfd.io.reference import markdown_reference
+
+    sys.stdout.write(markdown_reference())
+    return 0
+
+
 @command("modal", "Campbell diagram and critical speeds of the linear rotor (SFD film "
          "excluded, centring spring included): critical_speeds.csv, campbell.csv, "
          "campbell.png", output=True, quiet=True)

@@ -222,3 +222,41 @@ def test_every_quantity_documents_unit_and_range():
         unit = "dimensionless" if p["unit"] == "1" else p["unit"]
         assert f"[{unit}]" in p["description"]
         assert "allowed:" in p["description"]
+
+
+def test_every_field_documented():
+    from rotorsfd.io.reference import field_reference, markdown_reference
+
+    docs = field_reference()
+    assert len(docs) > 100
+    assert all(d.description for d in docs), [d.path for d in docs if not d.description]
+    table = markdown_reference()
+    assert "| `sfd.clearance_ratio` | quantity | 1 |" in table
+    assert "`rotor.shaft[].length`" in table
+
+
+@pytest.mark.parametrize(("override", "field"), [
+    ('analysis.sweep.axes[0]={parameter = "unbalance[0].magnitude", values = ["1 g*mm", '
+     '"3 mm"]}', "analysis.sweep.axes[0].values[1]"),
+    ('analysis.stability_chart.x={parameter = "base.pitching.frequency", start = "1 kg", '
+     'stop = 3}', "analysis.stability_chart.x.start"),
+    ('analysis.sweep.axes[0]={parameter = "sfd.viscosty", start = 0, stop = 1}',
+     "analysis.sweep.axes[0].parameter"),
+])
+def test_axis_values_checked(raw, override, field):
+    with pytest.raises(ConfigError) as info:
+        config_from_dict(raw, [override])
+    assert info.value.field == field
+
+
+def test_axis_values_si(raw):
+    from rotorsfd.io.schema import axis_values
+
+    cfg = config_from_dict(raw, [
+        'analysis.sweep.axes[0]={parameter = "base.pitching.value", start = 0, '
+        'stop = "10 rad/s", n = 11}',
+        'analysis.sweep.axes[1]={parameter = "unbalance[0].magnitude", values = '
+        '["144.02 g*mm", "252 g*mm", "360.04 g*mm"]}'])
+    first, second = cfg.analysis.sweep.axes
+    assert axis_values(cfg, first) == pytest.approx(list(range(11)))
+    assert axis_values(cfg, second) == pytest.approx([144.02e-6, 252e-6, 360.04e-6])

@@ -10,7 +10,9 @@ from rotorsfd.io.units import UnitError, to_si
 
 
 @pytest.mark.parametrize(("text", "kind", "si"), [
-    ("5 mil", "length", 1.27e-4),                  # thousandth of an inch, not pint's angle
+    ("5 mil", "length", 1.27e-4),                  # thousandth of an inch, not an angle
+    ("5mil", "length", 1.27e-4),
+    ("0.61%", "ratio", 0.0061),
     ("0.127 mm", "length", 1.27e-4),
     ("1 um", "length", 1e-6),
     ("1 µm", "length", 1e-6),

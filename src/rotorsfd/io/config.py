@@ -151,7 +151,7 @@ def _lookup(data: Any, loc: Iterable[Any]) -> tuple[bool, Any]:
     return True, data
 
 
-def _unwrap(annotation: Any) -> Any:
+def unwrap(annotation: Any) -> Any:
     """The model or container inside Optional / Annotated."""
     while True:
         origin = typing.get_origin(annotation)
@@ -175,9 +175,9 @@ def _schema_at(loc: Iterable[Any]) -> tuple[type[BaseModel] | None, Any]:
             info = model.model_fields.get(part) if isinstance(part, str) else None
             if info is None:
                 return model, None
-            holder, model = model, _unwrap(info.annotation)
+            holder, model = model, unwrap(info.annotation)
         elif typing.get_origin(model) in (list, dict):
-            model = _unwrap(typing.get_args(model)[-1])
+            model = unwrap(typing.get_args(model)[-1])
         else:
             return holder, info
     return holder, info
@@ -189,7 +189,7 @@ def _description(loc: list[Any]) -> str:
         return ""
     if info.description:
         return info.description
-    annotation = _unwrap(info.annotation)
+    annotation = unwrap(info.annotation)
     if isinstance(annotation, type) and issubclass(annotation, BaseModel) and annotation.__doc__:
         return annotation.__doc__.strip().splitlines()[0].replace("``", "")
     return ""

@@ -13,7 +13,7 @@ Errors raised here are pydantic errors whose context carries the offending sub-f
 
 import math
 import re
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, model_validator
 from pydantic_core import PydanticCustomError
@@ -31,16 +31,17 @@ def fail(path: str | tuple[str | int, ...], value: Any, allowed: str) -> Pydanti
                                                          "allowed": allowed})
 
 
-def range_text(unit: str, gt=None, ge=None, lt=None, le=None) -> str:
-    """``"> 0 m"``, ``"0 < value < 1"``, or ``"any value"``."""
+def range_text(unit: str, gt: float | None = None, ge: float | None = None,
+               lt: float | None = None, le: float | None = None) -> str:
+    """``"> 0 m"``, ``"0 < value < 1"``, ``"any value"``."""
     u = "" if unit == "1" else f" {unit}"
-    low = f"{gt} <" if gt is not None else (f"{ge} <=" if ge is not None else "")
-    high = f"< {lt}" if lt is not None else (f"<= {le}" if le is not None else "")
+    low = (f"{gt:g} <", f"> {gt:g}") if gt is not None else (
+        (f"{ge:g} <=", f">= {ge:g}") if ge is not None else None)
+    high = f"< {lt:g}" if lt is not None else (f"<= {le:g}" if le is not None else None)
     if low and high:
-        return f"{low} value {high}{u}"
+        return f"{low[0]} value {high}{u}"
     if low:
-        op, num = low.split()[1], low.split()[0]
-        return f"{'>' if op == '<' else '>='} {num}{u}"
+        return f"{low[1]}{u}"
     if high:
         return f"{high}{u}"
     return "any value"
@@ -86,19 +87,20 @@ def quantity(kind: str, doc: str, *, gt: float | None = None, ge: float | None =
     ]
 
 
-def integer(doc: str, *, ge: int | None = None, le: int | None = None) -> Any:
-    """Annotated int field with its range in the description."""
-    return Annotated[int, Field(ge=ge, le=le,
-                                description=f"{doc}; allowed: {range_text('1', ge=ge, le=le)}")]
-
-
-def text(doc: str) -> Any:
-    return Annotated[str, Field(description=doc)]
+def integer(doc: str, *, ge: int | None = None, le: int | None = None,
+            optional: bool = False) -> Any:
+    """Annotated int field (``None`` allowed if ``optional``) with its range in the
+    description."""
+    return Annotated[int | None if optional else int,
+                     Field(ge=ge, le=le,
+                           description=f"{doc}; allowed: {range_text('1', ge=ge, le=le)}")]
 
 
 NODE = integer("node number (1-based, as in the paper)", ge=1)
 NAME = Annotated[str, Field(pattern=r"^[A-Za-z_][A-Za-z0-9_\-]*$",
-                            description="a name: letters, digits, '_' and '-'")]
+                            description="name of a [materials.<name>] table (letters, digits, "
+                                        "'_' and '-')")]
+LABEL = Annotated[str, Field(description="a free label, used in messages and plots")]
 CALLABLE = Annotated[str | None, Field(
     pattern=r"^[A-Za-z_][\w.]*:[A-Za-z_]\w*$",
     description="a Python callable as 'module:function' (importable, e.g. from the "
@@ -117,7 +119,8 @@ def _given(model: BaseModel, names: tuple[str, ...]) -> list[str]:
 
 def _exactly_one_form(model: BaseModel, forms: dict[str, tuple[str, ...]],
                       required: dict[str, tuple[str, ...]] | None = None) -> str:
-    """The one form (a named group of fields) given in ``model``; error otherwise."""
+    """The one form (a named group of optional fields) given in ``model``; error if none or
+    several are given, or if a field of ``required[form]`` (default: all) is missing."""
     required = required or forms
     used = {name: _given(model, fields) for name, fields in forms.items()}
     chosen = [name for name, fields in used.items() if fields]
@@ -190,9 +193,10 @@ class DiskConfig(Section):
     """Rigid disk: by geometry (radii, thickness, material) or by mass and inertias."""
 
     node: NODE
-    name: str = ""
-    material: NAME | None = None
-    inner_radius: quantity("length", "bore radius (geometry form)", ge=0, optional=True) = None
+    name: LABEL = ""
+    material: Annotated[str | None, Field(description="material name (geometry form)")] = None
+    inner_radius: quantity("length", "bore radius (geometry form; default 0, a solid disk)",
+                           ge=0, optional=True) = None
     outer_radius: quantity("length", "outer radius (geometry form)", gt=0, optional=True) = None
     thickness: quantity("length", "axial thickness (geometry form)", gt=0, optional=True) = None
     mass: quantity("mass", "mass (inertia form)", ge=0, optional=True) = None
@@ -207,10 +211,10 @@ class DiskConfig(Section):
             self,
             {"geometry": ("material", "inner_radius", "outer_radius", "thickness"),
              "inertia": ("mass", "polar_inertia", "diametral_inertia")},
-            {"geometry": ("material", "inner_radius", "outer_radius", "thickness"),
+            {"geometry": ("material", "outer_radius", "thickness"),
              "inertia": ("mass", "polar_inertia", "diametral_inertia")},
         )
-        if form == "geometry" and not self.inner_radius < self.outer_radius:
+        if form == "geometry" and not (self.inner_radius or 0.0) < self.outer_radius:
             raise fail("inner_radius", self.inner_radius,
                        f"must be < outer_radius = {self.outer_radius:g} m")
         return self
@@ -228,7 +232,7 @@ class SupportConfig(Section):
     (kyy, kzz, kyz, kzy; cyy, czz, cyz, czy). Cross terms may be negative."""
 
     node: NODE
-    name: str = ""
+    name: LABEL = ""
     stiffness: quantity("stiffness", "isotropic stiffness kyy = kzz", ge=0,
                         optional=True) = None
     kyy: quantity("stiffness", "direct stiffness along y", ge=0, optional=True) = None
@@ -255,24 +259,20 @@ class SupportConfig(Section):
         return self
 
     def coefficients(self) -> dict[str, float]:
-        """All eight coefficients, SI, zeros where not given."""
-        k = self.stiffness
-        c = self.damping
-        out = {"kyy": k, "kzz": k, "cyy": c, "czz": c} if k is not None else {}
-        if c is not None:
-            out.update(cyy=c, czz=c)
-        for name in ("kyy", "kzz", "kyz", "kzy", "cyy", "czz", "cyz", "czy"):
-            if getattr(self, name) is not None:
-                out[name] = getattr(self, name)
-        return {name: float(out.get(name) or 0.0)
-                for name in ("kyy", "kzz", "kyz", "kzy", "cyy", "czz", "cyz", "czy")}
+        """The eight coefficients kyy..czy in SI, from either form (zero if not given)."""
+        k, c = self.stiffness, self.damping
+        iso = {"kyy": k, "kzz": k, "cyy": c, "czz": c}
+        names = ("kyy", "kzz", "kyz", "kzy", "cyy", "czz", "cyz", "czy")
+        return {n: float(getattr(self, n) if getattr(self, n) is not None else iso.get(n) or 0.0)
+                for n in names}
 
 
 class DampingConfig(Section):
     """Structural damping of the shaft: none, Rayleigh (C = alpha M + beta K) or an equal
     modal damping ratio on the undamped non-rotating modes."""
 
-    kind: Literal["none", "rayleigh", "modal"] = "none"
+    kind: Literal["none", "rayleigh", "modal"] = Field(
+        "none", description="'none'; 'rayleigh' (alpha, beta); 'modal' (ratio)")
     alpha: quantity("rayleigh_alpha", "Rayleigh mass coefficient alpha", ge=0,
                     optional=True) = None
     beta: quantity("rayleigh_beta", "Rayleigh stiffness coefficient beta", ge=0,
@@ -402,8 +402,8 @@ class _Component(Section):
     derivative: CALLABLE = Field(None, description="optional 'module:function' giving "
                                  "f'(t) of the callable law (default: complex step)")
 
-    _alt_amplitude: str = ""  # name of the alternative amplitude field
-    _law_fields: dict[str, tuple[str, ...]] = {}
+    _alt_amplitude: ClassVar[str] = ""  # name of the alternative amplitude field
+    _law_fields: ClassVar[dict[str, tuple[str, ...]]] = {}  # fields of extra laws
 
     @model_validator(mode="after")
     def _fields_of_law(self):
@@ -441,7 +441,7 @@ class RotationComponent(_Component):
     amplitude: quantity("angular_velocity", "rate amplitude", ge=0, optional=True) = None
     angle_amplitude: quantity("angle", "angle amplitude A0 (rate amplitude = A0 * frequency)",
                               ge=0, optional=True) = None
-    _alt_amplitude: str = "angle_amplitude"
+    _alt_amplitude: ClassVar[str] = "angle_amplitude"
 
     def rate_amplitude(self) -> float:
         """Amplitude of the rate [rad/s] for the harmonic law."""
@@ -467,8 +467,8 @@ class TranslationComponent(_Component):
                            optional=True) = None
     velocity: quantity("velocity", "initial velocity (uniform_acceleration law)",
                        optional=True) = None
-    _alt_amplitude: str = "acceleration_amplitude"
-    _law_fields: dict[str, tuple[str, ...]] = {
+    _alt_amplitude: ClassVar[str] = "acceleration_amplitude"
+    _law_fields: ClassVar[dict[str, tuple[str, ...]]] = {
         "uniform_acceleration": ("value", "velocity", "acceleration")}
 
     @model_validator(mode="after")
@@ -621,7 +621,8 @@ class ModalAnalysis(Section):
     speed_range: SpeedRange = SpeedRange(start_ratio=0.0, stop_ratio=4.0, n=81)
     n_modes: integer("number of modes per speed", ge=1, le=200) = 8
     n_critical: integer("number of critical speeds to locate", ge=1, le=50) = 2
-    whirl: Literal["forward", "backward"] = "forward"
+    whirl: Literal["forward", "backward"] = Field(
+        "forward", description="whirl direction of the critical speeds")
     critical_speed_max: quantity("angular_velocity", "upper end of the critical-speed search",
                                  gt=0) = 2.0e4
 
@@ -631,7 +632,7 @@ class ResponseAnalysis(Section):
 
     harmonics: integer("number of harmonics H", ge=1, le=64) = 3
     n_samples: integer("time samples per period N_f of the AFT (default: chosen free of "
-                       "aliasing)", ge=3, le=65536) | None = None
+                       "aliasing)", ge=3, le=65536, optional=True) = None
     parameter: _path_field("continuation parameter: " + PARAMETER_DOC) = "speed"
     speed_range: SpeedRange = SpeedRange(start_ratio=0.5, stop_ratio=1.6)
     speed: quantity("angular_velocity", "fixed speed when the parameter is not 'speed'",
@@ -690,7 +691,7 @@ class StabilityAnalysis(Section):
     locate_tolerance: quantity("ratio", "relative parameter tolerance of located "
                                "bifurcations", gt=0, lt=1) = 1e-6
     n_modes: integer("linear modes kept with the SFD DOFs in the reduced model (default: "
-                     "full model)", ge=1, le=10000) | None = None
+                     "full model)", ge=1, le=10000, optional=True) = None
 
 
 class StabilityChartAnalysis(Section):
@@ -710,7 +711,8 @@ class SimulateAnalysis(Section):
                     optional=True) = None
     speed_ratio: quantity("ratio", "rotor speed / reference speed", gt=0,
                           optional=True) = None
-    scheme: Literal["newmark", "hht", "generalized-alpha"] = "newmark"
+    scheme: Literal["newmark", "hht", "generalized-alpha"] = Field(
+        "newmark", description="time integration scheme (newmark: average acceleration)")
     alpha: quantity("ratio", "HHT alpha / generalized-alpha spectral radius parameter",
                     ge=-1 / 3, le=1) = 0.0
     steps_per_period: integer("time steps per rotor period (paper: 200)", ge=8,
@@ -737,7 +739,8 @@ class BifurcationDiagramAnalysis(Section):
     the previous end state."""
 
     speed_range: SpeedRange = SpeedRange(start_ratio=0.9, stop_ratio=1.3, n=41)
-    direction: Literal["up", "down", "up-down"] = "up-down"
+    direction: Literal["up", "down", "up-down"] = Field(
+        "up-down", description="sweep direction(s) of the speed")
     settle_periods: integer("periods discarded at each speed", ge=0, le=10000000) = 400
     record_periods: integer("periods recorded at each speed", ge=1, le=10000000) = 100
 
@@ -745,7 +748,8 @@ class BifurcationDiagramAnalysis(Section):
 class SweepAnalysis(Section):
     """A grid over config fields; each point runs ``task``."""
 
-    task: Literal["response", "simulate", "stability-chart"] = "response"
+    task: Literal["response", "simulate", "stability-chart"] = Field(
+        "response", description="what runs at each grid point")
     axes: list[ParameterAxis] = []
 
 
@@ -806,25 +810,41 @@ class Config(Section):
             if not 1 <= node <= n:
                 raise fail(path, node, f"must be a node of the rotor, 1..{n} "
                            f"({n - 1} shaft elements)")
-        for path in _parameter_paths(self):
-            if path[1] != "speed":
+        for where, path, values in _parameter_uses(self):
+            try:
+                kind = "angular_velocity" if path == "speed" else resolve_kind(self, path)
+            except KeyError as exc:
+                raise fail(where, path, exc.args[0]) from None
+            for value_where, value in values:
                 try:
-                    resolve_kind(self, path[1])
-                except KeyError as exc:
-                    raise fail(path[0], path[1], exc.args[0]) from None
+                    to_si(value, kind)
+                except UnitError as exc:
+                    raise fail(value_where, value, f"{path} takes {exc}".replace(
+                        "takes expected", "takes")) from None
         return self
 
 
-def _parameter_paths(config: Config):
-    """(where, dotted path) of every parameter named in the analyses."""
+def _axis_values(where: tuple[Any, ...], axis: ParameterAxis) -> list[tuple[tuple, Any]]:
+    if axis.values is not None:
+        return [((*where, "values", i), v) for i, v in enumerate(axis.values)]
+    return [((*where, "start"), axis.start), ((*where, "stop"), axis.stop)]
+
+
+def _parameter_uses(config: Config):
+    """(where, dotted path, [(where, value), ...]) of every parameter the analyses name."""
     a = config.analysis
-    yield ("analysis", "response", "parameter"), a.response.parameter
-    for axis_name in ("x", "y"):
-        axis = getattr(a.stability_chart, axis_name)
+    r = a.response
+    yield (("analysis", "response", "parameter"), r.parameter,
+           [(("analysis", "response", "parameter_range", i), v)
+            for i, v in enumerate(r.parameter_range or [])])
+    for name in ("x", "y"):
+        axis = getattr(a.stability_chart, name)
         if axis is not None:
-            yield ("analysis", "stability_chart", axis_name, "parameter"), axis.parameter
+            where = ("analysis", "stability_chart", name)
+            yield (*where, "parameter"), axis.parameter, _axis_values(where, axis)
     for i, axis in enumerate(a.sweep.axes):
-        yield ("analysis", "sweep", "axes", i, "parameter"), axis.parameter
+        where = ("analysis", "sweep", "axes", i)
+        yield (*where, "parameter"), axis.parameter, _axis_values(where, axis)
 
 
 _TOKEN = re.compile(r"([A-Za-z_]\w*)|\[(\d+)\]|\.(\d+)")
@@ -882,4 +902,15 @@ def parameter_values(config: Config, path: str, values: list[Any]) -> list[float
     return [to_si(v, kind) for v in values]
 
 
-__all__ = ["Config", "describe", "fail", "parameter_values", "resolve_kind", "split_path"]
+def axis_values(config: Config, axis: ParameterAxis) -> list[float]:
+    """The grid values of ``axis`` in SI: ``values``, or ``n`` values from start to stop."""
+    if axis.values is not None:
+        return parameter_values(config, axis.parameter, axis.values)
+    start, stop = parameter_values(config, axis.parameter, [axis.start, axis.stop])
+    if axis.n == 1:
+        return [start]
+    return [start + (stop - start) * i / (axis.n - 1) for i in range(axis.n)]
+
+
+__all__ = ["Config", "axis_values", "describe", "fail", "parameter_values", "resolve_kind",
+           "split_path"]

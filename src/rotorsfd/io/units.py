@@ -56,7 +56,7 @@ KINDS: dict[str, Kind] = {
     )
 }
 
-_MIL = re.compile(r"\bmils?\b")
+_MIL = re.compile(r"(?<![A-Za-z_])mils?\b")
 _HERTZ = re.compile(r"hertz$")
 
 
@@ -96,7 +96,7 @@ def to_si(value: object, kind: str) -> float:
         if not q.unit_items():  # no units written: SI
             out = float(q.magnitude)
         elif q.dimensionality != k.dimensionality:
-            raise UnitError(f"expected {describe(kind)}; {value!r} is a {_dim_name(q)}")
+            raise UnitError(f"expected {describe(kind)}; {value!r} is {_dim_name(q)}")
         else:
             # 15 significant digits: drop the last-bit noise of the unit conversion
             out = float(f"{float(q.to(k.unit).magnitude):.15g}")
@@ -123,7 +123,9 @@ def describe(kind: str) -> str:
 
 
 def _dim_name(q: pint.Quantity) -> str:
+    """``"a mass"``, ``"an angular velocity"``, or the dimension."""
     for k in KINDS.values():
         if k.unit != "1" and q.dimensionality == k.dimensionality:
-            return k.name.replace("_", " ")
-    return f"quantity of dimension {q.dimensionality}"
+            name = k.name.replace("_", " ")
+            return f"{'an' if name[0] in 'aeiou' else 'a'} {name}"
+    return f"a quantity of dimension {q.dimensionality}"
