@@ -1,0 +1,259 @@
+"""The rotor-SFD system on a moving base, assembled into the inputs of the generic solvers.
+
+    M q'' + (C + Omega G + C_base) q' + (K + K_base) q = F_mu(t) + F_base + F_sfd(q_s, q_s')
+
+(paper eq. 1) with the linear rotor (shaft, disks, supports, the SFD's centring spring),
+the squeeze film acting on the two lateral DOFs ``q_s = (y, z)`` of the SFD node, the
+unbalances and the base motion (with gravity). This module is the only place where the
+physics meets the solvers: it hands the harmonic-balance solver a
+:class:`~rotorsfd.harmonic.problem.PeriodicProblem` and the linear analyses the
+``LinearDynamics`` protocol (``n_dof``, ``matrices(speed)``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from rotorsfd.errors import ConfigError
+from rotorsfd.harmonic.problem import PeriodicProblem
+from rotorsfd.model import dofs
+from rotorsfd.model.base_motion import BaseMotion, BaseState, Constant
+from rotorsfd.model.base_terms import (
+    BaseBasis,
+    BaseCoefficients,
+    base_basis,
+    base_coefficient_derivatives,
+    base_coefficients,
+)
+from rotorsfd.model.rotor import Rotor
+from rotorsfd.model.sfd import SFD
+from rotorsfd.model.unbalance import (
+    Unbalance,
+    unbalance_harmonics,
+    unbalance_harmonics_derivatives,
+)
+
+#: Continuation parameters with exact derivatives: name -> what it is.
+PARAMETERS: dict[str, str] = {
+    "speed": "rotor speed Omega [rad/s]",
+    "base.rolling": "constant base rolling rate w_bx [rad/s] at fixed speed",
+    "base.pitching": "constant base pitching rate w_by [rad/s] at fixed speed",
+    "base.yawing": "constant base yawing rate w_bz [rad/s] at fixed speed",
+    "unbalance.magnitude": "magnitude of the first unbalance [kg m], others scaled with it",
+}
+_RATE_INDEX = {"base.rolling": 0, "base.pitching": 1, "base.yawing": 2}
+_RATE_NAME = {"base.rolling": "wx", "base.pitching": "wy", "base.yawing": "wz"}
+
+
+@dataclass
+class RotorSystem:
+    """Linear rotor + squeeze film at ``sfd_node`` + unbalances + base motion.
+
+    ``rotor`` already carries the SFD's centring spring (a linear support at the SFD node).
+    ``base`` None means a fixed base without gravity.
+    """
+
+    rotor: Rotor
+    sfd: SFD | None = None
+    sfd_node: int | None = None
+    unbalances: Sequence[Unbalance] = ()
+    base: BaseMotion = field(default_factory=BaseMotion)
+    _basis: BaseBasis | None = field(default=None, init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        self.unbalances = tuple(self.unbalances)
+        if self.base is None:
+            self.base = BaseMotion()
+        if self.sfd is not None:
+            if self.sfd_node is None or not 1 <= self.sfd_node <= self.rotor.n_nodes:
+                raise ConfigError("sfd.node", self.sfd_node,
+                                  f"must be a node of the rotor, 1..{self.rotor.n_nodes}")
+        for u in self.unbalances:
+            if u.node > self.rotor.n_nodes:
+                raise ConfigError("unbalance.node", u.node,
+                                  f"must be a node of the rotor, 1..{self.rotor.n_nodes}")
+
+    # ---- structure ---------------------------------------------------------------------
+    @property
+    def n_dof(self) -> int:
+        return self.rotor.n_dof
+
+    @property
+    def nl_dofs(self) -> np.ndarray:
+        """Global indices of the SFD node's (y, z); empty without an SFD."""
+        if self.sfd is None:
+            return np.zeros(0, dtype=np.int64)
+        return np.array([dofs.dof_index(self.sfd_node, "y"),
+                         dofs.dof_index(self.sfd_node, "z")], dtype=np.int64)
+
+    @property
+    def basis(self) -> BaseBasis:
+        """Constant base-motion basis of the rotor (built once, on first use)."""
+        if self._basis is None:
+            self._basis = base_basis(self.rotor)
+        return self._basis
+
+    def constant_base_state(self) -> BaseState:
+        """The base state of a time-invariant base motion (harmonic balance, modal, statics).
+
+        ConfigError if the base motion varies in time.
+        """
+        if not self.base.is_constant:
+            raise ConfigError("base", repr(self.base),
+                              "this analysis needs constant base rates and accelerations "
+                              "(harmonic or callable laws: use the time-domain simulation)")
+        return self.base.state(0.0)
+
+    # ---- LinearDynamics ----------------------------------------------------------------
+    def _base_terms(self, state: BaseState, speed: float
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        if self.base.is_fixed:
+            n = self.n_dof
+            return np.zeros((n, n)), np.zeros((n, n)), np.zeros(n)
+        return self.basis.combine(base_coefficients(state, speed))
+
+    def matrices(self, speed: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(M, C + speed G + C_base, K + K_base) under the constant base motion, film off."""
+        state = self.constant_base_state()
+        C_b, K_b, _ = self._base_terms(state, speed)
+        r = self.rotor
+        return r.M, r.C + speed * r.G + C_b, r.K + K_b
+
+    def static_force(self, speed: float) -> np.ndarray:
+        """Constant load F_base (base acceleration, gravity, gyroscopic moments) [N, N m]."""
+        return self._base_terms(self.constant_base_state(), speed)[2]
+
+    def unbalance_harmonics(self, speed: float) -> tuple[np.ndarray, np.ndarray]:
+        """(F_c, F_s): F_mu = F_c cos(Omega t) + F_s sin(Omega t) (paper eq. 5-6)."""
+        return unbalance_harmonics(self.unbalances, self.rotor, speed,
+                                   self.constant_base_state())
+
+    # ---- harmonic balance --------------------------------------------------------------
+    def periodic_problem(self, parameter: str = "speed", speed: float | None = None
+                         ) -> PeriodicProblem:
+        """The HB problem with continuation parameter ``parameter`` (see PARAMETERS).
+
+        For parameters other than the speed, ``speed`` fixes the rotor speed. Every
+        derivative with respect to the parameter is exact.
+        """
+        if self.sfd is None:
+            raise ConfigError("sfd", None, "the nonlinear response needs an [sfd] section")
+        if parameter not in PARAMETERS:
+            raise ConfigError("parameter", parameter,
+                              f"must be one of {', '.join(PARAMETERS)}")
+        if parameter != "speed" and (speed is None or speed <= 0):
+            raise ConfigError("speed", speed,
+                              f"continuing in {parameter} needs a fixed speed > 0 [rad/s]")
+        state0 = self.constant_base_state()
+        r = self.rotor
+        basis = self.basis
+        fixed_base = self.base.is_fixed and parameter not in _RATE_INDEX
+        U_ref = self.unbalances[0].magnitude if self.unbalances else 0.0
+        if parameter == "unbalance.magnitude" and U_ref == 0.0:
+            raise ConfigError("unbalance", None,
+                              "continuing in the unbalance needs a nonzero first unbalance")
+
+        def at(lam: float) -> tuple[float, BaseState, float]:
+            """(speed, base state, unbalance scale) at parameter value lam."""
+            if parameter == "speed":
+                return lam, state0, 1.0
+            if parameter in _RATE_INDEX:
+                w = np.array(state0.w, dtype=float)
+                w[_RATE_INDEX[parameter]] = lam
+                return float(speed), BaseState(w, np.zeros(3), state0.a0, state0.v0,
+                                               state0.g), 1.0
+            return float(speed), state0, lam / U_ref
+
+        def coefficient_derivative(om: float, st: BaseState) -> BaseCoefficients:
+            d = base_coefficient_derivatives(st, om)
+            if parameter == "speed":
+                return d["speed"]
+            if parameter in _RATE_NAME:
+                return d[_RATE_NAME[parameter]]
+            return BaseCoefficients(np.zeros(12), np.zeros(12), np.zeros(8))
+
+        def matrices(lam: float):
+            om, st, _ = at(lam)
+            if fixed_base:
+                return r.M, r.C + om * r.G, r.K
+            C_b, K_b, _ = basis.combine(base_coefficients(st, om))
+            return r.M, r.C + om * r.G + C_b, r.K + K_b
+
+        def dmatrices(lam: float):
+            om, st, _ = at(lam)
+            zero = np.zeros_like(r.M)
+            dG = r.G if parameter == "speed" else zero
+            if fixed_base:
+                return zero, dG, zero
+            dC_b, dK_b, _ = basis.combine(coefficient_derivative(om, st))
+            return zero, dG + dC_b, dK_b
+
+        def forcing(lam: float, H: int) -> np.ndarray:
+            om, st, scale = at(lam)
+            F = np.zeros((H + 1, self.n_dof), dtype=complex)
+            if not fixed_base:
+                F[0] = basis.combine(base_coefficients(st, om))[2]
+            if H >= 1 and self.unbalances:
+                Fc, Fs = unbalance_harmonics(self.unbalances, r, om, st)
+                F[1] = scale * (Fc - 1j * Fs)
+            return F
+
+        def dforcing(lam: float, H: int) -> np.ndarray:
+            om, st, scale = at(lam)
+            dF = np.zeros((H + 1, self.n_dof), dtype=complex)
+            if not fixed_base:
+                dF[0] = basis.combine(coefficient_derivative(om, st))[2]
+            if H >= 1 and self.unbalances:
+                if parameter == "unbalance.magnitude":
+                    Fc, Fs = unbalance_harmonics(self.unbalances, r, om, st)
+                    dF[1] = (Fc - 1j * Fs) / U_ref
+                else:
+                    key = "speed" if parameter == "speed" else _RATE_NAME[parameter]
+                    dFc, dFs = unbalance_harmonics_derivatives(self.unbalances, r, om, st)[key]
+                    dF[1] = scale * (dFc - 1j * dFs)
+            return dF
+
+        def frequency(lam: float) -> float:
+            return float(lam) if parameter == "speed" else float(speed)
+
+        def dfrequency(lam: float) -> float:
+            return 1.0 if parameter == "speed" else 0.0
+
+        sfd = self.sfd
+
+        def nl_force(q: np.ndarray, v: np.ndarray) -> np.ndarray:
+            Fy, Fz = sfd.force(q[..., 0], q[..., 1], v[..., 0], v[..., 1])
+            return np.stack([Fy, Fz], axis=-1)
+
+        def nl_jacobian(q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            return sfd.jacobian(q[..., 0], q[..., 1], v[..., 0], v[..., 1])
+
+        def nl_limit(q: np.ndarray) -> float:
+            return float(np.max(np.hypot(q[..., 0], q[..., 1]))) / sfd.clearance
+
+        return PeriodicProblem(
+            n_dof=self.n_dof, nl_dofs=self.nl_dofs, matrices=matrices, dmatrices=dmatrices,
+            forcing=forcing, dforcing=dforcing, frequency=frequency, dfrequency=dfrequency,
+            nl_force=nl_force, nl_jacobian=nl_jacobian, scaling=self.dof_scale(),
+            nl_limit=nl_limit, name=f"rotor-SFD response in {parameter}")
+
+    def dof_scale(self) -> np.ndarray:
+        """Per-DOF scale: the clearance C for displacements, C / rotor length for rotations,
+        so that a tolerance on scaled unknowns means the same in any units."""
+        c = self.sfd.clearance if self.sfd is not None else 1e-4
+        length = float(self.rotor.node_x[-1] - self.rotor.node_x[0])
+        scale = np.full(self.n_dof, c)
+        scale[2::4] = scale[3::4] = c / length
+        return scale
+
+    def with_base_rate(self, parameter: str, value: float) -> RotorSystem:
+        """A copy with the constant base rate ``parameter`` (base.rolling|pitching|yawing)
+        set to ``value`` [rad/s]."""
+        laws = list(self.base.rotation)
+        laws[_RATE_INDEX[parameter]] = Constant(value)
+        base = BaseMotion(*self.base.translation, *laws, gravity=self.base.gravity)
+        return RotorSystem(self.rotor, self.sfd, self.sfd_node, self.unbalances, base)
+
