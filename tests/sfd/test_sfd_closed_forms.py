@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from sfd_helpers import C, paper_sfd, random_states
+from sfd_helpers import MODELS, C, paper_sfd, random_states
 
 from rotorsfd.sfd import SFD
 
@@ -66,6 +66,7 @@ def test_full_film_cartesian_form() -> None:
     np.testing.assert_allclose(Fz, -c0 * (vz / s2**1.5 + 3 * z * qv / s2**2.5), rtol=1e-11)
 
 
+@pytest.mark.parametrize("model", MODELS)
 def test_small_eps_is_linear_damper(model: str) -> None:
     sfd = paper_sfd(model)
     c_expected = np.pi * sfd.viscosity * sfd.radius * sfd.length**3 / (2 * C**3)
@@ -84,6 +85,7 @@ def test_small_eps_is_linear_damper(model: str) -> None:
     np.testing.assert_allclose(Fz0, -c_expected * vz, rtol=1e-14)
 
 
+@pytest.mark.parametrize("model", MODELS)
 def test_rotation_equivariance(model: str) -> None:
     """F(Rot q, Rot v) = Rot F(q, v) and J(Rot q, Rot v) = Rot J Rot^T (random rotations)."""
     sfd = paper_sfd(model)
@@ -103,6 +105,7 @@ def test_rotation_equivariance(model: str) -> None:
                                    atol=1e-11)
 
 
+@pytest.mark.parametrize("model", MODELS)
 def test_dissipative(model: str) -> None:
     """F.v = -mu R L^3 int_film (n.v)^2 / h^3 <= 0 for every film model; for the 2 pi
     film B >= pi I, so F.v <= -c |v|^2."""

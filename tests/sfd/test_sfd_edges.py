@@ -11,6 +11,7 @@ from rotorsfd.sfd import SFD
 
 
 @pytest.mark.parametrize("eps", [0.0, 1e-12])
+@pytest.mark.parametrize("model", MODELS)
 def test_centre_is_a_linear_damper(model: str, eps: float) -> None:
     sfd = paper_sfd(model)
     c = sfd.linear_damping

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from sfd_helpers import C, paper_sfd, random_states
+from sfd_helpers import MODELS, C, paper_sfd, random_states
 
 
 def fd_jacobian(sfd, y, z, vy, vz, hq, hv):
@@ -25,6 +25,7 @@ def fd_jacobian(sfd, y, z, vy, vz, hq, hv):
 
 
 @pytest.mark.parametrize("eps_range", [(0.0, 0.5), (0.5, 0.95)])
+@pytest.mark.parametrize("model", MODELS)
 def test_jacobian_vs_finite_differences(model: str, eps_range) -> None:
     sfd = paper_sfd(model)
     lo = max(eps_range[0], 0.02) if model == "pi" else eps_range[0]  # pi: kink at eps = 0

@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from numba import njit
-from sfd_helpers import C, paper_sfd, random_states
+from sfd_helpers import MODELS, C, paper_sfd, random_states
 
 
+@pytest.mark.parametrize("model", MODELS)
 def test_kernel_equals_vectorised_path(model: str) -> None:
     sfd = paper_sfd(model)
     y, z, vy, vz = random_states(200, 41, 0.0, 0.99)

@@ -15,8 +15,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 from scipy.integrate import quad
-from sfd_helpers import C, paper_sfd, random_states
+from sfd_helpers import MODELS, C, paper_sfd, random_states
 
 X_GAUSS, W_GAUSS = np.polynomial.legendre.leggauss(4)  # exact for the quadratic in x
 
@@ -52,6 +53,7 @@ def quad_force(sfd, y, z, vy, vz):
     return (Fr * math.cos(psi) - Ft * math.sin(psi), Fr * math.sin(psi) + Ft * math.cos(psi))
 
 
+@pytest.mark.parametrize("model", MODELS)
 def test_closed_forms_match_pressure_quadrature(model: str) -> None:
     sfd = paper_sfd(model)
     y, z, vy, vz = random_states(25, 11, 0.001, 0.95)
