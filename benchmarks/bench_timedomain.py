@@ -91,7 +91,7 @@ def amplitudes(q: np.ndarray) -> np.ndarray:
 REC = [0, 1, 2 * 14]
 
 
-def ours(M, D, K, fo, spp: int, n_periods: int, q0, v0):  # noqa: ANN001, ANN201
+def ours(M, D, K, fo, spp: int, n_periods: int, q0, v0):
     t = time.perf_counter()
     c = time.process_time()
     r = integrate(M, D, K, [0, 1], radial_damper, PARAMS, fo, steps_per_period=spp,
@@ -100,7 +100,7 @@ def ours(M, D, K, fo, spp: int, n_periods: int, q0, v0):  # noqa: ANN001, ANN201
     return r, time.perf_counter() - t, time.process_time() - c
 
 
-def scipy_run(M, D, K, fo, method: str, rtol: float, n_periods: int, q0, v0):  # noqa: ANN001, ANN201
+def scipy_run(M, D, K, fo, method: str, rtol: float, n_periods: int, q0, v0):
     n = M.shape[0]
     Minv = np.linalg.inv(M)
     A_q, A_v = -Minv @ K, -Minv @ D
@@ -153,7 +153,7 @@ def main() -> None:
                  "omega": fo.omega}
 
     # 1. ours, cold (first call) and warm
-    r0, wall0, _ = ours(M, D, K, fo, a.spp, 2, 1e-6, 0.0)
+    _r0, wall0, _ = ours(M, D, K, fo, a.spp, 2, 1e-6, 0.0)
     out["first_call_s"] = wall0
     out["run_steps_cache_hits"] = int(sum(nm.run_steps.stats.cache_hits.values()))
     r, wall, cpu = ours(M, D, K, fo, a.spp, a.periods, 1e-6, 0.0)
@@ -170,7 +170,7 @@ def main() -> None:
     qs, vs = r.q_final.copy(), r.v_final.copy()
     ref, _, _ = ours(M, D, K, fo, 4000, a.short, qs, vs)
     amp_ref = amplitudes(ref.q)
-    r_s, w_s, c_s = ours(M, D, K, fo, a.spp, a.short, qs, vs)
+    r_s, _, _ = ours(M, D, K, fo, a.spp, a.short, qs, vs)
     err_ours = float(np.max(np.abs(amplitudes(r_s.q) - amp_ref) / amp_ref))
     out["ours_amplitude_error"] = err_ours
     print(f"amplitude error (vs 4000 steps/period) over {a.short} periods: ours "
