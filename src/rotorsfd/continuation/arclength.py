@@ -56,31 +56,40 @@ class ArcLengthStatus:
     success: bool
     message: str
     n_points: int
+    ds: float = 0.0  #: the step length in use when it ended
 
 
 def arclength(system: ContinuationSystem, z0: FloatArray, J0: FloatArray, lam_end: float,
               on_point: PointHandler, options: ArcLengthOptions | None = None,
-              lam_physical: Callable[[float], float] = float) -> ArcLengthStatus:
+              lam_physical: Callable[[float], float] = float,
+              t_prev: FloatArray | None = None, lam_start: float | None = None
+              ) -> ArcLengthStatus:
     """Continue the converged point z0 (Jacobian J0) towards ``z[-1] = lam_end``.
 
+    The first tangent is oriented along ``t_prev`` if given (a restart inside a branch),
+    else towards lam_end; ``lam_start`` (default z0[-1]) is the start of the range, for
+    the test "turned back out of the range".
     Ends with success when lam_end is reached (the last point solved at lam_end exactly),
     or when ``on_point`` returns True; ends with ``success = False`` when the corrector
     fails below ds_min, when the branch turns back out of the range, or at max_points.
     """
     o = options or ArcLengthOptions()
     lam0 = float(z0[-1])
-    direction = 1.0 if lam_end >= lam0 else -1.0
+    lam_first = lam0 if lam_start is None else lam_start
+    direction = 1.0 if lam_end >= lam_first else -1.0
     e = np.zeros(system.n + 1)
     e[-1] = 1.0
     z = np.asarray(z0, dtype=float)
-    t = tangent(J0, direction * e)
+    t = tangent(J0, direction * e if t_prev is None else t_prev)
     n_points = 1
 
     def at(zz: FloatArray) -> str:
         return f"lam={lam_physical(float(zz[-1])):.8g}"
 
     if on_point(z, t, J0, 0, 0.0):
-        return ArcLengthStatus(True, f"stopped by the callback at {at(z)}", n_points)
+        return ArcLengthStatus(True, f"stopped by the callback at {at(z)}", n_points, o.ds)
+    if lam0 == lam_end:
+        return ArcLengthStatus(True, f"reached the end of the range, {at(z)}", n_points, o.ds)
     ds = o.ds
     while n_points < o.max_points:
         res = newton_extended(system, z + ds * t, t, float(t @ z) + ds, o.tol, o.max_iter,
@@ -95,7 +104,7 @@ def arclength(system: ContinuationSystem, z0: FloatArray, J0: FloatArray, lam_en
             if ds <= o.ds_min:
                 return ArcLengthStatus(
                     False, f"corrector failed after the point at {at(z)} with the minimum "
-                    f"step ds={ds:.3g}: {res.message}", n_points)
+                    f"step ds={ds:.3g}: {res.message}", n_points, ds)
             ds = max(ds * o.shrink, o.ds_min)
             continue
         lam_new = float(res.z[-1])
@@ -115,12 +124,12 @@ def arclength(system: ContinuationSystem, z0: FloatArray, J0: FloatArray, lam_en
         n_points += 1
         z, t = res.z, t_new
         if stop:
-            return ArcLengthStatus(True, f"stopped by the callback at {at(z)}", n_points)
-        if (lam_new - lam0) * direction < 0.0:
+            return ArcLengthStatus(True, f"stopped by the callback at {at(z)}", n_points, ds)
+        if (lam_new - lam_first) * direction < 0.0:
             return ArcLengthStatus(False, f"the branch turned back out of the range at {at(z)}",
-                                   n_points)
+                                   n_points, ds)
         if res.iterations <= o.easy_iter:
             ds = min(ds * o.grow, o.ds_max)
         else:
             ds = max(ds * 0.7, o.ds_min)
-    return ArcLengthStatus(False, f"max_points={o.max_points} reached at {at(z)}", n_points)
+    return ArcLengthStatus(False, f"max_points reached at {at(z)}", n_points, ds)

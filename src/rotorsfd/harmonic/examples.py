@@ -73,10 +73,28 @@ def radial_damper(c0: float, clearance: float):
     return force, jacobian, limit
 
 
+def sfd_nonlinearity(sfd):
+    """Force, Jacobian and limit (max eccentricity ratio) of a ``rotorsfd.sfd.SFD`` in
+    the vectorised form of :class:`PeriodicProblem` (q, v of shape (..., 2))."""
+
+    def force(q: FloatArray, v: FloatArray) -> FloatArray:
+        Fy, Fz = sfd.force(q[..., 0], q[..., 1], v[..., 0], v[..., 1])
+        return np.stack([Fy, Fz], axis=-1)
+
+    def jacobian(q: FloatArray, v: FloatArray) -> tuple[FloatArray, FloatArray]:
+        return sfd.jacobian(q[..., 0], q[..., 1], v[..., 0], v[..., 1])
+
+    def limit(q: FloatArray) -> float:
+        return float(np.sqrt(np.max(np.sum(q**2, axis=-1)))) / sfd.clearance
+
+    return force, jacobian, limit
+
+
 def jeffcott_damper(mass: float = 10.0, stiffness: float = 1e6, damping: float = 20.0,
                     unbalance: float = 1e-4, c0: float = 400.0, clearance: float = 2e-4,
-                    static: tuple[float, float] = (0.0, 0.0)) -> PeriodicProblem:
-    """Jeffcott rotor ``m q'' + c q' + k q = U Omega^2 (cos, sin) + static + F_nl``."""
+                    static: tuple[float, float] = (0.0, 0.0), sfd=None) -> PeriodicProblem:
+    """Jeffcott rotor ``m q'' + c q' + k q = U Omega^2 (cos, sin) + static + F_nl``; the
+    damper is :func:`radial_damper` (c0, clearance) or, if given, an SFD object."""
     M, D, K = mass * np.eye(2), damping * np.eye(2), stiffness * np.eye(2)
     Z = np.zeros((2, 2))
     dirn = np.array([1.0, -1.0j])
@@ -92,7 +110,8 @@ def jeffcott_damper(mass: float = 10.0, stiffness: float = 1e6, damping: float =
         f[1] = 2 * unbalance * lam * dirn
         return f
 
-    force, jac, limit = radial_damper(c0, clearance)
+    force, jac, limit = radial_damper(c0, clearance) if sfd is None else sfd_nonlinearity(sfd)
+    clearance = clearance if sfd is None else sfd.clearance
     return PeriodicProblem(
         n_dof=2, nl_dofs=np.array([0, 1]), matrices=_const(M, D, K), dmatrices=_const(Z, Z, Z),
         forcing=forcing, dforcing=dforcing, frequency=lambda lam: lam,
@@ -120,10 +139,11 @@ def _beam_element(L: float, EI: float, rhoA: float) -> tuple[FloatArray, FloatAr
 
 def beam_rotor(n_nodes: int = 21, unbalance: float = 1.44e-4, c0: float = 500.0,
                clearance: float = 1.27e-4, support: float = 1e7,
-               rayleigh_beta: float = 0.0) -> PeriodicProblem:
+               rayleigh_beta: float = 0.0, sfd=None) -> PeriodicProblem:
     """84-DOF rotor mimicking the paper's (section 4): hollow steel shaft 0.5994 m,
     radii 20.65/30.15 mm, disk (11.7 kg) at node 8 with gyroscopic coupling, springs
-    ``support`` at nodes 1 and 21, radial damper (c0, clearance) at node 1; lam = Omega."""
+    ``support`` at nodes 1 and 21, radial damper (c0, clearance) or the SFD object ``sfd``
+    at node 1; lam = Omega."""
     n = 4 * n_nodes
     Ls, ri, ro, rho, E = 0.5994, 0.02065, 0.03015, 7810.0, 211e9
     A, Iz = np.pi * (ro**2 - ri**2), np.pi / 4 * (ro**4 - ri**4)
@@ -162,7 +182,8 @@ def beam_rotor(n_nodes: int = 21, unbalance: float = 1.44e-4, c0: float = 500.0,
         f[1] = 2 * unbalance * lam * dirn
         return f
 
-    force, jac, limit = radial_damper(c0, clearance)
+    force, jac, limit = radial_damper(c0, clearance) if sfd is None else sfd_nonlinearity(sfd)
+    clearance = clearance if sfd is None else sfd.clearance
     return PeriodicProblem(
         n_dof=n, nl_dofs=np.array([0, 1]), matrices=lambda lam: (M, Cs + lam * G, K),
         dmatrices=lambda lam: (Z, G, Z), forcing=forcing, dforcing=dforcing,

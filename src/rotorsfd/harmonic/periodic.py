@@ -20,7 +20,7 @@ from numpy.typing import NDArray
 
 from rotorsfd.continuation.arclength import ArcLengthOptions, arclength
 from rotorsfd.continuation.branch import Branch, BranchPoint
-from rotorsfd.continuation.newton import newton_extended
+from rotorsfd.continuation.newton import NewtonResult, newton_extended
 from rotorsfd.errors import ConvergenceError
 from rotorsfd.harmonic.blas import single_threaded_blas
 from rotorsfd.harmonic.condensation import CondensedHB
@@ -206,11 +206,16 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
                       ds_min: float = 1e-6, ds_max: float = 0.05, max_iter: int = 8,
                       max_points: int = 2000, max_angle_deg: float = 20.0,
                       lam_scale: float | None = None, limit_max: float = 1.0,
+                      alias_tol: float = 1e-6, n_samples_max: int = 2048,
                       store_jacobians: bool | None = None, callback: EventHook | None = None
                       ) -> Branch:
     """Branch of periodic solutions from lam_start towards lam_end (pseudo arc-length).
 
     Steps ``ds, ds_min, ds_max`` are arc lengths in the scaled unknowns (module docstring).
+    N_f: with ``n_samples=None`` the rule of :func:`~rotorsfd.harmonic.fourier.choose_n_samples`
+    at the first point, then, at every converged point, if doubling N_f would change the
+    nonlinear-force coefficients by more than ``alias_tol`` (relative), N_f is doubled
+    (the rule again, up to ``n_samples_max``) and the point re-solved before going on.
     ``callback(point: BranchPoint)`` is called at every converged point (the first too);
     returning True stops the continuation there (success, message says so).
     ``store_jacobians`` (default: only when condensed) keeps ``Branch.jacobians``.
@@ -220,44 +225,51 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
     """
     scale = lam_scale or (abs(lam_end - lam_start) or max(abs(lam_start), 1.0))
     first = solve_periodic.__wrapped__(problem, lam_start, H, X0, n_samples=n_samples,
-                           condensed=condensed, tol=tol, limit_max=limit_max)
-    Xf = to_real(first.X)
-    system, _ = _setup(problem, H, lam_start, first.X, first.n_samples, condensed, scale,
-                       limit_max)
-    xs = Xf[:, problem.nl_dofs] if condensed else Xf
-    if isinstance(system.hb, CondensedHB):
-        system.hb.set_shift(Xf[:, problem.nl_dofs], lam_start)
-    z0 = system.to_z(xs, lam_start)
-    e = np.zeros(system.n + 1)
-    e[-1] = 1.0
-    res0 = newton_extended(system, z0, e, float(z0[-1]), tol, max_iter)
-    if not res0.converged:
-        raise ConvergenceError(f"{problem.name}: start point lost at lam={lam_start:.8g}: "
-                               f"{res0.message}")
-
+                                       condensed=condensed, tol=tol, limit_max=limit_max)
     if store_jacobians is None:
         store_jacobians = condensed
-    out: dict[str, list] = {k: [] for k in ("lam", "X", "w", "t", "it", "ds", "J", "al")}
-
-    def on_point(z: FloatArray, t: FloatArray, Jz: FloatArray, it: int, step: float) -> bool:
-        x, lam = system.from_z(z)
-        X = system.coefficients(z)
-        J = system.physical_jacobian(z, Jz) if store_jacobians or callback else None
-        w = problem.frequency(lam)
-        for key, val in zip(out, (lam, X, w, t, it, step, J, system.aliasing(z)), strict=True):
-            out[key].append(val)
-        if callback is None:
-            return False
-        point = BranchPoint(len(out["lam"]) - 1, lam, X, x, t, J, it, w)
-        return bool(callback(point))
-
+    out: dict[str, list] = {k: [] for k in ("lam", "X", "w", "t", "it", "ds", "J", "al", "N")}
+    state: dict = {"refine": False}
     opts = ArcLengthOptions(ds=ds, ds_min=ds_min, ds_max=ds_max, tol=tol, max_iter=max_iter,
                             max_points=max_points, max_angle=float(np.radians(max_angle_deg)))
-    status = arclength(system, res0.z, res0.J, lam_end / scale, on_point, opts,
-                       lam_physical=lambda lh: lh * scale)
+    X_start, lam0, N, t_prev = first.X, lam_start, first.n_samples, None
+    while True:
+        system, res0 = _start_point(problem, H, lam0, X_start, N, condensed, scale,
+                                    limit_max, tol, max_iter)
+
+        def on_point(z: FloatArray, t: FloatArray, Jz: FloatArray, it: int, step: float,
+                     system: HBSystem = system) -> bool:
+            x, lam = system.from_z(z)
+            X = system.coefficients(z)
+            J = system.physical_jacobian(z, Jz) if store_jacobians or callback else None
+            w = problem.frequency(lam)
+            al = system.aliasing(z)
+            if n_samples is None and al > alias_tol and system.N < n_samples_max:
+                state.update(refine=True, X=X, lam=lam, t=t)
+                return True
+            for key, val in zip(out, (lam, X, w, t, it, step, J, al, system.N), strict=True):
+                out[key].append(val)
+            if callback is None:
+                return False
+            point = BranchPoint(len(out["lam"]) - 1, lam, X, x, t, J, it, w)
+            return bool(callback(point))
+
+        opts.max_points = max_points - len(out["lam"])
+        status = arclength(system, res0.z, res0.J, lam_end / scale, on_point, opts,
+                           lam_physical=lambda lh: lh * scale, t_prev=t_prev,
+                           lam_start=lam_start / scale)
+        if not state["refine"]:
+            break
+        # aliasing too large: more samples (the rule at this point), re-solve, go on
+        state["refine"] = False
+        X_start, lam0, t_prev = state["X"], state["lam"], state["t"]
+        xs = to_real(X_start)[:, problem.nl_dofs]
+        N = choose_n_samples(problem.nl_force, xs, problem.frequency(lam0), tol=alias_tol / 100,
+                             n_min=2 * system.N, n_max=n_samples_max)
+        opts.ds = status.ds
     al = np.array(out["al"])
     msg = status.message
-    if al.size and al.max() > 1e-6:
+    if al.size and al.max() > alias_tol:
         msg += (f"; warning: aliasing up to {al.max():.2g} (N_f={system.N}); "
                 "consider a larger n_samples")
     return Branch(
@@ -266,5 +278,19 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
         ds=np.array(out["ds"]),
         jacobians=np.array(out["J"]) if store_jacobians else None, aliasing=al,
         success=status.success, message=msg, H=H, n_samples=system.N,
-        nl_dofs=problem.nl_dofs.copy(), condensed=condensed, lam_scale=scale)
+        nl_dofs=problem.nl_dofs.copy(), condensed=condensed, lam_scale=scale,
+        info={"n_samples": np.array(out["N"], dtype=np.int64)})
 
+
+def _start_point(problem: PeriodicProblem, H: int, lam: float, X: ComplexArray, N: int,
+                 condensed: bool, scale: float, limit_max: float, tol: float, max_iter: int
+                 ) -> tuple[HBSystem, NewtonResult]:
+    """Continuation system with N samples and the point at lam solved in it."""
+    system, z0 = _setup(problem, H, lam, X, N, condensed, scale, limit_max)
+    e = np.zeros(system.n + 1)
+    e[-1] = 1.0
+    res = newton_extended(system, z0, e, float(z0[-1]), tol, max(max_iter, 20))
+    if not res.converged:
+        raise ConvergenceError(f"{problem.name}: point lost at lam={lam:.8g} with "
+                               f"N_f={N}: {res.message}")
+    return system, res
