@@ -11,6 +11,7 @@ object with its data, ``write(directory)`` (atomic files) and plot methods.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -25,6 +26,7 @@ from rotorsfd.linear import CampbellResult, CriticalSpeed, campbell, critical_sp
 from rotorsfd.model.build import Model, build_model, build_rotor, build_sfd
 
 __all__ = [
+    "FitRunResult",
     "ModalRunResult",
     "build_model",
     "build_rotor",
@@ -33,6 +35,7 @@ __all__ = [
     "linear_system",
     "load_config",
     "reference_speed",
+    "run_fit_supports",
     "run_modal",
     "show_config",
     "with_values",
@@ -143,3 +146,77 @@ def run_modal(config: Config, search_path: Path | None = None) -> ModalRunResult
     crit = critical_speeds(system, n=m.n_critical, whirl=m.whirl,
                            speed_range=(0.0, m.critical_speed_max))
     return ModalRunResult(config, camp, crit, ref)
+
+
+@dataclass(frozen=True)
+class FitRunResult:
+    """Stiffness fields fitted so that the lowest critical speeds meet targets."""
+
+    fields: tuple[str, ...]
+    fit: Any                      # rotorsfd.linear.fit.SupportFit
+    config: Config                # the configuration with the fitted values
+
+    def overrides(self) -> list[str]:
+        """``KEY=VALUE`` strings that reproduce the fit with ``--set``."""
+        return [f"{f}={k:.10g}" for f, k in zip(self.fields, self.fit.stiffnesses, strict=True)]
+
+    def summary(self) -> str:
+        """Fitted values, resulting critical speeds against the targets, and ``--set`` lines."""
+        lines = [f"{f} = {k:.8g} N/m"
+                 for f, k in zip(self.fields, self.fit.stiffnesses, strict=True)]
+        for i, (c, t) in enumerate(zip(self.fit.critical_speeds, self.fit.targets,
+                                       strict=True)):
+            lines.append(f"critical speed {i + 1}: {c:.6f} rad/s (target {t:g}, "
+                         f"relative error {c / t - 1:+.1e})")
+        lines.append(self.fit.message)
+        lines.append("reproduce: " + " ".join(f"--set '{o}'" for o in self.overrides()))
+        return "\n".join(lines)
+
+    def write(self, directory: str | Path) -> Path:
+        """``fit.json``: fields, stiffnesses, critical speeds, targets, errors."""
+        f = self.fit
+        return atomic.write_json(Path(directory) / "fit.json", {
+            "fields": list(self.fields), "stiffnesses_N_per_m": list(f.stiffnesses),
+            "critical_speeds_rad_s": list(f.critical_speeds), "targets_rad_s": list(f.targets),
+            "relative_errors": list(f.relative_errors), "exact": f.exact,
+            "message": f.message, "overrides": self.overrides()})
+
+
+def run_fit_supports(config: Config, fields: Sequence[str], targets: Sequence[float],
+                     whirl: str = "forward") -> FitRunResult:
+    """Fit the stiffness fields at dotted paths ``fields`` (e.g. ``sfd.centring_stiffness``,
+    ``rotor.supports[0].stiffness``) so that the lowest ``whirl`` critical speeds of the
+    linear rotor are ``targets`` [rad/s] (as many fields as targets); the starting values
+    are the configuration's."""
+    from rotorsfd.io.schema import resolve_kind
+    from rotorsfd.linear.fit import fit_support_stiffness
+
+    if len(fields) != len(targets) or not fields:
+        raise ConfigError("--field/--target", f"{len(fields)} fields, {len(targets)} targets",
+                          "give as many stiffness fields as target critical speeds (>= 1)")
+    start = []
+    for path in fields:
+        try:
+            kind = resolve_kind(config, path)
+        except KeyError as exc:
+            raise ConfigError("--field", path, exc.args[0]) from None
+        if kind != "stiffness":
+            raise ConfigError("--field", path, f"must be a stiffness field (N/m), not {kind}")
+        start.append(_value_at(config, path) or 1e7)
+
+    def build(*k: float) -> Any:
+        return linear_system(with_values(config, dict(zip(fields, k, strict=True))))
+
+    fit = fit_support_stiffness(build, targets, x0=start, whirl=whirl,
+                                speed_range=(0.0, config.analysis.modal.critical_speed_max))
+    fitted = with_values(config, dict(zip(fields, fit.stiffnesses, strict=True)))
+    return FitRunResult(tuple(fields), fit, fitted)
+
+
+def _value_at(config: Config, path: str) -> Any:
+    from rotorsfd.io.schema import split_path
+
+    obj: Any = config
+    for part in split_path(path):
+        obj = obj[part] if isinstance(part, int) else getattr(obj, part)
+    return obj

@@ -253,5 +253,36 @@ def _modal(args: argparse.Namespace, config: Any) -> int:
     return 0
 
 
+def _speed(text: str) -> float:
+    from rotorsfd.io.units import UnitError, to_si
+
+    try:
+        return to_si(text, "angular_velocity")
+    except UnitError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+@command("fit-supports", "fit support stiffnesses (dotted paths) so that the lowest "
+         "critical speeds meet targets; prints the values and the --set lines (the "
+         "paper gives no support stiffnesses)", quiet=True,
+         arguments=[arg("--field", action="append", required=True, metavar="PATH",
+                        help="a stiffness field, e.g. sfd.centring_stiffness (repeatable)"),
+                    arg("--target", action="append", required=True, type=_speed,
+                        metavar="SPEED", help="target critical speed, e.g. 811.3 or "
+                        "'7747 rpm' (repeatable, in the order of the modes)"),
+                    arg("-o", "--output", type=Path, metavar="DIR",
+                        help="also write DIR/fit.json")])
+def _fit_supports(args: argparse.Namespace, config: Any) -> int:
+    from rotorsfd import api
+
+    result = api.run_fit_supports(config, args.field, args.target,
+                                  whirl=config.analysis.modal.whirl)
+    if args.output is not None:
+        result.write(args.output)
+    if not args.quiet:
+        print(result.summary())
+    return 0 if result.fit.exact else 1
+
+
 if __name__ == "__main__":  # pragma: no cover
     sys.exit(main())
