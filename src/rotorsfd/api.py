@@ -37,6 +37,8 @@ __all__ = [
     "reference_speed",
     "run_fit_supports",
     "run_modal",
+    "run_response",
+    "run_static",
     "show_config",
     "with_values",
 ]
@@ -220,3 +222,19 @@ def _value_at(config: Config, path: str) -> Any:
     for part in split_path(path):
         obj = obj[part] if isinstance(part, int) else getattr(obj, part)
     return obj
+
+
+def run_response(config: Any, **kwargs: Any) -> Any:
+    """Periodic response branch (``[analysis.response]``): see
+    :func:`rotorsfd.analyses.response.run_response`."""
+    from rotorsfd.analyses.response import run_response as _run
+
+    return _run(config, **kwargs)
+
+
+def run_static(config: Any, **kwargs: Any) -> Any:
+    """Static deflection of the linear rotor under constant base motion: see
+    :func:`rotorsfd.analyses.static.run_static`."""
+    from rotorsfd.analyses.static import run_static as _run
+
+    return _run(config, **kwargs)

@@ -284,5 +284,37 @@ def _fit_supports(args: argparse.Namespace, config: Any) -> int:
     return 0 if result.fit.exact else 1
 
 
+@command("response", "periodic response by harmonic balance and arc-length continuation "
+         "([analysis.response]): branch.nc, branch.csv, response plots; exit 1 if the "
+         "branch stops early (the points so far are written)", output=True, quiet=True)
+def _response(args: argparse.Namespace, config: Any) -> int:
+    from rotorsfd import api
+
+    result = api.run_response(config, search_path=Path(args.config).parent,
+                              progress=not args.quiet)
+    paths = result.write(args.output)
+    if not result.success:
+        print(f"rotorsfd: error: {_one_line(result.message)}", file=sys.stderr)
+        return 1
+    if not args.quiet:
+        print(result.summary())
+        print("wrote " + ", ".join(str(p) for p in paths.values()))
+    return 0
+
+
+@command("static", "static deflection of the linear rotor under constant base motion "
+         "(gyroscopic moment, base acceleration, gravity) over the [analysis.modal] "
+         "speeds: static_deflection.csv", output=True, quiet=True)
+def _static(args: argparse.Namespace, config: Any) -> int:
+    from rotorsfd import api
+
+    result = api.run_static(config, search_path=Path(args.config).parent)
+    path = result.write(args.output)
+    if not args.quiet:
+        print(result.summary())
+        print(f"wrote {path}")
+    return 0
+
+
 if __name__ == "__main__":  # pragma: no cover
     sys.exit(main())
