@@ -260,3 +260,13 @@ def test_axis_values_si(raw):
     first, second = cfg.analysis.sweep.axes
     assert axis_values(cfg, first) == pytest.approx(list(range(11)))
     assert axis_values(cfg, second) == pytest.approx([144.02e-6, 252e-6, 360.04e-6])
+
+
+def test_output_nodes_and_fixed_speeds(raw):
+    cfg = config_from_dict(raw, ["analysis.response.nodes=[]",
+                                 "analysis.simulate.speed_ratio=1.05"])
+    assert cfg.output_nodes("response") == [1, 8]           # SFD and disk nodes
+    assert cfg.output_nodes("simulate") == [1, 8]
+    assert cfg.analysis.simulate.fixed_speed(811.3) == pytest.approx(1.05 * 811.3)
+    cfg = config_from_dict(raw, ["analysis.response.nodes=[21]"])
+    assert cfg.output_nodes() == [21]

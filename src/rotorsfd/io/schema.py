@@ -97,7 +97,8 @@ def integer(doc: str, *, ge: int | None = None, le: int | None = None,
 
 
 NODE = integer("node number (1-based, as in the paper)", ge=1)
-NAME = Annotated[str, Field(pattern=r"^[A-Za-z_][A-Za-z0-9_\-]*$",
+NAME_PATTERN = r"^[A-Za-z_][A-Za-z0-9_\-]*$"
+NAME = Annotated[str, Field(pattern=NAME_PATTERN,
                             description="name of a [materials.<name>] table (letters, digits, "
                                         "'_' and '-')")]
 LABEL = Annotated[str, Field(description="a free label, used in messages and plots")]
@@ -658,6 +659,10 @@ class ResponseAnalysis(Section):
     directions: list[Literal["y", "z"]] = Field(["y", "z"], min_length=1,
                                                 description="output directions")
 
+    def fixed_speed(self, reference_speed: float) -> float:
+        """The fixed speed [rad/s] when the parameter is not 'speed'."""
+        return self.speed if self.speed is not None else self.speed_ratio * reference_speed
+
     @model_validator(mode="after")
     def _parameter(self):
         if self.parameter == "speed":
@@ -724,6 +729,12 @@ class SimulateAnalysis(Section):
                                    "z (paper: 1 um)") = 1e-6
     nodes: list[NODE] = Field([], description="output nodes (default: SFD and disk nodes)")
 
+    def fixed_speed(self, reference_speed: float) -> float | None:
+        """The speed [rad/s] (None if neither speed nor speed_ratio is set)."""
+        if self.speed is not None:
+            return self.speed
+        return None if self.speed_ratio is None else self.speed_ratio * reference_speed
+
     @model_validator(mode="after")
     def _checks(self):
         if self.speed is not None and self.speed_ratio is not None:
@@ -783,11 +794,22 @@ class Config(Section):
     reference: ReferenceConfig = ReferenceConfig()
     analysis: AnalysisConfig = AnalysisConfig()
 
+    def output_nodes(self, section: str = "response") -> list[int]:
+        """Output nodes of ``analysis.<section>``: as given, else the SFD and disk nodes
+        (else every node)."""
+        given = getattr(self.analysis, section).nodes
+        if given:
+            return list(given)
+        nodes = {d.node for d in self.rotor.disks}
+        if self.sfd is not None:
+            nodes.add(self.sfd.node)
+        return sorted(nodes) or list(range(1, self.rotor.n_nodes + 1))
+
     @model_validator(mode="after")
     def _cross_checks(self):
         names = sorted(self.materials)
         for key in self.materials:
-            if not re.match(r"^[A-Za-z_][A-Za-z0-9_\-]*$", key):
+            if not re.match(NAME_PATTERN, key):
                 raise fail(("materials", key), key, "a name: letters, digits, '_' and '-'")
         refs = [(("rotor", "shaft", i, "material"), s.material)
                 for i, s in enumerate(self.rotor.shaft)]
