@@ -1,7 +1,8 @@
 """Command-line interface: parse, call :mod:`rotorsfd.api`, print. No physics here.
 
 Exit status: 0 success; 2 bad input (config, ``--set``, arguments: one line naming the
-field); 1 any other rotorsfd error (numerical failure: one line); 130 interrupted.
+field); 1 any other rotorsfd error (numerical failure) or a file that cannot be written
+(one line); 130 interrupted.
 ``--debug`` adds the traceback.
 
 Adding a command: register a function with :func:`command`; the registry builds the
@@ -173,6 +174,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("rotorsfd: interrupted", file=sys.stderr)
         return 130
+    except OSError as exc:  # e.g. an output folder that cannot be written
+        return _report(exc, 1, debug)
     except Exception as exc:
         return _report(exc, 1, debug, f"internal error ({type(exc).__name__}), please "
                        "report it; run with --debug for the traceback: ")

@@ -162,3 +162,22 @@ def test_registry_adds_commands(monkeypatch, capsys):
     assert seen == {"ratio": 1.05, "quiet": True, "out": Path("x"), "h": 8}
     assert cli.main(["demo", str(PAPER), "-o", "x"]) == 2
     assert "--speed-ratio" in _one_line(capsys.readouterr().err)
+
+
+def test_unwritable_output_one_line(tmp_path, capsys, monkeypatch):
+    from rotorsfd import api
+
+    class Result:
+        def write(self, directory):
+            raise PermissionError(13, "Permission denied", str(directory))
+
+    monkeypatch.setattr(api, "run_modal", lambda *a, **k: Result())
+    assert cli.main(["modal", str(PAPER), "-o", str(tmp_path / "ro")]) == 1
+    assert "Permission denied" in _one_line(capsys.readouterr().err)
+
+
+def test_debug_after_subcommand(tmp_path, capsys):
+    path = _variant(tmp_path, "node = 21", "node = 99")
+    assert cli.main(["config", "show", path, "--debug"]) == 2
+    err = capsys.readouterr().err
+    assert "Traceback" in err and err.strip().splitlines()[-1].startswith("rotorsfd: error:")
