@@ -140,3 +140,14 @@ def test_cubic_kernel_duffing_free_vibration_energy() -> None:
     E = 0.5 * r.v[:, 0] ** 2 + 0.5 * r.q[:, 0] ** 2 + 0.25 * r.q[:, 0] ** 4
     assert np.max(np.abs(E - E[0])) < 1e-4 * E[0]
     assert r.newton_iterations_max <= 5
+
+
+def test_read_only_inputs_accepted() -> None:
+    """Read-only parameter, DOF and matrix arrays (e.g. cached model data) are copied."""
+    arrays = [np.eye(2), 0.1 * np.eye(2), np.eye(2), np.array([0, 1]), np.array([1.0, 1.0])]
+    for a in arrays:
+        a.flags.writeable = False
+    M, D, K, nl, prm = arrays
+    r = integrate(M, D, K, nl, cubic_spring_kernel, prm, None, 0.1, 10, q0=0.1,
+                  record_dofs=nl)
+    assert r.success

@@ -135,7 +135,7 @@ def prepare(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: Any,
     n = M.shape[0]
     D = _matrix(D, n, "D")
     K = _matrix(K, n, "K")
-    nl = np.ascontiguousarray(np.asarray(nl_dofs, dtype=np.int64).reshape(-1))
+    nl = np.array(nl_dofs, dtype=np.int64).reshape(-1)
     if np.any(nl < 0) or np.any(nl >= n) or np.unique(nl).size != nl.size:
         raise ValueError(f"nl_dofs must be distinct indices in [0, {n}), got {nl}")
     if not (dt > 0.0 and math.isfinite(dt)):
@@ -147,8 +147,8 @@ def prepare(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: Any,
     scheme = nm.Scheme.from_method(method, alpha=alpha, rho_inf=rho_inf)
     ops = nm.build_operators(M, D, K, nl, dt, scheme)
     kern = as_cfunc(kernel if kernel is not None else null_kernel)
-    params = np.ascontiguousarray(np.asarray(params if params is not None else [0.0],
-                                             dtype=float).reshape(-1))
+    # own writeable copies: the compiled loop's types do not accept read-only arrays
+    params = np.array(params if params is not None else [0.0], dtype=float).reshape(-1)
     if params.size == 0:
         params = np.zeros(1)
 
@@ -283,8 +283,7 @@ def run(ps: PreparedSystem, state: StepState, n_steps: int, *,
     if record_every < 1:
         raise ValueError(f"record_every must be >= 1, got {record_every}")
     n, ops = ps.n_dof, ps.ops
-    rd = np.ascontiguousarray(record_dofs if record_dofs is not None else np.zeros(0),
-                              dtype=np.int64)
+    rd = np.array(record_dofs if record_dofs is not None else np.zeros(0), dtype=np.int64)
     k_a, k_b = state.step, state.step + n_steps
 
     def count(every: int, start: int) -> int:

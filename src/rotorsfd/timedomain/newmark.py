@@ -110,7 +110,7 @@ def build_operators(M: np.ndarray, D: np.ndarray, K: np.ndarray, nl_dofs: np.nda
     """Factorise ``K_eff`` once and form ``A``, ``B``, ``S`` (module docstring)."""
     n = M.shape[0]
     h = float(dt)
-    nl = np.ascontiguousarray(nl_dofs, dtype=np.int64)
+    nl = np.array(nl_dofs, dtype=np.int64).reshape(-1)
     if scheme.kind == NEWMARK:
         k_eff = 4.0 / h**2 * M + 2.0 / h * D + K
         blocks = [-2.0 * K, 4.0 / h * M]
