@@ -15,7 +15,7 @@ import math
 import re
 from typing import Annotated, Any, ClassVar, Literal
 
-from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, model_validator
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, model_validator
 from pydantic_core import PydanticCustomError
 
 from rotorsfd.io.units import KINDS, UnitError, describe, to_si
@@ -65,24 +65,23 @@ def quantity(kind: str, doc: str, *, gt: float | None = None, ge: float | None =
         if value is None and optional:
             return None
         try:
-            return to_si(value, kind)
+            si = to_si(value, kind)
         except UnitError as exc:
             raise PydanticCustomError("rotorsfd", "{allowed}",
                                       {"allowed": str(exc), "value": value}) from None
-
-    def check(value: float | None) -> float | None:
-        if value is not None and not _in_range(value, gt, ge, lt, le):
-            raise PydanticCustomError(
-                "rotorsfd", "{allowed}",
-                {"allowed": f"must be {allowed_range}", "value": value})
-        return value
+        if not _in_range(si, gt, ge, lt, le):
+            shown = f" (it is {si:.6g}{'' if unit == '1' else ' ' + unit})" \
+                if isinstance(value, str) else ""
+            raise PydanticCustomError("rotorsfd", "{allowed}", {
+                "allowed": f"must be {allowed_range}{shown}", "value": value})
+        return si
 
     unit_text = "dimensionless" if unit == "1" else unit
     description = f"{doc} [{unit_text}]; allowed: {allowed_range}"
     extra = {"unit": unit, "kind": kind}
     return Annotated[
         float | None if optional else float,
-        BeforeValidator(parse), AfterValidator(check),
+        BeforeValidator(parse),
         Field(description=description, json_schema_extra=extra),
     ]
 
