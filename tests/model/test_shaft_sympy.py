@@ -36,37 +36,49 @@ def _timoshenko_shape_functions():
 def element_and_sympy():
     el = ShaftElement(0.07, 0.012, 0.031, Material(7810.0, 211e9, 81.783e9))
     x, L, phi, nv, npsi = _timoshenko_shape_functions()
-    subs = {L: el.length, phi: el.shear_parameter}
+    subs = {L: sp.Float(el.length, 30), phi: sp.Float(el.shear_parameter, 30)}
+    nv = [sp.Poly(sp.simplify(f).subs(subs), x) for f in nv]       # numeric polynomials
+    npsi = [sp.Poly(sp.simplify(f).subs(subs), x) for f in npsi]
     # 8-DOF shape rows: x-y plane [y, tz] -> (v, psi); x-z plane [z, -ty] -> (v, psi)
-    zero = sp.Integer(0)
+    zero = sp.Poly(0, x)
 
     def row(plane_y: bool, fun):
         r = [zero] * 8
         idx, sgn = ([0, 3, 4, 7], [1, 1, 1, 1]) if plane_y else ([1, 2, 5, 6], [1, -1, 1, -1])
         for k in range(4):
             r[idx[k]] = sgn[k] * fun[k]
-        return sp.Matrix([r])
+        return r
 
     n_y, n_z = row(True, nv), row(False, nv)
-    n_tz, n_ty = row(True, npsi), -row(False, npsi)
-    g_y = row(True, [f.diff(x) for f in nv]) - n_tz    # shear strain in x-y plane
-    g_z = row(False, [f.diff(x) for f in nv]) + n_ty   # dz/dx + ty (ty = -dz/dx + shear)
+    n_tz, n_ty = row(True, npsi), [-f for f in row(False, npsi)]
+    g_y = [a - b for a, b in zip(row(True, [f.diff(x) for f in nv]), n_tz, strict=True)]
+    # x-z plane shear strain: dz/dx - (-ty) = dz/dx + ty
+    g_z = [a + b for a, b in zip(row(False, [f.diff(x) for f in nv]), n_ty, strict=True)]
 
-    def integ(m):
-        return np.array(
-            sp.Matrix(m).subs(subs).applyfunc(lambda f: sp.integrate(f, (x, 0, el.length))),
-            dtype=float,
-        )
+    def d(r):
+        return [f.diff(x) for f in r]
+
+    def outer(a, b):
+        """int_0^L a_i b_j dx as a float 8x8 array."""
+        out = np.empty((8, 8))
+        for i in range(8):
+            for j in range(8):
+                prim = (a[i] * b[j]).integrate()
+                out[i, j] = float(prim.eval(el.length) - prim.eval(0))
+        return out
+
+    def integ(pairs):
+        return sum(sign * outer(a, b) for sign, a, b in pairs)
 
     mat = el.material
     rho_a, rho_i = mat.density * el.area, mat.density * el.second_moment
     ei, kga = mat.young_modulus * el.second_moment, el.kappa * mat.shear_modulus * el.area
     ref = {
-        "Mt": rho_a * integ(n_y.T * n_y + n_z.T * n_z),
-        "Mr": rho_i * integ(n_ty.T * n_ty + n_tz.T * n_tz),
-        "K": ei * integ(n_ty.diff(x).T * n_ty.diff(x) + n_tz.diff(x).T * n_tz.diff(x))
-        + kga * integ(g_y.T * g_y + g_z.T * g_z),
-        "G": 2 * rho_i * integ(n_ty.T * n_tz - n_tz.T * n_ty),
+        "Mt": rho_a * integ([(1, n_y, n_y), (1, n_z, n_z)]),
+        "Mr": rho_i * integ([(1, n_ty, n_ty), (1, n_tz, n_tz)]),
+        "K": ei * integ([(1, d(n_ty), d(n_ty)), (1, d(n_tz), d(n_tz))])
+        + kga * integ([(1, g_y, g_y), (1, g_z, g_z)]),
+        "G": 2 * rho_i * integ([(1, n_ty, n_tz), (-1, n_tz, n_ty)]),
     }
     return el, ref
 

@@ -26,6 +26,8 @@ import scipy.linalg
 
 from rotorsfd.errors import ConvergenceError
 
+RIGID_BODY_TOL = 1e-7
+
 
 @runtime_checkable
 class LinearDynamics(Protocol):
@@ -138,14 +140,16 @@ def _normalise(shapes: np.ndarray) -> np.ndarray:
 
 def eigen(system: LinearDynamics, speed: float, n_modes: int = 8) -> ModalResult:
     """Complex modes of ``system`` at spin ``speed`` [rad/s], the ``n_modes`` lowest in
-    damped frequency (overdamped real roots and rigid-body roots lambda = 0 are dropped)."""
+    damped frequency. Overdamped (real) roots and rigid-body roots are dropped; a root is
+    taken as rigid-body when |lambda| < RIGID_BODY_TOL * max|lambda|."""
     mass, damping, stiffness = (np.asarray(m, dtype=float) for m in system.matrices(speed))
     n = mass.shape[0]
     lam, vecs = scipy.linalg.eig(state_matrix(mass, damping, stiffness))
     if not np.all(np.isfinite(lam)):
         raise ConvergenceError(f"non-finite eigenvalues at speed {speed} rad/s")
     scale = np.abs(lam).max() if lam.size else 1.0
-    keep = lam.imag > max(1e-9 * scale, 1e-6)
+    # rigid-body roots (lambda = 0, defective) come out as noise ~ 1e-8 max|lambda|
+    keep = (lam.imag > max(1e-9 * scale, 1e-12)) & (np.abs(lam) > RIGID_BODY_TOL * scale)
     lam, vecs = lam[keep], vecs[:n, keep]
     order = np.argsort(lam.imag, kind="stable")
     lam, vecs = lam[order][:n_modes], vecs[:, order][:, :n_modes]

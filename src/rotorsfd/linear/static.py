@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import scipy.linalg
 
@@ -17,7 +19,9 @@ def static_deflection(system: LinearDynamics, force: np.ndarray, speed: float = 
     if f.shape[0] != k.shape[0]:
         raise ValueError(f"force has {f.shape[0]} entries, system has {k.shape[0]} DOFs")
     try:
-        lu = scipy.linalg.lu_factor(k, check_finite=True)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
+            lu = scipy.linalg.lu_factor(k, check_finite=True)
     except (np.linalg.LinAlgError, ValueError) as exc:
         raise ConvergenceError(f"stiffness matrix not factorisable: {exc}") from None
     rcond = 1.0 / max(np.linalg.cond(k, 1), 1.0)
