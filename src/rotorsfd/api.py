@@ -138,15 +138,29 @@ def modal_speeds(config: Config, ref: float) -> np.ndarray:
     return np.linspace(start, stop, m.speed_range.n)
 
 
-def run_modal(config: Config, search_path: Path | None = None) -> ModalRunResult:
+def run_modal(config: Config, search_path: Path | None = None,
+              progress: bool = False) -> ModalRunResult:
     """Campbell diagram over ``analysis.modal`` speeds and the first ``n_critical``
-    critical speeds (film excluded, centring spring included, constant base rates)."""
+    critical speeds (film excluded, centring spring included, constant base rates).
+    ``progress``: a tqdm bar on stderr over the stages."""
+    import sys
+
+    from tqdm import tqdm
+
     m = config.analysis.modal
-    system = linear_system(config, build_model(config, search_path))
-    ref = reference_speed(config, system)
-    camp = campbell(system, modal_speeds(config, ref), m.n_modes)
-    crit = critical_speeds(system, n=m.n_critical, whirl=m.whirl,
-                           speed_range=(0.0, m.critical_speed_max))
+    with tqdm(total=3, desc="modal", disable=not progress, file=sys.stderr,
+              leave=False) as bar:
+        system = linear_system(config, build_model(config, search_path))
+        bar.set_postfix_str("reference speed")
+        ref = reference_speed(config, system)
+        bar.update()
+        bar.set_postfix_str("Campbell diagram")
+        camp = campbell(system, modal_speeds(config, ref), m.n_modes)
+        bar.update()
+        bar.set_postfix_str("critical speeds")
+        crit = critical_speeds(system, n=m.n_critical, whirl=m.whirl,
+                               speed_range=(0.0, m.critical_speed_max))
+        bar.update()
     return ModalRunResult(config, camp, crit, ref)
 
 

@@ -244,7 +244,8 @@ def _config_fields(args: argparse.Namespace, config: Any) -> int:
 def _modal(args: argparse.Namespace, config: Any) -> int:
     from rotorsfd import api
 
-    result = api.run_modal(config, search_path=Path(args.config).parent)
+    result = api.run_modal(config, search_path=Path(args.config).parent,
+                           progress=not args.quiet)
     paths = result.write(args.output)
     if not args.quiet:
         print(result.summary())
