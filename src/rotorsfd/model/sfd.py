@@ -47,6 +47,7 @@ from rotorsfd.model.sfd_kernels import (
     P_VISCOSITY,
     sfd_batch,
     sfd_kernel,
+    sfd_sample,
 )
 
 __all__ = ["DEFAULT_EPS_MAX", "SFD"]
@@ -54,6 +55,8 @@ __all__ = ["DEFAULT_EPS_MAX", "SFD"]
 #: Default contact limit on the eccentricity ratio: the force grows like (1 - eps)^(-5/2)
 #: and the Jacobian like (1 - eps)^(-7/2); at 0.999 that is a factor ~1e7 above eps = 0.
 DEFAULT_EPS_MAX = 0.999
+
+_SCALARS = (float, int, np.floating, np.integer)
 
 
 def _positive(field: str, value: float) -> float:
@@ -99,7 +102,6 @@ class SFD:
         params[P_CLEARANCE] = self.clearance
         params[P_EPS_MAX] = self.eps_max
         params[P_CODE] = CAVITATION_CODES[cavitation]
-        params.flags.writeable = False
         self._params = params
 
     @classmethod
@@ -132,9 +134,9 @@ class SFD:
 
     @property
     def kernel_params(self) -> np.ndarray:
-        """Read-only float64 vector ``[mu, R, L, C, eps_max, model code]`` for
-        :attr:`numba_kernel` (codes: pi 0, none 1, guembel 2)."""
-        return self._params
+        """float64 vector ``[mu, R, L, C, eps_max, model code]`` for :attr:`numba_kernel`
+        (codes: pi 0, none 1, guembel 2); a fresh writable copy (type ``float64[::1]``)."""
+        return self._params.copy()
 
     @property
     def numba_kernel(self) -> Any:
@@ -143,8 +145,23 @@ class SFD:
         (``eps >= eps_max`` or a non-finite state), outputs then untouched."""
         return sfd_kernel
 
+    def _raise(self, y: float, z: float, vy: float, vz: float) -> None:
+        if not all(math.isfinite(a) for a in (y, z, vy, vz)):
+            raise ValueError(f"SFD state is not finite: y={y}, z={z}, vy={vy}, vz={vz}")
+        raise JournalContactError(math.hypot(y, z) / self.clearance, y, z, vy, vz,
+                                  where=f"SFD ({self.cavitation} film, eps_max="
+                                        f"{self.eps_max:g})")
+
     def _evaluate(self, y: Any, z: Any, vy: Any, vz: Any, want_jac: bool
-                  ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None, tuple]:
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, tuple[int, ...]]:
+        """Flat outputs ``F (n, 2)``, ``dFdq, dFdv (n, 2, 2)`` (``(1, 2, 2)`` scratch if
+        not ``want_jac``) and the broadcast shape; raises on contact."""
+        if all(isinstance(a, _SCALARS) for a in (y, z, vy, vz)):  # one sample: no broadcast
+            F, dFdq, dFdv = np.empty((1, 2)), np.empty((1, 2, 2)), np.empty((1, 2, 2))
+            yf, zf, vyf, vzf = float(y), float(z), float(vy), float(vz)
+            if sfd_sample(yf, zf, vyf, vzf, self._params, F[0], dFdq[0], dFdv[0]) != 0:
+                self._raise(yf, zf, vyf, vzf)
+            return F, dFdq, dFdv, ()
         arrays = np.broadcast_arrays(*(np.asarray(a, dtype=np.float64) for a in (y, z, vy, vz)))
         shape = arrays[0].shape
         flat = [np.ascontiguousarray(a).ravel() for a in arrays]
@@ -154,15 +171,7 @@ class SFD:
         dFdv = np.empty((n, 2, 2)) if want_jac else np.empty((1, 2, 2))
         bad = sfd_batch(*flat, self._params, F, dFdq, dFdv, want_jac)
         if bad >= 0:
-            yb, zb, vyb, vzb = (float(a[bad]) for a in flat)
-            if not all(math.isfinite(a) for a in (yb, zb, vyb, vzb)):
-                raise ValueError(f"SFD state is not finite: y={yb}, z={zb}, vy={vyb}, "
-                                 f"vz={vzb}")
-            raise JournalContactError(math.hypot(yb, zb) / self.clearance, yb, zb, vyb, vzb,
-                                      where=f"SFD ({self.cavitation} film, eps_max="
-                                            f"{self.eps_max:g})")
-        if not want_jac:
-            return F, None, None, shape
+            self._raise(*(float(a[bad]) for a in flat))
         return F, dFdq, dFdv, shape
 
     def force(self, y: Any, z: Any, vy: Any, vz: Any) -> tuple[Any, Any]:
@@ -187,13 +196,11 @@ class SFD:
         Raises like :meth:`force`.
         """
         _, dFdq, dFdv, shape = self._evaluate(y, z, vy, vz, want_jac=True)
-        assert dFdq is not None and dFdv is not None
         return dFdq.reshape((*shape, 2, 2)), dFdv.reshape((*shape, 2, 2))
 
     def force_and_jacobian(self, y: Any, z: Any, vy: Any, vz: Any
                            ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``(F, dF/dq, dF/dv)`` in one pass; ``F`` of shape ``(..., 2)``."""
         F, dFdq, dFdv, shape = self._evaluate(y, z, vy, vz, want_jac=True)
-        assert dFdq is not None and dFdv is not None
         return (F.reshape((*shape, 2)), dFdq.reshape((*shape, 2, 2)),
                 dFdv.reshape((*shape, 2, 2)))

@@ -48,11 +48,12 @@ def _chi_of_theta(theta: float, eps: float, s: float) -> float:
     return theta + math.atan2(st * (s_minus_1 * ct - eps), ct * ct + eps * ct + s * st * st)
 
 
-@njit(cache=True)
-def _arc_integrals(chi1: float, chi2: float, eps: float, s: float, out: np.ndarray) -> None:
+@njit(cache=True, inline="always")
+def _arc_integrals(chi1: float, chi2: float, eps: float, s: float
+                   ) -> tuple[float, float, float, float, float, float, float]:
     """Closed forms over the film arc ``[theta1, theta2]`` (mapped to ``[chi1, chi2]``).
 
-    Writes ``out = [I2, I1, I3, T30, T21, T12, T03]`` with
+    Returns ``(I2, I1, I3, T30, T21, T12, T03)`` with
     ``I2 = int cos^2/(1+eps cos)^3``, ``I1 = int sin cos/(...)^3``, ``I3 = int sin^2/(...)^3``
     and ``Tjk = int cos^j sin^k/(1+eps cos)^4`` (``j + k = 3``), using
     ``int cos^j sin^k/(1+eps cos)^n dtheta = s^(k-2n+1) int (cos chi - eps)^j sin^k chi dchi``
@@ -81,13 +82,8 @@ def _arc_integrals(chi1: float, chi2: float, eps: float, s: float, out: np.ndarr
     s3 = s * s * s
     s4 = s3 * s
     s5 = s4 * s
-    out[0] = p20 / s5
-    out[1] = p11 / s4
-    out[2] = p02 / s3
-    out[3] = q30 / (s5 * s * s)
-    out[4] = q21 / (s5 * s)
-    out[5] = q12 / s5
-    out[6] = q03 / s4
+    return (p20 / s5, p11 / s4, p02 / s3, q30 / (s5 * s * s), q21 / (s5 * s), q12 / s5,
+            q03 / s4)
 
 
 @njit(cache=True)
@@ -114,23 +110,21 @@ def sfd_sample(y: float, z: float, vy: float, vz: float, params: np.ndarray,
     vt = -sp * vy + cp * vz
     s2 = (1.0 - eps) * (1.0 + eps)
     s = math.sqrt(s2)
-    ints = np.empty(7)
     mean_film = False  # Guembel at v = 0: mean of the limiting Jacobians
     if code == PI_FILM:
-        _arc_integrals(math.pi, 2.0 * math.pi, eps, s, ints)
+        chi1, chi2 = math.pi, 2.0 * math.pi
     elif code == FULL_FILM:
-        _arc_integrals(0.0, 2.0 * math.pi, eps, s, ints)
+        chi1, chi2 = 0.0, 2.0 * math.pi
+    elif vr == 0.0 and vt == 0.0:
+        mean_film = True
+        chi1, chi2 = 0.0, math.pi  # I2, I3 are half the full film's; I1 set to 0 below
     else:
-        if vr == 0.0 and vt == 0.0:
-            mean_film = True
-            _arc_integrals(0.0, math.pi, eps, s, ints)  # I2, I3 are half the full film's
-            ints[1] = 0.0
-        else:
-            th1 = math.atan2(vt, vr) + 0.5 * math.pi
-            th2 = th1 + math.pi
-            _arc_integrals(_chi_of_theta(th1, eps, s), _chi_of_theta(th2, eps, s),
-                           eps, s, ints)
-    i2, i1, i3 = ints[0], ints[1], ints[2]
+        th1 = math.atan2(vt, vr) + 0.5 * math.pi
+        chi1 = _chi_of_theta(th1, eps, s)
+        chi2 = _chi_of_theta(th1 + math.pi, eps, s)
+    i2, i1, i3, t30, t21, t12, t03 = _arc_integrals(chi1, chi2, eps, s)
+    if mean_film:
+        i1 = 0.0
     # G = Rot B Rot^T, B = [[I2, I1], [I1, I3]]
     g00 = cp * cp * i2 - 2.0 * cp * sp * i1 + sp * sp * i3
     g11 = sp * sp * i2 + 2.0 * cp * sp * i1 + cp * cp * i3
@@ -149,7 +143,6 @@ def sfd_sample(y: float, z: float, vy: float, vz: float, params: np.ndarray,
         dFdq[1, 0] = 0.0
         dFdq[1, 1] = 0.0
         return 0
-    t30, t21, t12, t03 = ints[3], ints[4], ints[5], ints[6]
     # T = vr [[T30, T21], [T21, T12]] + vt [[T21, T12], [T12, T03]]
     a00 = vr * t30 + vt * t21
     a01 = vr * t21 + vt * t12
