@@ -1,0 +1,478 @@
+"""Nonlinear periodic response of the rotor-SFD system: a branch of HB-AFT solutions
+continued in the rotor speed (or a base rate, or the unbalance), its table, files and plots.
+
+``run_response(config) -> ResponseResult`` reads ``[analysis.response]``; the result holds
+the :class:`~rotorsfd.continuation.branch.Branch` and writes ``branch.nc`` (every Fourier
+coefficient), ``branch.csv`` (the paper's quantities per point) and the frequency-response
+plots. Quantities per point, for an output node n and direction d in (y, z)::
+
+    static_<n>_<d>    = X_0                    [m]   (zero-order term)
+    amp_<n>_<d>_h<k>  = |X_k|                  [m]   (half peak-to-peak of harmonic k)
+    defl_<n>          = max_t sqrt(y^2 + z^2) / C    (the paper's r~, C the SFD clearance)
+
+Per-point stability (``stable``, ``max_multiplier``, ``multipliers``) and a bifurcation
+table are optional: a ``stability`` hook called at every converged point fills them, or
+:meth:`ResponseResult.with_stability` adds them afterwards; they are written when present.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import re
+import sys
+import time
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rotorsfd.continuation.branch import Branch, BranchPoint
+from rotorsfd.errors import ConfigError
+from rotorsfd.harmonic.periodic import continue_periodic
+from rotorsfd.model import dofs
+from rotorsfd.model.system import RotorSystem
+
+if TYPE_CHECKING:
+    import xarray as xr
+    from matplotlib.figure import Figure
+
+    from rotorsfd.io.schema import Config, ResponseAnalysis
+
+FloatArray = NDArray[np.float64]
+
+#: Config paths accepted as continuation parameter -> RotorSystem parameter.
+PARAMETER_PATHS: dict[str, str] = {
+    "speed": "speed",
+    "base.rolling.value": "base.rolling",
+    "base.pitching.value": "base.pitching",
+    "base.yawing.value": "base.yawing",
+    "unbalance[0].magnitude": "unbalance.magnitude",
+    "unbalance.0.magnitude": "unbalance.magnitude",
+}
+_UNITS = {"speed": "rad/s", "base.rolling": "rad/s", "base.pitching": "rad/s",
+          "base.yawing": "rad/s", "unbalance.magnitude": "kg*m"}
+FIELD = "analysis.response"
+
+
+@dataclass(frozen=True)
+class PointStability:
+    """Stability of one converged point, as returned by a ``stability`` hook."""
+
+    stable: bool
+    max_multiplier: float
+    multipliers: NDArray[np.complex128] | None = None
+    stop: bool = False          # True stops the continuation after this point
+
+
+StabilityHook = Callable[[BranchPoint], "PointStability | None"]
+
+
+def system_parameter(path: str) -> str:
+    """RotorSystem parameter of a config path ('base.pitching.value' -> 'base.pitching')."""
+    path = path.strip()
+    if path in PARAMETER_PATHS.values():
+        return path
+    try:
+        return PARAMETER_PATHS[path]
+    except KeyError:
+        allowed = ", ".join(k for k in PARAMETER_PATHS if k != "unbalance.0.magnitude")
+        raise ConfigError(f"{FIELD}.parameter", path,
+                          f"must be one of {allowed} (continuation with exact derivatives)"
+                          ) from None
+
+
+def column_slug(text: str) -> str:
+    """``"base.pitching.value"`` -> ``"base_pitching_value"``; ``"kg*m"`` -> ``"kg_m"``."""
+    return re.sub(r"_+", "_", re.sub(r"[^A-Za-z0-9]", "_", text)).strip("_")
+
+
+# ---- quantities of a branch ----------------------------------------------------------------
+
+
+def max_radius(Xy: NDArray[np.complex128], Xz: NDArray[np.complex128],
+               n_grid: int | None = None) -> FloatArray:
+    """max over one period of sqrt(y^2 + z^2), y(theta) = Re sum_k Xy_k exp(i k theta).
+
+    ``Xy, Xz`` (..., H+1). Grid of ``n_grid`` phases (default max(256, 64 (H+1))), then
+    Newton steps on d(r^2)/dtheta = 0 from the best grid phase (r^2 is a trigonometric
+    polynomial, so the refined maximum is exact to rounding); never below the grid value.
+    """
+    Xy, Xz = np.asarray(Xy, complex), np.asarray(Xz, complex)
+    H = Xy.shape[-1] - 1
+    k = np.arange(H + 1)
+    n = n_grid or max(256, 64 * (H + 1))
+    theta = 2 * np.pi * np.arange(n) / n
+    E = np.exp(1j * np.outer(k, theta))                       # (H+1, n)
+    r2 = (Xy @ E).real ** 2 + (Xz @ E).real ** 2               # (..., n)
+    best = r2.max(axis=-1)
+    th = theta[r2.argmax(axis=-1)]
+    step_max = 2 * np.pi / n
+    for _ in range(8):
+        e = np.exp(1j * k * th[..., None])                     # (..., H+1)
+        y, z = [(X * e).sum(-1) for X in (Xy, Xz)]
+        y1, z1 = [(1j * k * X * e).sum(-1) for X in (Xy, Xz)]
+        y2, z2 = [(-(k**2) * X * e).sum(-1) for X in (Xy, Xz)]
+        d1 = 2 * (y.real * y1.real + z.real * z1.real)
+        d2 = 2 * (y1.real**2 + y.real * y2.real + z1.real**2 + z.real * z2.real)
+        ok = d2 < 0
+        th = th - np.where(ok, np.clip(d1 / np.where(ok, d2, -1.0), -step_max, step_max), 0)
+    e = np.exp(1j * k * th[..., None])
+    r2_ref = (Xy * e).sum(-1).real ** 2 + (Xz * e).sum(-1).real ** 2
+    return np.sqrt(np.maximum(best, r2_ref))
+
+
+# ---- the result ----------------------------------------------------------------------------
+
+
+@dataclass
+class ResponseResult:
+    """A response branch with what is needed to report it (see the module docstring)."""
+
+    branch: Branch
+    system: RotorSystem
+    reference_speed: float
+    nodes: tuple[int, ...]
+    directions: tuple[str, ...] = ("y", "z")
+    parameter: str = "speed"                  # config path (or RotorSystem name)
+    speed: float | None = None                # fixed speed when parameter != speed
+    title: str = ""
+    elapsed: float = 0.0
+    stable: NDArray[np.bool_] | None = None
+    max_multiplier: FloatArray | None = None
+    multipliers: NDArray[np.complex128] | None = None
+    bifurcations: list[dict[str, Any]] | None = None
+    info: dict[str, Any] = field(default_factory=dict)
+
+    FILES = ("branch.nc", "branch.csv")
+
+    # ---- basic quantities -----------------------------------------------------------------
+    @property
+    def success(self) -> bool:
+        return bool(self.branch.success)
+
+    @property
+    def message(self) -> str:
+        return str(self.branch.message)
+
+    @property
+    def is_speed(self) -> bool:
+        return system_parameter(self.parameter) == "speed"
+
+    @property
+    def parameter_units(self) -> str:
+        return _UNITS[system_parameter(self.parameter)]
+
+    @property
+    def parameter_column(self) -> str:
+        """First CSV column: ``speed_rad_s``, or the parameter with its unit."""
+        if self.is_speed:
+            return "speed_rad_s"
+        return f"{column_slug(self.parameter)}_{column_slug(self.parameter_units)}"
+
+    @property
+    def clearance(self) -> float:
+        """SFD radial clearance C [m] (the length scale of r~)."""
+        return float(self.system.sfd.clearance)
+
+    @property
+    def speeds(self) -> FloatArray:
+        """Rotor speed of every point [rad/s]."""
+        return np.asarray(self.branch.frequency, dtype=float).copy()
+
+    def static(self, node: int, direction: str) -> FloatArray:
+        """X_0 of (node, direction) along the branch [m]."""
+        return self.branch.X[:, 0, dofs.dof_index(node, direction)].real.copy()
+
+    def amplitude(self, node: int, direction: str, k: int = 1) -> FloatArray:
+        """|X_k| of (node, direction) along the branch [m]."""
+        return self.branch.amplitude(dofs.dof_index(node, direction), k)
+
+    def deflection(self, node: int) -> FloatArray:
+        """r~ = max_t sqrt(y^2 + z^2) / C at ``node`` along the branch."""
+        X = self.branch.X
+        Xy, Xz = X[:, :, dofs.dof_index(node, "y")], X[:, :, dofs.dof_index(node, "z")]
+        return max_radius(Xy, Xz) / self.clearance
+
+    def table(self) -> dict[str, NDArray[Any]]:
+        """The columns of ``branch.csv`` in order (module docstring)."""
+        speeds = self.speeds
+        cols: dict[str, NDArray[Any]] = {}
+        if not self.is_speed:
+            cols[self.parameter_column] = np.asarray(self.branch.lam, dtype=float)
+        cols["speed_rad_s"] = speeds
+        cols["speed_ratio"] = speeds / self.reference_speed
+        for n in self.nodes:
+            for d in self.directions:
+                cols[f"static_{n}_{d}"] = self.static(n, d)
+                for k in range(1, self.branch.H + 1):
+                    cols[f"amp_{n}_{d}_h{k}"] = self.amplitude(n, d, k)
+        for n in self.nodes:
+            cols[f"defl_{n}"] = self.deflection(n)
+        if self.stable is not None:
+            cols["stable"] = np.asarray(self.stable, dtype=bool)
+        if self.max_multiplier is not None:
+            cols["max_multiplier"] = np.asarray(self.max_multiplier, dtype=float)
+        return cols
+
+    def with_stability(self, stable: Sequence[bool], max_multiplier: Sequence[float],
+                       multipliers: Any = None,
+                       bifurcations: Sequence[Mapping[str, Any]] | None = None
+                       ) -> ResponseResult:
+        """A copy carrying per-point stability (one entry per point) and, optionally, the
+        bifurcation rows (keys of :data:`rotorsfd.io.branch_files.BIFURCATION_COLUMNS`)."""
+        n = self.branch.n_points
+        stable = np.asarray(stable, dtype=bool)
+        mm = np.asarray(max_multiplier, dtype=float)
+        if stable.shape != (n,) or mm.shape != (n,):
+            raise ValueError(f"stability arrays need {n} entries, got {stable.shape}, "
+                             f"{mm.shape}")
+        mu = None if multipliers is None else np.asarray(multipliers, dtype=complex)
+        if mu is not None and mu.shape[0] != n:
+            raise ValueError(f"multipliers need {n} rows, got {mu.shape}")
+        rows = None if bifurcations is None else [dict(b) for b in bifurcations]
+        return dataclasses.replace(self, stable=stable, max_multiplier=mm, multipliers=mu,
+                                   bifurcations=rows)
+
+    # ---- files ----------------------------------------------------------------------------
+    def to_dataset(self) -> xr.Dataset:
+        """The branch as an xarray Dataset (layout: :mod:`rotorsfd.io.branch_files`)."""
+        from rotorsfd import __version__
+        from rotorsfd.io.branch_files import branch_dataset
+
+        attrs = {"run_title": self.title, "clearance_m": self.clearance,
+                 "sfd_node": int(self.system.sfd_node), "output_nodes":
+                 np.asarray(self.nodes, dtype=np.int32), "output_directions":
+                 " ".join(self.directions), "rotorsfd_version": __version__,
+                 "elapsed_s": float(self.elapsed)}
+        if self.speed is not None:
+            attrs["fixed_speed_rad_s"] = float(self.speed)
+        return branch_dataset(
+            self.branch, parameter=self.parameter, parameter_units=self.parameter_units,
+            speeds=self.speeds, reference_speed=self.reference_speed, stable=self.stable,
+            max_multiplier=self.max_multiplier, multipliers=self.multipliers,
+            bifurcations=self.bifurcations, attrs=attrs)
+
+    def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
+        """Write ``branch.nc``, ``branch.csv``, ``bifurcations.csv`` (when there is a
+        bifurcation table) and the plots (``response_*.png``) atomically."""
+        from rotorsfd.io import atomic
+        from rotorsfd.io.branch_files import BIFURCATION_COLUMNS, write_netcdf, write_table
+
+        out = Path(directory)
+        paths = {"branch.nc": write_netcdf(self.to_dataset(), out / "branch.nc"),
+                 "branch.csv": write_table(out / "branch.csv", self.table())}
+        if self.bifurcations is not None:
+            cols = {c: [row[c] for row in self.bifurcations] for c in BIFURCATION_COLUMNS}
+            paths["bifurcations.csv"] = write_table(out / "bifurcations.csv", cols)
+        if plots:
+            for name, fig in self.plot().items():
+                paths[name] = atomic.save_figure(fig, out / name, dpi=120)
+        return paths
+
+    # ---- plots and text -------------------------------------------------------------------
+    def plot(self) -> dict[str, Figure]:
+        """Frequency-response figures by file name (:mod:`rotorsfd.plots.response`)."""
+        from rotorsfd.plots.response import response_figures
+
+        x_name = "speed_ratio" if self.is_speed else self.parameter_column
+        x_label = (r"$\tilde\Omega = \Omega / \Omega_{ref}$" if self.is_speed
+                   else f"{self.parameter} [{self.parameter_units}]")
+        return response_figures(self.table(), x_name=x_name, x_label=x_label,
+                                nodes=self.nodes, directions=self.directions,
+                                H=self.branch.H, clearance=self.clearance,
+                                bifurcations=self.bifurcations, title=self.title)
+
+    def summary(self) -> str:
+        """A few lines: the branch, the peak deflection per node, the outcome."""
+        b = self.branch
+        lo, hi = float(b.lam.min()), float(b.lam.max())
+        unit = self.parameter_units
+        lines = [f"{b.n_points} points, {self.parameter} from {lo:.6g} to {hi:.6g} {unit}, "
+                 f"H={b.H}, N_f={b.n_samples}, {len(b.folds())} folds, "
+                 f"{self.elapsed:.2f} s"]
+        x = self.speeds / self.reference_speed if self.is_speed else b.lam
+        x_name = "Omega~" if self.is_speed else self.parameter
+        for n in self.nodes:
+            r = self.deflection(n)
+            i = int(np.argmax(r))
+            lines.append(f"node {n}: max r~ = {r[i]:.4g} at {x_name} = {x[i]:.5g}")
+        if self.stable is not None:
+            lines.append(f"unstable points: {int(np.sum(~self.stable))} of {b.n_points}")
+        lines.append(("ok: " if self.success else "FAILED: ") + self.message)
+        return "\n".join(lines)
+
+
+# ---- running ------------------------------------------------------------------------------
+
+
+def _options(r: ResponseAnalysis) -> dict[str, Any]:
+    """continue_periodic keyword arguments from ``[analysis.response]``."""
+    return {"n_samples": r.n_samples, "condensed": r.condensed, "tol": r.tolerance,
+            "ds": r.step_initial, "ds_min": r.step_min, "ds_max": r.step_max,
+            "max_iter": r.max_iterations, "max_points": r.max_points,
+            "max_angle_deg": math.degrees(r.max_tangent_angle),
+            "limit_max": r.max_eccentricity}
+
+
+def _default_nodes(system: RotorSystem) -> tuple[int, ...]:
+    nodes = {d.node for d in system.rotor.disks}
+    if system.sfd_node is not None:
+        nodes.add(system.sfd_node)
+    return tuple(sorted(nodes)) or (1,)
+
+
+def _first_critical(system: RotorSystem) -> float:
+    from rotorsfd.linear import critical_speeds
+
+    found = critical_speeds(system, n=1, whirl="forward", speed_range=(0.0, 2e4))
+    if not found:
+        raise ConfigError("reference_speed", None, "no forward critical speed below "
+                          "2e4 rad/s: give the reference speed")
+    return float(found[0].speed_rad_s)
+
+
+class _Progress:
+    """tqdm bar on stderr: percent of the parameter range reached, points, position."""
+
+    def __init__(self, start: float, stop: float, enabled: bool, label: str,
+                 scale: float, unit: str) -> None:
+        from tqdm import tqdm
+
+        self.start, self.span = start, (stop - start) or 1.0
+        self.scale, self.unit, self.done, self.label = scale, unit, 0, label
+        self.bar = tqdm(total=100, desc=label, disable=not enabled, file=sys.stderr,
+                        dynamic_ncols=True, leave=False,
+                        bar_format="{desc} {percentage:3.0f}%|{bar}| [{elapsed}]")
+
+    def update(self, point: BranchPoint) -> None:
+        frac = min(max((point.lam - self.start) / self.span, 0.0), 1.0)
+        new = int(100 * frac)
+        if new > self.done:
+            self.bar.update(new - self.done)
+            self.done = new
+        self.bar.set_description_str(f"{self.label}: {point.index + 1} points, at "
+                                     f"{point.lam / self.scale:.4g}{self.unit}",
+                                     refresh=False)
+
+    def close(self) -> None:
+        self.bar.close()
+
+
+def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | None = None,
+                 parameter: str | None = None, start: float | None = None,
+                 stop: float | None = None, speed: float | None = None,
+                 reference_speed: float | None = None, harmonics: int | None = None,
+                 nodes: Sequence[int] | None = None, directions: Sequence[str] | None = None,
+                 X0: Any = None, progress: bool = True,
+                 stability: StabilityHook | None = None,
+                 callback: Callable[[BranchPoint], bool | None] | None = None,
+                 title: str | None = None, **options: Any) -> ResponseResult:
+    """Continue periodic solutions and return a :class:`ResponseResult`.
+
+    From a Config: everything from ``[analysis.response]`` and ``[reference]``; keyword
+    arguments override. From a :class:`RotorSystem`: ``start, stop`` (SI: rad/s for the
+    speed and base rates, kg m for the unbalance) are required, ``speed`` too for
+    parameters other than the speed; ``reference_speed`` defaults to the first forward
+    critical speed. ``options`` go to :func:`~rotorsfd.harmonic.periodic.continue_periodic`.
+    ``stability(point)`` may return a :class:`PointStability` per point; ``callback(point)``
+    returning True stops the branch. A failed step never raises: the result then has
+    ``success`` False and the points so far.
+    """
+    if isinstance(config_or_system, RotorSystem):
+        system = config_or_system
+        path = parameter or "speed"
+        ref = reference_speed if reference_speed is not None else _first_critical(system)
+        H = harmonics or 3
+        opts: dict[str, Any] = {}
+        if start is None or stop is None:
+            raise ConfigError("start/stop", (start, stop), "give the parameter range in SI")
+        out_nodes = tuple(nodes) if nodes else _default_nodes(system)
+        name = title or ""
+    else:
+        system, path, ref, H, opts, (start, stop, speed), out_nodes = _from_config(
+            config_or_system, search_path, parameter, start, stop, speed, reference_speed,
+            harmonics, nodes)
+        name = config_or_system.title if title is None else title
+        directions = directions or tuple(config_or_system.analysis.response.directions)
+    sys_param = system_parameter(path)
+    if sys_param != "speed" and not (speed is not None and speed > 0):
+        raise ConfigError(f"{FIELD}.speed", speed,
+                          f"continuing in {path} needs a fixed speed > 0 rad/s")
+    for n in out_nodes:
+        if not 1 <= n <= system.rotor.n_nodes:
+            raise ConfigError(f"{FIELD}.nodes", n, f"must be 1..{system.rotor.n_nodes}")
+    opts.update(options)
+    problem = system.periodic_problem(sys_param, None if sys_param == "speed" else speed)
+    scale, unit = (ref, " x ref") if sys_param == "speed" else (1.0, f" {_UNITS[sys_param]}")
+    bar = _Progress(start, stop, progress, "response", scale, unit)
+    data: dict[int, PointStability] = {}
+
+    def hook(point: BranchPoint) -> bool:
+        bar.update(point)
+        stop_now = False
+        if stability is not None:
+            ps = stability(point)
+            if ps is not None:
+                data[point.index] = ps
+                stop_now = ps.stop
+        if callback is not None:
+            stop_now = bool(callback(point)) or stop_now
+        return stop_now
+
+    t0 = time.perf_counter()
+    try:
+        branch = continue_periodic(problem, start, stop, H, X0, callback=hook, **opts)
+    finally:
+        bar.close()
+    result = ResponseResult(branch, system, float(ref), tuple(out_nodes),
+                            tuple(directions or ("y", "z")), path,
+                            None if sys_param == "speed" else float(speed), name,
+                            time.perf_counter() - t0)
+    if data and len(data) >= branch.n_points:
+        pts = [data[i] for i in range(branch.n_points)]
+        mu = None
+        if all(p.multipliers is not None for p in pts):
+            mu = np.array([np.asarray(p.multipliers, dtype=complex) for p in pts])
+        result = result.with_stability([p.stable for p in pts],
+                                       [p.max_multiplier for p in pts], mu)
+    return result
+
+
+def _from_config(config: Config, search_path: Path | None, parameter: str | None,
+                 start: float | None, stop: float | None, speed: float | None,
+                 reference_speed: float | None, harmonics: int | None,
+                 nodes: Sequence[int] | None):
+    """(system, parameter path, reference speed, H, options, (start, stop, speed), nodes)."""
+    from rotorsfd.api import reference_speed as config_reference_speed
+    from rotorsfd.io.schema import parameter_values
+    from rotorsfd.model.build import build_model
+
+    r = config.analysis.response
+    if config.sfd is None:
+        raise ConfigError("sfd", None, "the nonlinear response needs an [sfd] section")
+    m = build_model(config, search_path)
+    system = RotorSystem(m.rotor, m.sfd, m.sfd_node, m.unbalances, m.base_motion)
+    path = (parameter or r.parameter).strip()
+    sys_param = system_parameter(path)
+    ref = reference_speed if reference_speed is not None else config_reference_speed(
+        config, system)
+    if sys_param == "speed":
+        lo, hi = r.speed_range.bounds(ref)
+        if not (lo > 0 and hi > 0):
+            raise ConfigError(f"{FIELD}.speed_range", r.speed_range.model_dump(
+                exclude_none=True), "the response needs speeds > 0")
+    else:
+        lo, hi = parameter_values(config, path, list(r.parameter_range))
+        if speed is None:
+            speed = r.speed if r.speed is not None else r.speed_ratio * ref
+    lo = lo if start is None else start
+    hi = hi if stop is None else stop
+    if lo == hi:
+        raise ConfigError(f"{FIELD}.speed_range", (lo, hi), "start and stop must differ")
+    out_nodes = tuple(nodes or r.nodes) or _default_nodes(system)
+    return (system, path, float(ref), harmonics or r.harmonics, _options(r),
+            (float(lo), float(hi), speed), out_nodes)

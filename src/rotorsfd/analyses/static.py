@@ -1,0 +1,99 @@
+"""Static deflection of the linear rotor under constant base motion (issue 3, item 5).
+
+    (K + K_base(Omega)) q = F_base(Omega)
+
+with F_base the base-acceleration load (gravity included), the gyroscopic moments
+Ip (Omega + w_bx) w_by and Ip (Omega + w_bx) w_bz of pitching and yawing, and the
+centripetal terms. The squeeze film carries no static load (its force needs a velocity),
+so the centring spring does. This is the static offset the paper describes: pitching
+w_by gives a moment about z, an offset along y; yawing w_bz a moment about y, an offset
+along z. It grows with the speed (gyroscopic moment), so it is given over a list of
+speeds.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rotorsfd.linear.static import static_deflection
+from rotorsfd.model.system import RotorSystem
+
+if TYPE_CHECKING:
+    from rotorsfd.io.schema import Config
+
+COLUMNS = ("speed_rad_s", "speed_ratio", "node", "x_m", "y_m", "z_m", "ty_rad", "tz_rad")
+
+
+def base_static_offset(system: RotorSystem, speed: float) -> NDArray[np.float64]:
+    """q (n_dof,) solving (K + K_base) q = F_base at ``speed`` [rad/s]; ConfigError for a
+    time-varying base, ConvergenceError for a singular stiffness."""
+    return static_deflection(system, system.static_force(speed), speed)
+
+
+@dataclass(frozen=True)
+class StaticResult:
+    """Static deflection at each speed: ``q`` (n_speeds, n_dof)."""
+
+    speeds: NDArray[np.float64]
+    q: NDArray[np.float64]
+    node_x: NDArray[np.float64]
+    reference_speed: float
+    title: str = ""
+
+    def rows(self) -> list[tuple[Any, ...]]:
+        """One row per (speed, node), columns :data:`COLUMNS`."""
+        out = []
+        for s, q in zip(self.speeds, self.q, strict=True):
+            for i, x in enumerate(self.node_x):
+                y, z, ty, tz = (float(v) for v in q[4 * i: 4 * i + 4])
+                out.append((float(s), float(s / self.reference_speed), i + 1, float(x),
+                            y, z, ty, tz))
+        return out
+
+    def write(self, directory: str | Path) -> Path:
+        """``static_deflection.csv`` (long format, :data:`COLUMNS`) written atomically."""
+        from rotorsfd.io import atomic
+
+        return atomic.write_csv(Path(directory) / "static_deflection.csv", COLUMNS,
+                                self.rows())
+
+    def summary(self) -> str:
+        """The largest lateral static deflection and where."""
+        r = np.hypot(self.q[:, 0::4], self.q[:, 1::4])
+        i, j = np.unravel_index(int(np.argmax(r)), r.shape)
+        return (f"largest static deflection {r[i, j]:.4g} m at node {j + 1}, speed "
+                f"{self.speeds[i]:.6g} rad/s (y = {self.q[i, 4 * j]:.4g} m, "
+                f"z = {self.q[i, 4 * j + 1]:.4g} m)")
+
+
+def run_static(config_or_system: Config | RotorSystem, *, speeds: Sequence[float] | None = None,
+               reference_speed: float | None = None, search_path: Path | None = None
+               ) -> StaticResult:
+    """Static deflection over ``speeds`` [rad/s] (default from a Config: the
+    ``[analysis.modal]`` speeds; from a RotorSystem: speeds are required)."""
+    if isinstance(config_or_system, RotorSystem):
+        system = config_or_system
+        if speeds is None:
+            raise ValueError("give the speeds [rad/s]")
+        ref = reference_speed or 1.0
+        title = ""
+    else:
+        from rotorsfd.api import modal_speeds
+        from rotorsfd.api import reference_speed as config_reference_speed
+        from rotorsfd.model.build import build_model
+
+        config = config_or_system
+        m = build_model(config, search_path)
+        system = RotorSystem(m.rotor, m.sfd, m.sfd_node, m.unbalances, m.base_motion)
+        ref = reference_speed or config_reference_speed(config, system)
+        speeds = modal_speeds(config, ref) if speeds is None else speeds
+        title = config.title
+    s = np.asarray(speeds, dtype=float)
+    q = np.array([base_static_offset(system, float(w)) for w in s])
+    return StaticResult(s, q, np.asarray(system.rotor.node_x, float), float(ref), title)

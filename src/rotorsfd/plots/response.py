@@ -1,0 +1,101 @@
+"""Frequency-response figures like the paper's: dimensionless amplitudes against
+Omega~ = Omega / Omega_ref (or the continuation parameter).
+
+The figures are drawn from the columns of ``branch.csv`` (no physics here): the deflection
+r~ of every output node, and per node the static term X_0 / C and the harmonic amplitudes
+|X_k| / C of each direction. Stable parts solid, unstable parts dashed (when a ``stable``
+column is present); bifurcations marked (circle saddle-node, square period doubling,
+triangle secondary Hopf).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+
+MARKERS = {"saddle-node": "o", "period-doubling": "s", "secondary-hopf": "^"}
+
+
+def styled_line(ax: Axes, x: Any, y: Any, stable: Any = None, **kw: Any) -> None:
+    """Plot y(x): solid where ``stable`` (or everywhere if None), dashed elsewhere; the
+    pieces share their end points so the curve stays connected."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    if stable is None or len(x) < 2:
+        ax.plot(x, y, "-", **kw)
+        return
+    s = np.asarray(stable, bool)
+    label = kw.pop("label", None)
+    color = kw.pop("color", None)
+    start = 0
+    for i in range(1, len(x) + 1):
+        if i == len(x) or s[i] != s[start]:
+            end = min(i + 1, len(x))
+            (line,) = ax.plot(x[start:end], y[start:end], "-" if s[start] else "--",
+                              color=color, label=label, **kw)
+            color, label = line.get_color(), None
+            start = i
+
+
+def mark_bifurcations(ax: Axes, x: Any, y: Any, bifurcations: Sequence[Mapping[str, Any]],
+                      x_key: str) -> None:
+    """Markers at the bifurcations (y interpolated along the branch curve in order)."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    for b in bifurcations:
+        xb = float(b[x_key])
+        i = int(np.argmin(np.abs(x - xb)))
+        ax.plot([xb], [y[i]], MARKERS.get(b["type"], "x"), color="k", ms=6,
+                mfc="none", zorder=5)
+
+
+def response_figures(table: Mapping[str, Any], *, x_name: str, x_label: str,
+                     nodes: Sequence[int], directions: Sequence[str], H: int,
+                     clearance: float,
+                     bifurcations: Sequence[Mapping[str, Any]] | None = None,
+                     title: str = "") -> dict[str, Figure]:
+    """``response_deflection.png`` (r~ of every node) and ``response_node<n>.png`` (one
+    panel per direction: X_0/C and |X_k|/C, k = 1..H)."""
+    x = np.asarray(table[x_name], float)
+    stable = table.get("stable")
+    x_key = x_name if x_name in ("speed_ratio", "speed_rad_s") else "parameter"
+    figs: dict[str, Figure] = {}
+
+    fig = Figure(figsize=(7, 4.5), layout="constrained")
+    ax = fig.add_subplot()
+    for n in nodes:
+        y = table[f"defl_{n}"]
+        styled_line(ax, x, y, stable, label=f"node {n}", lw=1.4)
+        if bifurcations:
+            mark_bifurcations(ax, x, y, bifurcations, x_key)
+    ax.set_xlabel(x_label)
+    ax.set_ylabel(r"$\tilde r = \max_t \sqrt{y^2 + z^2} / C$")
+    ax.set_title(_short(title or "Frequency response"), fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    figs["response_deflection.png"] = fig
+
+    for n in nodes:
+        fig = Figure(figsize=(7, 3.2 * len(directions)), layout="constrained")
+        axes = fig.subplots(len(directions), 1, sharex=True, squeeze=False)[:, 0]
+        for ax, d in zip(axes, directions, strict=True):
+            styled_line(ax, x, np.asarray(table[f"static_{n}_{d}"]) / clearance, stable,
+                        label="static (0X)", lw=1.2, color="0.4")
+            for k in range(1, H + 1):
+                y = np.asarray(table[f"amp_{n}_{d}_h{k}"]) / clearance
+                styled_line(ax, x, y, stable, label=f"{k}X", lw=1.4 if k == 1 else 1.0)
+                if bifurcations and k == 1:
+                    mark_bifurcations(ax, x, y, bifurcations, x_key)
+            ax.set_ylabel(f"{d}/C: " + r"$X_0/C$, $|X_k|/C$")
+            ax.grid(alpha=0.3)
+            ax.set_title(f"node {n}, {d}", fontsize=9)
+        axes[0].legend(fontsize=8, ncol=min(H + 1, 5))
+        axes[-1].set_xlabel(x_label)
+        figs[f"response_node{n}.png"] = fig
+    return figs
+
+
+def _short(text: str, n: int = 80) -> str:
+    return text if len(text) <= n else text[: n - 3] + "..."
