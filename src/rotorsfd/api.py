@@ -20,7 +20,7 @@ import numpy as np
 
 from rotorsfd.errors import ConfigError
 from rotorsfd.io import atomic
-from rotorsfd.io.config import dump_config, load_config, show_config, with_values
+from rotorsfd.io.config import dump_config, get_path, load_config, show_config, with_values
 from rotorsfd.io.schema import Config
 from rotorsfd.linear import CampbellResult, CriticalSpeed, campbell, critical_speeds
 from rotorsfd.model.build import Model, build_model, build_rotor, build_sfd
@@ -218,7 +218,7 @@ def run_fit_supports(config: Config, fields: Sequence[str], targets: Sequence[fl
             raise ConfigError("--field", path, exc.args[0]) from None
         if kind != "stiffness":
             raise ConfigError("--field", path, f"must be a stiffness field (N/m), not {kind}")
-        start.append(_value_at(config, path) or 1e7)
+        start.append(get_path(config, path) or 1e7)
 
     def build(*k: float) -> Any:
         return linear_system(with_values(config, dict(zip(fields, k, strict=True))))
@@ -227,15 +227,6 @@ def run_fit_supports(config: Config, fields: Sequence[str], targets: Sequence[fl
                                 speed_range=(0.0, config.analysis.modal.critical_speed_max))
     fitted = with_values(config, dict(zip(fields, fit.stiffnesses, strict=True)))
     return FitRunResult(tuple(fields), fit, fitted)
-
-
-def _value_at(config: Config, path: str) -> Any:
-    from rotorsfd.io.schema import split_path
-
-    obj: Any = config
-    for part in split_path(path):
-        obj = obj[part] if isinstance(part, int) else getattr(obj, part)
-    return obj
 
 
 def run_response(config: Any, **kwargs: Any) -> Any:

@@ -132,6 +132,11 @@ def set_path(data: dict[str, Any], key: str, value: Any) -> None:
                 node = node[part]
 
 
+def get_path(config: Config, key: str) -> Any:
+    """The resolved value (SI) at dotted ``key``, or None if that field is not set."""
+    return _lookup(dump_config(config), split_path(key))[1]
+
+
 # ---- errors ----------------------------------------------------------------------------------
 
 
@@ -143,6 +148,7 @@ def _join(loc: Iterable[Any]) -> str:
 
 
 def _lookup(data: Any, loc: Iterable[Any]) -> tuple[bool, Any]:
+    """(found, value) at the key sequence ``loc`` of nested dicts and lists."""
     for part in loc:
         try:
             data = data[part]
