@@ -131,3 +131,16 @@ def test_poincare_tools() -> None:
     assert correlation_dimension(rng.uniform(size=(600, 2))) > 1.6
     with pytest.raises(ValueError):
         classify_motion(np.zeros((3, 2)))
+
+
+@pytest.mark.parametrize(("k1", "k3", "F"), [(1.0, 0.0, 1.0), (-1.0, 1.0, 0.2)])
+def test_lyapunov_exponent_of_a_damped_focus_is_minus_half_damping(k1: float, k3: float,
+                                                                    F: float) -> None:
+    """Linear oscillator and the period-1 double-well Duffing (complex Floquet pair,
+    ``|mu|^2 = exp(-c T)``): both exponents are ``-c/2``."""
+    c = 0.3
+    fo = Forcing(omega=1.2, harmonics=[HarmonicLoad(1.0, np.array([F]))])
+    ly = largest_lyapunov(np.eye(1), np.array([[c]]), np.zeros((1, 1)), [0],
+                          cubic_spring_kernel, [k1, k3], fo, steps_per_period=SPP,
+                          n_periods=200, q0=1.0, transient_steps=100 * SPP)
+    assert ly.exponent == pytest.approx(-c / 2, rel=2e-2)
