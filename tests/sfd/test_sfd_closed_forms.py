@@ -154,3 +154,18 @@ def test_from_ratios_and_broadcasting() -> None:
     assert dq.shape == (3, 4, 2, 2) and dv.shape == (3, 4, 2, 2)
     Fy, Fz = sfd.force(1e-5, 0.0, 0.0, 0.01)
     assert np.ndim(Fy) == 0 and isinstance(float(Fy), float)
+
+
+def test_generic_solver_form() -> None:
+    """nl_force / nl_jacobian take (..., 2) arrays of (y, z) and (vy, vz)."""
+    sfd = paper_sfd("pi")
+    y, z, vy, vz = random_states(12, 8)
+    q = np.stack([y, z], -1).reshape(3, 4, 2)
+    v = np.stack([vy, vz], -1).reshape(3, 4, 2)
+    F = sfd.nl_force(q, v)
+    dq, dv = sfd.nl_jacobian(q, v)
+    assert F.shape == (3, 4, 2) and dq.shape == dv.shape == (3, 4, 2, 2)
+    Fy, Fz = sfd.force(y, z, vy, vz)
+    np.testing.assert_array_equal(F.reshape(12, 2), np.stack([Fy, Fz], -1))
+    np.testing.assert_array_equal(dq.reshape(12, 2, 2), sfd.jacobian(y, z, vy, vz)[0])
+    np.testing.assert_array_equal(sfd.nl_force(q[0, 0], v[0, 0]), F[0, 0])

@@ -204,3 +204,16 @@ class SFD:
         F, dFdq, dFdv, shape = self._evaluate(y, z, vy, vz, want_jac=True)
         return (F.reshape((*shape, 2)), dFdq.reshape((*shape, 2, 2)),
                 dFdv.reshape((*shape, 2, 2)))
+
+    def nl_force(self, q: Any, v: Any) -> np.ndarray:
+        """Generic-solver form (``docs/INTERFACES.md``): ``q = (..., 2)`` displacements
+        ``(y, z)``, ``v = (..., 2)`` velocities; returns ``F (..., 2)``."""
+        q, v = np.asarray(q, dtype=np.float64), np.asarray(v, dtype=np.float64)
+        F, _, _, shape = self._evaluate(q[..., 0], q[..., 1], v[..., 0], v[..., 1],
+                                        want_jac=False)
+        return F.reshape((*shape, 2))
+
+    def nl_jacobian(self, q: Any, v: Any) -> tuple[np.ndarray, np.ndarray]:
+        """Generic-solver form of :meth:`jacobian`: ``(dF/dq, dF/dv)``, each ``(..., 2, 2)``."""
+        q, v = np.asarray(q, dtype=np.float64), np.asarray(v, dtype=np.float64)
+        return self.jacobian(q[..., 0], q[..., 1], v[..., 0], v[..., 1])
