@@ -6,6 +6,7 @@ import numpy as np
 
 from rotorsfd.stability.monodromy import (
     floquet_multipliers,
+    monodromy_generalized_alpha,
     monodromy_magnus4,
     monodromy_newmark,
 )
@@ -75,3 +76,17 @@ def test_reduced_vs_full_critical_multiplier():
     # error decreases with the number of kept modes
     e2 = abs(floquet_multipliers(M, D, K, T, n_modes=2, **kw).max_abs - ref.max_abs)
     assert e2 > 10 * abs(red.max_abs - ref.max_abs)
+
+
+def test_generalized_alpha_full_and_reduced():
+    """Generalized-alpha (rho_inf = 0.6) on the full and on the reduced model: same
+    critical multiplier as the reference to 1e-4."""
+    M, D, K, T, nl, kq, kv = _case()
+    kw = dict(nl_dofs=nl, dFdq=kq, dFdv=kv)
+    ref = monodromy_magnus4(M, D, K, T, n_intervals=200, **kw)
+    full = monodromy_generalized_alpha(M, D, K, T, **kw)
+    red = floquet_multipliers(M, D, K, T, n_modes=6, scheme="generalized-alpha", **kw)
+    assert red.method == "generalized-alpha-cb"
+    for r in (full, red):
+        assert r.crossing_type == ref.crossing_type
+        assert abs(r.critical - ref.critical) < 1e-4
