@@ -136,8 +136,8 @@ def sfd_sample(y: float, z: float, vy: float, vz: float, params: np.ndarray,
     F[0] = dFdv[0, 0] * vy + dFdv[0, 1] * vz
     F[1] = dFdv[1, 0] * vy + dFdv[1, 1] * vz
     if mean_film or (code == PI_FILM and e == 0.0):
-        # F is linear in v with no q-dependence to first order (mean_film: v = 0);
-        # pi film at the centre: mean over psi of the limiting Jacobians, which is 0.
+        # Guembel at v = 0: dF/dq is linear in v, so 0. Pi film at the centre: not
+        # differentiable; the mean over psi of the limiting dF/dq, which is 0.
         dFdq[0, 0] = 0.0
         dFdq[0, 1] = 0.0
         dFdq[1, 0] = 0.0
