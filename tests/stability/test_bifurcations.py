@@ -115,3 +115,22 @@ def test_sample_exactly_on_crossing():
     found = find_bifurcations(samples, solve_a)
     assert [b.kind for b in found] == ["saddle-node"]
     assert found[0].s == S_SN
+
+
+def test_location_ignores_near_neutral_distractors():
+    """Undamped structural modes give multipliers at |mu| = 1 - 1e-10 (paper rotor, full
+    model); the crossing pair and real multiplier are tracked, not the nearest to the
+    circle."""
+    distract = np.concatenate([(1 - 1e-10) * np.exp(1j * np.array([0.3, -0.3, 2.0, -2.0])),
+                               [1 - 1e-9, -(1 - 1e-9)]])
+
+    def solve(s):
+        lam, mu = solve_a(s)
+        return lam, np.concatenate([mu, distract])
+
+    samples = [BranchSample.from_solve(x, solve(x)) for x in np.linspace(0.0, 7.0, 15)]
+    found = find_bifurcations(samples, solve, rtol=1e-6)
+    assert [b.kind for b in found] == ["saddle-node", "period-doubling", "secondary-hopf"]
+    for b, s_true in zip(found, (S_SN, S_PD, S_NS), strict=True):
+        assert abs(b.lam - lam_a(s_true)) <= 1e-6 * lam_a(s_true)
+    assert abs(np.angle(found[2].critical) - 1.2) < 1e-6

@@ -112,22 +112,43 @@ def _n_complex_outside(mu: NDArray) -> int:
     return int(np.sum((~_is_real(mu)) & (np.abs(mu) > 1.0)))
 
 
-def critical_value(kind: CrossingType, multipliers: ArrayLike) -> tuple[float, complex]:
-    """Continuous location function and the critical multiplier for a crossing type."""
-    mu = np.asarray(multipliers, dtype=complex).ravel()
+def _candidates(kind: CrossingType, mu: NDArray) -> NDArray[np.complex128]:
     real = _is_real(mu)
     if kind == "secondary-hopf":
-        cand = mu[~real]
-        if cand.size == 0:
-            return np.nan, complex(np.nan)
-        c = cand[np.argmin(np.abs(np.abs(cand) - 1.0))]
-        return abs(c) ** 2 - 1.0, complex(c if c.imag >= 0 else np.conj(c))
-    target = 1.0 if kind == "saddle-node" else -1.0
-    cand = mu[real].real
+        return mu[(~real) & (mu.imag > 0)]
+    c = mu[real]
+    return c[c.real > 0] if kind == "saddle-node" else c[c.real < 0]
+
+
+def critical_value(kind: CrossingType, multipliers: ArrayLike,
+                   near: complex | None = None) -> tuple[float, complex]:
+    """Location function ``|mu*| - 1`` and the critical multiplier ``mu*`` of a crossing
+    type: among the real positive (saddle-node), real negative (period-doubling) or
+    complex (secondary Hopf, Im > 0) multipliers, the one nearest to ``near`` if given
+    (tracking along the bracket), else the one nearest to the unit circle."""
+    cand = _candidates(kind, np.asarray(multipliers, dtype=complex).ravel())
     if cand.size == 0:
         return np.nan, complex(np.nan)
-    c = cand[np.argmin(np.abs(cand - target))]
-    return (c - 1.0 if target > 0 else -c - 1.0), complex(c)
+    if near is None or not np.isfinite(near):
+        c = cand[np.argmin(np.abs(np.abs(cand) - 1.0))]
+    else:
+        c = cand[np.argmin(np.abs(cand - near))]
+    return float(abs(c) - 1.0), complex(c)
+
+
+def _crossing_multiplier(kind: CrossingType, a: BranchSample,
+                         b: BranchSample) -> complex | None:
+    """The multiplier at ``b`` whose continuation from ``a`` (nearest neighbour) crosses
+    the unit circle; None if there is no such pair."""
+    ca, cb = (_candidates(kind, p.multipliers) for p in (a, b))
+    best, dist = None, np.inf
+    for x in ca:
+        if cb.size == 0:
+            break
+        y = cb[np.argmin(np.abs(cb - x))]
+        if (abs(x) - 1.0) * (abs(y) - 1.0) <= 0 and abs(y - x) < dist:
+            best, dist = complex(y), abs(y - x)
+    return best
 
 
 def _changes(x: float, y: float) -> bool:
@@ -155,66 +176,67 @@ def detect(samples: Sequence[BranchSample]) -> list[Bracket]:
     return out
 
 
-def _value(kind: CrossingType, via: str, p: BranchSample) -> float:
-    if via == "tangent":
-        return float(p.dlam_ds)
-    return critical_value(kind, p.multipliers)[0]
-
-
 def locate(bracket: Bracket, solve_at: SolveAt, *, rtol: float = 1e-6,
            lam_scale: float | None = None, max_iter: int = 80) -> Bifurcation:
     """Locate a bracketed crossing to ``|lam - lam*| <= rtol * max(|lam|, lam_scale)``.
 
-    Illinois regula falsi on the critical function (``via='tangent'``: on dlam/ds).
-    Converged when the parameter values at both bracket ends and at the bracket
-    midpoint agree to the tolerance. Raises ``ConvergenceError`` otherwise.
+    Illinois regula falsi in s on ``|mu*| - 1`` of the crossing multiplier, tracked from
+    point to point by nearest neighbour (``via='tangent'``: on dlam/ds). Converged when
+    the parameter at both bracket ends and at the bracket midpoint agree to the
+    tolerance (this also bounds the error at a fold, where lam(s) is quadratic).
+    Raises ``ConvergenceError`` otherwise.
     """
     kind, via = bracket.kind, bracket.via
     a, b = bracket.a, bracket.b
-    fa, fb = _value(kind, via, a), _value(kind, via, b)
-    if not (np.isfinite(fa) and np.isfinite(fb)) or fa * fb > 0:
-        # e.g. the critical multiplier is complex at one end: fall back to bisection on
-        # the sign of the test function itself
-        fa = float(crossing_signs(a.multipliers)[kind])
-        fb = float(crossing_signs(b.multipliers)[kind])
+    near = None
+
+    def value(p: BranchSample) -> float:
+        nonlocal near
+        if via == "sign":
+            return float(crossing_signs(p.multipliers)[kind])
+        if via == "tangent":
+            return float(p.dlam_ds)
+        f, near = critical_value(kind, p.multipliers, near)
+        return f
+
+    def result(p: BranchSample, it: int, lams: tuple[float, float]) -> Bifurcation:
+        _, crit = critical_value(kind, p.multipliers, near)
+        return Bifurcation(kind, p.s, p.lam, p.multipliers, crit, bracket.via, it, lams)
+
+    if via == "multiplier":
+        near = _crossing_multiplier(kind, a, b)
+        if near is None:  # no tracked pair: bisection on the test function's sign
+            via = "sign"
+    fb = value(b)
+    fa = value(a)
+    if via != "sign" and not (np.isfinite(fa) and np.isfinite(fb) and fa * fb <= 0):
         via = "sign"
+        fa, fb = value(a), value(b)
     if fb == 0.0:  # the sample lies on the crossing
-        _, crit = critical_value(kind, b.multipliers)
-        return Bifurcation(kind, b.s, b.lam, b.multipliers, crit, bracket.via, 0,
-                           (b.lam, b.lam))
+        return result(b, 0, (b.lam, b.lam))
     scale = lam_scale if lam_scale is not None else 0.0
-    side = 0
     for it in range(1, max_iter + 1):
         tol = rtol * max(abs(a.lam), abs(b.lam), scale)
+        s = None
         if abs(a.lam - b.lam) <= tol:
-            mid = BranchSample.from_solve(0.5 * (a.s + b.s), solve_at(0.5 * (a.s + b.s)))
-            if abs(mid.lam - a.lam) <= tol and abs(mid.lam - b.lam) <= tol:
-                best = mid
-                _, crit = critical_value(kind, best.multipliers)
-                return Bifurcation(kind, best.s, best.lam, best.multipliers, crit,
-                                   bracket.via, it, (a.lam, b.lam))
-        if via == "sign":
             s = 0.5 * (a.s + b.s)
-        else:
+        elif via != "sign":
             s = b.s - fb * (b.s - a.s) / (fb - fa)
             if not (min(a.s, b.s) < s < max(a.s, b.s)):
-                s = 0.5 * (a.s + b.s)
+                s = None
+        if s is None:
+            s = 0.5 * (a.s + b.s)
         p = BranchSample.from_solve(s, solve_at(s))
-        fp = (float(crossing_signs(p.multipliers)[kind]) if via == "sign"
-              else _value(kind, via, p))
+        if abs(a.lam - b.lam) <= tol and max(abs(p.lam - a.lam), abs(p.lam - b.lam)) <= tol:
+            return result(p, it, (a.lam, b.lam))
+        fp = value(p)
         if fp == 0.0:
-            _, crit = critical_value(kind, p.multipliers)
-            return Bifurcation(kind, p.s, p.lam, p.multipliers, crit, bracket.via, it,
-                               (p.lam, p.lam))
+            return result(p, it, (p.lam, p.lam))
         if fp * fb < 0:
             a, fa = b, fb
-            b, fb = p, fp
-            side = 0
-        else:
-            b, fb = p, fp
-            side += 1
-            if side >= 2 and via != "sign":
-                fa *= 0.5  # Illinois modification
+        elif via != "sign":
+            fa *= 0.5  # Illinois modification
+        b, fb = p, fp
     raise ConvergenceError(f"{kind} not located to rtol={rtol} in {max_iter} iterations "
                            f"(bracket s=[{a.s:.6g}, {b.s:.6g}], lam=[{a.lam:.9g}, "
                            f"{b.lam:.9g}])")
@@ -230,10 +252,16 @@ def find_bifurcations(samples: Sequence[BranchSample], solve_at: SolveAt | None 
         if solve_at is not None:
             found.append(locate(br, solve_at, rtol=rtol, lam_scale=lam_scale))
             continue
-        fa, fb = _value(br.kind, br.via, br.a), _value(br.kind, br.via, br.b)
+        if br.via == "tangent":
+            fa, fb = float(br.a.dlam_ds), float(br.b.dlam_ds)
+        else:
+            c = _crossing_multiplier(br.kind, br.a, br.b)
+            fa = critical_value(br.kind, br.a.multipliers, c)[0]
+            fb = critical_value(br.kind, br.b.multipliers, c)[0]
         w = fa / (fa - fb) if np.isfinite(fa) and np.isfinite(fb) and fa != fb else 0.5
         near = br.a if w < 0.5 else br.b
-        _, crit = critical_value(br.kind, near.multipliers)
+        _, crit = critical_value(br.kind, near.multipliers, _crossing_multiplier(
+            br.kind, br.a, br.b))
         found.append(Bifurcation(br.kind, br.a.s + w * (br.b.s - br.a.s),
                                  br.a.lam + w * (br.b.lam - br.a.lam), near.multipliers,
                                  crit, br.via, 0, (br.a.lam, br.b.lam)))
