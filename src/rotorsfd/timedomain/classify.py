@@ -89,13 +89,6 @@ def classify_motion(poincare: np.ndarray, signal: np.ndarray | None = None,
         ev["frequency_ratios"] = [ln.ratio for ln in spec.lines]
         ev["incommensurate_ratios"] = [ln.ratio for ln in spec.incommensurate]
         ev["broadband_fraction"] = spec.broadband_fraction
-    if n is not None:
-        ev["basis"] = "poincare period"
-        return MotionClass(f"period-{n}", ev)
-
-    curve = closed_curve_test(P)
-    ev["closed_curve"] = curve
-    ev["correlation_dimension"] = correlation_dimension(P)
     lam = None
     if isinstance(lyapunov, LyapunovResult):
         lam = lyapunov.per_period
@@ -103,17 +96,31 @@ def classify_motion(poincare: np.ndarray, signal: np.ndarray | None = None,
         ev["lyapunov_half_spread"] = lyapunov.half_spread
     elif lyapunov is not None:
         lam = float(lyapunov)
-    if lam is not None and math.isfinite(lam):
+    if lam is not None:
         ev["lyapunov_per_period"] = lam
-        if lam > lyapunov_threshold:
-            ev["basis"] = "positive Lyapunov exponent"
-            return MotionClass("chaotic", ev)
-        ev["basis"] = "non-periodic with non-positive Lyapunov exponent"
-        return MotionClass("quasi-periodic", ev)
+    if n is not None:
+        ev["basis"] = "poincare period"
+        return MotionClass(f"period-{n}", ev)
+
+    curve = closed_curve_test(P)
+    ev["closed_curve"] = curve
+    ev["correlation_dimension"] = correlation_dimension(P)
+    frac = None
     if spec is not None:
         frac, w2 = two_frequency_fraction(spec, float(omega))
         ev["two_frequency_fraction"] = frac
         ev["second_frequency"] = w2
+    if lam is not None and math.isfinite(lam):
+        if lam > lyapunov_threshold:
+            ev["basis"] = "positive Lyapunov exponent"
+            if curve["passed"] and frac is not None and frac >= two_frequency_min:
+                ev["note"] = ("closed-curve section and two-frequency spectrum: the positive "
+                              "exponent may come from a weakly unstable torus or from a "
+                              "neutral (undamped) direction of the model")
+            return MotionClass("chaotic", ev)
+        ev["basis"] = "non-periodic with non-positive Lyapunov exponent"
+        return MotionClass("quasi-periodic", ev)
+    if frac is not None:
         if frac >= two_frequency_min:
             ev["basis"] = "spectral lines at combinations of two incommensurate frequencies"
             return MotionClass("quasi-periodic", ev)
