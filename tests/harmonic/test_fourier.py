@@ -50,7 +50,7 @@ def test_cubic_is_exact_above_4H():
 def test_rule_doubles_for_a_rational_force():
     """Rational force near its singularity: N grows until doubling changes < tol."""
     c = 1e-4
-    force, _, _ = radial_damper(400.0, c)
+    force = radial_damper(400.0, c)[0]
     H = 3
     xs = np.zeros((2 * H + 1, 2))
     xs[0, 1] = -0.48 * c

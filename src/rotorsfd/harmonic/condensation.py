@@ -67,6 +67,13 @@ def _bandwidth(*mats: FloatArray) -> tuple[int, int]:
     return kl, ku
 
 
+def apply_blocks(A: ComplexArray, Y: FloatArray) -> FloatArray:
+    """Real layout of ``A_k Y_k`` for per-harmonic complex matrices A (H+1, p, p) and
+    real-layout columns Y (2H+1, p, c): the product by ``real_blocks(A)`` without forming
+    it."""
+    return to_real(A @ to_complex(Y))
+
+
 class CondensedHB:
     """HB-AFT residual condensed exactly onto nl_dofs (module docstring)."""
 
@@ -77,7 +84,10 @@ class CondensedHB:
         self.n_unknowns = (2 * H + 1) * problem.m
         m = problem.m
         self.delta = np.zeros((H + 1, m, m), dtype=complex)
+        self._delta_real = np.zeros((self.n_unknowns, self.n_unknowns))
         self._cache: Condensed | None = None
+        self._band: tuple | None = None      # (kl, ku, gather/scatter indices, guard)
+        self._last: tuple | None = None      # (lam, xs, G) of the last AFT
 
     # -- shift --------------------------------------------------------------------------
     def set_shift(self, xs: FloatArray, lam: float) -> None:
@@ -95,7 +105,9 @@ class CondensedHB:
             return
         k = np.arange(self.H + 1)[:, None, None]
         self.delta = Kr[None] + 1j * k * w * Cr[None]
+        self._delta_real = real_blocks(self.delta)
         self._cache = None
+        self._last = None
 
     # -- condensation -------------------------------------------------------------------
     def condense(self, lam: float, deriv: bool = True) -> Condensed:
@@ -113,9 +125,9 @@ class CondensedHB:
         sel = np.asfortranarray(rhs[:, :m])
         sol = np.empty((H + 1, n, m + 1), dtype=complex)
         rows = np.empty((H + 1, m, n), dtype=complex)
-        kl, ku = _bandwidth(M, D, K)
-        if 3 * (kl + ku + 1) < n:
-            self._banded_solves(M, D, K, w, kl, ku, rhs, sel, F, sol, rows if deriv else None)
+        band = self._band_structure(lam, M, D, K)
+        if band is not None:
+            self._banded_solves(M, D, K, w, band, rhs, sel, F, sol, rows if deriv else None)
         else:
             self._dense_solves(M, D, K, w, rhs, sel, F, sol, rows if deriv else None)
         C, u = sol[:, :, :m], sol[:, :, m]
@@ -133,8 +145,13 @@ class CondensedHB:
                 return P[0] + 1j * P[1]
 
             k = np.arange(H + 1)[:, None, None]
-            T = (prod(dK) - (k * w) ** 2 * prod(dM) - 2 * k**2 * w * dw * prod(M)
-                 + 1j * k * prod(dw * D + w * dD))
+            T = 1j * k * prod(dw * D + w * dD)
+            if dK.any():
+                T += prod(dK)
+            if dM.any():
+                T -= (k * w) ** 2 * prod(dM)
+            if dw != 0.0:
+                T -= 2 * k**2 * w * dw * prod(M)
             out.dHt = -T @ C
             out.dPt = np.einsum("kmn,kn->km", rows, p.dforcing(lam, H)) \
                 - np.einsum("kmn,kn->km", T, u)
@@ -158,24 +175,41 @@ class CondensedHB:
             if rows is not None:
                 rows[k] = lapack.zgetrs(lu, piv, sel)[0].T        # rows s of Z_k^-1
 
-    def _banded_solves(self, M, D, K, w, kl, ku, rhs, sel, F, sol, rows) -> None:
+    def _band_structure(self, lam: float, M: FloatArray, D: FloatArray, K: FloatArray
+                        ) -> tuple | None:
+        """Band of the matrices (the union of their patterns and those of dmatrices, found
+        once), or None when it is too wide to pay off. Every call checks that M, D, K have
+        nothing outside the band (cheap gather), and widens it if they do."""
+        n = self.problem.n_dof
+        if self._band is not None:
+            out = self._band[-1]
+            if not any(np.take(A, out).any() for A in (M, D, K)):
+                return self._band if self._band[0] >= 0 else None
+        kl, ku = _bandwidth(M, D, K, *self.problem.dmatrices(lam))
+        if self._band is not None and self._band[0] >= 0:
+            kl, ku = max(kl, self._band[0]), max(ku, self._band[1])
+        i, j = np.indices((n, n))
+        inside = (i - j <= kl) & (j - i <= ku)
+        out = np.flatnonzero(~inside)
+        if 3 * (kl + ku + 1) >= n:
+            self._band = (-1, -1, out)
+            return None
+        ii, jj = i[inside], j[inside]
+        # LAPACK band storage ab[kl + ku + i - j, j]; stored as abT[j, kl + ku + i - j]
+        self._band = (kl, ku, ii * n + jj, jj, kl + ku + ii - jj, out)
+        return self._band
+
+    def _banded_solves(self, M, D, K, w, band, rhs, sel, F, sol, rows) -> None:
         """Banded complex LU (LAPACK gbtrf) of Zt_k per harmonic; same outputs."""
         s, m, n = self.problem.nl_dofs, self.problem.m, self.problem.n_dof
-        key = (n, kl, ku)
-        if getattr(self, "_band_key", None) != key:
-            off = np.arange(-ku, kl + 1)                       # i - j
-            jj = (np.arange(n)[None, :] + 0 * off[:, None])
-            ii = jj + off[:, None]
-            ok = (ii >= 0) & (ii < n)
-            self._band = (ii[ok], jj[ok], (kl + ku + ii - jj)[ok])
-            self._band_key = key
-        ii, jj, rr = self._band
-        Kb, Mb, Db = K[ii, jj], M[ii, jj], D[ii, jj]
+        kl, ku, flat, jj, rr, _ = band
+        kw = w * np.arange(self.H + 1)[:, None]
+        vals = np.take(K, flat) - kw**2 * np.take(M, flat) + 1j * kw * np.take(D, flat)
+        abT = np.zeros((self.H + 1, n, 2 * kl + ku + 1), dtype=complex)
+        abT[:, jj, rr] = vals
+        abT[:, s, kl + ku] += np.diagonal(self.delta, axis1=1, axis2=2)
         for k in range(self.H + 1):
-            ab = np.zeros((2 * kl + ku + 1, n), dtype=complex, order="F")
-            ab[rr, jj] = Kb - (k * w) ** 2 * Mb + 1j * (k * w) * Db
-            ab[kl + ku, s] += np.diag(self.delta[k])
-            lu, piv, info = lapack.zgbtrf(ab, kl, ku, overwrite_ab=True)
+            lu, piv, info = lapack.zgbtrf(abT[k].T, kl, ku, overwrite_ab=True)
             if info != 0:
                 raise FloatingPointError(f"singular dynamic stiffness Z_{k} (w={w:.6g})")
             rhs[:, m] = F[k]
@@ -192,14 +226,15 @@ class CondensedHB:
         w = p.frequency(lam)
         cd = self.condense(lam, deriv=jac)
         nl = nonlinear_coefficients(p, self.aft, xs, w, jac)
+        self._last = (lam, xs.copy(), nl.G)
         Xs = to_complex(xs)
         Gt = to_complex(nl.G) + np.einsum("kij,kj->ki", self.delta, Xs)
         R = xs - to_real(cd.Pt + np.einsum("kij,kj->ki", cd.Ht, Gt))
         if not jac:
             return R, None, None
         nu = self.n_unknowns
-        Hr = real_blocks(cd.Ht)
-        J = np.eye(nu) - Hr @ (nl.dG.reshape(nu, nu) + real_blocks(self.delta))
+        dGt = (nl.dG.reshape(nu, nu) + self._delta_real).reshape(2 * H + 1, p.m, nu)
+        J = np.eye(nu) - apply_blocks(cd.Ht, dGt).reshape(nu, nu)
         dGdl = p.dfrequency(lam) * to_complex(nl.dGdw)
         dR = -to_real(cd.dPt + np.einsum("kij,kj->ki", cd.dHt, Gt)
                       + np.einsum("kij,kj->ki", cd.Ht, dGdl))
@@ -218,12 +253,22 @@ class CondensedHB:
         p, H = self.problem, self.H
         xs = xs.reshape(2 * H + 1, p.m)
         cd = self.condense(lam, deriv=False)
-        nl = nonlinear_coefficients(p, self.aft, xs, p.frequency(lam), jac=False)
-        Gt = to_complex(nl.G) + np.einsum("kij,kj->ki", self.delta, to_complex(xs))
+        G = self.last_G(xs, lam)
+        if G is None:
+            G = nonlinear_coefficients(p, self.aft, xs, p.frequency(lam), jac=False).G
+        Gt = to_complex(G) + np.einsum("kij,kj->ki", self.delta, to_complex(xs))
         X = cd.u + np.einsum("knm,km->kn", cd.C, Gt)
         X[:, p.nl_dofs] = to_complex(xs)    # = the recovered values up to the residual
         X[0] = X[0].real
         return X
+
+    def last_G(self, xs: FloatArray, lam: float) -> FloatArray | None:
+        """Nonlinear-force coefficients of the last residual evaluation if it was at
+        (xs, lam), else None."""
+        if self._last is not None and self._last[0] == lam \
+                and np.array_equal(self._last[1], xs.reshape(self._last[1].shape)):
+            return self._last[2]
+        return None
 
     def nl_part(self, xs: FloatArray) -> FloatArray:
         """The unknowns are the nonlinear-DOF coefficients themselves (2H+1, m)."""

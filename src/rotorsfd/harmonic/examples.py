@@ -47,7 +47,8 @@ def duffing(c: float = 0.05, k: float = 1.0, k3: float = 0.1, F: float = 0.1
 
 
 def radial_damper(c0: float, clearance: float):
-    """``F = -c0 v / s^{3/2}``, ``s = 1 - |q|^2/C^2``: force, Jacobian, limit |q|/C."""
+    """``F = -c0 v / s^{3/2}``, ``s = 1 - |q|^2/C^2``: force, Jacobian, limit |q|/C, None
+    (no combined force-and-Jacobian)."""
 
     def _s(q: FloatArray, v: FloatArray) -> FloatArray:
         s = 1.0 - np.sum(q**2, axis=-1) / clearance**2
@@ -70,12 +71,12 @@ def radial_damper(c0: float, clearance: float):
     def limit(q: FloatArray) -> float:
         return float(np.sqrt(np.max(np.sum(q**2, axis=-1)))) / clearance
 
-    return force, jacobian, limit
+    return force, jacobian, limit, None
 
 
 def sfd_nonlinearity(sfd):
-    """Force, Jacobian and limit (max eccentricity ratio) of a ``rotorsfd.sfd.SFD`` in
-    the vectorised form of :class:`PeriodicProblem` (q, v of shape (..., 2))."""
+    """Force, Jacobian, limit (max eccentricity ratio) and force-and-Jacobian of a
+    ``rotorsfd.sfd.SFD`` in the vectorised form of :class:`PeriodicProblem` (q, v (..., 2))."""
 
     def force(q: FloatArray, v: FloatArray) -> FloatArray:
         Fy, Fz = sfd.force(q[..., 0], q[..., 1], v[..., 0], v[..., 1])
@@ -87,7 +88,10 @@ def sfd_nonlinearity(sfd):
     def limit(q: FloatArray) -> float:
         return float(np.sqrt(np.max(np.sum(q**2, axis=-1)))) / sfd.clearance
 
-    return force, jacobian, limit
+    def force_jacobian(q: FloatArray, v: FloatArray):
+        return sfd.force_and_jacobian(q[..., 0], q[..., 1], v[..., 0], v[..., 1])
+
+    return force, jacobian, limit, force_jacobian
 
 
 def jeffcott_damper(mass: float = 10.0, stiffness: float = 1e6, damping: float = 20.0,
@@ -110,13 +114,14 @@ def jeffcott_damper(mass: float = 10.0, stiffness: float = 1e6, damping: float =
         f[1] = 2 * unbalance * lam * dirn
         return f
 
-    force, jac, limit = radial_damper(c0, clearance) if sfd is None else sfd_nonlinearity(sfd)
+    force, jac, limit, both = (radial_damper(c0, clearance) if sfd is None
+                               else sfd_nonlinearity(sfd))
     clearance = clearance if sfd is None else sfd.clearance
     return PeriodicProblem(
         n_dof=2, nl_dofs=np.array([0, 1]), matrices=_const(M, D, K), dmatrices=_const(Z, Z, Z),
         forcing=forcing, dforcing=dforcing, frequency=lambda lam: lam,
         dfrequency=lambda lam: 1.0, nl_force=force, nl_jacobian=jac, scaling=clearance,
-        nl_limit=limit, name="jeffcott_damper")
+        nl_limit=limit, name="jeffcott_damper", nl_force_jacobian=both)
 
 
 def _beam_element(L: float, EI: float, rhoA: float) -> tuple[FloatArray, FloatArray]:
@@ -182,13 +187,15 @@ def beam_rotor(n_nodes: int = 21, unbalance: float = 1.44e-4, c0: float = 500.0,
         f[1] = 2 * unbalance * lam * dirn
         return f
 
-    force, jac, limit = radial_damper(c0, clearance) if sfd is None else sfd_nonlinearity(sfd)
+    force, jac, limit, both = (radial_damper(c0, clearance) if sfd is None
+                               else sfd_nonlinearity(sfd))
     clearance = clearance if sfd is None else sfd.clearance
     return PeriodicProblem(
         n_dof=n, nl_dofs=np.array([0, 1]), matrices=lambda lam: (M, Cs + lam * G, K),
         dmatrices=lambda lam: (Z, G, Z), forcing=forcing, dforcing=dforcing,
         frequency=lambda lam: lam, dfrequency=lambda lam: 1.0, nl_force=force,
-        nl_jacobian=jac, scaling=clearance, nl_limit=limit, name="beam_rotor")
+        nl_jacobian=jac, scaling=clearance, nl_limit=limit, name="beam_rotor",
+        nl_force_jacobian=both)
 
 
 def generic_chain(n: int = 6, nl: tuple[int, int] = (2, 3), seed: int = 0

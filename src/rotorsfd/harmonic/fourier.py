@@ -93,15 +93,19 @@ def default_min_samples(H: int) -> int:
 
 
 def aliasing_error(force: Callable[[FloatArray, FloatArray], FloatArray],
-                   xs: FloatArray, w: float, N: int) -> float:
+                   xs: FloatArray, w: float, N: int, G_N: FloatArray | None = None) -> float:
     """Relative change of the retained nonlinear-force coefficients when N doubles.
 
     ``|P_2N f(E_2N x) - P_N f(E_N x)| / max(|P_2N f(E_2N x)|, tiny)`` (max norms), for the
-    nonlinear DOF coefficients ``xs`` (2H+1, m) at frequency w.
+    nonlinear DOF coefficients ``xs`` (2H+1, m) at frequency w; ``G_N`` the coefficients
+    with N samples if already known.
     """
     H = (xs.shape[0] - 1) // 2
     out = []
     for n in (N, 2 * N):
+        if n == N and G_N is not None:
+            out.append(G_N)
+            continue
         A = aft_matrices(H, n)
         out.append(A.P @ force(A.E @ xs, w * (A.Ed @ xs)))
     scale = max(float(np.max(np.abs(out[1]))), np.finfo(float).tiny)

@@ -99,8 +99,9 @@ class HBSystem:
 
     def aliasing(self, z: FloatArray) -> float:
         x, lam = self.from_z(z)
-        return aliasing_error(self.problem.nl_force, self.hb.nl_part(x),
-                              self.problem.frequency(lam), self.N)
+        xs = self.hb.nl_part(x)
+        return aliasing_error(self.problem.nl_force, xs, self.problem.frequency(lam), self.N,
+                              self.hb.last_G(xs, lam))
 
 
 def _initial_guess(problem: PeriodicProblem, H: int, lam: float,

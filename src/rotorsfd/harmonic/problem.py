@@ -45,6 +45,8 @@ class PeriodicProblem:
     nl_limit(q_nl_samples (N, m)) -> float, optional: a measure that must stay < 1 (e.g.
         the largest eccentricity ratio over the period); solvers damp steps to keep it.
     name : label for messages.
+    nl_force_jacobian(q_nl, v_nl) -> (F, dF/dq, dF/dv), optional: both in one pass (e.g.
+        ``SFD.force_and_jacobian``), used instead of two calls when given.
     """
 
     n_dof: int
@@ -60,6 +62,8 @@ class PeriodicProblem:
     scaling: float | FloatArray = 1.0
     nl_limit: Callable[[FloatArray], float] | None = None
     name: str = field(default="periodic problem")
+    nl_force_jacobian: Callable[[FloatArray, FloatArray],
+                                tuple[FloatArray, FloatArray, FloatArray]] | None = None
 
     def __post_init__(self) -> None:
         self.nl_dofs = np.atleast_1d(np.asarray(self.nl_dofs, dtype=np.int64))

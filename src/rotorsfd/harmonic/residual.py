@@ -48,13 +48,18 @@ def nonlinear_coefficients(problem: PeriodicProblem, aft: AFTMatrices, xs: Float
     q = aft.E @ xs
     dq_tau = aft.Ed @ xs
     v = w * dq_tau
-    f = np.asarray(problem.nl_force(q, v), dtype=float)
+    if jac and problem.nl_force_jacobian is not None:
+        f, dfq, dfv = problem.nl_force_jacobian(q, v)
+    else:
+        f = problem.nl_force(q, v)
+    f = np.asarray(f, dtype=float)
     if not np.all(np.isfinite(f)):
         raise FloatingPointError("non-finite nonlinear force in AFT")
     G = aft.P @ f
     if not jac:
         return NonlinearCoefficients(G, None, None, q)
-    dfq, dfv = problem.nl_jacobian(q, v)
+    if problem.nl_force_jacobian is None:
+        dfq, dfv = problem.nl_jacobian(q, v)
     N, m = q.shape
     nh = aft.E.shape[1]
     T = dfq[..., None] * aft.E[:, None, None, :] + w * dfv[..., None] * aft.Ed[:, None, None, :]
@@ -104,6 +109,7 @@ class FullHB:
         self.H = H
         self.aft = aft_matrices(H, N)
         self.n_unknowns = (2 * H + 1) * problem.n_dof
+        self._last: tuple | None = None
 
     def residual(self, x: FloatArray, lam: float, jac: bool = True
                  ) -> tuple[FloatArray, FloatArray | None, FloatArray | None]:
@@ -115,6 +121,7 @@ class FullHB:
         Z = dynamic_stiffness(M, D, K, w, H)
         X = to_complex(x)
         nl = nonlinear_coefficients(p, self.aft, x[:, s], w, jac)
+        self._last = (lam, x[:, s].copy(), nl.G)
         Rc = np.einsum("kij,kj->ki", Z, X) - p.forcing(lam, H)
         R = to_real(Rc)
         R[:, s] -= nl.G
@@ -128,6 +135,13 @@ class FullHB:
         dR[:, s] -= p.dfrequency(lam) * nl.dGdw
         nu = self.n_unknowns
         return R, J.reshape(nu, nu), dR.reshape(nu)
+
+    def last_G(self, xs: FloatArray, lam: float) -> FloatArray | None:
+        """Nonlinear-force coefficients of the last evaluation if it was at (xs, lam)."""
+        if self._last is not None and self._last[0] == lam \
+                and np.array_equal(self._last[1], xs):
+            return self._last[2]
+        return None
 
     def nl_part(self, x: FloatArray) -> FloatArray:
         """Real-layout coefficients of the nonlinear DOFs (2H+1, m)."""
