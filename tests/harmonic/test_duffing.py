@@ -69,3 +69,12 @@ def test_bistable_frequency_has_two_stable_amplitudes(branch):
     up = abs(_pick(branch, 1.09, "upper")[1, 0])
     lo = abs(_pick(branch, 1.09, "lower")[1, 0])
     assert up > 2 * lo
+
+
+def test_downward_sweep_passes_the_folds_the_other_way(branch):
+    down = continue_periodic(duffing(C, K, K3, F), 2.0, 0.5, H)
+    assert down.success, down.message
+    assert len(down.folds()) == 2
+    np.testing.assert_allclose(np.sort(down.lam[down.folds()]),
+                               np.sort(branch.lam[branch.folds()]), rtol=2e-2)
+    assert abs(down.X[-1, 1, 0]) == pytest.approx(abs(branch.X[0, 1, 0]), rel=1e-6)
