@@ -125,3 +125,17 @@ def test_recording_and_poincare_sampling() -> None:
     assert r.q.shape == (81, 1) and r.poincare_q.shape == (9, 1)
     np.testing.assert_array_equal(r.q[-1], r.q_final[[0]])
     assert r.q_final.shape == (3,)
+
+
+def test_forcing_evaluation_matches_the_loop_forcing() -> None:
+    """``Forcing.at`` and the grid forcing of the prepared system agree."""
+    from rotorsfd.timedomain.integrate import force_at_step, prepare
+
+    fo = Forcing(omega=2.0, constant=np.array([1.0, 0.0]),
+                 harmonics=[HarmonicLoad(1.5, np.array([0.0, 1.0]), np.array([2.0, 0.0]))],
+                 series=[(lambda t: np.exp(-t), np.array([0.5, 0.5]))])
+    ps = prepare(np.eye(2), np.eye(2), np.eye(2), [], None, None, fo, 0.01, 100, t0=0.3)
+    for k in (0, 37, 100):
+        np.testing.assert_allclose(force_at_step(ps, k), fo.at(0.3 + 0.01 * k, 2),
+                                   rtol=1e-14)
+    assert fo.at(np.zeros(4), 2).shape == (4, 2)
