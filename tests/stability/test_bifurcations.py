@@ -134,3 +134,11 @@ def test_location_ignores_near_neutral_distractors():
     for b, s_true in zip(found, (S_SN, S_PD, S_NS), strict=True):
         assert abs(b.lam - lam_a(s_true)) <= 1e-6 * lam_a(s_true)
     assert abs(np.angle(found[2].critical) - 1.2) < 1e-6
+
+
+def test_dead_band_ignores_noise_crossings():
+    """Multipliers wobbling at 1 +- 1e-9 (round-off on undamped modes) raise no event."""
+    a = BranchSample(0.0, 1.0, np.array([1 - 1e-9, -(1 + 1e-9), 0.5]))
+    b = BranchSample(1.0, 1.1, np.array([1 + 1e-9, -(1 - 1e-9), 0.5]))
+    assert detect([a, b]) == []
+    assert len(detect([a, b], dead_band=0.0)) == 2

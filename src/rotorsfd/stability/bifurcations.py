@@ -9,7 +9,9 @@ real monodromy), the standard test functions (Kuznetsov, Seydel) are::
     secondary Hopf / NS     tau_NS = prod_{i<j} (mu_i mu_j - 1) (bialternate product)
 
 All three are real; a sign change between two converged points brackets a crossing.
-Signs are computed from the factors (no overflow). A sign change of tau_NS caused by two
+Signs are computed from the factors (no overflow), with a dead band: a multiplier with
+``|mu| <= 1 + dead_band`` (default ``STABILITY_TOL``) counts as inside, so round-off on
+the neutral multipliers of undamped modes raises no event. A sign change of tau_NS caused by two
 *real* multipliers with product 1 (neutral saddle) is not a bifurcation and is ignored.
 
 Location: regula falsi (Illinois) in s on a continuous function of the critical
@@ -33,7 +35,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rotorsfd.errors import ConvergenceError
-from rotorsfd.stability.floquet import CrossingType
+from rotorsfd.stability.floquet import STABILITY_TOL, CrossingType
 
 IMAG_TOL = 1e-9
 """A multiplier is real when ``|Im mu| <= IMAG_TOL * max(1, |mu|)``."""
@@ -92,24 +94,27 @@ def _is_real(mu: NDArray) -> NDArray[np.bool_]:
     return np.abs(mu.imag) <= IMAG_TOL * np.maximum(1.0, np.abs(mu))
 
 
-def crossing_signs(multipliers: ArrayLike) -> dict[str, int]:
+def crossing_signs(multipliers: ArrayLike, dead_band: float = 0.0) -> dict[str, int]:
     """Signs (+1, -1, 0) of tau_SN, tau_PD, tau_NS (module docstring); complex-conjugate
-    factors are positive, so only real factors count."""
+    factors are positive, so only real factors count. A multiplier within ``dead_band``
+    outside the unit circle counts as inside (numerically neutral multipliers of
+    undamped modes then never flip a sign)."""
     mu = np.asarray(multipliers, dtype=complex).ravel()
     re = mu.real[_is_real(mu)]
-    out = {"saddle-node": int(np.prod(np.sign(re - 1.0))),
-           "period-doubling": int(np.prod(np.sign(re + 1.0)))}
+    sn = np.where((re - 1.0 > 0) & (re - 1.0 <= dead_band), -1.0, np.sign(re - 1.0))
+    pd = np.where((re + 1.0 < 0) & (re + 1.0 >= -dead_band), 1.0, np.sign(re + 1.0))
+    out = {"saddle-node": int(np.prod(sn)), "period-doubling": int(np.prod(pd))}
     # bialternate: real pairs (i<j) contribute sign(mu_i mu_j - 1); complex pairs with
     # their conjugates contribute |.|^2 > 0 except the pair itself: |mu|^2 - 1.
     prod_real = np.outer(re, re)[np.triu_indices(re.size, 1)] - 1.0
-    cplx = mu[(~_is_real(mu)) & (mu.imag > 0)]
-    out["secondary-hopf"] = int(np.prod(np.sign(prod_real))
-                                * np.prod(np.sign(np.abs(cplx) ** 2 - 1.0)))
+    cplx = np.abs(mu[(~_is_real(mu)) & (mu.imag > 0)]) - 1.0
+    ns = np.where((cplx > 0) & (cplx <= dead_band), -1.0, np.sign(cplx))
+    out["secondary-hopf"] = int(np.prod(np.sign(prod_real)) * np.prod(ns))
     return out
 
 
-def _n_complex_outside(mu: NDArray) -> int:
-    return int(np.sum((~_is_real(mu)) & (np.abs(mu) > 1.0)))
+def _n_complex_outside(mu: NDArray, dead_band: float = 0.0) -> int:
+    return int(np.sum((~_is_real(mu)) & (np.abs(mu) > 1.0 + dead_band)))
 
 
 def _candidates(kind: CrossingType, mu: NDArray) -> NDArray[np.complex128]:
@@ -156,11 +161,14 @@ def _changes(x: float, y: float) -> bool:
     return (x * y < 0) or (y == 0 and x != 0)
 
 
-def detect(samples: Sequence[BranchSample]) -> list[Bracket]:
-    """Brackets of crossings between consecutive samples (sign changes of the tests)."""
+def detect(samples: Sequence[BranchSample],
+           dead_band: float = STABILITY_TOL) -> list[Bracket]:
+    """Brackets of crossings between consecutive samples (sign changes of the tests,
+    with multipliers up to ``1 + dead_band`` in modulus counted as inside)."""
     out: list[Bracket] = []
+    db = dead_band
     for a, b in pairwise(samples):
-        sa, sb = crossing_signs(a.multipliers), crossing_signs(b.multipliers)
+        sa, sb = crossing_signs(a.multipliers, db), crossing_signs(b.multipliers, db)
         fold_tangent = (a.dlam_ds is not None and b.dlam_ds is not None
                         and _changes(a.dlam_ds, b.dlam_ds))
         if _changes(sa["saddle-node"], sb["saddle-node"]):
@@ -171,7 +179,8 @@ def detect(samples: Sequence[BranchSample]) -> list[Bracket]:
         if _changes(sa["period-doubling"], sb["period-doubling"]):
             out.append(Bracket("period-doubling", a, b))
         if (_changes(sa["secondary-hopf"], sb["secondary-hopf"])
-                and _n_complex_outside(a.multipliers) != _n_complex_outside(b.multipliers)):
+                and _n_complex_outside(a.multipliers, db)
+                != _n_complex_outside(b.multipliers, db)):
             out.append(Bracket("secondary-hopf", a, b))
     return out
 
@@ -214,6 +223,8 @@ def locate(bracket: Bracket, solve_at: SolveAt, *, rtol: float = 1e-6,
         fa, fb = value(a), value(b)
     if fb == 0.0:  # the sample lies on the crossing
         return result(b, 0, (b.lam, b.lam))
+    if fa == 0.0:
+        return result(a, 0, (a.lam, a.lam))
     scale = lam_scale if lam_scale is not None else 0.0
     for it in range(1, max_iter + 1):
         tol = rtol * max(abs(a.lam), abs(b.lam), scale)
@@ -243,12 +254,12 @@ def locate(bracket: Bracket, solve_at: SolveAt, *, rtol: float = 1e-6,
 
 
 def find_bifurcations(samples: Sequence[BranchSample], solve_at: SolveAt | None = None, *,
-                      rtol: float = 1e-6, lam_scale: float | None = None
-                      ) -> list[Bifurcation]:
+                      rtol: float = 1e-6, lam_scale: float | None = None,
+                      dead_band: float = STABILITY_TOL) -> list[Bifurcation]:
     """Detect crossings along ``samples`` and locate each with ``solve_at`` (if None, the
     estimate is linear interpolation of the critical function between the samples)."""
     found = []
-    for br in detect(samples):
+    for br in detect(samples, dead_band):
         if solve_at is not None:
             found.append(locate(br, solve_at, rtol=rtol, lam_scale=lam_scale))
             continue
@@ -272,7 +283,8 @@ class BifurcationMonitor:
     """Event hook for continuation: call at each converged point; keeps the samples and
     returns the brackets found against the previous point."""
 
-    def __init__(self) -> None:
+    def __init__(self, dead_band: float = STABILITY_TOL) -> None:
+        self.dead_band = dead_band
         self.samples: list[BranchSample] = []
         self.brackets: list[Bracket] = []
 
@@ -281,6 +293,6 @@ class BifurcationMonitor:
         p = BranchSample(float(s), float(lam), np.asarray(multipliers, dtype=complex),
                          None if dlam_ds is None else float(dlam_ds))
         self.samples.append(p)
-        new = detect(self.samples[-2:]) if len(self.samples) > 1 else []
+        new = detect(self.samples[-2:], self.dead_band) if len(self.samples) > 1 else []
         self.brackets.extend(new)
         return new
