@@ -78,3 +78,24 @@ def test_downward_sweep_passes_the_folds_the_other_way(branch):
     np.testing.assert_allclose(np.sort(down.lam[down.folds()]),
                                np.sort(branch.lam[branch.folds()]), rtol=2e-2)
     assert abs(down.X[-1, 1, 0]) == pytest.approx(abs(branch.X[0, 1, 0]), rel=1e-6)
+
+
+def test_point_at_resolves_between_points_and_locates_the_fold(branch):
+    i = int(branch.folds()[0])
+    p = branch.point_at(branch.s[i])
+    np.testing.assert_allclose(p.X, branch.X[i], atol=1e-5)
+    # bisection on dlam/ds between the bracketing points finds the turning point
+    a, b = branch.s[i], branch.s[i + 1]
+    for _ in range(40):
+        mid = 0.5 * (a + b)
+        if branch.point_at(mid).dlam_ds > 0:
+            a = mid
+        else:
+            b = mid
+    fold = branch.point_at(0.5 * (a + b))
+    assert abs(fold.dlam_ds) < 1e-6
+    assert fold.lam >= branch.lam[i] and fold.lam >= branch.lam[i + 1]
+    # the fold is where the Jacobian dR/dx is singular
+    J = fold.jacobian[:, :-1]
+    sv = np.linalg.svd(J, compute_uv=False)
+    assert sv[-1] < 1e-6 * sv[0]

@@ -91,7 +91,8 @@ def test_event_hook_sees_every_point_and_can_stop():
     seen = []
 
     def hook(point):
-        seen.append((point.index, point.lam, point.X.shape, point.jacobian.shape))
+        seen.append((point.index, point.lam, point.X.shape, point.jacobian.shape, point.s,
+                     point.dlam_ds))
         return point.lam > 300.0
 
     b = continue_periodic(_problem(), 100.0, 600.0, 3, callback=hook)
@@ -99,3 +100,6 @@ def test_event_hook_sees_every_point_and_can_stop():
     assert [s[0] for s in seen] == list(range(b.n_points))
     assert seen[0][2] == (4, 2) and seen[0][3] == (14, 15)
     assert 300.0 < b.lam[-1] < 400.0
+    np.testing.assert_allclose([x[4] for x in seen], b.s)
+    np.testing.assert_allclose([x[5] for x in seen], b.dlam_ds)
+    assert np.all(b.dlam_ds > 0)

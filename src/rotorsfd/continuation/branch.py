@@ -3,6 +3,7 @@ passed to the event hook at each converged point."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -19,7 +20,9 @@ class BranchPoint:
     ``X`` (H+1, n_dof) complex Fourier coefficients of all DOFs; ``xs`` the solved unknowns
     (real layout, physical units); ``tangent`` unit tangent in scaled unknowns (last entry:
     d(lam/lam_scale)/ds); ``jacobian`` (nu, nu+1) ``[dR/dx, dR/dlam]`` in physical units
-    (condensed: the Schur-form residual, see :mod:`rotorsfd.harmonic.condensation`).
+    (condensed: the Schur-form residual, see :mod:`rotorsfd.harmonic.condensation`);
+    ``s`` the arc length along the branch and ``dlam_ds`` (a fold where it changes sign).
+    ``index`` is -1 for a point re-solved between branch points (:meth:`Branch.point_at`).
     """
 
     index: int
@@ -30,6 +33,8 @@ class BranchPoint:
     jacobian: FloatArray
     iterations: int
     frequency: float
+    s: float = 0.0        #: arc length from the first point (scaled units)
+    dlam_ds: float = 0.0  #: dlam/ds (physical lam per unit of scaled arc length)
 
 
 @dataclass
@@ -44,6 +49,7 @@ class Branch:
     tangents : (n_points, nu+1) unit tangents in scaled unknowns (x/scale, lam/lam_scale).
     iterations : (n_points,) Newton iterations of each point.
     ds : (n_points,) arc-length step that produced each point (0 for the first).
+    s : (n_points,) arc length from the first point, ``cumsum(ds)`` (scaled units).
     jacobians : (n_points, nu, nu+1) ``[dR/dx, dR/dlam]`` at each point (physical units;
         condensed: Schur-form residual on nl_dofs), or None if not stored.
     aliasing : (n_points,) relative change of the nonlinear-force coefficients if N_f
@@ -58,6 +64,7 @@ class Branch:
     tangents: FloatArray
     iterations: NDArray[np.int64]
     ds: FloatArray
+    s: FloatArray
     jacobians: FloatArray | None
     aliasing: FloatArray
     success: bool
@@ -68,6 +75,20 @@ class Branch:
     condensed: bool
     lam_scale: float
     info: dict = field(default_factory=dict)
+    resolver: Callable[[float], BranchPoint] | None = field(default=None, repr=False)
+
+    def point_at(self, s: float) -> BranchPoint:
+        """Re-solve the branch at arc length s (between two of its points), e.g. to locate a
+        bifurcation: ``solve_at = lambda s: (p := branch.point_at(s)).lam, ...``.
+        Raises ConvergenceError on failure."""
+        if self.resolver is None:
+            raise ValueError("this branch cannot re-solve points (no resolver)")
+        return self.resolver(s)
+
+    @property
+    def dlam_ds(self) -> FloatArray:
+        """dlam/ds at each point (physical lam per unit of scaled arc length)."""
+        return self.tangents[:, -1] * self.lam_scale
 
     @property
     def n_points(self) -> int:

@@ -20,7 +20,7 @@ from numpy.typing import NDArray
 
 from rotorsfd.continuation.arclength import ArcLengthOptions, arclength
 from rotorsfd.continuation.branch import Branch, BranchPoint
-from rotorsfd.continuation.newton import NewtonResult, newton_extended
+from rotorsfd.continuation.newton import NewtonResult, newton_extended, tangent
 from rotorsfd.errors import ConvergenceError
 from rotorsfd.harmonic.blas import single_threaded_blas
 from rotorsfd.harmonic.condensation import CondensedHB
@@ -229,8 +229,9 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
                                        condensed=condensed, tol=tol, limit_max=limit_max)
     if store_jacobians is None:
         store_jacobians = condensed
-    out: dict[str, list] = {k: [] for k in ("lam", "X", "w", "t", "it", "ds", "J", "al", "N")}
-    state: dict = {"refine": False}
+    keys = ("lam", "X", "w", "t", "it", "ds", "J", "al", "N", "z", "sys")
+    out: dict[str, list] = {k: [] for k in keys}
+    state: dict = {"refine": False, "s": 0.0}
     opts = ArcLengthOptions(ds=ds, ds_min=ds_min, ds_max=ds_max, tol=tol, max_iter=max_iter,
                             max_points=max_points, max_angle=float(np.radians(max_angle_deg)))
     X_start, lam0, N, t_prev = first.X, lam_start, first.n_samples, None
@@ -246,13 +247,17 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
             w = problem.frequency(lam)
             al = system.aliasing(z)
             if n_samples is None and al > alias_tol and system.N < n_samples_max:
-                state.update(refine=True, X=X, lam=lam, t=t)
+                state.update(refine=True, X=X, lam=lam, t=t, step=step)
                 return True
-            for key, val in zip(out, (lam, X, w, t, it, step, J, al, system.N), strict=True):
+            step = step or state.pop("step", 0.0)
+            state["s"] += step
+            vals = (lam, X, w, t, it, step, J, al, system.N, z, system)
+            for key, val in zip(out, vals, strict=True):
                 out[key].append(val)
             if callback is None:
                 return False
-            point = BranchPoint(len(out["lam"]) - 1, lam, X, x, t, J, it, w)
+            point = BranchPoint(len(out["lam"]) - 1, lam, X, x, t, J, it, w, state["s"],
+                                float(t[-1]) * scale)
             return bool(callback(point))
 
         opts.max_points = max_points - len(out["lam"])
@@ -273,14 +278,45 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
     if al.size and al.max() > alias_tol:
         msg += (f"; warning: aliasing up to {al.max():.2g} (N_f={system.N}); "
                 "consider a larger n_samples")
+    s_all = np.cumsum(out["ds"]) if out["ds"] else np.zeros(0)
     return Branch(
         lam=np.array(out["lam"]), X=np.array(out["X"]), frequency=np.array(out["w"]),
         tangents=np.array(out["t"]), iterations=np.array(out["it"], dtype=np.int64),
-        ds=np.array(out["ds"]),
+        ds=np.array(out["ds"]), s=s_all,
         jacobians=np.array(out["J"]) if store_jacobians else None, aliasing=al,
         success=status.success, message=msg, H=H, n_samples=system.N,
         nl_dofs=problem.nl_dofs.copy(), condensed=condensed, lam_scale=scale,
-        info={"n_samples": np.array(out["N"], dtype=np.int64)})
+        info={"n_samples": np.array(out["N"], dtype=np.int64)},
+        resolver=_Resolver(problem, out["z"], out["t"], s_all, out["sys"], tol, scale))
+
+
+class _Resolver:
+    """Re-solves a branch at arc length s between its points (for locating events):
+    Newton on ``R = 0, t_i . (z - z_i) = s - s_i`` from ``z_i + (s - s_i) t_i``."""
+
+    def __init__(self, problem, zs, ts, s, systems, tol, scale) -> None:
+        self.problem, self.zs, self.ts, self.s = problem, zs, ts, s
+        self.systems, self.tol, self.scale = systems, tol, scale
+
+    @_one_blas_thread
+    def __call__(self, s: float) -> BranchPoint:
+        if not len(self.s):
+            raise ConvergenceError("empty branch: nothing to re-solve")
+        i = int(np.clip(np.searchsorted(self.s, s, side="right") - 1, 0, len(self.s) - 1))
+        system = self.systems[min(i + 1, len(self.s) - 1)]
+        z_i, t_i = self.zs[i], self.ts[i]
+        d = float(s - self.s[i])
+        res = newton_extended(system, z_i + d * t_i, t_i, float(t_i @ z_i) + d,
+                              min(self.tol, 1e-8), 30)
+        if not res.converged:
+            raise ConvergenceError(f"{self.problem.name}: re-solving the branch at s={s:.6g} "
+                                   f"(near lam={self.zs[i][-1] * self.scale:.8g}) failed: "
+                                   f"{res.message}")
+        x, lam = system.from_z(res.z)
+        t = tangent(res.J, t_i)
+        return BranchPoint(-1, lam, system.coefficients(res.z), x, t,
+                           system.physical_jacobian(res.z, res.J), res.iterations,
+                           self.problem.frequency(lam), float(s), float(t[-1]) * self.scale)
 
 
 def _start_point(problem: PeriodicProblem, H: int, lam: float, X: ComplexArray, N: int,
