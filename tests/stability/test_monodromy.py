@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from stability_helpers import ltp3, match_error, reference_monodromy
 
-from rotorsfd.errors import ConfigError
+from rotorsfd.errors import ConfigError, ConvergenceError
 from rotorsfd.stability.monodromy import (
     floquet_multipliers,
     monodromy_generalized_alpha,
@@ -177,3 +177,14 @@ def test_generalized_alpha_damps_unresolved_mode():
     assert np.sort(np.abs(ga.multipliers))[0] < 1e-20
     with pytest.raises(ConfigError):
         monodromy_generalized_alpha(M, D, K, 1.0, rho_inf=1.0)
+
+
+def test_bad_inputs_raise():
+    s = ltp3()
+    q = np.full((401, 2, 2), np.nan)
+    with pytest.raises(ConvergenceError):
+        monodromy_newmark(s["M"], s["D"], s["K"], s["T"], nl_dofs=s["nl"], dFdq=q)
+    with pytest.raises(ConfigError):
+        monodromy_newmark(s["M"], s["D"], s["K"], -1.0)
+    with pytest.raises(ConfigError):
+        monodromy_newmark(s["M"], s["D"], np.eye(2), 1.0)

@@ -28,7 +28,7 @@ import numpy as np
 import scipy.linalg as sla
 from numpy.typing import ArrayLike, NDArray
 
-from rotorsfd.errors import ConfigError
+from rotorsfd.errors import ConfigError, ConvergenceError
 from rotorsfd.stability.floquet import STABILITY_TOL, FloquetResult, sort_multipliers
 
 
@@ -128,6 +128,8 @@ def hill_floquet(M: ArrayLike, D: ArrayLike, K: ArrayLike, omega: float, *,
     (coefficients up to ``2H`` are used when given).
     """
     A_hat = first_order_coefficients(M, D, K, nl_dofs, dFdq_hat, dFdv_hat)
+    if not np.all(np.isfinite(A_hat)):
+        raise ConvergenceError("Hill matrix not finite: check the Jacobian coefficients")
     Ns = A_hat.shape[1]
     H = int(n_harmonics)
     T = 2.0 * np.pi / omega

@@ -32,7 +32,7 @@ import numpy as np
 import scipy.linalg as sla
 from numpy.typing import ArrayLike, NDArray
 
-from rotorsfd.errors import ConfigError
+from rotorsfd.errors import ConfigError, ConvergenceError
 from rotorsfd.stability.floquet import (
     STABILITY_TOL,
     FloquetResult,
@@ -66,6 +66,20 @@ def sample_jacobian(jac: JacobianInput, period: float, n_intervals: int,
     return a
 
 
+def _check_period(period: float, n_intervals: int) -> None:
+    if not (np.isfinite(period) and period > 0):
+        raise ConfigError("period", period, "a finite period > 0")
+    if int(n_intervals) < 1:
+        raise ConfigError("n_intervals", n_intervals, "at least 1")
+
+
+def _finite(Phi: NDArray, method: str, period: float) -> NDArray:
+    if not np.all(np.isfinite(Phi)):
+        raise ConvergenceError(f"{method} monodromy not finite (T={period:.6g}): check the "
+                               "Jacobian samples for NaN/inf")
+    return Phi
+
+
 def _check_square(M: ArrayLike, D: ArrayLike, K: ArrayLike):
     M, D, K = (np.atleast_2d(np.asarray(x, float)) for x in (M, D, K))
     n = M.shape[0]
@@ -92,6 +106,7 @@ def monodromy_newmark(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, *
     Returns a ``FloquetResult`` with the (2n, 2n) monodromy for the state ``(q, q')``.
     """
     M, D, K = _check_square(M, D, K)
+    _check_period(period, n_intervals)
     n = M.shape[0]
     nl = np.asarray(nl_dofs, dtype=np.intp).ravel()
     m = nl.size
@@ -119,7 +134,7 @@ def monodromy_newmark(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, *
             Y += Z @ (W @ np.linalg.solve(Im - G @ W, Y[nl]))
         V = 2.0 / h * (Y - X) - V
         X = Y
-    Phi = np.vstack([X, V])
+    Phi = _finite(np.vstack([X, V]), "newmark", period)
     mu = sort_multipliers(np.linalg.eigvals(Phi))
     trace = np.trace(np.linalg.solve(M, D)) - np.einsum(
         "ij,tji->t", np.linalg.solve(M, np.eye(n)[:, nl])[nl] if m else np.zeros((0, 0)), Cn)
@@ -155,6 +170,7 @@ def monodromy_generalized_alpha(M: ArrayLike, D: ArrayLike, K: ArrayLike, period
     if not 0.0 <= rho_inf < 1.0:
         raise ConfigError("rho_inf", rho_inf, "0 <= rho_inf < 1")
     M, D, K = _check_square(M, D, K)
+    _check_period(period, n_intervals)
     n = M.shape[0]
     nl = np.asarray(nl_dofs, dtype=np.intp).ravel()
     m = nl.size
@@ -193,7 +209,7 @@ def monodromy_generalized_alpha(M: ArrayLike, D: ArrayLike, K: ArrayLike, period
         A = Y
         X = Xp + b * h**2 * A
         V = Vp + g * h * A
-    Phi = np.vstack([X, V])
+    Phi = _finite(np.vstack([X, V]), "generalized-alpha", period)
     mu = sort_multipliers(np.linalg.eigvals(Phi))
     trace = np.trace(np.linalg.solve(M, D)) - np.einsum(
         "ij,tji->t", np.linalg.solve(M, np.eye(n)[:, nl])[nl] if m else np.zeros((0, 0)), Cn)
@@ -219,6 +235,7 @@ def monodromy_magnus4(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, *
     accuracy) for constant coefficients; error O(h^4) otherwise. Cost O(N (2n)^3 * ~20).
     """
     M, D, K = _check_square(M, D, K)
+    _check_period(period, n_intervals)
     n = M.shape[0]
     nl = np.asarray(nl_dofs, dtype=np.intp).ravel()
     m = nl.size
@@ -243,7 +260,7 @@ def monodromy_magnus4(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, *
     for j in range(N):
         Phi = E[j] @ Phi
     log_det = float(0.5 * h * np.trace(A1 + A2, axis1=1, axis2=2).sum())
-    mu = sort_multipliers(np.linalg.eigvals(Phi))
+    mu = sort_multipliers(np.linalg.eigvals(_finite(Phi, "magnus4", period)))
     return FloquetResult(mu, float(period), "magnus4", log_det, Phi, tol,
                          {"n_intervals": N, "n_dof": n})
 
