@@ -1,5 +1,18 @@
 """Harmonic balance with AFT: Fourier matrices, problem definition, residuals with exact
-Jacobians, exact condensation onto the nonlinear DOFs, periodic solutions and branches."""
+Jacobians, exact condensation onto the nonlinear DOFs, periodic solutions and branches.
+
+Usage::
+
+    from rotorsfd.harmonic import PeriodicProblem, solve_periodic, continue_periodic
+    sol = solve_periodic(problem, lam=850.0, H=3)            # PeriodicSolution, .X (H+1, n)
+    branch = continue_periodic(problem, 490.0, 1220.0, H=8,  # Branch, scipy-style outcome
+                               callback=lambda point: None)  # event hook at every point
+    branch.lam, branch.X, branch.amplitude(dof=0), branch.folds(), branch.point_at(s)
+
+Modules: ``fourier`` (real DFT matrices, N_f rule), ``problem`` (PeriodicProblem),
+``residual`` (full HB residual and Jacobians), ``condensation`` (exact condensation),
+``periodic`` (solvers), ``examples`` (Duffing, Jeffcott, 84-DOF beam rotor, test chain).
+"""
 
 from rotorsfd.harmonic.condensation import CondensedHB
 from rotorsfd.harmonic.fourier import (
