@@ -31,6 +31,7 @@ found by fixed-point iteration (each pass: one product with each ``Kinv D_i``,
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -180,9 +181,12 @@ def _newton_nl(kernel, params, q0, dl, vhat, cv, wn1, S, nl, y, yprev, qy, F, dq
     """Solve ``y = dl[nl] + wn1 S F(q0[nl] + y, vhat[nl] + cv y)`` for the increment ``y``
     of the nonlinear DOFs by Newton from the given ``y``.
 
-    Converged when ``|residual|_inf <= rtol max(|y|, |dl[nl]|) + atol``. Returns
-    ``(status, iterations, touched_contact)``; ``F`` holds the force at ``y``. A trial
-    point in contact is pulled back halfway towards the last valid point (``yprev``).
+    Converged when ``|residual|_inf <= rtol s + atol`` (``s = max(|y|, |dl[nl]|)``), or
+    when a Newton update is ``<= sqrt(rtol) s + atol``: by quadratic convergence the
+    residual after it is ``O(rtol)``, so ``y`` takes the update and ``F`` its linear
+    change ``(dFdq + cv dFdv) dy`` without another kernel call. Returns
+    ``(status, iterations, touched_contact)``. A trial point in contact is pulled back
+    halfway towards the last valid point (``yprev``).
     """
     m = nl.shape[0]
     touched = False
@@ -224,9 +228,18 @@ def _newton_nl(kernel, params, q0, dl, vhat, cv, wn1, S, nl, y, yprev, qy, F, dq
             J[a, a] += 1.0
         if not _solve_small(J, r, dy):
             return 2, it + 1, touched
+        step = 0.0
         for a in range(m):
+            step = max(step, abs(dy[a]))
             yprev[a] = y[a]
             y[a] += dy[a]
+        if step <= math.sqrt(rtol) * scale + atol:
+            for a in range(m):
+                s = 0.0
+                for b in range(m):
+                    s += (dq[a, b] + cv * dv[a, b]) * dy[b]
+                F[a] += s
+            return 0, it + 1, touched
     return (1 if touched else 2), max_newton, touched
 
 
