@@ -188,3 +188,24 @@ def test_bad_inputs_raise():
         monodromy_newmark(s["M"], s["D"], s["K"], -1.0)
     with pytest.raises(ConfigError):
         monodromy_newmark(s["M"], s["D"], np.eye(2), 1.0)
+
+
+def test_newmark_false_instability_of_unresolved_mode():
+    """The trap: an undamped mode with omega h >> 1 and a modulated stiffness
+    x'' + w^2 (1 + 0.1 cos t) x = 0. Newmark's per-step rotation is ~pi - 4/(w h), a slow
+    beat that meets the modulation (first-order tongue) at w = 4 N^2 / (pi T); there the
+    average-acceleration monodromy reports |mu| = 1.08 while the exact system (adiabatic,
+    Magnus-4 with w h = 0.5) is neutral and generalized-alpha damps the mode."""
+    T, N = 2 * np.pi, 40
+    w = 4 * N**2 / (np.pi * T)
+
+    def f(t):
+        return np.array([[-0.1 * w * w * np.cos(t)]])
+
+    args = (np.eye(1), np.zeros((1, 1)), np.array([[w * w]]), T)
+    nm = monodromy_newmark(*args, nl_dofs=[0], dFdq=f, n_intervals=N)
+    ex = monodromy_magnus4(*args, nl_dofs=[0], dFdq=f, n_intervals=4000)
+    ga = monodromy_generalized_alpha(*args, nl_dofs=[0], dFdq=f, n_intervals=N)
+    assert nm.max_abs > 1.05 and not nm.stable
+    assert abs(ex.max_abs - 1.0) < 1e-9
+    assert ga.max_abs < 1e-3

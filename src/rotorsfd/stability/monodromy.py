@@ -20,6 +20,13 @@ the term the paper neglects in eq. 34 is identically zero in this derivation.
 ``S_{j+1}^-1 = S_0^-1 + Z W (I - G W)^-1 P^T S_0^-1``, ``Z = S_0^-1 P``, ``G = P^T Z``,
 ``W = 2/h C_nl + K_nl``, so each step costs two ``n x n @ n x 2n`` products.
 
+The trap (tested): the scheme is non-dissipative and maps a mode with ``omega h >> 1``
+to a per-step rotation ``~ pi - 4/(omega h)``; that slow beat meets a harmonic k of the
+periodic Jacobian when ``omega ~ 4 N^2 / (k pi T)`` and produces a first-order
+*numerical* parametric-resonance tongue (``|mu| = 1.08`` for a 10 % stiffness modulation
+while the exact system is neutral). Remedies here: the Craig-Bampton reduced model
+(``floquet_multipliers``) or generalized-alpha (``monodromy_generalized_alpha``).
+
 ``monodromy_magnus4`` is a fourth-order alternative (Gauss-point Magnus exponential),
 exact for constant coefficients, used as a reference.
 """
