@@ -1,0 +1,64 @@
+"""A small rotor-SFD configuration for the response tests (4 shaft elements, one disk,
+an SFD with a centring spring at node 1, a linear support at node 5)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+SMALL_ROTOR = """
+title = "small test rotor with an SFD"
+
+[materials.steel]
+density = "7810 kg/m^3"
+young_modulus = "211 GPa"
+shear_modulus = "81.783 GPa"
+
+[[rotor.shaft]]
+length = "0.5 m"
+n_elements = 4
+inner_radius = "0 mm"
+outer_radius = "25 mm"
+material = "steel"
+
+[[rotor.disks]]
+node = 3
+material = "steel"
+outer_radius = "100 mm"
+thickness = "40 mm"
+
+[[rotor.supports]]
+node = 5
+stiffness = "1e7 N/m"
+
+[sfd]
+node = 1
+viscosity = "0.0051 Pa*s"
+clearance = "0.127 mm"
+clearance_ratio = "0.5 %"
+length_to_diameter = 0.325
+centring_stiffness = "1e7 N/m"
+
+[[unbalance]]
+node = 3
+magnitude = "{unbalance}"
+
+[base]
+{base}
+
+[reference]
+speed = "{reference}"
+
+[analysis.response]
+harmonics = 3
+speed_range = {{ start_ratio = 0.6, stop_ratio = 1.4 }}
+nodes = [1, 3]
+step_max = 0.1
+"""
+
+
+def small_rotor_toml(path: Path, unbalance: str = "50 g*mm", base: str = "",
+                     reference: str = "800 rad/s", extra: str = "") -> Path:
+    """Write the small rotor config to ``path`` and return it."""
+    path.write_text(SMALL_ROTOR.format(unbalance=unbalance, base=base,
+                                       reference=reference) + extra)
+    return path
