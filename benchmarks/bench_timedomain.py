@@ -16,22 +16,28 @@ unbalance force at node 15 at 0.9 times the first natural frequency.
    extrapolated linearly to 2000 periods (stated in the output); analytic Jacobian
    supplied.
 
-Run: ``python benchmarks/bench_timedomain.py [--short 10] [--json out.json]``.
+All methods run on one core (BLAS threads set to 1 unless set in the environment).
+Run: ``python benchmarks/bench_timedomain.py [--short 40] [--json out.json]``.
 """
 
 from __future__ import annotations
 
-import argparse
-import json
-import math
-import time
+import os
 
-import numpy as np
-from numba import njit
-from scipy.integrate import solve_ivp
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")  # one core for every method (set before numpy)
 
-from rotorsfd.timedomain import Forcing, HarmonicLoad, integrate
-from rotorsfd.timedomain import newmark as nm
+import argparse  # noqa: E402
+import json  # noqa: E402
+import math  # noqa: E402
+import time  # noqa: E402
+
+import numpy as np  # noqa: E402
+from numba import njit  # noqa: E402
+from scipy.integrate import solve_ivp  # noqa: E402
+
+from rotorsfd.timedomain import Forcing, HarmonicLoad, integrate  # noqa: E402
+from rotorsfd.timedomain import newmark as nm  # noqa: E402
 
 N_NODES = 42
 C_CLEAR = 0.127e-3
@@ -144,7 +150,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--periods", type=int, default=2000)
     ap.add_argument("--spp", type=int, default=200)
-    ap.add_argument("--short", type=int, default=10, help="periods for the scipy runs")
+    ap.add_argument("--short", type=int, default=40, help="periods for the scipy runs")
     ap.add_argument("--json", default=None)
     a = ap.parse_args()
     M, D, K, fo = chain()
