@@ -38,13 +38,14 @@ def orbit_floquet(M: ArrayLike, D: ArrayLike, K: ArrayLike, X: ArrayLike, omega:
                   nl_dofs: ArrayLike, nl_jacobian: NLJacobian, *,
                   method: str = "newmark-cb", n_intervals: int = 400,
                   n_harmonics: int = 8, n_modes: int | None = None,
-                  omega_max: float | None = None,
+                  omega_max: float | None = None, rho_inf: float = 0.6,
                   tol: float = STABILITY_TOL) -> FloquetResult:
     """Floquet multipliers of the periodic solution ``X`` (H+1, n) or (H+1, m) of
     ``M q'' + D q' + K q = f(t) + F_nl(q[nl], q'[nl])``, fundamental frequency ``omega``.
 
     ``method``: ``'newmark'`` (full model, the paper's literal method, N = n_intervals),
     ``'newmark-cb'`` (Craig-Bampton reduced, see ``floquet_multipliers``),
+    ``'generalized-alpha'`` / ``'generalized-alpha-cb'`` (with ``rho_inf``),
     ``'hill'`` / ``'hill-koopman'`` (Hill with ``n_harmonics`` on the same reduced model;
     Jacobian harmonics up to ``2 n_harmonics`` from 8 (2 n_harmonics + 1) samples).
     """
@@ -55,13 +56,15 @@ def orbit_floquet(M: ArrayLike, D: ArrayLike, K: ArrayLike, X: ArrayLike, omega:
     if Xnl.shape[1] != nl.size:
         raise ConfigError("X", X.shape, f"(H+1, {n}) or (H+1, {nl.size}) coefficients")
     T = 2 * np.pi / omega
-    if method in ("newmark", "newmark-cb"):
+    if method in ("newmark", "newmark-cb", "generalized-alpha", "generalized-alpha-cb"):
         q, v = orbit_samples(Xnl, omega, n_intervals)
         Jq, Jv = nl_jacobian(q, v)
         return floquet_multipliers(M, D, K, T, nl_dofs=nl, dFdq=Jq, dFdv=Jv,
                                    n_intervals=n_intervals,
-                                   reduction=None if method == "newmark" else "craig-bampton",
-                                   n_modes=n_modes, omega_max=omega_max, tol=tol)
+                                   reduction="craig-bampton" if method.endswith("-cb") else None,
+                                   n_modes=n_modes, omega_max=omega_max,
+                                   scheme=method.removesuffix("-cb"), rho_inf=rho_inf,
+                                   tol=tol)
     if method in ("hill", "hill-koopman"):
         L = 2 * n_harmonics
         q, v = orbit_samples(Xnl, omega, 4 * (2 * L + 1), endpoint=False)
@@ -76,4 +79,5 @@ def orbit_floquet(M: ArrayLike, D: ArrayLike, K: ArrayLike, X: ArrayLike, omega:
                            tol=tol)
         res.info.update(n_dof_full=n, n_modes=red.omegas.size)
         return res
-    raise ConfigError("method", method, "'newmark', 'newmark-cb', 'hill' or 'hill-koopman'")
+    raise ConfigError("method", method, "'newmark', 'newmark-cb', 'generalized-alpha', "
+                      "'generalized-alpha-cb', 'hill' or 'hill-koopman'")
