@@ -13,11 +13,11 @@
 
 from __future__ import annotations
 
+import contextlib
 import sys
 import time
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
 from rotorsfd.stability.chart import LTPSystem, stability_chart
 from rotorsfd.stability.hill import fourier_coefficients, hill_floquet
@@ -162,6 +162,11 @@ def bench_chart(n: int = 100, workers: int = 2) -> None:
 
 if __name__ == "__main__":
     quick = "--quick" in sys.argv
-    with threadpool_limits(limits=1, user_api="blas"):
+    try:  # small matrices: BLAS threads only add overhead
+        from threadpoolctl import threadpool_limits
+        limit = threadpool_limits(limits=1, user_api="blas")
+    except ImportError:
+        limit = contextlib.nullcontext()
+    with limit:
         bench_monodromy(quick)
         bench_chart(30 if quick else 100)
