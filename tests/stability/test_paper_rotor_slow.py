@@ -46,7 +46,7 @@ def test_paper_rotor_methods_agree(problem):
     kw = dict(nl_dofs=nl, dFdq=Jq, dFdv=Jv)
     ref = monodromy_magnus4(M, D, K, T, nl_dofs=nl, dFdq=fq, dFdv=fv, n_intervals=200)
     cb_nm = floquet_multipliers(M, D, K, T, **kw)
-    lead = cb_nm.multipliers[:4]  # SFD-coupled pairs (0.9385, 0.9128 in modulus)
+    lead = cb_nm.multipliers[:4]  # the two SFD-coupled pairs (|mu| ~ 0.94, 0.92)
 
     def nearest(r):
         return np.array([r.multipliers[np.argmin(np.abs(r.multipliers - m))] for m in lead])
