@@ -6,6 +6,7 @@ from rotorsfd.continuation.branch import Branch, BranchPoint
 from rotorsfd.continuation.newton import (
     ContinuationSystem,
     NewtonResult,
+    metric,
     newton_extended,
     tangent,
 )
@@ -18,6 +19,7 @@ __all__ = [
     "ContinuationSystem",
     "NewtonResult",
     "arclength",
+    "metric",
     "newton_extended",
     "tangent",
 ]

@@ -4,7 +4,8 @@ From a converged point z_i with unit tangent t_i (null vector of ``J = [dR/dx, d
 oriented by ``t_i . t_{i-1} > 0``, so turning points are passed in both directions):
 
 - predictor ``z = z_i + ds t_i``;
-- corrector: Newton on ``R(z) = 0, t_i . (z - z_i) - ds = 0`` (:func:`newton_extended`),
+- corrector: Newton on ``R(z) = 0, t_i . W (z - z_i) - ds = 0`` (:func:`newton_extended`;
+  W the system's optional arc-length metric ``weights``, identity by default),
   converged when the 2-norm of the scaled extended residual is <= tol;
 - step control: reject and halve ds if the corrector fails (no convergence, state limit,
   contact) or if the new tangent turns by more than ``max_angle`` (folds are not jumped);
@@ -24,7 +25,12 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from rotorsfd.continuation.newton import ContinuationSystem, newton_extended, tangent
+from rotorsfd.continuation.newton import (
+    ContinuationSystem,
+    metric,
+    newton_extended,
+    tangent,
+)
 
 FloatArray = NDArray[np.float64]
 
@@ -80,7 +86,8 @@ def arclength(system: ContinuationSystem, z0: FloatArray, J0: FloatArray, lam_en
     e = np.zeros(system.n + 1)
     e[-1] = 1.0
     z = np.asarray(z0, dtype=float)
-    t = tangent(J0, direction * e if t_prev is None else t_prev)
+    W = metric(system)
+    t = tangent(J0, direction * e if t_prev is None else t_prev, W)
     n_points = 1
 
     def at(zz: FloatArray) -> str:
@@ -92,11 +99,12 @@ def arclength(system: ContinuationSystem, z0: FloatArray, J0: FloatArray, lam_en
         return ArcLengthStatus(True, f"reached the end of the range, {at(z)}", n_points, o.ds)
     ds = o.ds
     while n_points < o.max_points:
-        res = newton_extended(system, z + ds * t, t, float(t @ z) + ds, o.tol, o.max_iter,
+        res = newton_extended(system, z + ds * t, W * t, float((W * t) @ z) + ds, o.tol,
+                              o.max_iter,
                               o.max_halvings)
         if res.converged:
-            t_new = tangent(res.J, t)
-            angle = float(np.arccos(np.clip(t_new @ t, -1.0, 1.0)))
+            t_new = tangent(res.J, t, W)
+            angle = float(np.arccos(np.clip(t_new @ (W * t), -1.0, 1.0)))
             if angle > o.max_angle and ds > o.ds_min:
                 ds = max(ds * o.shrink, o.ds_min)
                 continue
@@ -113,8 +121,8 @@ def arclength(system: ContinuationSystem, z0: FloatArray, J0: FloatArray, lam_en
             fin = newton_extended(system, z + frac * (res.z - z), e, lam_end, o.tol,
                                   o.max_iter, o.max_halvings)
             if fin.converged:
-                on_point(fin.z, tangent(fin.J, t_new), fin.J, fin.iterations,
-                         float(np.linalg.norm(fin.z - z)))
+                on_point(fin.z, tangent(fin.J, t_new, W), fin.J, fin.iterations,
+                         float(np.sqrt((fin.z - z) @ (W * (fin.z - z)))))
                 return ArcLengthStatus(True, f"reached the end of the range, {at(fin.z)}",
                                        n_points + 1)
             on_point(res.z, t_new, res.J, res.iterations, ds)

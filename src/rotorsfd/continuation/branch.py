@@ -46,7 +46,8 @@ class Branch:
     lam : (n_points,) parameter values.
     X : (n_points, H+1, n_dof) complex Fourier coefficients of all DOFs.
     frequency : (n_points,) fundamental angular frequency w(lam).
-    tangents : (n_points, nu+1) unit tangents in scaled unknowns (x/scale, lam/lam_scale).
+    tangents : (n_points, nu+1) tangents in scaled unknowns (x/scale, lam/lam_scale), of
+        unit length in the arc-length metric (nonlinear DOFs and lam).
     iterations : (n_points,) Newton iterations of each point.
     ds : (n_points,) arc-length step that produced each point (0 for the first).
     s : (n_points,) arc length from the first point, ``cumsum(ds)`` (scaled units).

@@ -7,7 +7,9 @@ A *continuation system* is any object with
 - ``evaluate(z) -> (R (n,), J (n, n+1))``: residual and exact Jacobian ``[dR/dx, dR/dlam]``;
   may raise ``FloatingPointError`` (e.g. ``rotorsfd.errors.JournalContactError``) where
   the residual is not defined;
-- ``admissible(z) -> bool``: False where the state must not go (e.g. ``nl_limit >= 1``).
+- ``admissible(z) -> bool``: False where the state must not go (e.g. ``nl_limit >= 1``);
+- optionally ``weights`` (n+1,) >= 0: the metric ``|v|_W^2 = sum w_i v_i^2`` in which arc
+  length, tangents and their angles are measured (default: all ones).
 
 The extended system is ``R(z) = 0, a . z - b = 0`` (pseudo arc-length: ``a`` the previous
 tangent and ``b = a . z_prev + ds``; fixed parameter: ``a = e_lam``, ``b = lam``).
@@ -100,20 +102,29 @@ def newton_extended(system: ContinuationSystem, z0: FloatArray, a: FloatArray, b
                         f"no convergence in {max_iter} iterations (residual {norm:.3g} > {tol:g})")
 
 
-def tangent(J: FloatArray, t_prev: FloatArray) -> FloatArray:
-    """Unit null vector t of J (n, n+1), oriented so that ``t . t_prev > 0``.
+def metric(system: object) -> FloatArray:
+    """Weights of the arc-length metric of a continuation system (ones by default)."""
+    w = getattr(system, "weights", None)
+    return np.ones(system.n + 1) if w is None else np.asarray(w, dtype=float)
 
-    Solves the bordered system ``[J; t_prev^T] t = e_{n+1}``; falls back to the last right
-    singular vector when that system is singular.
+
+def tangent(J: FloatArray, t_prev: FloatArray, weights: FloatArray | None = None
+            ) -> FloatArray:
+    """Null vector t of J (n, n+1) of unit W-norm, oriented so that ``t.W.t_prev > 0``.
+
+    Solves the bordered system ``[J; (W t_prev)^T] t = e_{n+1}``; falls back to the last
+    right singular vector when that system is singular.
     """
+    w = np.ones(J.shape[1]) if weights is None else weights
     n = J.shape[0]
     rhs = np.zeros(n + 1)
     rhs[-1] = 1.0
+    row = w * t_prev if np.any(w * t_prev) else t_prev
     try:
-        t = np.linalg.solve(np.vstack([J, t_prev]), rhs)
+        t = np.linalg.solve(np.vstack([J, row]), rhs)
         if not np.all(np.isfinite(t)):
             raise np.linalg.LinAlgError
     except np.linalg.LinAlgError:
         t = np.linalg.svd(J)[2][-1]
-    t = t / np.linalg.norm(t)
-    return t if t @ t_prev >= 0 else -t
+    t = t / np.sqrt(t @ (w * t))
+    return t if t @ (w * t_prev) >= 0 else -t

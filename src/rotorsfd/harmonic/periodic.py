@@ -7,6 +7,9 @@ per-DOF length scale c of the problem and ``lam_scale`` (default: the range
 the condensed residual (units of length) is divided by c; the full residual (forces) by
 ``c_i kappa_i`` with ``kappa_i = |K_ii|`` at the first lam (a force that would move DOF i
 by c_i). A point is converged when the 2-norm of the scaled extended residual is <= tol.
+Arc length, tangents and their angles are measured on the scaled nonlinear-DOF unknowns and
+lam in both paths (the full path weights the other DOFs 0), so condensed and full trace
+the same points.
 """
 
 from __future__ import annotations
@@ -53,6 +56,12 @@ class HBSystem:
             kappa = np.where(kappa > 0, kappa, pos.mean() if pos.size else 1.0)
             self.cx = np.tile(c, 2 * H + 1)
             self.cr = np.tile(c * kappa, 2 * H + 1)
+        # arc length measured on the nonlinear DOFs and lam in both paths (same branch)
+        self.weights = np.ones(self.n + 1)
+        if not condensed:
+            nl = np.zeros((2 * H + 1, problem.n_dof))
+            nl[:, problem.nl_dofs] = 1.0
+            self.weights[:-1] = nl.ravel()
 
     # scaling -----------------------------------------------------------------------------
     def to_z(self, x: FloatArray, lam: float) -> FloatArray:
@@ -305,15 +314,16 @@ class _Resolver:
         i = int(np.clip(np.searchsorted(self.s, s, side="right") - 1, 0, len(self.s) - 1))
         system = self.systems[min(i + 1, len(self.s) - 1)]
         z_i, t_i = self.zs[i], self.ts[i]
+        W = system.weights
         d = float(s - self.s[i])
-        res = newton_extended(system, z_i + d * t_i, t_i, float(t_i @ z_i) + d,
+        res = newton_extended(system, z_i + d * t_i, W * t_i, float((W * t_i) @ z_i) + d,
                               min(self.tol, 1e-8), 30)
         if not res.converged:
             raise ConvergenceError(f"{self.problem.name}: re-solving the branch at s={s:.6g} "
                                    f"(near lam={self.zs[i][-1] * self.scale:.8g}) failed: "
                                    f"{res.message}")
         x, lam = system.from_z(res.z)
-        t = tangent(res.J, t_i)
+        t = tangent(res.J, t_i, W)
         return BranchPoint(-1, lam, system.coefficients(res.z), x, t,
                            system.physical_jacobian(res.z, res.J), res.iterations,
                            self.problem.frequency(lam), float(s), float(t[-1]) * self.scale)
