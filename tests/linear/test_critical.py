@@ -79,3 +79,22 @@ def test_fit_reports_unreachable_targets():
     assert not fit.exact
     assert max(abs(r) for r in fit.relative_errors) > 1e-2
     assert "not both met" in fit.message
+
+
+def test_critical_speeds_equal_synchronous_eigenproblem(paper):
+    """Independent check: undamped synchronous whirl q = phi exp(i Omega t) solves
+    (K - Omega^2 M + i Omega^2 G) phi = 0, i.e. K phi = Omega^2 (M - i G) phi, a
+    generalized eigenproblem for Omega^2 (forward roots: forward mode shapes)."""
+    import scipy.linalg
+
+    from rotorsfd.linear import whirl_direction
+
+    m, d0, k = paper.matrices(0.0)
+    g = paper.matrices(1.0)[1] - d0
+    lam, vec = scipy.linalg.eig(k, m - 1j * g)
+    real = (np.abs(lam.imag) < 1e-8 * np.abs(lam)) & (lam.real > 0)
+    omega = np.sqrt(lam.real[real])
+    fwd = np.array([whirl_direction(v) == "forward" for v in vec[:, real].T])
+    expected = np.sort(omega[fwd])[:3]
+    crit = critical_speeds(paper, n=3, speed_range=(0.0, 2e4))
+    np.testing.assert_allclose([c.speed_rad_s for c in crit], expected, rtol=1e-8)
