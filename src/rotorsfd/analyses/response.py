@@ -156,7 +156,13 @@ class ResponseResult:
 
     @property
     def message(self) -> str:
-        return str(self.branch.message)
+        """The branch's message; on failure prefixed with where the branch stopped."""
+        b = self.branch
+        if b.success or not b.n_points:
+            return str(b.message)
+        last = (f"Omega~ = {b.frequency[-1] / self.reference_speed:.5g}" if self.is_speed
+                else f"{self.parameter} = {b.lam[-1]:.6g} {self.parameter_units}")
+        return f"response branch stopped after {b.n_points} points at {last}: {b.message}"
 
     @property
     def is_speed(self) -> bool:
