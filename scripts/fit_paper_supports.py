@@ -2,7 +2,11 @@
 
 The paper gives the rotor but not the stiffness of the SFD centring spring (node 1) nor
 of the right support (node 21); both are taken isotropic and fitted so that the first two
-forward critical speeds are 811.3 and 2784.6 rad/s. Run:
+forward critical speeds are 811.3 and 2784.6 rad/s. The solution is unique for
+stiffnesses in 1e5..1e10 N/m: along the curve where the first forward critical speed is
+811.3 rad/s, the second decreases monotonically from > 4000 rad/s (k1 ~ 8e6 N/m) to about
+2470 rad/s (k1 ~ 2e7 N/m), then rises towards 2775 rad/s < 2784.6 rad/s as k1 -> inf
+(rigid left support); it crosses 2784.6 rad/s once. Run:
 
     /work/venv/bin/python scripts/fit_paper_supports.py
 """
