@@ -1,0 +1,206 @@
+"""Where grid points run: in this process, on a local process pool, or on a Dask cluster.
+
+One interface (a subset of :mod:`concurrent.futures`) so the sweep has one code path::
+
+    with make_executor(workers=None, scheduler=None) as ex:
+        futures = [ex.submit(fn, arg) for arg in args]
+        for fut in ex.as_completed(futures):
+            fut.result()
+
+- :class:`SerialExecutor`: runs each call lazily, in submission order, when
+  ``as_completed`` reaches it (``workers=1``).
+- :class:`ProcessExecutor`: :class:`concurrent.futures.ProcessPoolExecutor` (forkserver),
+  sized to the CPUs this process may use (``os.sched_getaffinity``); workers use
+  single-threaded BLAS and ignore SIGINT (the parent stops them).
+- :class:`DaskExecutor`: ``dask.distributed.Client(scheduler)``; ``submit`` /
+  ``as_completed`` of distributed; single-threaded BLAS in each call (threadpoolctl).
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import multiprocessing
+import os
+import signal
+from collections.abc import Callable, Iterable, Iterator
+from typing import Any, Protocol
+
+BLAS_THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "OMP_NUM_THREADS",
+                         "BLIS_NUM_THREADS", "VECLIB_MAXIMUM_THREADS")
+
+
+class FutureLike(Protocol):
+    def result(self) -> Any: ...
+
+
+class Executor(Protocol):
+    """What the sweep needs from an executor."""
+
+    workers: int
+    description: str
+
+    def submit(self, fn: Callable[..., Any], /, *args: Any) -> FutureLike: ...
+
+    def as_completed(self, futures: Iterable[FutureLike]) -> Iterator[FutureLike]: ...
+
+    def shutdown(self, interrupted: bool = False) -> None: ...
+
+    def __enter__(self) -> Executor: ...
+
+    def __exit__(self, *exc: Any) -> None: ...
+
+
+def available_cpus() -> int:
+    """CPUs this process may run on (affinity mask; ``os.cpu_count()`` elsewhere)."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # not Linux
+        return os.cpu_count() or 1
+
+
+def single_threaded_blas() -> None:
+    """Default the BLAS thread variables to 1 (effective in processes started after)."""
+    for name in BLAS_THREAD_VARIABLES:
+        os.environ.setdefault(name, "1")
+
+
+class _Base:
+    workers = 1
+    description = ""
+
+    def __enter__(self) -> Any:
+        return self
+
+    def __exit__(self, exc_type: Any, exc: Any, tb: Any) -> None:
+        self.shutdown(interrupted=exc_type is not None)
+
+    def shutdown(self, interrupted: bool = False) -> None:
+        pass
+
+
+class _LazyFuture:
+    def __init__(self, fn: Callable[..., Any], args: tuple[Any, ...]) -> None:
+        self._fn, self._args = fn, args
+        self._done = False
+        self._value: Any = None
+        self._error: BaseException | None = None
+
+    def run(self) -> None:
+        if not self._done:
+            try:
+                self._value = self._fn(*self._args)
+            except Exception as exc:
+                self._error = exc
+            self._done = True
+
+    def result(self) -> Any:
+        self.run()
+        if self._error is not None:
+            raise self._error
+        return self._value
+
+
+class SerialExecutor(_Base):
+    """Runs the calls one by one in this process, in submission order."""
+
+    description = "serial (this process)"
+
+    def submit(self, fn: Callable[..., Any], /, *args: Any) -> _LazyFuture:
+        return _LazyFuture(fn, args)
+
+    def as_completed(self, futures: Iterable[Any]) -> Iterator[Any]:
+        for fut in futures:
+            fut.run()
+            yield fut
+
+
+def _init_worker() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    for name in BLAS_THREAD_VARIABLES:
+        os.environ[name] = "1"
+
+
+class ProcessExecutor(_Base):
+    """A local process pool of ``workers`` processes (default: the available CPUs)."""
+
+    def __init__(self, workers: int | None = None) -> None:
+        self.workers = max(1, workers or available_cpus())
+        self.description = f"process pool, {self.workers} workers"
+        single_threaded_blas()
+        method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() \
+            else "spawn"
+        self._pool = cf.ProcessPoolExecutor(self.workers, initializer=_init_worker,
+                                            mp_context=multiprocessing.get_context(method))
+
+    def submit(self, fn: Callable[..., Any], /, *args: Any) -> cf.Future[Any]:
+        return self._pool.submit(fn, *args)
+
+    def as_completed(self, futures: Iterable[Any]) -> Iterator[Any]:
+        return cf.as_completed(list(futures))
+
+    def shutdown(self, interrupted: bool = False) -> None:
+        if not interrupted:
+            self._pool.shutdown(wait=True)
+            return
+        processes = list(getattr(self._pool, "_processes", {}) .values())
+        self._pool.shutdown(wait=False, cancel_futures=True)
+        for p in processes:  # running points are abandoned, not awaited
+            p.terminate()
+        for p in processes:
+            p.join(timeout=5)
+
+
+def _limited(fn: Callable[..., Any], *args: Any) -> Any:
+    """``fn(*args)`` with one BLAS thread (Dask workers run several calls at once)."""
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:  # pragma: no cover
+        return fn(*args)
+    with threadpool_limits(1):
+        return fn(*args)
+
+
+class DaskExecutor(_Base):
+    """Grid points on a Dask distributed cluster at ``address`` (``tcp://HOST:PORT``)."""
+
+    def __init__(self, address: str, timeout: float = 30.0) -> None:
+        from distributed import Client
+
+        from rotorsfd.errors import ConfigError
+
+        try:
+            self._client = Client(address, timeout=timeout, set_as_default=False)
+        except (OSError, TimeoutError) as exc:
+            raise ConfigError("--scheduler", address, f"cannot connect ({exc})") from None
+        info = self._client.scheduler_info()
+        self.workers = max(1, sum(w.get("nthreads", 1) for w in info["workers"].values()))
+        self.description = f"Dask cluster {address}, {self.workers} threads"
+        self._futures: list[Any] = []
+
+    def submit(self, fn: Callable[..., Any], /, *args: Any) -> Any:
+        fut = self._client.submit(_limited, fn, *args, pure=False)
+        self._futures.append(fut)
+        return fut
+
+    def as_completed(self, futures: Iterable[Any]) -> Iterator[Any]:
+        from distributed import as_completed
+
+        return iter(as_completed(list(futures)))
+
+    def shutdown(self, interrupted: bool = False) -> None:
+        try:
+            if interrupted and self._futures:
+                self._client.cancel(self._futures)
+        finally:
+            self._client.close()
+
+
+def make_executor(workers: int | None = None, scheduler: str | None = None) -> Executor:
+    """Dask with ``scheduler``; serial for ``workers == 1``; else a process pool of
+    ``workers`` (default: the available CPUs)."""
+    if scheduler:
+        return DaskExecutor(scheduler)
+    n = workers or available_cpus()
+    if n <= 1:
+        return SerialExecutor()
+    return ProcessExecutor(n)
