@@ -320,5 +320,34 @@ def _static(args: argparse.Namespace, config: Any) -> int:
     return 0
 
 
+@command("sweep", "parameter study: a grid over config fields ([analysis.sweep] axes or "
+         "--axis), one task per point, in parallel (local cores, or a Dask cluster): "
+         "sweep.nc, summary.csv, sweep.json, points/; exit 1 if points are left pending",
+         output=True, quiet=True,
+         arguments=[arg("--axis", action="append", default=[], metavar="PATH=V1,V2,...",
+                        help="grid axis replacing [analysis.sweep] axes (repeatable), e.g. "
+                             "--axis 'sfd.clearance_ratio=0.4 %%,0.5 %%'"),
+                    arg("--task", metavar="NAME[:K=V,...]",
+                        help="task kind (default: analysis.sweep.task)"),
+                    arg("--workers", type=int, metavar="N",
+                        help="local worker processes (default: the available CPUs)"),
+                    arg("--scheduler", metavar="tcp://HOST:PORT",
+                        help="run on this Dask distributed scheduler"),
+                    arg("--resume", action="store_true",
+                        help="continue the sweep in DIR: finished points are kept")])
+def _sweep(args: argparse.Namespace, config: Any) -> int:
+    from rotorsfd.studies import grid_from_axes, run_sweep
+    from rotorsfd.studies.grid import parse_axis
+
+    axes = grid_from_axes(config, dict(map(parse_axis, args.axis))) if args.axis else None
+    result = run_sweep(config, axes, args.task, directory=args.output, workers=args.workers,
+                       scheduler=args.scheduler, progress=not args.quiet,
+                       resume=args.resume, search_path=Path(args.config).parent)
+    if not args.quiet:
+        print(result.summary())
+        print(f"wrote {args.output / 'sweep.nc'}, {args.output / 'summary.csv'}")
+    return 0 if result.complete else 1
+
+
 if __name__ == "__main__":  # pragma: no cover
     sys.exit(main())
