@@ -1,0 +1,130 @@
+"""Time-domain figures like the paper's Figure 23, and the brute-force bifurcation diagram.
+
+Drawn from arrays the analyses computed (no physics here): displacements in units of the
+SFD clearance C (y/C, z/C), velocities as vy / (C Omega), spectra against the frequency
+ratio w / Omega. Panels: orbit with the clearance circle (journal), phase diagram
+(y vs vy), Poincare section (y, z once per rotor period), amplitude spectrum.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+
+
+def _short(title: str, n: int = 90) -> str:
+    return title if len(title) <= n else title[:n - 3] + "..."
+
+
+def orbit_axes(ax: Axes, y: Any, z: Any, py: Any = None, pz: Any = None, *,
+               clearance_circle: bool = False, unit: str = "C") -> Axes:
+    """Orbit z against y; the unit circle (the clearance) when ``clearance_circle``."""
+    ax.plot(y, z, "-", lw=0.6, color="C0")
+    if py is not None:
+        ax.plot(py, pz, ".", ms=4, color="C3")
+    if clearance_circle:
+        th = np.linspace(0.0, 2.0 * np.pi, 361)
+        ax.plot(np.cos(th), np.sin(th), "k--", lw=0.8)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel(f"y [{unit}]")
+    ax.set_ylabel(f"z [{unit}]")
+    ax.set_title("orbit", fontsize=9)
+    ax.grid(alpha=0.3)
+    return ax
+
+
+def phase_axes(ax: Axes, y: Any, vy: Any, py: Any = None, pvy: Any = None, *,
+               unit: str = "C") -> Axes:
+    """Phase diagram vy against y (Poincare points on it when given)."""
+    ax.plot(y, vy, "-", lw=0.6, color="C0")
+    if py is not None:
+        ax.plot(py, pvy, ".", ms=4, color="C3")
+    ax.set_xlabel(f"y [{unit}]")
+    ax.set_ylabel(rf"$v_y / \Omega$ [{unit}]")
+    ax.set_title("phase diagram", fontsize=9)
+    ax.grid(alpha=0.3)
+    return ax
+
+
+def poincare_axes(ax: Axes, py: Any, pz: Any, *, unit: str = "C") -> Axes:
+    """Poincare section: (y, z) once per rotor period."""
+    ax.plot(py, pz, ".", ms=5, color="C3")
+    ax.set_xlabel(f"y [{unit}]")
+    ax.set_ylabel(f"z [{unit}]")
+    ax.set_title(f"Poincare section ({len(np.atleast_1d(py))} periods)", fontsize=9)
+    ax.grid(alpha=0.3)
+    return ax
+
+
+def spectrum_axes(ax: Axes, frequency_ratio: Any, amplitude: Any, *, unit: str = "C",
+                  max_ratio: float = 5.0) -> Axes:
+    """Amplitude spectrum against w / Omega (log amplitude axis)."""
+    r = np.asarray(frequency_ratio, float)
+    a = np.asarray(amplitude, float)
+    keep = (r > 0) & (r <= max_ratio)
+    ax.semilogy(r[keep], np.maximum(a[keep], 1e-12), "-", lw=0.8)
+    ax.set_xlabel(r"$\omega / \Omega$")
+    ax.set_ylabel(f"amplitude of y [{unit}]")
+    ax.set_title("amplitude spectrum", fontsize=9)
+    ax.set_xlim(0.0, max_ratio)
+    ax.grid(alpha=0.3, which="both")
+    return ax
+
+
+def simulation_figures(*, y: Any, z: Any, vy: Any, py: Any, pz: Any, pvy: Any,
+                       frequency_ratio: Any, amplitude: Any, clearance_circle: bool,
+                       unit: str = "C", title: str = "") -> dict[str, Figure]:
+    """``simulation.png`` (the four panels of Fig. 23) and each panel alone:
+    ``orbit.png``, ``phase.png``, ``poincare.png``, ``spectrum.png``."""
+    figs: dict[str, Figure] = {}
+    fig = Figure(figsize=(10, 8), layout="constrained")
+    axs = fig.subplots(2, 2)
+    orbit_axes(axs[0, 0], y, z, clearance_circle=clearance_circle, unit=unit)
+    phase_axes(axs[0, 1], y, vy, py, pvy, unit=unit)
+    poincare_axes(axs[1, 0], py, pz, unit=unit)
+    spectrum_axes(axs[1, 1], frequency_ratio, amplitude, unit=unit)
+    fig.suptitle(_short(title), fontsize=10)
+    figs["simulation.png"] = fig
+    for name, draw in (
+            ("orbit.png", lambda ax: orbit_axes(ax, y, z, clearance_circle=clearance_circle,
+                                                unit=unit)),
+            ("phase.png", lambda ax: phase_axes(ax, y, vy, py, pvy, unit=unit)),
+            ("poincare.png", lambda ax: poincare_axes(ax, py, pz, unit=unit)),
+            ("spectrum.png", lambda ax: spectrum_axes(ax, frequency_ratio, amplitude,
+                                                      unit=unit))):
+        f = Figure(figsize=(6, 5), layout="constrained")
+        draw(f.add_subplot())
+        f.suptitle(_short(title, 70), fontsize=9)
+        figs[name] = f
+    return figs
+
+
+def bifurcation_figure(table: Mapping[str, Any], *, nodes: Sequence[int],
+                       x_name: str = "speed_ratio", x_label: str = r"$\tilde\Omega$",
+                       scale: float = 1.0, unit: str = "C", title: str = "") -> Figure:
+    """Poincare points y (per node, one panel each) against the speed; the up sweep in
+    blue dots, the down sweep in red crosses (jumps and hysteresis show as their
+    difference)."""
+    nodes = list(nodes)
+    fig = Figure(figsize=(8, 2.8 * len(nodes) + 0.6), layout="constrained")
+    axs = np.atleast_1d(fig.subplots(len(nodes), 1, sharex=True))
+    x = np.asarray(table[x_name], float)
+    node = np.asarray(table["node"])
+    direction = np.asarray(table["direction"])
+    y = np.asarray(table["y"], float) / scale
+    for ax, n in zip(axs, nodes, strict=True):
+        for d, style, color in (("up", ".", "C0"), ("down", "x", "C3")):
+            sel = (node == n) & (direction == d)
+            if np.any(sel):
+                ax.plot(x[sel], y[sel], style, ms=3 if d == "up" else 3.5, color=color,
+                        label=f"speed {d}")
+        ax.set_ylabel(f"y at node {n} [{unit}]")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8, loc="best")
+    axs[-1].set_xlabel(x_label)
+    axs[0].set_title(_short(title or "Bifurcation diagram (Poincare points)"), fontsize=9)
+    return fig
