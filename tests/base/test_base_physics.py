@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import make_rotor
+from base_helpers import make_rotor
 
 from rotorsfd.model import Disk, dof_index
 from rotorsfd.model.base_motion import BaseMotion, BaseState, UniformAcceleration

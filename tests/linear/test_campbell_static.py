@@ -6,7 +6,7 @@ import csv
 
 import numpy as np
 import pytest
-from conftest import STEEL, pinned_pinned
+from linear_helpers import STEEL, pinned_pinned
 
 from rotorsfd.errors import ConvergenceError
 from rotorsfd.linear import campbell, eigen, static_deflection

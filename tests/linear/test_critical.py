@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import STEEL
+from linear_helpers import STEEL
 
 from rotorsfd.linear import branch_frequency, campbell, critical_speeds
 from rotorsfd.linear.fit import fit_support_stiffness

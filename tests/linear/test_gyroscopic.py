@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import pinned_pinned
+from linear_helpers import pinned_pinned
 
 from rotorsfd.linear import eigen
 from rotorsfd.model import Disk, Material, Rotor, uniform_shaft

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import Constrained
+from linear_helpers import Constrained
 
 from rotorsfd.errors import ConvergenceError
 from rotorsfd.linear import LinearDynamics, eigen, log_decrement, mode_shapes, whirl_direction

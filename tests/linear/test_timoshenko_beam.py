@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import STEEL, pinned_pinned
+from linear_helpers import STEEL, pinned_pinned
 
 from rotorsfd.linear import eigen
 from rotorsfd.model import Rotor, uniform_shaft
