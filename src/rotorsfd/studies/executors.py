@@ -185,7 +185,7 @@ class DaskExecutor(_Base):
     def as_completed(self, futures: Iterable[Any]) -> Iterator[Any]:
         from distributed import as_completed
 
-        return iter(as_completed(list(futures)))
+        return iter(as_completed(list(futures), loop=self._client.loop))
 
     def shutdown(self, interrupted: bool = False) -> None:
         try:

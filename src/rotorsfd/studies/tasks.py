@@ -166,8 +166,8 @@ def unstable_intervals(x: Sequence[float], stable: Sequence[bool],
 
 
 def intervals_text(intervals: Sequence[tuple[float, float]]) -> str:
-    """``"1.02:1.08;1.2:1.25"`` (full precision), ``""`` for none."""
-    return ";".join(f"{lo!r}:{hi!r}" for lo, hi in intervals)
+    """``"1.02:1.08;1.2:1.25"`` (full precision), ``"none"`` for none."""
+    return ";".join(f"{lo!r}:{hi!r}" for lo, hi in intervals) or "none"
 
 
 @dataclass(frozen=True)
