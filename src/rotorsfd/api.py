@@ -35,9 +35,11 @@ __all__ = [
     "linear_system",
     "load_config",
     "reference_speed",
+    "run_bifurcation_diagram",
     "run_fit_supports",
     "run_modal",
     "run_response",
+    "run_simulation",
     "run_static",
     "show_config",
     "with_values",
@@ -241,5 +243,21 @@ def run_static(config: Any, **kwargs: Any) -> Any:
     """Static deflection of the linear rotor under constant base motion: see
     :func:`rotorsfd.analyses.static.run_static`."""
     from rotorsfd.analyses.static import run_static as _run
+
+    return _run(config, **kwargs)
+
+
+def run_simulation(config: Any, speed: float | None = None, **kwargs: Any) -> Any:
+    """Time integration at one speed (``[analysis.simulate]``): see
+    :func:`rotorsfd.analyses.simulate.run_simulation`."""
+    from rotorsfd.analyses.simulate import run_simulation as _run
+
+    return _run(config, speed, **kwargs)
+
+
+def run_bifurcation_diagram(config: Any, **kwargs: Any) -> Any:
+    """Speed swept up and down in the time domain (``[analysis.bifurcation_diagram]``): see
+    :func:`rotorsfd.analyses.bifurcation_diagram.run_bifurcation_diagram`."""
+    from rotorsfd.analyses.bifurcation_diagram import run_bifurcation_diagram as _run
 
     return _run(config, **kwargs)

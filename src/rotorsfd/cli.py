@@ -349,5 +349,67 @@ def _sweep(args: argparse.Namespace, config: Any) -> int:
     return 0 if result.complete else 1
 
 
+
+def _ratio(text: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+
+
+@command("simulate", "time integration at one speed ([analysis.simulate]): timeseries.nc, "
+         "poincare.csv, summary.json (motion: period-n, quasi-periodic or chaotic, with the "
+         "evidence), simulation.png and orbit/phase/poincare/spectrum.png; journal contact: "
+         "one line, exit 1, nothing written", output=True, quiet=True,
+         arguments=[arg("--speed", type=_speed, metavar="SPEED",
+                        help="rotor speed, e.g. 850 or '8000 rpm' (rad/s if no unit)"),
+                    arg("--speed-ratio", type=_ratio, metavar="X",
+                        help="rotor speed / [reference] speed"),
+                    arg("--from-hb", action="store_true",
+                        help="start on the HB periodic solution at that speed (H from "
+                             "[analysis.response]) instead of the displaced state"),
+                    arg("--record-periods", type=int, metavar="N",
+                        help="last periods kept in timeseries.nc (default: poincare_periods)"),
+                    arg("--lyapunov-periods", type=int, metavar="N",
+                        help="periods of the Lyapunov run (default: min(100, periods); "
+                             "0: none)")])
+def _simulate(args: argparse.Namespace, config: Any) -> int:
+    from rotorsfd import api
+
+    if args.speed is not None and args.speed_ratio is not None:
+        raise ConfigError("--speed/--speed-ratio", (args.speed, args.speed_ratio),
+                          "give --speed or --speed-ratio, not both")
+    result = api.run_simulation(config, args.speed, speed_ratio=args.speed_ratio,
+                                search_path=Path(args.config).parent,
+                                from_hb=args.from_hb, record_periods=args.record_periods,
+                                lyapunov_periods=args.lyapunov_periods,
+                                progress=not args.quiet)
+    paths = result.write(args.output)
+    if not args.quiet:
+        print(result.summary())
+        print("wrote " + ", ".join(str(p) for p in paths.values()))
+    return 0
+
+
+@command("bifurcation-diagram", "brute-force bifurcation diagram: the speed swept up then "
+         "down over [analysis.bifurcation_diagram], each speed from the previous end state; "
+         "diagram.csv (Poincare points), speeds.csv, diagram.json, diagram.png; exit 1 if "
+         "a sweep met journal contact (the rest is written)", output=True, quiet=True,
+         arguments=[arg("--from-hb", action="store_true",
+                        help="start the first speed on its HB periodic solution")])
+def _bifurcation_diagram(args: argparse.Namespace, config: Any) -> int:
+    from rotorsfd import api
+
+    result = api.run_bifurcation_diagram(config, search_path=Path(args.config).parent,
+                                         from_hb=args.from_hb, progress=not args.quiet)
+    paths = result.write(args.output)
+    for p in result.contacts:
+        print(f"rotorsfd: error: {p.direction} sweep stopped at {p.speed:.6g} rad/s: "
+              f"{p.contact}", file=sys.stderr)
+    if not args.quiet:
+        print(result.summary())
+        print("wrote " + ", ".join(str(p) for p in paths.values()))
+    return 0 if result.success else 1
+
 if __name__ == "__main__":  # pragma: no cover
     sys.exit(main())

@@ -1,0 +1,307 @@
+"""Brute-force bifurcation diagram: Poincare points of the time-domain motion against the
+rotor speed, swept up and then down (``[analysis.bifurcation_diagram]``).
+
+At each speed the integration starts from the end state of the previous speed (the first
+from ``[analysis.simulate] initial_displacement``, or the HB orbit), runs
+``settle_periods`` and records the Poincare points of ``record_periods`` more. Runs at
+each speed start at t = 0, so the unbalance angle ``Omega t`` is continuous (every run
+lasts a whole number of periods); a time-varying base law restarts its phase at each
+speed. Coexisting attractors show as a difference of the up and down sweeps (jumps and
+hysteresis). Journal contact ends that sweep: the down sweep then starts afresh at the
+top speed; the contacts are listed and reported.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from rotorsfd.analyses.simulate import (
+    DIRECTIONS,
+    _plain,
+    classify,
+    displaced_state,
+    hb_start,
+    integrate_periods,
+    scheme_options,
+    system_from_config,
+    time_domain_inputs,
+)
+from rotorsfd.errors import ConfigError, ConvergenceError, JournalContactError
+from rotorsfd.model import dofs
+from rotorsfd.model.system import RotorSystem
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from rotorsfd.io.schema import Config
+
+FIELD = "analysis.bifurcation_diagram"
+
+
+@dataclass
+class SpeedPoint:
+    """One speed of a sweep: its Poincare points ``(n_p, n_nodes, 2)`` (y, z) and
+    velocities, the motion class and the peak journal eccentricity (or the contact)."""
+
+    direction: str
+    speed: float
+    poincare_t: np.ndarray
+    poincare_q: np.ndarray
+    poincare_v: np.ndarray
+    motion: str
+    n_distinct: int | None
+    max_eccentricity: float | None
+    contact: str | None = None
+
+
+@dataclass
+class BifurcationDiagramResult:
+    """The sweeps (``points`` in run order) and how they were made."""
+
+    points: list[SpeedPoint]
+    nodes: tuple[int, ...]
+    reference_speed: float | None
+    clearance: float | None
+    settings: dict[str, Any]
+    elapsed: float = 0.0
+    title: str = ""
+    notes: list[str] = field(default_factory=list)
+
+    FILES = ("diagram.csv", "speeds.csv", "diagram.png", "diagram.json")
+
+    @property
+    def contacts(self) -> list[SpeedPoint]:
+        return [p for p in self.points if p.contact is not None]
+
+    @property
+    def success(self) -> bool:
+        return not self.contacts
+
+    def table(self) -> dict[str, np.ndarray]:
+        """``diagram.csv``: ``direction, speed_rad_s, speed_ratio, node, period, y, z, vy,
+        vz`` (one row per Poincare point and node)."""
+        cols: dict[str, list[Any]] = {k: [] for k in (
+            "direction", "speed_rad_s", "speed_ratio", "node", "period", "y", "z", "vy",
+            "vz")}
+        ref = self.reference_speed
+        for p in self.points:
+            n_p = p.poincare_t.size
+            per = np.rint(p.poincare_t * p.speed / (2 * math.pi)).astype(int)
+            for j, node in enumerate(self.nodes):
+                cols["direction"] += [p.direction] * n_p
+                cols["speed_rad_s"] += [p.speed] * n_p
+                cols["speed_ratio"] += [p.speed / ref if ref else math.nan] * n_p
+                cols["node"] += [node] * n_p
+                cols["period"] += list(per)
+                cols["y"] += list(p.poincare_q[:, j, 0])
+                cols["z"] += list(p.poincare_q[:, j, 1])
+                cols["vy"] += list(p.poincare_v[:, j, 0])
+                cols["vz"] += list(p.poincare_v[:, j, 1])
+        if not ref:
+            cols.pop("speed_ratio")
+        return {k: np.asarray(v) for k, v in cols.items()}
+
+    def speeds_table(self) -> dict[str, np.ndarray]:
+        """``speeds.csv``: per speed ``direction, speed_rad_s, speed_ratio, motion,
+        n_distinct_poincare (-1: unknown), max_eccentricity (-1: none), contact (0/1)``."""
+        ref = self.reference_speed
+        cols = {"direction": [p.direction for p in self.points],
+                "speed_rad_s": [p.speed for p in self.points],
+                "speed_ratio": [p.speed / ref if ref else math.nan for p in self.points],
+                "motion": [p.motion for p in self.points],
+                "n_distinct_poincare": [-1 if p.n_distinct is None else p.n_distinct
+                                        for p in self.points],
+                "max_eccentricity": [-1.0 if p.max_eccentricity is None
+                                     else p.max_eccentricity for p in self.points],
+                "contact": [p.contact is not None for p in self.points]}
+        if not ref:
+            cols.pop("speed_ratio")
+        return {k: np.asarray(v) for k, v in cols.items()}
+
+    def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
+        """Write ``diagram.csv``, ``speeds.csv``, ``diagram.json`` (settings, contacts)
+        and ``diagram.png`` atomically."""
+        from rotorsfd.io import atomic
+        from rotorsfd.io.branch_files import write_table
+
+        out = Path(directory)
+        paths = {"diagram.csv": write_table(out / "diagram.csv", self.table()),
+                 "speeds.csv": write_table(out / "speeds.csv", self.speeds_table()),
+                 "diagram.json": atomic.write_json(out / "diagram.json", _plain({
+                     "settings": self.settings, "nodes": list(self.nodes),
+                     "clearance_m": self.clearance, "elapsed_s": self.elapsed,
+                     "contacts": [{"direction": p.direction, "speed_rad_s": p.speed,
+                                   "message": p.contact} for p in self.contacts],
+                     "notes": self.notes, "title": self.title}))}
+        if plots:
+            paths["diagram.png"] = atomic.save_figure(self.plot(), out / "diagram.png",
+                                                      dpi=120)
+        return paths
+
+    def plot(self) -> Figure:
+        """Poincare y (in C) of every node against Omega~ (or the speed)."""
+        from rotorsfd.plots.timedomain import bifurcation_figure
+
+        table = self.table()
+        x_name = "speed_ratio" if self.reference_speed else "speed_rad_s"
+        label = r"$\tilde\Omega = \Omega / \Omega_{ref}$" if self.reference_speed \
+            else r"$\Omega$ [rad/s]"
+        return bifurcation_figure(table, nodes=self.nodes, x_name=x_name, x_label=label,
+                                  scale=self.clearance or 1.0,
+                                  unit="C" if self.clearance else "m", title=self.title)
+
+    def summary(self) -> str:
+        """Speeds, sweeps, motion counts, contacts."""
+        counts: dict[str, int] = {}
+        for p in self.points:
+            counts[p.motion] = counts.get(p.motion, 0) + 1
+        lines = [f"{len(self.points)} runs ({self.settings['direction']}), "
+                 f"{self.settings['settle_periods']} + {self.settings['record_periods']} "
+                 f"periods each, {self.elapsed:.1f} s",
+                 "motions: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items()))]
+        lines += [f"contact ({p.direction} sweep) at {p.speed:.6g} rad/s: {p.contact}"
+                  for p in self.contacts]
+        lines += [f"note: {n}" for n in self.notes]
+        return "\n".join(lines)
+
+
+def sweep_speeds(start: float, stop: float, n: int, direction: str
+                 ) -> list[tuple[str, float]]:
+    """``(direction, speed)`` in run order: up from the lower bound, then down."""
+    lo, hi = sorted((float(start), float(stop)))
+    up = list(np.linspace(lo, hi, n))
+    runs: list[tuple[str, float]] = []
+    if direction in ("up", "up-down"):
+        runs += [("up", s) for s in up]
+    if direction in ("down", "up-down"):
+        runs += [("down", s) for s in up[::-1]]
+    return runs
+
+
+def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
+                            search_path: Path | None = None, start: float | None = None,
+                            stop: float | None = None, n: int | None = None,
+                            direction: str | None = None, settle_periods: int | None = None,
+                            record_periods: int | None = None,
+                            steps_per_period: int | None = None, scheme: str | None = None,
+                            alpha: float | None = None,
+                            initial_displacement: float | None = None,
+                            from_hb: bool = False, harmonics: int | None = None,
+                            reference_speed: float | None = None,
+                            nodes: Sequence[int] | None = None, progress: bool = True,
+                            title: str | None = None) -> BifurcationDiagramResult:
+    """Sweep the speed (rad/s; from a Config: ``[analysis.bifurcation_diagram]``, the
+    scheme, steps per period and initial state of ``[analysis.simulate]``)."""
+    from tqdm import tqdm
+
+    from rotorsfd.io.schema import BifurcationDiagramAnalysis, SimulateAnalysis
+
+    if isinstance(config_or_system, RotorSystem):
+        system = config_or_system
+        bd, sim = BifurcationDiagramAnalysis(), SimulateAnalysis()
+        ref = reference_speed
+        if start is None or stop is None:
+            raise ConfigError("start/stop", (start, stop), "give the speed range [rad/s]")
+        H = harmonics or 3
+        name = title or ""
+        out_nodes = tuple(nodes) if nodes else tuple(sorted(
+            {d.node for d in system.rotor.disks} | ({system.sfd_node} - {None}))) or (1,)
+    else:
+        config = config_or_system
+        system = system_from_config(config, search_path)
+        bd, sim = config.analysis.bifurcation_diagram, config.analysis.simulate
+        if reference_speed is not None:
+            ref = reference_speed
+        else:
+            from rotorsfd.api import reference_speed as config_reference_speed
+
+            ref = config_reference_speed(config, system)
+        lo, hi = bd.speed_range.bounds(ref)
+        start = lo if start is None else start
+        stop = hi if stop is None else stop
+        H = harmonics or config.analysis.response.harmonics
+        name = config.title if title is None else title
+        out_nodes = tuple(nodes) if nodes else tuple(config.output_nodes("simulate"))
+    if not (start > 0 and stop > 0 and start != stop):
+        raise ConfigError(f"{FIELD}.speed_range", (start, stop),
+                          "speeds must be > 0 and differ")
+    n = n or bd.speed_range.n
+    direction = direction or bd.direction
+    settle = bd.settle_periods if settle_periods is None else settle_periods
+    rec = record_periods or bd.record_periods
+    spp = steps_per_period or sim.steps_per_period
+    opts = scheme_options(scheme or sim.scheme, sim.alpha if alpha is None else alpha)
+    disp = sim.initial_displacement if initial_displacement is None else initial_displacement
+    rd = [dofs.dof_index(nd, d) for nd in out_nodes for d in DIRECTIONS]
+    clearance = system.sfd.clearance if system.sfd is not None else None
+    runs = sweep_speeds(start, stop, n, direction)
+    settings = {"speed_start_rad_s": min(start, stop), "speed_stop_rad_s": max(start, stop),
+                "n_speeds": n, "direction": direction, "settle_periods": settle,
+                "record_periods": rec, "steps_per_period": spp, **opts,
+                "initial_state": "HB" if from_hb else f"displaced {disp:g} m",
+                "reference_speed_rad_s": ref}
+    nn = len(out_nodes)
+
+    def fresh(speed: float) -> tuple[np.ndarray, np.ndarray]:
+        if from_hb:
+            return hb_start(system, speed, H)
+        return displaced_state(system.n_dof, disp), np.zeros(system.n_dof)
+
+    points: list[SpeedPoint] = []
+    notes: list[str] = []
+    state: tuple[np.ndarray, np.ndarray] | None = None
+    stopped: set[str] = set()
+    tic = time.perf_counter()
+    bar = tqdm(total=len(runs), desc="bifurcation diagram", disable=not progress,
+               file=sys.stderr, dynamic_ncols=True, leave=False)
+    try:
+        for d, speed in runs:
+            bar.update()
+            if d in stopped:
+                continue
+            if state is None:
+                state = fresh(speed)
+            bar.set_postfix_str(f"{d} {speed / ref if ref else speed:.4g}")
+            inputs = time_domain_inputs(system, speed,
+                                        horizon=(settle + rec + 1) * 2 * math.pi / speed)
+            try:
+                tr = integrate_periods(inputs, state[0], state[1], steps_per_period=spp,
+                                       periods=settle + rec, record_dofs=rd,
+                                       record_periods=rec, poincare_periods=rec,
+                                       method_options=opts, chunk_periods=settle + rec,
+                                       clearance=clearance)
+            except (JournalContactError, ConvergenceError) as exc:
+                msg = " ".join(str(exc).split())
+                empty = np.zeros((0, nn, 2))
+                kind = "contact" if isinstance(exc, JournalContactError) else "failed"
+                points.append(SpeedPoint(d, speed, np.zeros(0), empty, empty, kind, None,
+                                         None, msg))
+                notes.append(f"{d} sweep stopped at {speed:.6g} rad/s ({kind}); the next "
+                             "sweep starts from the initial state")
+                stopped.add(d)
+                state = None
+                continue
+            state = (tr.q_final, tr.v_final)
+            j = out_nodes.index(system.sfd_node) if system.sfd_node in out_nodes else 0
+            mc = classify(tr.poincare_q, tr.poincare_v, tr.q, tr.v,
+                          2 * math.pi / speed / spp, speed, first=2 * j, n_record=rec * spp)
+            eps = None
+            if clearance is not None and system.sfd_node in out_nodes:
+                eps = float(np.max(np.hypot(tr.q[:, 2 * j], tr.q[:, 2 * j + 1]))) / clearance
+            points.append(SpeedPoint(
+                d, speed, tr.poincare_t, tr.poincare_q.reshape(-1, nn, 2),
+                tr.poincare_v.reshape(-1, nn, 2), mc.motion if mc else "unclassified",
+                mc.evidence.get("n_distinct_poincare") if mc else None, eps))
+    finally:
+        bar.close()
+    return BifurcationDiagramResult(points, out_nodes, ref, clearance, settings,
+                                    time.perf_counter() - tic, name, notes)
+
