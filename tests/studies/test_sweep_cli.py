@@ -1,0 +1,109 @@
+"""``rotorsfd sweep``: SIGKILL halfway and --resume gives the uninterrupted files without
+recomputing finished points; progress bar and --quiet; --scheduler on a LocalCluster."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+from sweep_helpers import sweep_toml
+
+from rotorsfd.cli import main
+
+AXES = ["--axis", "sfd.clearance_ratio=0.4 %,0.5 %,0.6 %",
+        "--axis", "unbalance[0].magnitude=40 g*mm,45 g*mm,50 g*mm,55 g*mm"]
+FILES = ("sweep.nc", "summary.csv", "sweep.json")
+
+
+def _cli(*args: str) -> list[str]:
+    return [sys.executable, "-m", "rotorsfd", "sweep", *args]
+
+
+def _bytes(directory: Path) -> dict[str, bytes]:
+    return {f: (directory / f).read_bytes() for f in FILES}
+
+
+def _env() -> dict[str, str]:
+    return {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
+
+
+def test_sigkill_then_resume_equals_uninterrupted(tmp_path):
+    cfg = sweep_toml(tmp_path / "rotor.toml")
+    full, part = tmp_path / "full", tmp_path / "part"
+    assert main(["sweep", str(cfg), "-o", str(full), "--task", "synthetic:fail_above=0.0055",
+                 "--workers", "1", "--quiet", *AXES]) == 0
+    log1, log2 = tmp_path / "run1.log", tmp_path / "run2.log"
+    proc = subprocess.Popen(
+        _cli(str(cfg), "-o", str(part), "--task",
+             f"synthetic:fail_above=0.0055,delay=0.4,log={log1}", "--workers", "2",
+             "--quiet", *AXES), env=_env(), start_new_session=True,
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    points = part / "points"
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline:
+        if len(list(points.glob("0*.json"))) >= 4:
+            break
+        assert proc.poll() is None, proc.communicate()
+        time.sleep(0.02)
+    os.killpg(proc.pid, signal.SIGKILL)                    # the CLI and its workers
+    proc.wait()
+    finished = {p.stem for p in points.glob("0*.json")}
+    assert 4 <= len(finished) < 12, finished
+    assert not (part / "sweep.nc").exists()                # killed: nothing combined
+    run = subprocess.run(
+        _cli(str(cfg), "-o", str(part), "--task",
+             f"synthetic:fail_above=0.0055,log={log2}", "--workers", "2", "--resume",
+             "--quiet", *AXES), env=_env(), capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    rerun = log2.read_text().splitlines()
+    assert len(rerun) == 12 - len(finished)                # none of the finished points
+    values = {f"{i * 4 + j:06d}": (c, u) for i, c in enumerate((0.004, 0.005, 0.006))
+              for j, u in enumerate((4e-5, 4.5e-5, 5e-5, 5.5e-5))}
+    recomputed = {pid for pid, v in values.items()
+                  if any(line == repr(v) for line in rerun)}
+    assert recomputed == set(values) - finished
+    assert _bytes(part) == _bytes(full)
+
+
+def test_progress_bar_and_quiet(tmp_path, capsys):
+    cfg = sweep_toml(tmp_path / "rotor.toml")
+    assert main(["sweep", str(cfg), "-o", str(tmp_path / "a"), "--task", "synthetic",
+                 "--workers", "1", *AXES]) == 0
+    out, err = capsys.readouterr()
+    assert "sweep" in err and "12/12" in err and "pt/s" in err    # tqdm with rate / ETA
+    assert "12 points (3 x 4): 12 ok" in out and "sweep.nc" in out
+    assert main(["sweep", str(cfg), "-o", str(tmp_path / "b"), "--task", "synthetic",
+                 "--workers", "1", "--quiet", *AXES]) == 0
+    assert capsys.readouterr() == ("", "")
+
+
+def test_existing_folder_needs_resume_and_bad_task(tmp_path, capsys):
+    cfg = sweep_toml(tmp_path / "rotor.toml")
+    args = ["sweep", str(cfg), "-o", str(tmp_path / "a"), "--workers", "1", "--quiet", *AXES]
+    assert main([*args, "--task", "synthetic"]) == 0
+    assert main([*args, "--task", "synthetic"]) == 2
+    assert "--resume" in capsys.readouterr().err
+    assert main([*args, "--task", "synthetic", "--resume"]) == 0
+    assert main(["sweep", str(cfg), "-o", str(tmp_path / "c"), "--task", "nope"]) == 2
+    assert "allowed: response, synthetic" in capsys.readouterr().err
+
+
+def test_scheduler_option_on_local_cluster(tmp_path):
+    distributed = pytest.importorskip("distributed")
+    cfg = sweep_toml(tmp_path / "rotor.toml")
+    assert main(["sweep", str(cfg), "-o", str(tmp_path / "serial"), "--task",
+                 "synthetic:fail_above=0.0055", "--workers", "1", "--quiet", *AXES]) == 0
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
+                                  host="127.0.0.1", protocol="tcp",
+                                  dashboard_address=None) as cluster:
+        run = subprocess.run(
+            _cli(str(cfg), "-o", str(tmp_path / "dask"), "--task",
+                 "synthetic:fail_above=0.0055", "--scheduler", cluster.scheduler_address,
+                 "--quiet", *AXES), env=_env(), capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    assert _bytes(tmp_path / "dask") == _bytes(tmp_path / "serial")
