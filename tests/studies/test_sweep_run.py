@@ -146,4 +146,4 @@ def test_grid_and_task_from_config(tmp_path):
                   progress=False)
     assert r.grid.shape == (2, 3) and r.counts()["ok"] == 6
     with pytest.raises(ConfigError, match="not available yet"):
-        run_sweep(config, None, "simulate", directory=tmp_path / "p", progress=False)
+        run_sweep(config, None, "stability-chart", directory=tmp_path / "p", progress=False)

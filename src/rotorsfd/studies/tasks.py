@@ -16,6 +16,9 @@ Kinds (``make_task("name:key=value,...")``):
   with stability; summary: bifurcation counts by type, unstable intervals and their total
   width (in Omega~ when the parameter is the speed: the paper's Figure 19 quantity), the
   peak r~ per output node and where it occurs.
+- ``simulate``: a time integration (:func:`rotorsfd.analyses.simulate.run_simulation`);
+  summary: motion class, max eccentricity, Lyapunov exponent, max r~ per node; Poincare
+  points of the SFD node.
 - ``synthetic``: a cheap deterministic function of the grid values, for tests (options
   ``delay`` [s], ``fail_above`` (fails when the first value exceeds it), ``log`` (a file
   that gets one line per execution)).
@@ -118,44 +121,49 @@ def unstable_intervals(x: Sequence[float], stable: Sequence[bool],
                        bifurcations_x: Sequence[float] = ()) -> list[tuple[float, float]]:
     """Intervals of the parameter x covered by unstable parts of a branch, merged.
 
-    Each run of consecutive unstable points spans its points' x and its two boundaries;
-    a boundary lies between an unstable point and its stable neighbour: the located
-    bifurcation nearest to the linear estimate where ``|mu|max = 1`` (taken when it lies
-    within one point spacing of it, e.g. a fold's turning point), else that estimate.
+    Each run of consecutive unstable points spans its points' x and its two boundaries.
+    A boundary lies between an unstable point i and its stable neighbour j: the linear
+    estimate of where ``|mu|max = 1`` (the midpoint without multipliers), replaced by a
+    located bifurcation (e.g. a fold's turning point) when one lies within |x_i - x_j| of
+    it; bifurcations are matched one-to-one, nearest pairs first.
     """
     x = np.asarray(x, dtype=float)
     unstable = ~np.asarray(stable, dtype=bool)
     mm = None if max_multiplier is None else np.asarray(max_multiplier, dtype=float)
-    bx = np.asarray(list(bifurcations_x), dtype=float)
-
-    def boundary(i: int, j: int) -> float:  # i unstable, j its stable neighbour
-        est = x[j] + 0.5 * (x[i] - x[j])
-        if mm is not None and mm[i] != mm[j]:
-            t = min(max((1.0 - mm[j]) / (mm[i] - mm[j]), 0.0), 1.0)
-            est = x[j] + t * (x[i] - x[j])
-        if bx.size:
-            k = int(np.argmin(np.abs(bx - est)))
-            if abs(bx[k] - est) <= abs(x[i] - x[j]) * (1 + 1e-9):
-                return float(bx[k])
-        return float(est)
-
-    spans = []
-    n = x.size
+    runs: list[tuple[int, int]] = []
     i = 0
-    while i < n:
-        if not unstable[i]:
+    while i < x.size:
+        if unstable[i]:
+            j = i
+            while j + 1 < x.size and unstable[j + 1]:
+                j += 1
+            runs.append((i, j))
+            i = j + 1
+        else:
             i += 1
-            continue
-        j = i
-        while j + 1 < n and unstable[j + 1]:
-            j += 1
-        pts = list(x[i:j + 1])
-        if i > 0:
-            pts.append(boundary(i, i - 1))
-        if j + 1 < n:
-            pts.append(boundary(j, j + 1))
-        spans.append((min(pts), max(pts)))
-        i = j + 1
+    ends: list[tuple[int, float, float]] = []  # (run, estimate, tolerance)
+    for r, (a, b) in enumerate(runs):
+        for i, j in ((a, a - 1), (b, b + 1)):
+            if 0 <= j < x.size:
+                t = 0.5
+                if mm is not None and mm[i] != mm[j]:
+                    t = min(max((1.0 - mm[j]) / (mm[i] - mm[j]), 0.0), 1.0)
+                ends.append((r, x[j] + t * (x[i] - x[j]), abs(x[i] - x[j]) * (1 + 1e-9)))
+    value = [e for _, e, _ in ends]
+    pairs = sorted((abs(bx - e), k, m) for k, (_, e, tol) in enumerate(ends)
+                   for m, bx in enumerate(bifurcations_x) if abs(bx - e) <= tol)
+    used_end: set[int] = set()
+    used_bif: set[int] = set()
+    for _, k, m in pairs:
+        if k not in used_end and m not in used_bif:
+            value[k] = float(bifurcations_x[m])
+            used_end.add(k)
+            used_bif.add(m)
+    spans = []
+    for r, (a, b) in enumerate(runs):
+        pts = [*x[a:b + 1].tolist(), *(v for (rr, _, _), v in zip(ends, value, strict=True)
+                                       if rr == r)]
+        spans.append((float(min(pts)), float(max(pts))))
     merged: list[tuple[float, float]] = []
     for lo, hi in sorted(spans):
         if merged and lo <= merged[-1][1]:
@@ -244,13 +252,59 @@ def response_output(result: Any) -> PointOutput:
     return PointOutput(sc, arrays, status, message)
 
 
+# ---- simulate ------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class SimulateTask:
+    """A time integration at each grid point (``[analysis.simulate]``); summary: motion
+    class, speed, max SFD eccentricity, largest Lyapunov exponent, max r~ per output node;
+    arrays: the Poincare points (y, z) of the SFD node (or first output node)."""
+
+    search_path: str | None = None
+
+    spec = "simulate"
+
+    def __call__(self, config: Config, values: Mapping[str, float]) -> PointOutput:
+        from pathlib import Path
+
+        from rotorsfd.analyses.simulate import run_simulation
+
+        result = run_simulation(config, search_path=None if self.search_path is None
+                                else Path(self.search_path), progress=False)
+        return simulate_output(result)
+
+
+def simulate_output(result: Any) -> PointOutput:
+    """Summary scalars and Poincare arrays of a SimulationResult."""
+    ly = result.lyapunov
+    sc: dict[str, Scalar] = {
+        "motion": str(result.motion_name), "speed_rad_s": float(result.speed),
+        "speed_ratio": finite_or_none(None if result.speed_ratio is None
+                                      else float(result.speed_ratio)),
+        "max_eccentricity": finite_or_none(None if result.max_eccentricity is None
+                                           else float(result.max_eccentricity)),
+        "lyapunov_per_s": None if ly is None else finite_or_none(float(ly.exponent))}
+    for j, node in enumerate(result.nodes):
+        r = np.sqrt(np.sum(np.asarray(result.q)[:, j, :2] ** 2, axis=-1)).max()
+        sc[f"max_radius_{node}"] = float(r)
+        if result.clearance:
+            sc[f"max_defl_{node}"] = float(r / result.clearance)
+    j = result.column(result.plot_node)
+    pq = np.asarray(result.poincare_q)[:, j, :2]
+    arrays = {"poincare_y": ArrayOut(("poincare",), pq[:, 0].astype(float)),
+              "poincare_z": ArrayOut(("poincare",), pq[:, 1].astype(float))}
+    return PointOutput(sc, arrays)
+
+
 # ---- registry --------------------------------------------------------------------------------
 
 TASKS: dict[str, Callable[..., Any]] = {
     "response": ResponseTask,
+    "simulate": SimulateTask,
     "synthetic": SyntheticTask,
 }
-PLANNED = ("simulate", "stability-chart")
+PLANNED = ("stability-chart",)
 
 
 def _option(text: str) -> Any:
@@ -276,7 +330,7 @@ def make_task(spec: str, *, search_path: str | os.PathLike[str] | None = None) -
         if not sep:
             raise ConfigError("--task", spec, "options are key=value, comma separated")
         opts[key.strip()] = _option(value.strip())
-    if name == "response" and search_path is not None:
+    if name in ("response", "simulate") and search_path is not None:
         opts.setdefault("search_path", str(search_path))
     try:
         return TASKS[name](**opts)

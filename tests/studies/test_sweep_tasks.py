@@ -1,0 +1,126 @@
+"""Task kinds: unstable intervals along a branch, the response summary from the documented
+ResponseResult fields, and tiny real response / simulate sweeps on a small rotor."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+from sweep_helpers import sweep_toml
+
+from rotorsfd.io.config import load_config
+from rotorsfd.studies import load_sweep, run_sweep, unstable_intervals
+from rotorsfd.studies.tasks import intervals_text, response_output
+
+
+def test_unstable_interval_boundaries_from_multipliers():
+    x = [1.0, 2.0, 3.0, 4.0, 5.0]
+    stable = [True, True, False, False, True]
+    mm = [0.9, 0.95, 1.1, 1.2, 0.8]
+    (lo, hi), = unstable_intervals(x, stable, mm)
+    assert lo == pytest.approx(2 + 1 / 3, rel=1e-14) and hi == pytest.approx(4.5, rel=1e-14)
+    assert unstable_intervals(x, [True] * 5, mm) == []
+    assert unstable_intervals(x, [False] * 5) == [(1.0, 5.0)]
+
+
+def test_unstable_interval_of_a_fold_pair_uses_located_folds():
+    # an S-curve: up to 1.2, back to 1.05 (middle branch unstable), up again
+    x = [1.0, 1.1, 1.2, 1.15, 1.05, 1.1, 1.3]
+    stable = [True, True, True, False, False, True, True]
+    assert unstable_intervals(x, stable, bifurcations_x=[1.21, 1.04]) == [(1.04, 1.21)]
+    # without located folds: midpoints, still inside the bistable range
+    (lo, hi), = unstable_intervals(x, stable)
+    assert (lo, hi) == (1.05, pytest.approx(1.175, rel=1e-14))
+
+
+def test_overlapping_intervals_merge():
+    x = [1.0, 2.0, 3.0, 2.5, 1.5, 4.0, 5.0, 6.0]
+    stable = [True, False, True, False, True, True, False, False]
+    iv = unstable_intervals(x, stable)
+    assert iv == [(1.5, 2.75), (4.5, 6.0)]   # [1.5, 2.5] and [2.0, 2.75] merged
+    assert intervals_text(iv) == "1.5:2.75;4.5:6.0" and intervals_text([]) == "none"
+
+
+def _fake_result(stability: bool = True) -> SimpleNamespace:
+    ref = 800.0
+    ratio = np.array([0.6, 0.8, 1.0, 1.1, 1.05, 1.2, 1.4])
+    r = np.array([0.1, 0.3, 0.8, 0.9, 0.6, 0.5, 0.2])
+    branch = SimpleNamespace(n_points=7, lam=ratio * ref, folds=lambda: np.array([2, 3]))
+    bifs = [{"type": "saddle-node", "speed_ratio": 1.11, "parameter": 1.11 * ref},
+            {"type": "saddle-node", "speed_ratio": 1.04, "parameter": 1.04 * ref},
+            {"type": "secondary-hopf", "speed_ratio": 0.7, "parameter": 0.7 * ref}]
+    return SimpleNamespace(
+        branch=branch, is_speed=True, speeds=ratio * ref, reference_speed=ref,
+        parameter="speed", nodes=(1, 3), deflection=lambda n: r * n,
+        stable=np.array([True, False, True, False, False, True, True]) if stability
+        else None,
+        max_multiplier=np.array([0.9, 1.05, 0.95, 1.3, 1.2, 0.9, 0.8]) if stability
+        else None,
+        bifurcations=bifs if stability else None, success=True, message="done")
+
+
+def test_response_summary_from_result_fields():
+    out = response_output(_fake_result())
+    s = out.scalars
+    assert out.status == "ok" and out.message == ""
+    assert (s["n_saddle_node"], s["n_period_doubling"], s["n_secondary_hopf"]) == (2, 0, 1)
+    assert s["n_unstable_points"] == 3
+    # point 1 (0.8) unstable between 0.6 and 1.0: the Hopf at 0.7 starts it, the |mu| = 1
+    # estimate (0.9) ends it (no bifurcation left for it: one-to-one, nearest first);
+    # points 3-4 between the folds 1.04 and 1.11
+    got = [tuple(map(float, iv.split(":"))) for iv in s["unstable_intervals"].split(";")]
+    np.testing.assert_allclose(got, [(0.7, 0.9), (1.04, 1.11)], rtol=1e-14)
+    assert s["unstable_width_speed_ratio"] == pytest.approx(0.2 + 0.07, rel=1e-12)
+    assert s["peak_defl_3"] == pytest.approx(2.7) and s["peak_speed_ratio_3"] == 1.1
+    assert s["peak_stable_1"] is False
+    assert out.arrays["bifurcation_type"].data.tolist() == ["saddle-node", "saddle-node",
+                                                            "secondary-hopf"]
+    assert out.arrays["branch_stable"].data.dtype == np.int8
+
+
+def test_response_summary_without_stability_marks_missing():
+    out = response_output(_fake_result(stability=False))
+    assert out.scalars["n_saddle_node"] is None
+    assert out.scalars["unstable_width_speed_ratio"] is None
+    assert out.status == "ok" and "no stability" in out.message
+
+
+AXES_2x2 = """
+[[analysis.sweep.axes]]
+parameter = "sfd.clearance_ratio"
+values = ["0.45 %", "0.5 %"]
+
+[[analysis.sweep.axes]]
+parameter = "unbalance[0].magnitude"
+values = ["40 g*mm", "60 g*mm"]
+"""
+
+
+def test_tiny_real_response_sweep(tmp_path):
+    config = load_config(sweep_toml(tmp_path / "rotor.toml", AXES_2x2))
+    result = run_sweep(config, directory=tmp_path / "out", workers=2, progress=False)
+    assert result.complete, result.summary()
+    ds = load_sweep(tmp_path / "out")
+    assert (ds["status"].values <= 1).all(), ds["message"].values
+    peak = ds["peak_defl_3"].values
+    assert np.all(np.isfinite(peak)) and np.all(peak > 0)
+    assert np.all(peak[:, 1] > peak[:, 0])               # more unbalance, larger peak
+    n = ds["n_branch_point"].values
+    assert np.all(n == ds["branch_points"].values) and n.min() > 10
+    ratio = ds["branch_speed_ratio"].values
+    assert ratio[0, 0, 0] == pytest.approx(0.6) and np.nanmax(ratio) == pytest.approx(1.4)
+
+
+def test_tiny_simulate_sweep(tmp_path):
+    config = load_config(sweep_toml(tmp_path / "rotor.toml"), [
+        "analysis.simulate.speed_ratio=1.0", "analysis.simulate.periods=30",
+        "analysis.simulate.poincare_periods=10", "analysis.simulate.steps_per_period=64"])
+    result = run_sweep(config, {"unbalance[0].magnitude": ["40 g*mm", "60 g*mm"]},
+                       "simulate", directory=tmp_path / "out", workers=1, progress=False)
+    assert result.counts()["ok"] == 2, result.summary()
+    ds = load_sweep(tmp_path / "out")
+    assert ds.sizes["poincare"] == 10
+    assert ds["max_defl_1"].values[1] > ds["max_defl_1"].values[0]
+    assert set(ds["motion"].values.tolist()) <= {"periodic", "period-n", "quasi-periodic",
+                                                 "chaotic", "unclassified"}
