@@ -340,9 +340,15 @@ def _sweep(args: argparse.Namespace, config: Any) -> int:
     from rotorsfd.studies.grid import parse_axis
 
     axes = grid_from_axes(config, dict(map(parse_axis, args.axis))) if args.axis else None
-    result = run_sweep(config, axes, args.task, directory=args.output, workers=args.workers,
-                       scheduler=args.scheduler, progress=not args.quiet,
-                       resume=args.resume, search_path=Path(args.config).parent)
+    try:
+        result = run_sweep(config, axes, args.task, directory=args.output,
+                           workers=args.workers, scheduler=args.scheduler,
+                           progress=not args.quiet, resume=args.resume,
+                           search_path=Path(args.config).parent)
+    except KeyboardInterrupt:
+        print(f"rotorsfd: partial results written to {args.output} (finished points "
+              "kept; continue with --resume)", file=sys.stderr)
+        raise
     if not args.quiet:
         print(result.summary())
         print(f"wrote {args.output / 'sweep.nc'}, {args.output / 'summary.csv'}")

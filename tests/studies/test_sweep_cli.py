@@ -3,6 +3,7 @@ recomputing finished points; progress bar and --quiet; --scheduler on a LocalClu
 
 from __future__ import annotations
 
+import json
 import os
 import signal
 import subprocess
@@ -11,6 +12,7 @@ import time
 from pathlib import Path
 
 import pytest
+import xarray as xr
 from sweep_helpers import sweep_toml
 
 from rotorsfd.cli import main
@@ -68,6 +70,29 @@ def test_sigkill_then_resume_equals_uninterrupted(tmp_path):
                   if any(line == repr(v) for line in rerun)}
     assert recomputed == set(values) - finished
     assert _bytes(part) == _bytes(full)
+
+
+def test_ctrl_c_leaves_valid_partial_result(tmp_path):
+    cfg = sweep_toml(tmp_path / "rotor.toml")
+    out = tmp_path / "out"
+    proc = subprocess.Popen(
+        _cli(str(cfg), "-o", str(out), "--task", "synthetic:delay=0.4", "--workers", "2",
+             "--quiet", *AXES), env=_env(), start_new_session=True,
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 60
+    while len(list((out / "points").glob("0*.json"))) < 3 and time.monotonic() < deadline:
+        time.sleep(0.02)
+    os.killpg(proc.pid, signal.SIGINT)                     # Ctrl-C at the terminal
+    _, err = proc.communicate(timeout=30)
+    assert proc.returncode == 130, err
+    assert "--resume" in err
+    manifest = json.loads((out / "sweep.json").read_text())
+    done = len(list((out / "points").glob("0*.json")))
+    assert manifest["complete"] is False and manifest["counts"]["ok"] == done < 12
+    with xr.open_dataset(out / "sweep.nc") as ds:
+        assert ds.attrs["complete"] == 0 and int((ds["status"] == 3).sum()) == 12 - done
+    lines = (out / "summary.csv").read_text().splitlines()
+    assert len(lines) == 13 and sum(",pending," in row for row in lines) == 12 - done
 
 
 def test_progress_bar_and_quiet(tmp_path, capsys):
