@@ -140,6 +140,20 @@ def test_resume_recomputes_stale_and_retries_failed(config, tmp_path):
     assert r.computed == 6                                   # another config: all stale
 
 
+def test_resume_with_an_extended_grid_reuses_finished_values(config, tmp_path):
+    run_sweep(config, {"sfd.clearance_ratio": ["0.4 %", "0.5 %"]}, TASK,
+              directory=tmp_path / "a", workers=1, progress=False)
+    log = tmp_path / "log"
+    extended = {"sfd.clearance_ratio": ["0.3 %", "0.4 %", "0.45 %", "0.5 %"]}
+    r = run_sweep(config, extended, SyntheticTask(fail_above=0.0055, log=str(log)),
+                  directory=tmp_path / "a", workers=1, progress=False, resume=True)
+    assert r.computed == 2 and len(log.read_text().splitlines()) == 2
+    run_sweep(config, extended, TASK, directory=tmp_path / "b", workers=1, progress=False)
+    assert _bytes(tmp_path / "a") == _bytes(tmp_path / "b")
+    rec = json.loads((tmp_path / "a" / "points" / "000003.json").read_text())
+    assert rec["index"] == [3] and rec["values"] == {"sfd.clearance_ratio": 0.005}
+
+
 def test_grid_and_task_from_config(tmp_path):
     config = load_config(sweep_toml(tmp_path / "rotor.toml"))
     r = run_sweep(config, None, "synthetic", directory=tmp_path / "o", workers=1,

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -104,12 +104,25 @@ class PointStore:
         return sorted(p.stem for p in self.directory.glob("*.json")
                       if not p.name.startswith("."))
 
-    def finished(self, keys: Mapping[str, str]) -> dict[str, dict[str, Any]]:
-        """Records whose key matches ``keys[point_id]`` (stale and foreign ones skipped)."""
-        out = {}
+    def finished(self, keys: Mapping[str, str],
+                 indices: Mapping[str, Sequence[int]] | None = None
+                 ) -> dict[str, dict[str, Any]]:
+        """Records of the points ``keys`` ({point_id: key}), matched by key: a record stored
+        under another id (the grid was extended or reordered) is relabelled and saved under
+        its new id; stale and foreign records are skipped."""
+        by_key: dict[str, dict[str, Any]] = {}
         for pid in self.ids():
-            if pid in keys:
-                rec = self.load(pid)
-                if rec is not None and rec.get("key") == keys[pid]:
-                    out[pid] = rec
+            rec = self.load(pid)
+            if rec is not None and rec.get("point_id") == pid:
+                by_key.setdefault(rec.get("key", ""), rec)
+        out = {}
+        for pid, key in keys.items():
+            rec = by_key.get(key)
+            if rec is not None:
+                out[pid] = rec if rec["point_id"] == pid else {
+                    **rec, "point_id": pid,
+                    "index": list((indices or {}).get(pid, rec.get("index", [])))}
+        for pid, rec in out.items():
+            if rec is not by_key[keys[pid]]:
+                self.save(rec)
         return out

@@ -14,7 +14,9 @@ netCDF encoding), so 1 worker, N workers and a Dask cluster give identical files
 does a killed-and-resumed sweep. A task exception marks its point ``failed`` (with the
 reason) and the sweep goes on. Ctrl-C stops the workers, writes the files for what
 finished (``complete`` = 0) and re-raises; ``resume=True`` then recomputes only the
-points without a valid record (a record whose config, task or values changed is stale).
+points without a valid record. Records are matched by key (base config + task + point
+values): a record whose config or task changed is stale; an extended grid reuses the
+records of the values it already had.
 """
 
 from __future__ import annotations
@@ -353,7 +355,8 @@ def run_sweep(config: Config, axes: Grid | Mapping[str, Sequence[Any]] | None = 
     if store.ids() and not resume:
         raise ConfigError("-o", str(out), "already holds a sweep (points/): use --resume "
                           "to continue it, or choose an empty folder")
-    records = store.finished(keys) if resume else {}
+    records = store.finished(keys, {p.point_id: p.indices for p in points}) if resume \
+        else {}
     if retry_failed:
         records = {k: r for k, r in records.items() if r["status"] != "failed"}
     result = SweepResult(grid, task.spec, records, dump_config(config))
