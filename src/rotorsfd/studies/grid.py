@@ -163,3 +163,16 @@ def point_key(digest: str, point: GridPoint) -> str:
     A stored point with another key is recomputed on resume."""
     text = json.dumps({"digest": digest, "values": point.values}, separators=(",", ":"))
     return hashlib.sha256(text.encode()).hexdigest()[:32]
+
+
+def parse_axis(text: str) -> tuple[str, list[Any]]:
+    """``"sfd.clearance_ratio=0.4 %,0.5 %"`` -> ``("sfd.clearance_ratio", ["0.4 %",
+    "0.5 %"])`` (each value a TOML number or a string with units)."""
+    from rotorsfd.io.config import parse_override
+
+    path, _, rest = text.partition("=")
+    items = [s.strip() for s in rest.split(",")]
+    if not path.strip() or not all(items):
+        raise ConfigError("--axis", text, "expected PATH=V1,V2,..., e.g. "
+                          "sfd.clearance_ratio='0.4 %,0.5 %'")
+    return path.strip(), [parse_override(f"v={s}")[1] for s in items]
