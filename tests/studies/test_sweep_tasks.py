@@ -101,6 +101,10 @@ def test_tiny_real_response_sweep(tmp_path):
     config = load_config(sweep_toml(tmp_path / "rotor.toml", AXES_2x2))
     result = run_sweep(config, directory=tmp_path / "out", workers=2, progress=False)
     assert result.complete, result.summary()
+    run_sweep(config, directory=tmp_path / "serial", workers=1, progress=False)
+    for name in ("sweep.nc", "summary.csv"):     # real floats: same bits on every executor
+        assert (tmp_path / "out" / name).read_bytes() == \
+            (tmp_path / "serial" / name).read_bytes()
     ds = load_sweep(tmp_path / "out")
     assert (ds["status"].values <= 1).all(), ds["message"].values
     peak = ds["peak_defl_3"].values

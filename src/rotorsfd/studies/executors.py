@@ -8,7 +8,7 @@ One interface (a subset of :mod:`concurrent.futures`) so the sweep has one code 
             fut.result()
 
 - :class:`SerialExecutor`: runs each call lazily, in submission order, when
-  ``as_completed`` reaches it (``workers=1``).
+  ``as_completed`` reaches it (``workers=1``), with one BLAS thread.
 - :class:`ProcessExecutor`: :class:`concurrent.futures.ProcessPoolExecutor` (forkserver),
   sized to the CPUs this process may use (``os.sched_getaffinity``); workers use
   single-threaded BLAS and ignore SIGINT (the parent stops them).
@@ -19,6 +19,7 @@ One interface (a subset of :mod:`concurrent.futures`) so the sweep has one code 
 from __future__ import annotations
 
 import concurrent.futures as cf
+import contextlib
 import multiprocessing
 import os
 import signal
@@ -110,7 +111,8 @@ class SerialExecutor(_Base):
 
     def as_completed(self, futures: Iterable[Any]) -> Iterator[Any]:
         for fut in futures:
-            fut.run()
+            with _one_blas_thread():
+                fut.run()
             yield fut
 
 
@@ -118,6 +120,7 @@ def _init_worker() -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     for name in BLAS_THREAD_VARIABLES:
         os.environ[name] = "1"
+    _one_blas_thread()  # also if numpy was loaded before (threadpoolctl: process-wide)
 
 
 class ProcessExecutor(_Base):
@@ -150,13 +153,19 @@ class ProcessExecutor(_Base):
             p.join(timeout=5)
 
 
-def _limited(fn: Callable[..., Any], *args: Any) -> Any:
-    """``fn(*args)`` with one BLAS thread (Dask workers run several calls at once)."""
+def _one_blas_thread() -> Any:
+    """A context with one BLAS thread (threadpoolctl), so that every executor computes
+    with the same BLAS threading, hence the same rounding."""
     try:
         from threadpoolctl import threadpool_limits
     except ImportError:  # pragma: no cover
-        return fn(*args)
-    with threadpool_limits(1):
+        return contextlib.nullcontext()
+    return threadpool_limits(1)
+
+
+def _limited(fn: Callable[..., Any], *args: Any) -> Any:
+    """``fn(*args)`` with one BLAS thread (Dask workers run several calls at once)."""
+    with _one_blas_thread():
         return fn(*args)
 
 
