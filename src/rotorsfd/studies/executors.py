@@ -172,7 +172,7 @@ def _limited(fn: Callable[..., Any], *args: Any) -> Any:
 class DaskExecutor(_Base):
     """Grid points on a Dask distributed cluster at ``address`` (``tcp://HOST:PORT``)."""
 
-    def __init__(self, address: str, timeout: float = 30.0) -> None:
+    def __init__(self, address: str, timeout: float = 15.0) -> None:
         from distributed import Client
 
         from rotorsfd.errors import ConfigError
@@ -207,6 +207,10 @@ class DaskExecutor(_Base):
 def make_executor(workers: int | None = None, scheduler: str | None = None) -> Executor:
     """Dask with ``scheduler``; serial for ``workers == 1``; else a process pool of
     ``workers`` (default: the available CPUs)."""
+    if workers is not None and workers < 1:
+        from rotorsfd.errors import ConfigError
+
+        raise ConfigError("--workers", workers, "must be >= 1")
     if scheduler:
         return DaskExecutor(scheduler)
     n = workers or available_cpus()

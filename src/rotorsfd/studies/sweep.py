@@ -360,11 +360,11 @@ def run_sweep(config: Config, axes: Grid | Mapping[str, Sequence[Any]] | None = 
     if retry_failed:
         records = {k: r for k, r in records.items() if r["status"] != "failed"}
     result = SweepResult(grid, task.spec, records, dump_config(config))
-    atomic.write_json(out / "sweep.json", result.manifest())
     todo = [p for p in points if p.point_id not in records]
     own = executor is None
     if own and todo:
         executor = make_executor(workers, scheduler)
+    atomic.write_json(out / "sweep.json", result.manifest())
     bar = _bar(len(points), len(records), progress)
     futures: dict[Any, GridPoint] = {}
     try:

@@ -194,7 +194,10 @@ class ResponseTask:
 
         result = run_response(config, search_path=None if self.search_path is None
                               else Path(self.search_path), progress=False)
-        return response_output(result)
+        out = response_output(result)
+        if result.stable is None and not config.analysis.stability.enabled:
+            out.message = "stability disabled (analysis.stability.enabled = false)"
+        return out
 
 
 def response_output(result: Any) -> PointOutput:
