@@ -128,3 +128,19 @@ def test_tiny_simulate_sweep(tmp_path):
     assert ds["max_defl_1"].values[1] > ds["max_defl_1"].values[0]
     assert set(ds["motion"].values.tolist()) <= {"periodic", "period-n", "quasi-periodic",
                                                  "chaotic", "unclassified"}
+
+
+@pytest.mark.slow
+def test_response_sweep_on_process_cluster_equals_serial(tmp_path):
+    distributed = pytest.importorskip("distributed")
+    from rotorsfd.studies import DaskExecutor
+
+    config = load_config(sweep_toml(tmp_path / "rotor.toml", AXES_2x2))
+    run_sweep(config, directory=tmp_path / "serial", workers=1, progress=False)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  host="127.0.0.1", dashboard_address=None) as cluster, \
+            DaskExecutor(cluster.scheduler_address) as ex:
+        run_sweep(config, directory=tmp_path / "dask", executor=ex, progress=False)
+    for name in ("sweep.nc", "summary.csv", "sweep.json"):
+        assert (tmp_path / "dask" / name).read_bytes() == \
+            (tmp_path / "serial" / name).read_bytes()
