@@ -112,6 +112,7 @@ def test_tiny_real_response_sweep(tmp_path):
     assert np.all(peak[:, 1] > peak[:, 0])               # more unbalance, larger peak
     n = ds["n_branch_point"].values
     assert np.all(n == ds["branch_points"].values) and n.min() > 10
+    assert ds["branch_points"].dtype == np.int32             # complete: no fill, no cast
     ratio = ds["branch_speed_ratio"].values
     assert ratio[0, 0, 0] == pytest.approx(0.6) and np.nanmax(ratio) == pytest.approx(1.4)
 

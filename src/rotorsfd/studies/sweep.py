@@ -179,6 +179,8 @@ class SweepResult:
 
 def _scalar_kind(values: Sequence[Any]) -> str:
     present = [v for v in values if v is not None]
+    if not present:
+        return "float"       # all missing: NaN-filled floats
     if present and all(isinstance(v, bool) for v in present):
         return "bool"
     if present and all(isinstance(v, int) and not isinstance(v, bool) for v in present):
@@ -207,8 +209,9 @@ def sweep_dataset(result: SweepResult) -> Any:
                  CF flag_values/flag_meanings), message (str); each task scalar over the
                  axes (bool -> int8 0/1, int -> int32, float, str); each task array over
                  (axes..., its dims), padded, with n_<dim> its length per point
-        missing  _FillValue (float NaN, int -2147483647, int8 -127, str ""); the status
-                 variable says why a point has no data
+        missing  _FillValue (float NaN, int -2147483647, int8 -127 (set only when a
+                 value is missing), str ""); the status variable says why a point has no
+                 data; a column missing everywhere is float
         attrs    task, axes, complete (0/1), counts, config (JSON of the base config)
     """
     import xarray as xr
@@ -298,21 +301,21 @@ def _arrays(recs: list[dict[str, Any] | None], dims: tuple[str, ...],
 
 
 def netcdf_encoding(ds: Any) -> dict[str, dict[str, Any]]:
-    """Fixed encoding of every variable (fill values and dtypes), so that the same data
-    always give the same bytes."""
+    """Fixed encoding of every variable (fill values and dtypes), a function of the data
+    only, so that the same data always give the same bytes. Integer variables get a
+    _FillValue only when they have a missing value (so complete ones load as integers)."""
     enc: dict[str, dict[str, Any]] = {}
     for name, var in ds.variables.items():
-        if name in ds.dims or name == "point_id" or name.startswith("n_") \
-                or name == "status":
-            enc[name] = {"_FillValue": None}
-        elif var.dtype == object:
+        fixed = name in ds.dims or name == "point_id" or name.startswith("n_") \
+            or name == "status"
+        if var.dtype == object:
             enc[name] = {"dtype": str, "_FillValue": None}
         elif var.dtype == np.float64:
-            enc[name] = {"_FillValue": np.nan, "dtype": "float64"}
-        elif var.dtype == np.int8:
-            enc[name] = {"_FillValue": np.int8(BYTE_FILL), "dtype": "int8"}
-        elif var.dtype == np.int32:
-            enc[name] = {"_FillValue": np.int32(INT_FILL), "dtype": "int32"}
+            enc[name] = {"_FillValue": None if fixed else np.nan, "dtype": "float64"}
+        elif var.dtype in (np.int8, np.int32):
+            fill = var.dtype.type(BYTE_FILL if var.dtype == np.int8 else INT_FILL)
+            missing = not fixed and bool(np.any(var.values == fill))
+            enc[name] = {"_FillValue": fill if missing else None, "dtype": var.dtype.name}
     return enc
 
 
