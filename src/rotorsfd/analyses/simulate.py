@@ -248,6 +248,8 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
             if status == nm.CONTACT:
                 y, z, vy, vz = (float(x) for x in smp["fail"][:4])  # q_nl (y, z), v_nl
                 eps = math.hypot(y, z) / clearance if clearance else math.nan
+                where += (": the step's Newton iterates reached the contact limit (state "
+                          "of the last iterate)")
                 err = JournalContactError(eps, y, z, vy, vz, where=where)
                 err.time, err.period = t, step / spp
                 raise err
@@ -441,10 +443,9 @@ class SimulationResult:
         j = self.column(node)
         ratio, amp = self.spectrum(node, "y")
         scale = self.clearance if self.clearance else 1.0
-        title = f"{self.title}  " if self.title else ""
-        title += (f"node {node}, Omega = {self.speed:.5g} rad/s"
-                  + (f" (Omega~ = {self.speed_ratio:.4g})" if self.speed_ratio else "")
-                  + f": {self.motion_name}")
+        title = (f"node {node}, Omega = {self.speed:.5g} rad/s"
+                 + (f" (Omega~ = {self.speed_ratio:.4g})" if self.speed_ratio else "")
+                 + f": {self.motion_name}" + (f" -- {self.title}" if self.title else ""))
         return simulation_figures(
             y=self.q[:, j, 0] / scale, z=self.q[:, j, 1] / scale,
             vy=self.v[:, j, 0] / (scale * self.speed),

@@ -50,9 +50,14 @@ def phase_axes(ax: Axes, y: Any, vy: Any, py: Any = None, pvy: Any = None, *,
     return ax
 
 
-def poincare_axes(ax: Axes, py: Any, pz: Any, *, unit: str = "C") -> Axes:
-    """Poincare section: (y, z) once per rotor period."""
+def poincare_axes(ax: Axes, py: Any, pz: Any, y: Any = None, z: Any = None, *,
+                  unit: str = "C") -> Axes:
+    """Poincare section: (y, z) once per rotor period, over the orbit (grey) when given
+    (so that a period-1 point is not blown up to its rounding scatter)."""
+    if y is not None:
+        ax.plot(y, z, "-", lw=0.4, color="0.75")
     ax.plot(py, pz, ".", ms=5, color="C3")
+    ax.ticklabel_format(useOffset=False)
     ax.set_xlabel(f"y [{unit}]")
     ax.set_ylabel(f"z [{unit}]")
     ax.set_title(f"Poincare section ({len(np.atleast_1d(py))} periods)", fontsize=9)
@@ -66,7 +71,8 @@ def spectrum_axes(ax: Axes, frequency_ratio: Any, amplitude: Any, *, unit: str =
     r = np.asarray(frequency_ratio, float)
     a = np.asarray(amplitude, float)
     keep = (r > 0) & (r <= max_ratio)
-    ax.semilogy(r[keep], np.maximum(a[keep], 1e-12), "-", lw=0.8)
+    floor = 1e-9 * float(a[keep].max()) if np.any(keep) and a[keep].max() > 0 else 1e-300
+    ax.semilogy(r[keep], np.maximum(a[keep], floor), "-", lw=0.8)
     ax.set_xlabel(r"$\omega / \Omega$")
     ax.set_ylabel(f"amplitude of y [{unit}]")
     ax.set_title("amplitude spectrum", fontsize=9)
@@ -85,7 +91,7 @@ def simulation_figures(*, y: Any, z: Any, vy: Any, py: Any, pz: Any, pvy: Any,
     axs = fig.subplots(2, 2)
     orbit_axes(axs[0, 0], y, z, clearance_circle=clearance_circle, unit=unit)
     phase_axes(axs[0, 1], y, vy, py, pvy, unit=unit)
-    poincare_axes(axs[1, 0], py, pz, unit=unit)
+    poincare_axes(axs[1, 0], py, pz, y, z, unit=unit)
     spectrum_axes(axs[1, 1], frequency_ratio, amplitude, unit=unit)
     fig.suptitle(_short(title), fontsize=10)
     figs["simulation.png"] = fig
@@ -93,7 +99,7 @@ def simulation_figures(*, y: Any, z: Any, vy: Any, py: Any, pz: Any, pvy: Any,
             ("orbit.png", lambda ax: orbit_axes(ax, y, z, clearance_circle=clearance_circle,
                                                 unit=unit)),
             ("phase.png", lambda ax: phase_axes(ax, y, vy, py, pvy, unit=unit)),
-            ("poincare.png", lambda ax: poincare_axes(ax, py, pz, unit=unit)),
+            ("poincare.png", lambda ax: poincare_axes(ax, py, pz, y, z, unit=unit)),
             ("spectrum.png", lambda ax: spectrum_axes(ax, frequency_ratio, amplitude,
                                                       unit=unit))):
         f = Figure(figsize=(6, 5), layout="constrained")
