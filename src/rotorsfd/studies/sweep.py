@@ -21,6 +21,7 @@ records of the values it already had.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import sys
 import time
@@ -387,22 +388,21 @@ def run_sweep(config: Config, axes: Grid | Mapping[str, Sequence[Any]] | None = 
                 bar.update(1)
                 if rec["status"] == "failed":
                     bar.set_postfix_str(f"{_n_failed(result)} failed", refresh=False)
-    except KeyboardInterrupt:
-        result.interrupted = True
+    except BaseException as exc:  # Ctrl-C, or an error of the sweep itself
+        result.interrupted = isinstance(exc, KeyboardInterrupt)
         for fut in futures:
             cancel = getattr(fut, "cancel", None)
             if cancel is not None:
                 cancel()
         if own and executor is not None:
-            executor.shutdown(interrupted=True)
-            own = False
+            executor.shutdown(interrupted=True)   # running points are abandoned
         bar.close()
-        result.write(out)
+        with contextlib.suppress(Exception):      # the partial files, if they can be
+            result.write(out)
         raise
-    finally:
-        bar.close()
-        if own and executor is not None:
-            executor.shutdown()
+    bar.close()
+    if own and executor is not None:
+        executor.shutdown()
     result.write(out)
     return result
 
