@@ -161,3 +161,24 @@ def test_grid_and_task_from_config(tmp_path):
     assert r.grid.shape == (2, 3) and r.counts()["ok"] == 6
     with pytest.raises(ConfigError, match="not available yet"):
         run_sweep(config, None, "stability-chart", directory=tmp_path / "p", progress=False)
+
+
+class DyingTask(SyntheticTask):
+    """Kills its worker process at the last grid value (a crash, not an exception)."""
+
+    def __call__(self, config, values):
+        if list(values.values())[-1] > 4.5e-5:
+            import os
+
+            os._exit(3)
+        return super().__call__(config, values)
+
+
+def test_dead_worker_leaves_points_pending(config, tmp_path):
+    with ProcessExecutor(2) as ex:
+        r = run_sweep(config, AXES, DyingTask(), directory=tmp_path, executor=ex,
+                      progress=False)
+    assert not r.complete and r.lost >= 3 and "BrokenProcessPool" in r.lost_message
+    assert r.counts()["pending"] >= 3 and r.counts()["failed"] == 0
+    assert "PARTIAL" in r.summary()
+    assert load_sweep(tmp_path).attrs["complete"] == 0
