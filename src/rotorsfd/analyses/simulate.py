@@ -295,7 +295,8 @@ def _plain(obj: Any) -> Any:
 @dataclass
 class SimulationResult:
     """A simulation at one speed: recorded motion of ``nodes`` (``q, v``: (n_t, n_nodes,
-    2) with directions y, z), the Poincare points, the motion class and its evidence."""
+    2) with directions y, z, every step of the last max(record, Poincare) periods), the
+    Poincare points, the motion class and its evidence."""
 
     speed: float
     reference_speed: float | None
@@ -358,15 +359,19 @@ class SimulationResult:
     # ---- files ---------------------------------------------------------------------------
     def to_dataset(self) -> xr.Dataset:
         """``timeseries.nc`` layout: ``displacement`` [m], ``velocity`` [m/s] over
-        (time, node, direction); ``period`` = t / T along time."""
+        (time, node, direction) for the last ``record_periods`` (every step, both ends);
+        ``period`` = t / T along time."""
         import xarray as xr
 
         from rotorsfd import __version__
 
-        coords = {"time": ("time", self.t, {"units": "s"}),
+        keep = int(self.settings["record_periods"]) * int(self.settings["steps_per_period"])
+        sl = slice(max(0, self.t.size - keep - 1), None)
+        t = self.t[sl]
+        coords = {"time": ("time", t, {"units": "s"}),
                   "node": ("node", np.asarray(self.nodes, dtype=np.int32)),
                   "direction": ("direction", list(DIRECTIONS)),
-                  "period": ("time", self.t / self.period, {"units": "rotor periods"})}
+                  "period": ("time", t / self.period, {"units": "rotor periods"})}
         attrs = {"title": self.title, "speed_rad_s": self.speed, "motion": self.motion_name,
                  "rotorsfd_version": __version__}
         if self.speed_ratio is not None:
@@ -375,8 +380,8 @@ class SimulationResult:
             attrs["clearance_m"] = self.clearance
             attrs["sfd_node"] = int(self.sfd_node)
         return xr.Dataset(
-            {"displacement": (("time", "node", "direction"), self.q, {"units": "m"}),
-             "velocity": (("time", "node", "direction"), self.v, {"units": "m/s"})},
+            {"displacement": (("time", "node", "direction"), self.q[sl], {"units": "m"}),
+             "velocity": (("time", "node", "direction"), self.v[sl], {"units": "m/s"})},
             coords=coords, attrs=attrs)
 
     def poincare_table(self) -> dict[str, np.ndarray]:
@@ -604,7 +609,8 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
     tic = time.perf_counter()
     try:
         traj = integrate_periods(inputs, q_init, v_init, steps_per_period=spp, periods=n_per,
-                                 record_dofs=rd, record_periods=n_rec, poincare_periods=n_pc,
+                                 record_dofs=rd, record_periods=max(n_rec, n_pc),
+                                 poincare_periods=n_pc,
                                  method_options=opts, chunk_periods=chunk_periods,
                                  progress=tick, clearance=clearance)
     finally:
@@ -627,7 +633,7 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
             notes.append(f"no Lyapunov exponent: {' '.join(str(exc).split())}")
     motion = classify(traj.poincare_q, traj.poincare_v, traj.q, traj.v, T / spp, speed,
                       lyap, first=2 * _first_column(out_nodes, system.sfd_node),
-                      n_record=n_rec * spp)
+                      n_record=max(n_rec, n_pc) * spp)
     if motion is None:
         notes.append("fewer than 8 Poincare points: motion not classified")
     elapsed = time.perf_counter() - tic
