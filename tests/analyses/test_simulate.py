@@ -175,3 +175,35 @@ def test_contact_raises_with_time_period_and_eccentricity(tmp_path) -> None:
     msg = str(err)
     assert "\n" not in msg and "rotor period" in msg and "t=" in msg
     assert 0.89 <= err.eps <= 0.95 and 0 < err.period < 200
+
+
+def test_gravity_settles_on_the_static_deflection(tmp_path) -> None:
+    """Gravity enters through the base state (F_base = -m a_eff, a_eff = -g): without
+    unbalance the journal settles at K^-1 F_base (the film carries no static load)."""
+    system = _system(tmp_path, unbalance="0 g*mm", extra="\n[gravity]\nenabled = true\n")
+    speed = 0.8 * REF
+    res = run_simulation(system, speed, steps_per_period=100, periods=400,
+                         poincare_periods=10, record_periods=1, lyapunov_periods=0,
+                         nodes=[1, 3], progress=False)
+    q_static = np.linalg.solve(system.matrices(speed)[2], system.static_force(speed))
+    for j, node in enumerate((1, 3)):
+        expect = q_static[[dof_index(node, "y"), dof_index(node, "z")]]
+        assert expect[1] < -0.05 * C                 # it sags
+        np.testing.assert_allclose(res.q[-1, j], expect, atol=1e-3 * C, rtol=0)
+
+
+def test_harmonic_base_from_config_runs(tmp_path) -> None:
+    """A harmonic pitching law from the config file goes through the time-varying path
+    (K_base(t), C_base(t), F_base(t), unbalance with the base-rotation terms); base
+    frequency incommensurate with the speed: quasi-periodic, a line at w_b / Omega."""
+    config = api.load_config(small_rotor_toml(
+        tmp_path / "small.toml", unbalance="50 g*mm", reference=f"{REF} rad/s",
+        base='pitching = { law = "harmonic", amplitude = "5 rad/s", '
+             'frequency = "56.5685 rad/s" }'))
+    res = run_simulation(config, speed_ratio=0.9, steps_per_period=100, periods=200,
+                         poincare_periods=40, lyapunov_periods=20, progress=False)
+    assert res.settings["time_varying_matrices"]
+    assert res.motion.motion == "quasi-periodic"   # base and rotor incommensurate
+    ratios = np.array(res.motion.evidence["frequency_ratios"])
+    assert np.min(np.abs(ratios - 56.5685 / 720.0)) < 2e-3   # the base frequency line
+    assert 0.0 < res.max_eccentricity < 1.0

@@ -615,6 +615,7 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
                                  progress=tick, clearance=clearance)
     finally:
         bar.close()
+    settings["elapsed_integration_s"] = time.perf_counter() - tic
     nn = len(out_nodes)
     q = traj.q.reshape(-1, nn, 2)
     v = traj.v.reshape(-1, nn, 2)
@@ -622,6 +623,7 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
     pv = traj.poincare_v.reshape(-1, nn, 2)
     notes: list[str] = []
     lyap = None
+    tic_ly = time.perf_counter()
     if n_ly > 0:
         try:
             lyap = lyapunov_estimate(largest_lyapunov(
@@ -631,6 +633,7 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
                 method="newmark"), T)
         except (JournalContactError, ConvergenceError) as exc:
             notes.append(f"no Lyapunov exponent: {' '.join(str(exc).split())}")
+    settings["elapsed_lyapunov_s"] = time.perf_counter() - tic_ly
     motion = classify(traj.poincare_q, traj.poincare_v, traj.q, traj.v, T / spp, speed,
                       lyap, first=2 * _first_column(out_nodes, system.sfd_node),
                       n_record=max(n_rec, n_pc) * spp)
