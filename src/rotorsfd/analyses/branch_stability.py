@@ -1,0 +1,384 @@
+"""Floquet stability of every point of a branch of periodic solutions, and its bifurcations
+located and classified (paper section 3.2, Tables 1 and 3).
+
+Per point: the multipliers of the perturbation equation along the HB orbit (paper eq. 30)
+by :mod:`rotorsfd.stability` (default ``'newmark-cb'``: Newmark, N = 400, on a
+Craig-Bampton model that keeps the nonlinear DOFs and the fixed-interface modes with
+``omega h <= 1/4``). The reduction basis depends on M and K only, so it is computed once
+per branch and again only when K (or M) changes along it (base-rate continuation); D
+(gyroscopic, base Coriolis) is projected at every point, ``D_r = Psi^T D Psi``.
+
+Bifurcations, detected between consecutive points by the test functions of
+:mod:`rotorsfd.stability.bifurcations` and located along the arc length (``Branch.point_at``)
+to a relative parameter tolerance ``rtol`` (default 1e-6):
+
+* saddle-node: a real multiplier through +1 and/or a sign change of dlam/ds. When the
+  branch turns, the located point is the turning point ``dlam/ds = 0`` (exact for the
+  HB equations; the Newmark multiplier there is ``1 + O(1e-4)``, its discretisation
+  error); without a turn (a symmetry-breaking branch point) the multiplier through +1.
+* period-doubling: a real multiplier through -1 (``det(Phi + I)`` changes sign).
+* secondary-hopf: a complex pair leaves the unit circle (``|mu|^2 - 1`` of the pair).
+
+What is reported (``Bifurcation`` records and the rows of ``bifurcations.csv``):
+the located parameter (``lam``, ``speed_rad_s``, ``speed_ratio``) and, as in the paper's
+Tables 1 and 3, ``max_multiplier``, ``multiplier_re``, ``multiplier_im`` of the critical
+multiplier at the *computed branch point nearest to the bifurcation on its unstable side*
+(|mu| > 1; like the paper's 1.0048, this value depends on the continuation step). The
+critical multiplier evaluated exactly at the located point (``located_re``,
+``located_im``: +1, -1 or on the unit circle up to the method's error) is reported too.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rotorsfd.continuation.branch import Branch
+from rotorsfd.errors import ConfigError, ConvergenceError
+from rotorsfd.harmonic.problem import PeriodicProblem
+from rotorsfd.stability.bifurcations import (
+    IMAG_TOL,
+    Bifurcation,
+    Bracket,
+    BranchSample,
+    critical_value,
+    detect,
+    find_bifurcations,
+    locate,
+)
+from rotorsfd.stability.floquet import STABILITY_TOL, FloquetResult
+from rotorsfd.stability.hill import fourier_coefficients, hill_floquet
+from rotorsfd.stability.monodromy import floquet_multipliers
+from rotorsfd.stability.orbit import orbit_floquet, orbit_samples
+from rotorsfd.stability.reduction import ReducedModel
+
+METHODS = ("newmark-cb", "newmark", "generalized-alpha", "generalized-alpha-cb", "hill",
+           "hill-koopman")
+_REDUCED = ("newmark-cb", "generalized-alpha-cb", "hill", "hill-koopman")
+
+
+@dataclass(frozen=True)
+class StabilityOptions:
+    """How the multipliers are computed and bifurcations located.
+
+    ``method`` one of :data:`METHODS`; ``n_intervals`` Newmark intervals per period
+    (paper: 400); ``n_harmonics`` Hill truncation; ``n_modes`` / ``omega_max`` the kept
+    fixed-interface modes (default ``omega_max = n_intervals / (4 T)`` at each point);
+    ``tol`` unstable when ``|mu|max > 1 + tol``; ``rtol`` relative parameter tolerance of
+    located bifurcations (``locate=False``: linear interpolation between points).
+    """
+
+    method: str = "newmark-cb"
+    n_intervals: int = 400
+    n_harmonics: int = 8
+    n_modes: int | None = None
+    omega_max: float | None = None
+    rho_inf: float = 0.6
+    tol: float = STABILITY_TOL
+    rtol: float = 1e-6
+    locate: bool = True
+
+    def __post_init__(self) -> None:
+        if self.method not in METHODS:
+            raise ConfigError("analysis.stability.method", self.method,
+                              f"one of {', '.join(METHODS)}")
+
+
+class _Basis:
+    """Craig-Bampton pieces for one (M, K): constraint modes and all fixed-interface modes;
+    the modes kept at a point are selected by ``omega_max``/``n_modes`` there."""
+
+    def __init__(self, M: NDArray, K: NDArray, nl: NDArray) -> None:
+        import scipy.linalg as sla
+
+        n = M.shape[0]
+        self.M, self.K, self.nl = M.copy(), K.copy(), nl
+        i = np.setdiff1d(np.arange(n), nl)
+        self.i = i
+        try:
+            self.phi_c = -np.linalg.solve(K[np.ix_(i, i)], K[np.ix_(i, nl)])
+        except np.linalg.LinAlgError as exc:
+            raise ConfigError("K", "singular interior stiffness", "interior restrained once "
+                              "the nonlinear DOFs are fixed") from exc
+        Ks = 0.5 * (K[np.ix_(i, i)] + K[np.ix_(i, i)].T)
+        Ms = 0.5 * (M[np.ix_(i, i)] + M[np.ix_(i, i)].T)
+        w2, self.modes = sla.eigh(Ks, Ms)
+        self.omegas = np.sqrt(np.clip(w2, 0.0, None))
+        self._models: dict[int, tuple[NDArray, NDArray, NDArray]] = {}
+
+    def matches(self, M: NDArray, K: NDArray) -> bool:
+        return ((M is self.M or np.array_equal(M, self.M))
+                and (K is self.K or np.array_equal(K, self.K)))
+
+    def reduce(self, D: NDArray, n_modes: int | None, omega_max: float | None
+               ) -> ReducedModel:
+        keep = np.ones(self.omegas.size, bool)
+        if omega_max is not None:
+            keep &= self.omegas <= omega_max
+        if n_modes is not None:
+            keep &= np.arange(self.omegas.size) < n_modes
+        k = int(keep.sum())  # modes are sorted: the kept set is the first k
+        if k not in self._models:
+            m, n = self.nl.size, self.M.shape[0]
+            psi = np.zeros((n, m + k))
+            psi[self.nl, :m] = np.eye(m)
+            psi[np.ix_(self.i, np.arange(m))] = self.phi_c
+            psi[np.ix_(self.i, np.arange(m, m + k))] = self.modes[:, :k]
+            self._models[k] = (psi, psi.T @ self.M @ psi, psi.T @ self.K @ psi)
+        psi, Mr, Kr = self._models[k]
+        return ReducedModel(Mr, psi.T @ D @ psi, Kr, psi, np.arange(self.nl.size),
+                            self.omegas[:k])
+
+
+class FloquetEvaluator:
+    """Multipliers of HB solutions of one problem, reusing the reduction basis while M
+    and K stay the same. ``evaluator(lam, X) -> FloquetResult``; ``n_bases`` counts the
+    bases computed."""
+
+    def __init__(self, problem: PeriodicProblem, options: StabilityOptions | None = None
+                 ) -> None:
+        self.problem = problem
+        self.options = options or StabilityOptions()
+        self.nl = np.asarray(problem.nl_dofs, dtype=np.intp)
+        self._basis: _Basis | None = None
+        self.n_bases = 0
+
+    def reduced(self, lam: float, period: float) -> ReducedModel:
+        """Craig-Bampton model at lam (modes with ``omega <= n_intervals / (4 T)`` unless
+        ``n_modes``/``omega_max`` are given)."""
+        o = self.options
+        M, D, K = self.problem.matrices(lam)
+        if self._basis is None or not self._basis.matches(M, K):
+            self._basis = _Basis(np.asarray(M, float), np.asarray(K, float), self.nl)
+            self.n_bases += 1
+        om = o.omega_max
+        if o.n_modes is None and om is None:
+            om = 0.25 * o.n_intervals / period
+        return self._basis.reduce(np.asarray(D, float), o.n_modes, om)
+
+    def __call__(self, lam: float, X: NDArray) -> FloquetResult:
+        o, p = self.options, self.problem
+        w = float(p.frequency(lam))
+        T = 2 * np.pi / w
+        X = np.asarray(X, dtype=complex)
+        Xnl = X[:, self.nl] if X.shape[1] == p.n_dof else X
+        if o.method not in _REDUCED:
+            M, D, K = p.matrices(lam)
+            return orbit_floquet(M, D, K, Xnl, w, self.nl, p.nl_jacobian, method=o.method,
+                                 n_intervals=o.n_intervals, rho_inf=o.rho_inf, tol=o.tol)
+        red = self.reduced(lam, T)
+        if o.method.startswith("hill"):
+            L = 2 * o.n_harmonics
+            q, v = orbit_samples(Xnl, w, 4 * (2 * L + 1), endpoint=False)
+            Jq, Jv = p.nl_jacobian(q, v)
+            res = hill_floquet(red.M, red.D, red.K, w, nl_dofs=red.nl_dofs,
+                               dFdq_hat=fourier_coefficients(Jq, L),
+                               dFdv_hat=fourier_coefficients(Jv, L),
+                               n_harmonics=o.n_harmonics,
+                               method="koopman" if o.method == "hill-koopman"
+                               else "symmetric", tol=o.tol)
+        else:
+            q, v = orbit_samples(Xnl, w, o.n_intervals)
+            Jq, Jv = p.nl_jacobian(q, v)
+            res = floquet_multipliers(red.M, red.D, red.K, T, nl_dofs=red.nl_dofs, dFdq=Jq,
+                                      dFdv=Jv, n_intervals=o.n_intervals, reduction=None,
+                                      scheme=o.method.removesuffix("-cb"),
+                                      rho_inf=o.rho_inf, tol=o.tol)
+            res.method += "-cb"
+        res.info.update(n_dof_full=p.n_dof, n_modes=red.omegas.size)
+        return res
+
+
+@dataclass
+class BranchStability:
+    """Stability of every point of a branch and its located bifurcations.
+
+    Attributes
+    ----------
+    lam, frequency : (n_points,) parameter and fundamental frequency w [rad/s].
+    stable : (n_points,) bool, ``|mu|max <= 1 + tol``.
+    max_multiplier : (n_points,) ``|mu|max``.
+    critical : (n_points,) complex, the multiplier of largest modulus.
+    multipliers : (n_points, n_max) complex, each row sorted by decreasing ``|mu|``; only
+        the first ``n_multipliers[i]`` entries of row i are multipliers, the rest is 0
+        (the reduced model's size may change with the period).
+    n_multipliers : (n_points,) int, the count of multipliers of each row.
+    liouville_error : (n_points,) ``|sum log|mu| - log det Phi|`` (NaN-free; 0 if n/a).
+    bifurcations : located :class:`~rotorsfd.stability.bifurcations.Bifurcation` records,
+        in branch order; ``info`` holds ``point`` (nearest computed point on the unstable
+        side), ``reported`` (its critical multiplier) and ``bracket`` (the two points).
+    method, tol, elapsed (total seconds), elapsed_points (seconds for the points only),
+    n_bases (reduction bases computed), messages (bifurcations that could not be located).
+    """
+
+    lam: NDArray[np.float64]
+    frequency: NDArray[np.float64]
+    stable: NDArray[np.bool_]
+    max_multiplier: NDArray[np.float64]
+    critical: NDArray[np.complex128]
+    multipliers: NDArray[np.complex128]
+    n_multipliers: NDArray[np.int64]
+    liouville_error: NDArray[np.float64]
+    bifurcations: list[Bifurcation]
+    method: str
+    tol: float
+    elapsed: float = 0.0
+    elapsed_points: float = 0.0
+    n_bases: int = 0
+    messages: list[str] = field(default_factory=list)
+
+    @property
+    def n_points(self) -> int:
+        return int(self.lam.size)
+
+    def rows(self, reference_speed: float = 1.0,
+             speed: Callable[[float], float] | None = None) -> list[dict[str, Any]]:
+        """Bifurcation rows: ``type``, ``speed_rad_s`` (``speed(lam)``, default lam),
+        ``speed_ratio``, ``parameter`` (lam), ``max_multiplier``, ``multiplier_re``,
+        ``multiplier_im`` (reported multiplier, module docstring), ``located_re``,
+        ``located_im`` (at the located point), ``point`` (index of that computed point)."""
+        out = []
+        for b in self.bifurcations:
+            sp = float(speed(b.lam)) if speed is not None else float(b.lam)
+            rep = complex(b.info.get("reported", b.critical))
+            out.append({"type": b.kind, "speed_rad_s": sp, "speed_ratio":
+                        sp / reference_speed, "parameter": float(b.lam),
+                        "max_multiplier": abs(rep), "multiplier_re": rep.real,
+                        "multiplier_im": abs(rep.imag) if b.kind == "secondary-hopf"
+                        else rep.imag, "located_re": b.critical.real,
+                        "located_im": b.critical.imag, "point": int(b.info.get("point", -1))})
+        return out
+
+    def summary(self) -> str:
+        """One line per bifurcation and the count of unstable points."""
+        lines = [f"stability ({self.method}): {int(np.sum(~self.stable))} of "
+                 f"{self.n_points} points unstable, {self.elapsed:.2f} s"]
+        for b in self.bifurcations:
+            rep = complex(b.info.get("reported", b.critical))
+            lines.append(f"{b.kind} at lam = {b.lam:.9g}: |mu| = {abs(rep):.5f} "
+                         f"({rep.real:.5f}{rep.imag:+.5f}i) at the nearest unstable point")
+        lines.extend(self.messages)
+        return "\n".join(lines)
+
+
+def _pad(rows: list[NDArray]) -> tuple[NDArray[np.complex128], NDArray[np.int64]]:
+    counts = np.array([r.size for r in rows], dtype=np.int64)
+    out = np.zeros((len(rows), int(counts.max()) if rows else 0), dtype=complex)
+    for i, r in enumerate(rows):
+        out[i, : r.size] = r
+    return out, counts
+
+
+def _merge_folds(brackets: list[Bracket], samples: list[BranchSample]) -> list[Bracket]:
+    """One bracket per fold: a multiplier-only saddle-node bracket next to (within one
+    interval of) a tangent bracket is the same fold seen with the method's lag; keep the
+    tangent one."""
+    index = {id(p): i for i, p in enumerate(samples)}
+    tang = [index[id(b.a)] for b in brackets if b.kind == "saddle-node" and b.via == "tangent"]
+    out = []
+    for b in brackets:
+        if (b.kind == "saddle-node" and b.via == "multiplier"
+                and any(abs(index[id(b.a)] - j) <= 1 for j in tang)):
+            continue
+        out.append(b)
+    return out
+
+
+def _largest(kind: str, mu: NDArray) -> complex:
+    """The multiplier of the crossing type (real > 0, real < 0, complex Im > 0) of
+    largest modulus (NaN if none)."""
+    mu = np.asarray(mu, dtype=complex)
+    real = np.abs(mu.imag) <= IMAG_TOL * np.maximum(1.0, np.abs(mu))
+    if kind == "secondary-hopf":
+        c = mu[~real & (mu.imag > 0)]
+    else:
+        c = mu[real & ((mu.real > 0) if kind == "saddle-node" else (mu.real < 0))]
+    return complex(c[np.argmax(np.abs(c))]) if c.size else complex(np.nan, np.nan)
+
+
+def _reported(kind: str, samples: list[BranchSample], ia: int, ib: int, tol: float,
+              s_star: float) -> tuple[int, complex]:
+    """The computed point nearest to the bifurcation (arc length s*) with a multiplier of
+    the crossing type outside the unit circle (|mu| > 1 + tol): its index and that
+    multiplier; if there is none, the nearer bracket end."""
+    order = sorted(range(len(samples)), key=lambda j: abs(samples[j].s - s_star))
+    for j in order:
+        c = _largest(kind, samples[j].multipliers)
+        if np.isfinite(c) and abs(c) > 1.0 + tol:
+            return j, c
+    j = ia if abs(samples[ia].s - s_star) <= abs(samples[ib].s - s_star) else ib
+    return j, _largest(kind, samples[j].multipliers)
+
+
+def branch_stability(branch: Branch, problem: PeriodicProblem,
+                     options: StabilityOptions | None = None, *,
+                     progress: Callable[[int, int], None] | None = None) -> BranchStability:
+    """Floquet multipliers of every point of ``branch`` (a branch of ``problem``) and its
+    bifurcations located to ``options.rtol`` (module docstring).
+
+    ``progress(i, n)`` is called after each point (and with ``i = n`` when locating).
+    Bifurcations that cannot be located (re-solve fails, e.g. at journal contact) are
+    kept with their interpolated position and a message in ``messages``.
+    """
+    o = options or StabilityOptions()
+    ev = FloquetEvaluator(problem, o)
+    t0 = time.perf_counter()
+    results = []
+    n = branch.n_points
+    for i in range(n):
+        results.append(ev(float(branch.lam[i]), branch.X[i]))
+        if progress is not None:
+            progress(i + 1, n)
+    t_points = time.perf_counter() - t0
+    dlam = branch.dlam_ds if branch.tangents.size else np.full(n, np.nan)
+    s = branch.s if branch.s.size == n else np.arange(n, dtype=float)
+    samples = [BranchSample(float(s[i]), float(branch.lam[i]), r.multipliers,
+                            float(dlam[i]) if np.isfinite(dlam[i]) else None)
+               for i, r in enumerate(results)]
+    brackets = _merge_folds(detect(samples, o.tol), samples)
+    index = {id(p): i for i, p in enumerate(samples)}
+
+    def solve_at(s_: float) -> tuple[float, NDArray, float]:
+        p = branch.point_at(s_)
+        return p.lam, ev(p.lam, p.X).multipliers, p.dlam_ds
+
+    bifs: list[Bifurcation] = []
+    messages: list[str] = []
+    can_locate = o.locate and branch.resolver is not None
+    for br in brackets:
+        ia, ib = index[id(br.a)], index[id(br.b)]
+        b = None
+        if can_locate:
+            try:
+                b = locate(br, solve_at, rtol=o.rtol)
+            except (ConvergenceError, ArithmeticError, ValueError) as err:
+                messages.append(f"{br.kind} between lam = {br.a.lam:.9g} and "
+                                f"{br.b.lam:.9g} not located: {err}")
+        if b is None:  # interpolated position, multipliers of the nearer end
+            est = [x for x in find_bifurcations([br.a, br.b], None, dead_band=o.tol)
+                   if x.kind == br.kind]
+            b = est[0] if est else Bifurcation(br.kind, br.b.s, br.b.lam, br.b.multipliers,
+                                               critical_value(br.kind, br.b.multipliers)[1])
+        j, rep = _reported(br.kind, samples, ia, ib, o.tol, b.s)
+        b.info.update(point=j, reported=rep, bracket=(ia, ib))
+        bifs.append(b)
+    if progress is not None:
+        progress(n, n)
+    mu, counts = _pad([r.multipliers for r in results])
+    le = np.array([r.liouville_error or 0.0 for r in results], dtype=float)
+    return BranchStability(
+        lam=np.asarray(branch.lam, float).copy(),
+        frequency=np.asarray(branch.frequency, float).copy(),
+        stable=np.array([r.stable for r in results], dtype=bool),
+        max_multiplier=np.array([r.max_abs for r in results], dtype=float),
+        critical=np.array([r.critical for r in results], dtype=complex),
+        multipliers=mu, n_multipliers=counts,
+        liouville_error=np.where(np.isfinite(le), le, 0.0), bifurcations=bifs,
+        method=results[0].method if results else o.method, tol=o.tol,
+        elapsed=time.perf_counter() - t0, elapsed_points=t_points, n_bases=ev.n_bases,
+        messages=messages)
