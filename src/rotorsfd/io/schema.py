@@ -687,15 +687,20 @@ class StabilityAnalysis(Section):
     """Floquet stability of periodic solutions."""
 
     enabled: bool = Field(True, description="compute the stability of every point")
-    method: Literal["newmark", "hill"] = Field("newmark", description="monodromy by "
-                                               "Newmark (paper), or Hill's method")
+    method: Literal["newmark-cb", "newmark", "generalized-alpha", "generalized-alpha-cb",
+                    "hill", "hill-koopman"] = Field(
+        "newmark-cb", description="Newmark monodromy on the Craig-Bampton reduced model "
+        "(newmark-cb, default), on the full model (newmark: the paper's literal method; its "
+        "undamped structural modes sit at |mu| = 1), generalized-alpha, or Hill's method")
     intervals: integer("Newmark intervals per period M (paper: 400)", ge=10,
                        le=100000) = 400
-    tolerance: quantity("ratio", "unstable when |mu|max > 1 + tolerance", ge=0, lt=1) = 1e-6
+    tolerance: quantity("ratio", "unstable when |mu|max > 1 + tolerance (rotorsfd."
+                        "stability.STABILITY_TOL)", ge=0, lt=1) = 1e-5
     locate_tolerance: quantity("ratio", "relative parameter tolerance of located "
                                "bifurcations", gt=0, lt=1) = 1e-6
-    n_modes: integer("linear modes kept with the SFD DOFs in the reduced model (default: "
-                     "full model)", ge=1, le=10000, optional=True) = None
+    n_modes: integer("fixed-interface modes kept with the SFD DOFs in the reduced model "
+                     "(default: those with omega h <= 1/4)", ge=1, le=10000,
+                     optional=True) = None
 
 
 class StabilityChartAnalysis(Section):
