@@ -174,11 +174,25 @@ def hb_state(X: np.ndarray, speed: float) -> tuple[np.ndarray, np.ndarray]:
 
 def hb_start(system: RotorSystem, speed: float, harmonics: int = 3,
              n_samples: int | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """Initial state on the HB periodic solution at ``speed`` (constant base only)."""
-    from rotorsfd.harmonic.periodic import solve_periodic
+    """Initial state on the HB periodic solution at ``speed`` (constant base only).
 
-    sol = solve_periodic(system.periodic_problem(), speed, harmonics, n_samples=n_samples)
-    return hb_state(sol.X, speed)
+    Newton from the linearised response; if that fails (strongly nonlinear points), the
+    branch is continued from ``speed / 2`` and its first arrival at ``speed`` taken.
+    """
+    from rotorsfd.harmonic.periodic import continue_periodic, solve_periodic
+
+    problem = system.periodic_problem()
+    try:
+        sol = solve_periodic(problem, speed, harmonics, n_samples=n_samples)
+        return hb_state(sol.X, speed)
+    except ConvergenceError as first:
+        branch = continue_periodic(problem, 0.5 * speed, speed, harmonics,
+                                   n_samples=n_samples, limit_max=0.999)
+        if not (branch.n_points and abs(branch.lam[-1] - speed) <= 1e-9 * speed):
+            raise ConvergenceError(
+                f"HB start at {speed:.6g} rad/s: {' '.join(str(first).split())}; "
+                f"continuation from {0.5 * speed:.6g} rad/s: {branch.message}") from None
+        return hb_state(branch.X[-1], speed)
 
 
 # ---- chunked integration ---------------------------------------------------------------------
