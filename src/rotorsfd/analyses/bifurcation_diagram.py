@@ -87,7 +87,8 @@ class BifurcationDiagramResult:
 
     def table(self) -> dict[str, np.ndarray]:
         """``diagram.csv``: ``direction, speed_rad_s, speed_ratio, node, period, y, z, vy,
-        vz`` (one row per Poincare point and node)."""
+        vz`` (one row per Poincare point and node; SI: m, m/s; ``period`` counts from the
+        start of that speed's run)."""
         cols: dict[str, list[Any]] = {k: [] for k in (
             "direction", "speed_rad_s", "speed_ratio", "node", "period", "y", "z", "vy",
             "vz")}

@@ -400,7 +400,7 @@ class SimulationResult:
 
     def poincare_table(self) -> dict[str, np.ndarray]:
         """Columns of ``poincare.csv``: ``node, period, y, z, vy, vz`` (one row per node and
-        rotor period; ``period`` = t / T, an integer)."""
+        rotor period; ``period`` = t / T, an integer; SI: m, m/s)."""
         n_p, n_n = self.poincare_t.size, len(self.nodes)
         per = np.rint(self.poincare_t / self.period).astype(np.int64)
         return {"node": np.repeat(np.asarray(self.nodes, dtype=np.int64)[None, :], n_p,
@@ -598,8 +598,9 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
         q_init = np.zeros(n) if q0 is None else np.asarray(q0, float)
         v_init = np.zeros(n) if v0 is None else np.asarray(v0, float)
     elif from_hb:
-        if system.sfd is None:
-            raise ConfigError("from_hb", True, "the HB start needs an SFD")
+        if system.sfd is None or not system.base.is_constant:
+            raise ConfigError("from_hb", True, "the HB start needs an SFD and a constant "
+                              "base motion (start from the displaced state instead)")
         start = f"HB periodic solution (H={H})"
         q_init, v_init = hb_start(system, speed, H, h_samples)
     else:
