@@ -37,10 +37,11 @@ def test_columns_documented_order(written):
     for n in (1, 3):
         for d in ("y", "z"):
             expected += [f"static_{n}_{d}"] + [f"amp_{n}_{d}_h{k}" for k in (1, 2, 3)]
-    expected += ["defl_1", "defl_3"]
+    expected += ["defl_1", "defl_3", "stable", "max_multiplier"]  # stability on by default
     assert header == expected
-    assert sorted(paths) == ["branch.csv", "branch.nc", "response_deflection.png",
-                             "response_node1.png", "response_node3.png"]
+    assert sorted(paths) == ["bifurcations.csv", "branch.csv", "branch.nc",
+                             "response_deflection.png", "response_node1.png",
+                             "response_node3.png"]
     assert not [p for p in paths["branch.csv"].parent.iterdir() if p.name.startswith(".")]
     assert result.success and result.branch.n_points > 20
 

@@ -10,8 +10,11 @@ plots. Quantities per point, for an output node n and direction d in (y, z)::
     amp_<n>_<d>_h<k>  = |X_k|                  [m]   (half peak-to-peak of harmonic k)
     defl_<n>          = max_t sqrt(y^2 + z^2) / C    (the paper's r~, C the SFD clearance)
 
-Per-point stability (``stable``, ``max_multiplier``, ``multipliers``) and a bifurcation
-table are optional: a ``stability`` hook called at every converged point fills them, or
+Per-point stability (``stable``, ``max_multiplier``, ``multipliers``) and the located
+bifurcations: computed after the branch by
+:func:`~rotorsfd.analyses.branch_stability.branch_stability` when
+``[analysis.stability].enabled`` (or ``stability_options`` is given); alternatively a
+``stability`` hook called at every converged point fills them, or
 :meth:`ResponseResult.with_stability` adds them afterwards; they are written when present.
 """
 
@@ -40,6 +43,7 @@ if TYPE_CHECKING:
     import xarray as xr
     from matplotlib.figure import Figure
 
+    from rotorsfd.analyses.branch_stability import StabilityOptions
     from rotorsfd.io.schema import Config, ResponseAnalysis
 
 FloatArray = NDArray[np.float64]
@@ -256,11 +260,16 @@ class ResponseResult:
                  "elapsed_s": float(self.elapsed)}
         if self.speed is not None:
             attrs["fixed_speed_rad_s"] = float(self.speed)
-        return branch_dataset(
+        ds = branch_dataset(
             self.branch, parameter=self.parameter, parameter_units=self.parameter_units,
             speeds=self.speeds, reference_speed=self.reference_speed, stable=self.stable,
             max_multiplier=self.max_multiplier, multipliers=self.multipliers,
             bifurcations=self.bifurcations, attrs=attrs)
+        if "n_multipliers" in self.info and self.multipliers is not None:
+            ds["multiplier_count"] = ("point", np.asarray(self.info["n_multipliers"],
+                                                          np.int32),
+                                      {"long_name": "multipliers in the row (rest is 0)"})
+        return ds
 
     def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
         """Write ``branch.nc``, ``branch.csv``, ``bifurcations.csv`` (when there is a
@@ -308,6 +317,10 @@ class ResponseResult:
             lines.append(f"node {n}: max r~ = {r[i]:.4g} at {x_name} = {x[i]:.5g}")
         if self.stable is not None:
             lines.append(f"unstable points: {int(np.sum(~self.stable))} of {b.n_points}")
+        for row in self.bifurcations or ():
+            where = (f"Omega~ = {row['speed_ratio']:.6f}" if self.is_speed
+                     else f"{self.parameter} = {row['parameter']:.6g}")
+            lines.append(f"{row['type']} at {where}: |mu|max = {row['max_multiplier']:.5f}")
         lines.append(("ok: " if self.success else "FAILED: ") + self.message)
         return "\n".join(lines)
 
@@ -375,6 +388,7 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
                  nodes: Sequence[int] | None = None, directions: Sequence[str] | None = None,
                  X0: Any = None, progress: bool = True,
                  stability: StabilityHook | None = None,
+                 stability_options: StabilityOptions | bool | None = None,
                  callback: Callable[[BranchPoint], bool | None] | None = None,
                  title: str | None = None, **options: Any) -> ResponseResult:
     """Continue periodic solutions and return a :class:`ResponseResult`.
@@ -384,9 +398,12 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
     speed and base rates, kg m for the unbalance) are required, ``speed`` too for
     parameters other than the speed; ``reference_speed`` defaults to the first forward
     critical speed. ``options`` go to :func:`~rotorsfd.harmonic.periodic.continue_periodic`.
-    ``stability(point)`` may return a :class:`PointStability` per point; ``callback(point)``
-    returning True stops the branch. A failed step never raises: the result then has
-    ``success`` False and the points so far.
+    ``stability(point)`` may return a :class:`PointStability` per point; otherwise
+    ``stability_options`` (None: from ``[analysis.stability]`` of a Config, off for a
+    RotorSystem; True: defaults; False: off) computes the multipliers of every point and
+    the located bifurcations after the branch. ``callback(point)`` returning True stops
+    the branch. A failed step never raises: the result then has ``success`` False and the
+    points so far.
     """
     if isinstance(config_or_system, RotorSystem):
         system = config_or_system
@@ -398,12 +415,14 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
             raise ConfigError("start/stop", (start, stop), "give the parameter range in SI")
         out_nodes = tuple(nodes) if nodes else _default_nodes(system)
         name = title or ""
+        floquet = _stability_options(None, stability_options)
     else:
         system, path, ref, H, opts, (start, stop, speed), out_nodes = _from_config(
             config_or_system, search_path, parameter, start, stop, speed, reference_speed,
             harmonics, nodes)
         name = config_or_system.title if title is None else title
         directions = directions or tuple(config_or_system.analysis.response.directions)
+        floquet = _stability_options(config_or_system, stability_options)
     sys_param = system_parameter(path)
     if sys_param != "speed" and not (speed is not None and speed > 0):
         raise ConfigError(f"{FIELD}.speed", speed,
@@ -445,7 +464,52 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
             mu = np.array([np.asarray(p.multipliers, dtype=complex) for p in pts])
         result = result.with_stability([p.stable for p in pts],
                                        [p.max_multiplier for p in pts], mu)
+    elif stability is None and floquet is not None and branch.n_points:
+        result = _with_branch_stability(result, problem, floquet, progress)
     return result
+
+
+def _stability_options(config: Config | None, given: StabilityOptions | bool | None
+                       ) -> StabilityOptions | None:
+    """Options of the after-branch stability (None: off), see :func:`run_response`."""
+    from rotorsfd.analyses.branch_stability import StabilityOptions
+
+    if isinstance(given, StabilityOptions):
+        return given
+    if given is False or (given is None and config is None):
+        return None
+    if config is None:
+        return StabilityOptions()
+    st = config.analysis.stability
+    if given is None and not st.enabled:
+        return None
+    return StabilityOptions(method=st.method, n_intervals=st.intervals, n_modes=st.n_modes,
+                            tol=st.tolerance, rtol=st.locate_tolerance)
+
+
+def _with_branch_stability(result: ResponseResult, problem: Any,
+                           options: StabilityOptions, progress: bool) -> ResponseResult:
+    """The result with the multipliers of every point and the located bifurcations."""
+    from tqdm import tqdm
+
+    from rotorsfd.analyses.branch_stability import branch_stability
+
+    n = result.branch.n_points
+    bar = tqdm(total=n, desc="stability", disable=not progress, file=sys.stderr,
+               dynamic_ncols=True, leave=False)
+
+    def step(i: int, total: int) -> None:
+        bar.update(i - bar.n)
+
+    try:
+        st = branch_stability(result.branch, problem, options, progress=step)
+    finally:
+        bar.close()
+    out = result.with_stability(st.stable, st.max_multiplier, st.multipliers,
+                                st.rows(result.reference_speed, problem.frequency))
+    out.info.update(stability=st, n_multipliers=st.n_multipliers,
+                    stability_elapsed=st.elapsed)
+    return out
 
 
 def _from_config(config: Config, search_path: Path | None, parameter: str | None,
