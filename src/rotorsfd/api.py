@@ -40,6 +40,7 @@ __all__ = [
     "run_modal",
     "run_response",
     "run_simulation",
+    "run_stability_chart",
     "run_static",
     "show_config",
     "with_values",
@@ -259,5 +260,14 @@ def run_bifurcation_diagram(config: Any, **kwargs: Any) -> Any:
     """Speed swept up and down in the time domain (``[analysis.bifurcation_diagram]``): see
     :func:`rotorsfd.analyses.bifurcation_diagram.run_bifurcation_diagram`."""
     from rotorsfd.analyses.bifurcation_diagram import run_bifurcation_diagram as _run
+
+    return _run(config, **kwargs)
+
+
+def run_stability_chart(config: Any, **kwargs: Any) -> Any:
+    """Stability chart of the linear rotor under harmonic base rotation
+    (``[analysis.stability_chart]``): see
+    :func:`rotorsfd.analyses.stability_chart.run_stability_chart`."""
+    from rotorsfd.analyses.stability_chart import run_stability_chart as _run
 
     return _run(config, **kwargs)

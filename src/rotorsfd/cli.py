@@ -417,5 +417,25 @@ def _bifurcation_diagram(args: argparse.Namespace, config: Any) -> int:
         print("wrote " + ", ".join(str(p) for p in paths.values()))
     return 0 if result.success else 1
 
+@command("stability-chart", "stability chart of the linear rotor (film off) under harmonic "
+         "base rotation over two parameters ([analysis.stability_chart] x, y, speed): "
+         "chart.nc (max |Floquet multiplier|, stable), chart.png", output=True, quiet=True,
+         arguments=[arg("--workers", type=int, default=1, metavar="N",
+                        help="threads over the grid rows (default: 1)")])
+def _stability_chart(args: argparse.Namespace, config: Any) -> int:
+    from rotorsfd import api
+
+    if args.workers < 1:
+        raise ConfigError("--workers", args.workers, "must be >= 1")
+    result = api.run_stability_chart(config, workers=args.workers,
+                                     search_path=Path(args.config).parent,
+                                     progress=not args.quiet)
+    paths = result.write(args.output)
+    if not args.quiet:
+        print(result.summary())
+        print("wrote " + ", ".join(str(p) for p in paths.values()))
+    return 0
+
+
 if __name__ == "__main__":  # pragma: no cover
     sys.exit(main())
