@@ -60,6 +60,7 @@ class SpeedPoint:
     n_distinct: int | None
     max_eccentricity: float | None
     contact: str | None = None
+    settled: bool = True
 
 
 @dataclass
@@ -112,7 +113,9 @@ class BifurcationDiagramResult:
 
     def speeds_table(self) -> dict[str, np.ndarray]:
         """``speeds.csv``: per speed ``direction, speed_rad_s, speed_ratio, motion,
-        n_distinct_poincare (-1: unknown), max_eccentricity (-1: none), contact (0/1)``."""
+        n_distinct_poincare (-1: unknown), max_eccentricity (-1: none), contact (0/1),
+        settled (0: a period-n class whose Poincare points still drift)``. The motion is
+        classified without a Lyapunov exponent (Poincare points and spectral lines)."""
         ref = self.reference_speed
         cols = {"direction": [p.direction for p in self.points],
                 "speed_rad_s": [p.speed for p in self.points],
@@ -122,7 +125,8 @@ class BifurcationDiagramResult:
                                         for p in self.points],
                 "max_eccentricity": [-1.0 if p.max_eccentricity is None
                                      else p.max_eccentricity for p in self.points],
-                "contact": [p.contact is not None for p in self.points]}
+                "contact": [p.contact is not None for p in self.points],
+                "settled": [p.settled for p in self.points]}
         if not ref:
             cols.pop("speed_ratio")
         return {k: np.asarray(v) for k, v in cols.items()}
@@ -300,7 +304,8 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
             points.append(SpeedPoint(
                 d, speed, tr.poincare_t, tr.poincare_q.reshape(-1, nn, 2),
                 tr.poincare_v.reshape(-1, nn, 2), mc.motion if mc else "unclassified",
-                mc.evidence.get("n_distinct_poincare") if mc else None, eps))
+                mc.evidence.get("n_distinct_poincare") if mc else None, eps,
+                settled=bool(mc.evidence.get("settled", True)) if mc else True))
     finally:
         bar.close()
     return BifurcationDiagramResult(points, out_nodes, ref, clearance, settings,

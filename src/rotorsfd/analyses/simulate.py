@@ -492,6 +492,8 @@ class SimulationResult:
                          f"periods), {self.max_eccentricity_run:.4f} (whole run)")
         lines.append(f"{self.settings['periods']} periods x {self.settings['steps_per_period']}"
                      f" steps ({self.settings['scheme']}) in {self.elapsed:.2f} s")
+        if ev.get("note"):
+            lines.append(f"note: {ev['note']}")
         lines += [f"note: {n}" for n in self.notes]
         return "\n".join(lines)
 
@@ -703,4 +705,15 @@ def classify(pq: np.ndarray, pv: np.ndarray, q: np.ndarray, v: np.ndarray, dt: f
     P = np.hstack([pq[:, order], pv[:, order]])
     m = q.shape[0] if n_record is None else min(n_record, q.shape[0])
     sig = np.hstack([q[:m, order], v[:m, order]])
-    return classify_motion(P, sig, dt, speed, lyapunov)
+    mc = classify_motion(P, sig, dt, speed, lyapunov)
+    n = mc.period
+    if n is not None:
+        # consecutive points within tolerance but drifting along a curve: not settled
+        settled = mc.evidence.get("n_distinct_poincare", n) <= n
+        ev = {**mc.evidence, "settled": settled}
+        if not settled:
+            ev["note"] = (f"{ev['n_distinct_poincare']} distinct Poincare points for a "
+                          f"period-{n} classification: the points still drift (a slow "
+                          "transient); run more periods")
+        mc = MotionClass(mc.motion, ev)
+    return mc
