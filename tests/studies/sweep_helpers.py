@@ -49,6 +49,9 @@ speed_range = {{ start_ratio = 0.6, stop_ratio = 1.4 }}
 nodes = [1, 3]
 step_max = 0.1
 
+[analysis.stability]
+intervals = 100                 # tests: 100 Newmark intervals per period are enough here
+
 [analysis.sweep]
 task = "response"
 {axes}

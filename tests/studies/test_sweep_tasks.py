@@ -34,6 +34,16 @@ def test_unstable_interval_of_a_fold_pair_uses_located_folds():
     assert (lo, hi) == (1.05, pytest.approx(1.175, rel=1e-14))
 
 
+def test_unstable_interval_uses_the_bifurcation_point_index():
+    # points straddle both turning points symmetrically: no x tolerance would match them
+    x = [1.0, 1.1, 1.195, 1.195, 1.1, 1.06, 1.06, 1.2]
+    stable = [True, True, True, False, False, False, True, True]
+    assert unstable_intervals(x, stable, bifurcations_x=[1.2, 1.055],
+                              bifurcations_point=[3, 5]) == [(1.055, 1.2)]
+    (lo, hi), = unstable_intervals(x, stable, bifurcations_x=[1.2, 1.055])
+    assert (lo, hi) == (pytest.approx(1.06, rel=1e-14), pytest.approx(1.195, rel=1e-14))
+
+
 def test_overlapping_intervals_merge():
     x = [1.0, 2.0, 3.0, 2.5, 1.5, 4.0, 5.0, 6.0]
     stable = [True, False, True, False, True, True, False, False]
@@ -97,6 +107,21 @@ values = ["40 g*mm", "60 g*mm"]
 """
 
 
+def test_real_fold_pair_gives_the_bistable_width(tmp_path):
+    from rotorsfd.analyses.response import run_response
+
+    config = load_config(sweep_toml(tmp_path / "rotor.toml", ""),
+                         ["unbalance[0].magnitude=150 g*mm"])
+    result = run_response(config, progress=False)
+    folds = sorted(b["speed_ratio"] for b in result.bifurcations
+                   if b["type"] == "saddle-node")
+    assert len(folds) == 2
+    s = response_output(result).scalars
+    assert s["n_saddle_node"] == 2 and s["n_unstable_points"] > 0
+    assert s["unstable_intervals"] == intervals_text([tuple(folds)])
+    assert s["unstable_width_speed_ratio"] == folds[1] - folds[0]
+
+
 def test_tiny_real_response_sweep(tmp_path):
     config = load_config(sweep_toml(tmp_path / "rotor.toml", AXES_2x2))
     result = run_sweep(config, directory=tmp_path / "out", workers=2, progress=False)
@@ -113,6 +138,12 @@ def test_tiny_real_response_sweep(tmp_path):
     n = ds["n_branch_point"].values
     assert np.all(n == ds["branch_points"].values) and n.min() > 10
     assert ds["branch_points"].dtype == np.int32             # complete: no fill, no cast
+    # stability from run_response: counts, widths, per-point flags and multipliers
+    assert ds["n_saddle_node"].dtype == np.int32 and (ds["message"] == "").all()
+    assert np.all(ds["unstable_width_speed_ratio"].values >= 0)
+    stable = ds["branch_stable"].values[0, 0, :n[0, 0]]
+    assert set(stable.tolist()) <= {0, 1}
+    assert np.all(ds["branch_max_multiplier"].values[0, 0, :n[0, 0]] > 0)
     ratio = ds["branch_speed_ratio"].values
     assert ratio[0, 0, 0] == pytest.approx(0.6) and np.nanmax(ratio) == pytest.approx(1.4)
 

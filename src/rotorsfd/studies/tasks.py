@@ -118,14 +118,18 @@ class SyntheticTask:
 
 def unstable_intervals(x: Sequence[float], stable: Sequence[bool],
                        max_multiplier: Sequence[float] | None = None,
-                       bifurcations_x: Sequence[float] = ()) -> list[tuple[float, float]]:
+                       bifurcations_x: Sequence[float] = (),
+                       bifurcations_point: Sequence[int] | None = None
+                       ) -> list[tuple[float, float]]:
     """Intervals of the parameter x covered by unstable parts of a branch, merged.
 
     Each run of consecutive unstable points spans its points' x and its two boundaries.
     A boundary lies between an unstable point i and its stable neighbour j: the linear
     estimate of where ``|mu|max = 1`` (the midpoint without multipliers), replaced by a
-    located bifurcation (e.g. a fold's turning point) when one lies within |x_i - x_j| of
-    it; bifurcations are matched one-to-one, nearest pairs first.
+    located bifurcation (e.g. a fold's turning point): one whose ``point`` (the nearest
+    computed point on its unstable side, as in the bifurcation table) is i, or, without
+    that index, one within |x_i - x_j| of the estimate. Matched one-to-one, nearest
+    pairs first.
     """
     x = np.asarray(x, dtype=float)
     unstable = ~np.asarray(stable, dtype=bool)
@@ -141,17 +145,24 @@ def unstable_intervals(x: Sequence[float], stable: Sequence[bool],
             i = j + 1
         else:
             i += 1
-    ends: list[tuple[int, float, float]] = []  # (run, estimate, tolerance)
+    ends: list[tuple[int, float, float, int]] = []  # (run, estimate, tolerance, i)
     for r, (a, b) in enumerate(runs):
         for i, j in ((a, a - 1), (b, b + 1)):
             if 0 <= j < x.size:
                 t = 0.5
                 if mm is not None and mm[i] != mm[j]:
                     t = min(max((1.0 - mm[j]) / (mm[i] - mm[j]), 0.0), 1.0)
-                ends.append((r, x[j] + t * (x[i] - x[j]), abs(x[i] - x[j]) * (1 + 1e-9)))
-    value = [e for _, e, _ in ends]
-    pairs = sorted((abs(bx - e), k, m) for k, (_, e, tol) in enumerate(ends)
-                   for m, bx in enumerate(bifurcations_x) if abs(bx - e) <= tol)
+                ends.append((r, x[j] + t * (x[i] - x[j]), abs(x[i] - x[j]) * (1 + 1e-9), i))
+    value = [e for _, e, _, _ in ends]
+    where = list(bifurcations_point) if bifurcations_point is not None \
+        else [-1] * len(bifurcations_x)
+
+    def matches(k: int, m: int) -> bool:
+        _, e, tol, i = ends[k]
+        return where[m] == i if where[m] >= 0 else abs(bifurcations_x[m] - e) <= tol
+
+    pairs = sorted((abs(bx - ends[k][1]), k, m) for k in range(len(ends))
+                   for m, bx in enumerate(bifurcations_x) if matches(k, m))
     used_end: set[int] = set()
     used_bif: set[int] = set()
     for _, k, m in pairs:
@@ -161,8 +172,8 @@ def unstable_intervals(x: Sequence[float], stable: Sequence[bool],
             used_bif.add(m)
     spans = []
     for r, (a, b) in enumerate(runs):
-        pts = [*x[a:b + 1].tolist(), *(v for (rr, _, _), v in zip(ends, value, strict=True)
-                                       if rr == r)]
+        pts = [*x[a:b + 1].tolist(), *(v for end, v in zip(ends, value, strict=True)
+                                       if end[0] == r)]
         spans.append((float(min(pts)), float(max(pts))))
     merged: list[tuple[float, float]] = []
     for lo, hi in sorted(spans):
@@ -223,7 +234,8 @@ def response_output(result: Any) -> PointOutput:
         stable = np.asarray(result.stable, dtype=bool)
         mm = None if result.max_multiplier is None else np.asarray(result.max_multiplier)
         bx = [float(b["speed_ratio"] if result.is_speed else b["parameter"]) for b in bifs]
-        iv = unstable_intervals(x, stable, mm, bx)
+        where = [int(b["point"]) for b in bifs] if all("point" in b for b in bifs) else None
+        iv = unstable_intervals(x, stable, mm, bx, where)
         sc["n_unstable_points"] = int(np.sum(~stable))
         sc["unstable_intervals"] = intervals_text(iv)
         sc[f"unstable_width_{x_name}"] = float(sum(hi - lo for lo, hi in iv))
