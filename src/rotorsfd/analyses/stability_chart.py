@@ -482,7 +482,8 @@ def run_stability_chart(config_or_system: Config | RotorSystem, *,
     for ax, t in ((xa, tx), (ya, ty)):
         if t is not None and (t[1] in ("speed", "frequency")):
             top.append(float(np.max(np.abs(ax.values))) * (1.0 if t[1] == "speed" else 2.0))
-    top += [2.0 * s.frequency for s in specs if s.law == "harmonic"]
+    top += [2.0 * s.frequency for i, s in enumerate(specs)
+            if s.law == "harmonic" and (i, "frequency") not in (tx, ty)]
     cutoff = MODE_CUTOFF * max(top)
 
     def rotor_at(values: dict[str, float]) -> Rotor:
