@@ -257,3 +257,45 @@ class RotorSystem:
         base = BaseMotion(*self.base.translation, *laws, gravity=self.base.gravity)
         return RotorSystem(self.rotor, self.sfd, self.sfd_node, self.unbalances, base)
 
+
+    def with_parameter(self, parameter: str, value: float) -> RotorSystem:
+        """A copy with a continuation parameter (not the speed) set: a constant base rate
+        [rad/s], or the first unbalance's magnitude [kg m] (the others scaled with it, as
+        in :meth:`periodic_problem`). The copy shares the base-motion basis."""
+        if parameter in _RATE_INDEX:
+            out = self.with_base_rate(parameter, value)
+        elif parameter == "unbalance.magnitude":
+            if not self.unbalances or self.unbalances[0].magnitude == 0.0:
+                raise ConfigError("unbalance", None,
+                                  "continuing in the unbalance needs a nonzero first unbalance")
+            scale = value / self.unbalances[0].magnitude
+            ub = [Unbalance(u.node, u.magnitude * scale, u.phase) for u in self.unbalances]
+            out = RotorSystem(self.rotor, self.sfd, self.sfd_node, ub, self.base)
+        else:
+            raise ConfigError("parameter", parameter,
+                              f"must be one of {', '.join(p for p in PARAMETERS if p != 'speed')}")
+        out._basis = self._basis
+        return out
+
+    def two_parameter_problem(self, second: str):
+        """The HB problem in (speed, ``second``) as a
+        :class:`~rotorsfd.continuation.folds.TwoParameterProblem`: ``first(value)`` is
+        ``periodic_problem("speed")`` of :meth:`with_parameter` (second = value), and
+        ``second(speed)`` is ``periodic_problem(second, speed)``; both exact in their
+        parameter, so ``dR/dspeed`` and ``dR/dsecond`` are exact at every (speed, value)."""
+        from rotorsfd.continuation.folds import TwoParameterProblem
+
+        self.constant_base_state()
+        if second == "speed" or second not in PARAMETERS:
+            raise ConfigError("parameter", second,
+                              f"must be one of {', '.join(p for p in PARAMETERS if p != 'speed')}")
+        if second in _RATE_INDEX or not self.base.is_fixed:
+            _ = self.basis   # built once, shared by every copy
+
+        def first(value: float) -> PeriodicProblem:
+            return self.with_parameter(second, value).periodic_problem("speed")
+
+        def across(speed: float) -> PeriodicProblem:
+            return self.periodic_problem(second, speed)
+
+        return TwoParameterProblem(first, across, ("speed", second))
