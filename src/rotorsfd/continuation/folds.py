@@ -1,0 +1,439 @@
+"""Two-parameter continuation of folds (saddle-nodes) and their cusps.
+
+A *two-parameter system* is any object with ``n`` (number of state unknowns x) and
+
+- ``evaluate(z) -> (R (n,), J (n, n+2))`` at ``z = (x, lam1, lam2)`` (scaled), with the
+  exact ``J = [R_x, R_lam1, R_lam2]``; ``admissible(z) -> bool``.
+
+Fold of ``R(x, lam1) = 0`` at fixed lam2 (minimally extended system, Govaerts 2000)::
+
+    [A  b] [v]   [0]          [A^T c] [w]   [0]
+    [c^T 0] [g] = [1],         [b^T 0] [h] = [1],        A = R_x,
+
+g(x, lam1, lam2) vanishes exactly where A is singular (v, w: right and left null
+vectors); b, c are the left and right null vectors of A at the last accepted point
+(so the bordered matrix stays well conditioned). The fold curve is the solution set of
+
+    F(x, lam1, lam2) = [R; g] = 0          (n + 1 equations, n + 2 unknowns),
+
+continued by pseudo arc-length (:func:`~rotorsfd.continuation.arclength.arclength`,
+parameter lam2). Derivatives: ``dg/dy = -w^T (dA/dy) v`` for y in (x, lam1, lam2), i.e.
+``dg/dz = -w^T D_v J`` with ``D_v J`` the directional derivative of the full Jacobian
+``[R_x, R_lam1, R_lam2]`` along (v, 0, 0) (mixed partials commute:
+``(d R_x / dlam) v = D_v R_lam``). R and g are exact; ``D_v J`` is the only approximate
+quantity: a central difference ``(J(x + h v) - J(x - h v)) / 2h`` with ``|h v| = 1e-5``
+in scaled unknowns (error O(h^2) ~ 1e-10, it only affects the Newton rate, not the
+converged fold, since g itself is exact).
+
+Cusp: along the fold curve, ``(dlam1, dlam2)`` is orthogonal to ``(w.R_lam1, w.R_lam2)``,
+so at a nondegenerate fold (``w.R_lam1 != 0``) ``dlam2/ds = 0`` forces ``dlam1/ds = 0``:
+the curve turns back in lam2 exactly at a cusp, where the two folds of a pair meet. It is
+located by the Illinois method on ``dlam2/ds`` (the tangent's last entry) along the arc.
+
+:class:`TwoParameterHB` puts the condensed HB-AFT residual
+(:class:`~rotorsfd.harmonic.condensation.CondensedHB`) of a :class:`TwoParameterProblem` in
+this form, with exact ``R_lam1`` and ``R_lam2``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Protocol
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rotorsfd.continuation.arclength import ArcLengthOptions, arclength
+from rotorsfd.continuation.branch import Branch, BranchPoint
+from rotorsfd.continuation.newton import metric, newton_extended, tangent
+from rotorsfd.errors import ConvergenceError
+from rotorsfd.harmonic.condensation import CondensedHB
+from rotorsfd.harmonic.fourier import to_real
+from rotorsfd.harmonic.problem import PeriodicProblem
+
+FloatArray = NDArray[np.float64]
+ComplexArray = NDArray[np.complex128]
+
+#: Step of the central difference of the Jacobian along v (scaled unknowns).
+FD_STEP = 1e-5
+
+
+class TwoParameterSystem(Protocol):
+    """Scaled ``R(x, lam1, lam2) = 0`` with exact ``[R_x, R_lam1, R_lam2]`` (module doc)."""
+
+    n: int
+
+    def evaluate(self, z: FloatArray) -> tuple[FloatArray, FloatArray]: ...
+
+    def admissible(self, z: FloatArray) -> bool: ...
+
+
+def _bordered(A: FloatArray, b: FloatArray, c: FloatArray) -> tuple[FloatArray, float]:
+    """Solve ``[A b; c^T 0] [v; g] = [0; 1]``."""
+    n = A.shape[0]
+    B = np.zeros((n + 1, n + 1))
+    B[:n, :n], B[:n, n], B[n, :n] = A, b, c
+    rhs = np.zeros(n + 1)
+    rhs[n] = 1.0
+    sol = np.linalg.solve(B, rhs)
+    return sol[:n], float(sol[n])
+
+
+def null_vectors(A: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Unit right and left singular vectors of the smallest singular value of A."""
+    U, _, Vt = np.linalg.svd(A)
+    return Vt[-1].copy(), U[:, -1].copy()
+
+
+class FoldSystem:
+    """The fold-augmented system ``F = [R; g]`` in ``z = (x, lam1, lam2)`` (module doc);
+    a :class:`~rotorsfd.continuation.newton.ContinuationSystem` with parameter lam2."""
+
+    def __init__(self, base: TwoParameterSystem, z0: FloatArray, fd_step: float = FD_STEP
+                 ) -> None:
+        self.base = base
+        self.n = base.n + 1
+        self.fd_step = fd_step
+        w = getattr(base, "weights", None)
+        self.weights = None if w is None else np.asarray(w, dtype=float)
+        _, J = base.evaluate(np.asarray(z0, dtype=float))
+        self.c, self.b = null_vectors(J[:, : base.n])
+
+    def admissible(self, z: FloatArray) -> bool:
+        return self.base.admissible(z)
+
+    def null_vectors(self, A: FloatArray) -> tuple[FloatArray, FloatArray, float]:
+        """(v, w, g) of the bordered systems at A = R_x."""
+        v, g = _bordered(A, self.b, self.c)
+        w, _ = _bordered(A.T, self.c, self.b)
+        return v, w, g
+
+    def evaluate(self, z: FloatArray) -> tuple[FloatArray, FloatArray]:
+        n = self.base.n
+        R, J = self.base.evaluate(z)
+        v, w, g = self.null_vectors(J[:, :n])
+        h = self.fd_step / max(float(np.linalg.norm(v)), 1e-300)
+        dz = np.zeros_like(z)
+        dz[:n] = h * v
+        Jp = self.base.evaluate(z + dz)[1]
+        Jm = self.base.evaluate(z - dz)[1]
+        dg = -(w @ (Jp - Jm)) / (2.0 * h)
+        return np.append(R, g), np.vstack([J, dg])
+
+    def update_border(self, z: FloatArray) -> None:
+        """b, c <- the unit left and right null vectors w, v at z (after a point)."""
+        _, J = self.base.evaluate(z)
+        v, w, _ = self.null_vectors(J[:, : self.base.n])
+        if np.all(np.isfinite(v)) and np.all(np.isfinite(w)):
+            self.c, self.b = v / np.linalg.norm(v), w / np.linalg.norm(w)
+
+
+@dataclass
+class Cusp:
+    """A turning point of the fold curve in lam2 (where a fold pair meets): its index in
+    the curve's points (the point itself is stored there) and arc length."""
+
+    index: int
+    s: float
+    z: FloatArray
+
+
+@dataclass
+class FoldBranch:
+    """Points of a fold curve in scaled unknowns ``z = (x, lam1, lam2)``.
+
+    ``segment`` counts the turns in lam2 passed so far (a new segment after each cusp, so
+    each segment is one fold of a pair, lam1 a function of lam2 on it); ``s`` arc length;
+    ``cusps`` the located turns (their points are in ``z`` too).
+    """
+
+    z: FloatArray
+    tangents: FloatArray
+    s: FloatArray
+    segment: NDArray[np.int64]
+    cusps: list[Cusp]
+    success: bool
+    message: str
+    system: FoldSystem = field(repr=False)
+
+    @property
+    def n_points(self) -> int:
+        return int(self.s.size)
+
+    def solve_at(self, lam2: float, tol: float = 1e-10) -> list[FloatArray]:
+        """Points of the curve at the scaled ``lam2``: Newton at fixed lam2 from the linear
+        interpolation of every pair of consecutive points that brackets it."""
+        out: list[FloatArray] = []
+        e = np.zeros(self.system.n + 1)
+        e[-1] = 1.0
+        l2 = self.z[:, -1]
+        for i in range(self.n_points - 1):
+            a, b = l2[i] - lam2, l2[i + 1] - lam2
+            if a * b > 0 or (b == 0 and i + 1 < self.n_points - 1) or a == b:
+                continue
+            z0 = self.z[i] + (self.z[i + 1] - self.z[i]) * (a / (a - b))
+            res = newton_extended(self.system, z0, e, lam2, tol, 30)
+            if not res.converged:
+                raise ConvergenceError(f"fold curve: re-solving at lam2={lam2:.8g} failed: "
+                                       f"{res.message}")
+            out.append(res.z)
+        return out
+
+
+@dataclass
+class FoldOptions:
+    """Steps of the fold-curve continuation (scaled units) and the cusp tolerance:
+    the turn is located until |dlam2/ds| <= ``turn_tol``."""
+
+    ds: float = 0.02
+    ds_min: float = 1e-6
+    ds_max: float = 0.05
+    tol: float = 1e-8
+    max_iter: int = 10
+    max_points: int = 1000
+    max_angle_deg: float = 20.0
+    max_turns: int = 4
+    turn_tol: float = 1e-9
+
+
+def _locate_turn(fold: FoldSystem, z: FloatArray, t: FloatArray, z1: FloatArray,
+                 t1: FloatArray, tol: float, turn_tol: float
+                 ) -> tuple[FloatArray, FloatArray, float]:
+    """Point between z (tangent t) and z1 where the tangent's lam2 entry vanishes
+    (Illinois on the arc length d from z); returns (z, t, d)."""
+    W = metric(fold)
+    a, fa = 0.0, float(t[-1])
+    b = float(t @ (W * (z1 - z)))
+    fb = float(t1[-1])
+    zc, tc, side = z1, t1, 0
+    for _ in range(60):
+        d = (a * fb - b * fa) / (fb - fa)
+        res = newton_extended(fold, z + d * t, W * t, float((W * t) @ z) + d, tol, 30)
+        if not res.converged:
+            raise ConvergenceError(f"fold curve: locating the cusp failed: {res.message}")
+        zc, tc = res.z, tangent(res.J, t, W)
+        f = float(tc[-1])
+        if abs(f) <= turn_tol or abs(b - a) <= 1e-14 * max(1.0, abs(b)):
+            return zc, tc, d
+        if f * fb < 0:
+            a, fa = b, fb
+            b, fb = d, f
+            side = 0
+        else:
+            b, fb = d, f
+            if side == -1:
+                fa *= 0.5
+            side = -1
+    return zc, tc, d
+
+
+def continue_folds(base: TwoParameterSystem, z0: FloatArray, lam2_range: tuple[float, float],
+                   options: FoldOptions | None = None,
+                   on_point: Callable[[FloatArray, int], None] | None = None) -> FoldBranch:
+    """Continue the fold near z0 (scaled ``(x, lam1, lam2)``) in lam2 over ``lam2_range``
+    (scaled), from ``z0[-1]`` towards ``lam2_range[1]``.
+
+    z0 is first corrected at fixed lam2 (Newton on ``[R; g] = 0``). Each time the curve
+    turns back in lam2 (``dlam2/ds`` changes sign: a cusp), the turn is located, stored as
+    a :class:`Cusp`, and the continuation goes on towards the other end of the range
+    (at most ``max_turns`` times). ``on_point(z, segment)`` is called at every point.
+    Never raises after the first point: ``success`` False and a message on failure.
+    """
+    o = options or FoldOptions()
+    z0 = np.asarray(z0, dtype=float)
+    fold = FoldSystem(base, z0)
+    e = np.zeros(fold.n + 1)
+    e[-1] = 1.0
+    first = newton_extended(fold, z0, e, float(z0[-1]), o.tol, 30)
+    if not first.converged:
+        raise ConvergenceError(f"fold curve: no fold near the start point: {first.message}")
+    fold.update_border(first.z)
+    first = newton_extended(fold, first.z, e, float(first.z[-1]), o.tol, 30)
+    zs: list[FloatArray] = []
+    ts: list[FloatArray] = []
+    ss: list[float] = []
+    seg: list[int] = []
+    cusps: list[Cusp] = []
+    state = {"segment": 0, "turned": False}
+
+    def record(z: FloatArray, t: FloatArray, step: float) -> None:
+        zs.append(z.copy())
+        ts.append(t.copy())
+        ss.append((ss[-1] if ss else 0.0) + step)
+        seg.append(state["segment"])
+        fold.update_border(z)
+        if on_point is not None:
+            on_point(z, state["segment"])
+
+    def handler(z: FloatArray, t: FloatArray, J: FloatArray, it: int, step: float) -> bool:
+        if ts and ts[-1][-1] * t[-1] < 0:
+            zc, tc, d = _locate_turn(fold, zs[-1], ts[-1], z, t, o.tol, o.turn_tol)
+            record(zc, tc, d)
+            cusps.append(Cusp(len(zs) - 1, ss[-1], zc))
+            state["segment"] += 1
+            state["turned"] = True
+            record(z, t, max(step - d, 0.0))
+            return True
+        record(z, t, step)
+        return False
+
+    opts = ArcLengthOptions(ds=o.ds, ds_min=o.ds_min, ds_max=o.ds_max, tol=o.tol,
+                            max_iter=o.max_iter, max_points=o.max_points,
+                            max_angle=float(np.radians(o.max_angle_deg)))
+    z, J, t_prev = first.z, first.J, None
+    ends = [float(lam2_range[1]), float(lam2_range[0])]
+    target = 0
+    while True:
+        state["turned"] = False
+        restart = bool(zs)
+        opts.max_points = o.max_points - len(zs) + int(restart)
+        status = arclength(fold, z, J, ends[target],
+                           _skip_first(handler) if restart else handler, opts, t_prev=t_prev)
+        if not state["turned"]:
+            return _result(zs, ts, ss, seg, cusps, status.success, status.message, fold)
+        if len(cusps) > o.max_turns:
+            return _result(zs, ts, ss, seg, cusps, False,
+                           f"stopped after {len(cusps)} turns in lam2 (max_turns)", fold)
+        target = 1 - target
+        z, t_prev = zs[-1], ts[-1]
+        J = fold.evaluate(z)[1]
+        opts.ds = status.ds or o.ds
+
+
+def _skip_first(handler):
+    """The handler, skipping the first call of a restart (the last recorded point)."""
+    seen = {"first": True}
+
+    def wrapped(z, t, J, it, step):
+        if seen["first"]:
+            seen["first"] = False
+            return False
+        return handler(z, t, J, it, step)
+
+    return wrapped
+
+
+def _result(zs, ts, ss, seg, cusps, success, message, fold) -> FoldBranch:
+    return FoldBranch(np.array(zs), np.array(ts), np.array(ss),
+                      np.array(seg, dtype=np.int64), cusps, success, message, fold)
+
+
+# ---- folds of one-parameter branches -----------------------------------------------------
+
+
+def locate_branch_fold(branch: Branch, i: int, rtol: float = 1e-10,
+                       max_iter: int = 60) -> BranchPoint:
+    """The turning point ``dlam/ds = 0`` of a one-parameter branch between its points i and
+    i+1 (``Branch.folds()``), by the Illinois method on dlam/ds(s) with
+    ``Branch.point_at``; stops when the step in s is below ``rtol`` times the bracket."""
+    a, b = float(branch.s[i]), float(branch.s[i + 1])
+    fa, fb = float(branch.dlam_ds[i]), float(branch.dlam_ds[i + 1])
+    if fa * fb > 0:
+        raise ValueError(f"no sign change of dlam/ds between points {i} and {i + 1}")
+    width = b - a
+    side = 0
+    p = branch.point_at(0.5 * (a + b))
+    for _ in range(max_iter):
+        s = (a * fb - b * fa) / (fb - fa)
+        p = branch.point_at(s)
+        f = p.dlam_ds
+        if f == 0.0 or min(abs(s - a), abs(s - b)) <= rtol * width:
+            return p
+        if f * fb < 0:
+            a, fa = b, fb
+            b, fb = s, f
+            side = 0
+        else:
+            b, fb = s, f
+            if side == -1:
+                fa *= 0.5
+            side = -1
+    return p
+
+
+# ---- the condensed HB residual in two parameters -----------------------------------------
+
+
+@dataclass
+class TwoParameterProblem:
+    """A periodic problem in two parameters, as its two one-parameter views:
+    ``first(lam2)`` the :class:`PeriodicProblem` in lam1 at fixed lam2 and
+    ``second(lam1)`` the one in lam2 at fixed lam1 (the same system at (lam1, lam2), each
+    with exact derivatives in its own parameter). ``names`` label the parameters."""
+
+    first: Callable[[float], PeriodicProblem]
+    second: Callable[[float], PeriodicProblem]
+    names: tuple[str, str] = ("lam1", "lam2")
+
+
+class TwoParameterHB:
+    """Condensed HB-AFT residual ``R(xs, lam1, lam2)`` (receptance form, fixed shift
+    Delta) in scaled unknowns ``z = (xs / c, lam1 / scale1, lam2 / scale2)``, with the
+    exact ``[R_x, R_lam1, R_lam2]``: R, R_x, R_lam1 from the condensation of
+    ``first(lam2)`` at lam1, R_lam2 from that of ``second(lam1)`` at lam2 (one complex LU
+    per harmonic each). The shift is set once, at ``(xs0, lam1_0, lam2_0)``.
+    """
+
+    def __init__(self, problem: TwoParameterProblem, H: int, N: int,
+                 scales: tuple[float, float], xs0: FloatArray, lam0: tuple[float, float],
+                 limit_max: float = 1.0) -> None:
+        self.problem, self.H, self.N = problem, H, N
+        self.scales = (float(scales[0]), float(scales[1]))
+        self.limit_max = limit_max
+        p1 = problem.first(lam0[1])
+        self.template = p1
+        self.n = (2 * H + 1) * p1.m
+        self.cx = np.tile(p1.dof_scale[p1.nl_dofs], 2 * H + 1)
+        hb = CondensedHB(p1, H, N)
+        hb.set_shift(np.reshape(xs0, (2 * H + 1, p1.m)), lam0[0])
+        self.delta, self._delta_real = hb.delta, hb._delta_real
+        self.aft = hb.aft
+        self._key: tuple[float, float] | None = None
+        self._hb: tuple[CondensedHB, CondensedHB] | None = None
+
+    def to_z(self, xs: FloatArray, lam1: float, lam2: float) -> FloatArray:
+        return np.concatenate([np.ravel(xs) / self.cx,
+                               [lam1 / self.scales[0], lam2 / self.scales[1]]])
+
+    def from_z(self, z: FloatArray) -> tuple[FloatArray, float, float]:
+        return (z[: self.n] * self.cx, float(z[-2]) * self.scales[0],
+                float(z[-1]) * self.scales[1])
+
+    def _condensers(self, lam1: float, lam2: float) -> tuple[CondensedHB, CondensedHB]:
+        if self._key != (lam1, lam2) or self._hb is None:
+            pair = []
+            for p in (self.problem.first(lam2), self.problem.second(lam1)):
+                hb = CondensedHB(p, self.H, self.N)
+                hb.delta, hb._delta_real, hb.aft = self.delta, self._delta_real, self.aft
+                pair.append(hb)
+            self._key, self._hb = (lam1, lam2), (pair[0], pair[1])
+        return self._hb
+
+    def evaluate(self, z: FloatArray) -> tuple[FloatArray, FloatArray]:
+        xs, l1, l2 = self.from_z(z)
+        hb1, hb2 = self._condensers(l1, l2)
+        R, Rx, R1 = hb1.residual(xs, l1, jac=True)
+        R2 = hb2.residual(xs, l2, jac=True)[2]
+        cx, n = self.cx, self.n
+        J = np.empty((n, n + 2))
+        J[:, :n] = Rx * (cx[None, :] / cx[:, None])
+        J[:, n] = R1 * (self.scales[0] / cx)
+        J[:, n + 1] = R2 * (self.scales[1] / cx)
+        return R.ravel() / cx, J
+
+    def admissible(self, z: FloatArray) -> bool:
+        if self.template.nl_limit is None:
+            return True
+        xs = z[: self.n] * self.cx
+        val = self.template.limit(self.aft.E @ xs.reshape(2 * self.H + 1, self.template.m))
+        return bool(np.isfinite(val) and val < self.limit_max)
+
+    def coefficients(self, z: FloatArray) -> ComplexArray:
+        """Fourier coefficients of all DOFs (H+1, n_dof) at z."""
+        xs, l1, l2 = self.from_z(z)
+        return self._condensers(l1, l2)[0].recover(xs, l1)
+
+    def z_from_point(self, X: ComplexArray, lam1: float, lam2: float) -> FloatArray:
+        """Scaled z of all-DOF coefficients X (H+1, n_dof) at (lam1, lam2)."""
+        return self.to_z(to_real(np.asarray(X))[:, self.template.nl_dofs], lam1, lam2)
