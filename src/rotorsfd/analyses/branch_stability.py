@@ -364,6 +364,11 @@ def branch_stability(branch: Branch, problem: PeriodicProblem,
                    if x.kind == br.kind]
             b = est[0] if est else Bifurcation(br.kind, br.b.s, br.b.lam, br.b.multipliers,
                                                critical_value(br.kind, br.b.multipliers)[1])
+        if b.via != "tangent" and abs(abs(b.critical) - 1.0) > 0.05:
+            messages.append(f"{b.kind} at lam = {b.lam:.9g}: the multiplier at the located "
+                            f"point is {b.critical:.4f}, far from the unit circle (a pair "
+                            "meeting the real axis, or an unresolved stiff mode): check "
+                            "with more intervals or method='hill'")
         j, rep = _reported(br.kind, samples, ia, ib, o.tol, b.s)
         b.info.update(point=j, reported=rep, bracket=(ia, ib))
         bifs.append(b)
