@@ -130,3 +130,22 @@ def test_structural_axis_rebuilds_the_rotor():
                                    atol=1e-10)
     # the softer right bearing moves the frequencies: different charts
     assert not np.array_equal(res.stable[:, 0], res.stable[:, 1])
+
+
+def test_rotor_system_input_equals_the_config_run():
+    """From a RotorSystem (harmonic law with a rate amplitude) with an angle-amplitude
+    axis: the same chart as from the config."""
+    from rotorsfd.model.base_motion import BaseMotion, Harmonic
+    from rotorsfd.model.system import RotorSystem
+
+    config = config_from_dict(_config())
+    w_b = np.linspace(220.0, 320.0, 40)
+    kw = {"x": (A0, [0.2, 0.4]), "y": (FREQ, w_b), "n_intervals": 100}
+    system = RotorSystem(build_rotor(config), base=BaseMotion(wy=Harmonic(30.0, 300.0)))
+    a = run_stability_chart(system, speed=250.0, **kw)
+    b = run_stability_chart(config, **kw)
+    np.testing.assert_array_equal(a.chart.max_abs, b.chart.max_abs)
+    assert (~a.stable).sum() > 3 and a.x.units == "rad" and a.y.units == "rad/s"
+    with pytest.raises(ValueError, match="only 'speed'"):
+        run_stability_chart(system, x=("rotor.supports[0].stiffness", [1e9]),
+                            y=(FREQ, w_b), speed=250.0)

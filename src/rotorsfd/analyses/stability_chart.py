@@ -69,7 +69,8 @@ _PROBE_T = np.sqrt(2.0) * np.arange(1, 8)[:, None] / 3.7  # irrational sample ti
 class RateSpec:
     """One base rotation rate: ``law`` off / constant / harmonic and its fields (SI).
 
-    ``amplitude`` is the rate amplitude; if None, ``angle_amplitude * frequency``.
+    ``amplitude`` is the rate amplitude; if None (or if an axis sets the angle
+    amplitude), ``angle_amplitude * frequency``.
     """
 
     law: str = "off"
@@ -88,7 +89,8 @@ class RateSpec:
         if self.law == "constant":
             return Harmonic(0.0, 0.0, 0.0, get["value"])
         freq = get["frequency"]
-        if self.amplitude is not None or "amplitude" in values:
+        if "angle_amplitude" not in values and (self.amplitude is not None
+                                                or "amplitude" in values):
             amp = get["amplitude"]
         else:
             a0 = get["angle_amplitude"]
@@ -565,9 +567,10 @@ def _with_units(config: Config, ax: ChartAxis) -> ChartAxis:
 
 
 def plot_chart(result: ChartResult, ax: Any = None) -> Any:
-    """Figure 6 style: unstable points shaded by max |mu| (log scale), stable white, the
-    boundary max |mu| = 1 + tol in black; returns the Axes."""
-    from matplotlib.colors import LogNorm
+    """Figure 6 style: unstable points shaded by max |mu| (light blue just above 1 + tol,
+    dark at the grid's maximum), stable white, the boundary max |mu| = 1 + tol in black;
+    returns the Axes."""
+    from matplotlib.colors import Normalize
 
     if ax is None:
         import matplotlib.pyplot as plt
@@ -578,9 +581,10 @@ def plot_chart(result: ChartResult, ax: Any = None) -> Any:
     unstable = np.where(ch.stable, np.nan, ch.max_abs)
     if np.any(~ch.stable):
         top = max(float(np.nanmax(unstable)), 1.0 + 2.0 * ch.tol)
-        mesh = ax.pcolormesh(X, Y, unstable, shading="nearest", cmap="Blues",
-                             norm=LogNorm(vmin=1.0, vmax=top))
-        ax.figure.colorbar(mesh, ax=ax, label="max |Floquet multiplier| (unstable)")
+        norm = Normalize(vmin=1.0 - 0.25 * (top - 1.0), vmax=top)
+        mesh = ax.pcolormesh(X, Y, unstable, shading="nearest", cmap="Blues", norm=norm)
+        bar = ax.figure.colorbar(mesh, ax=ax, ticks=np.linspace(1.0, top, 5))
+        bar.set_label("max |Floquet multiplier| (unstable points)")
         if min(ch.max_abs.shape) > 1:
             ax.contour(X, Y, ch.max_abs, levels=[1.0 + ch.tol], colors="k",
                        linewidths=0.6)
@@ -590,8 +594,9 @@ def plot_chart(result: ChartResult, ax: Any = None) -> Any:
     ax.set_ylabel(f"{result.y.path} [{result.y.units}]")
     speed = "" if result.speed is None else f", Omega = {result.speed:.6g} rad/s"
     title = result.title or "Stability chart"
-    ax.set_title(f"{title[:60]}{speed}\nshaded: unstable ({int((~ch.stable).sum())} of "
-                 f"{ch.max_abs.size} points)", fontsize=9)
+    title = title if len(title) <= 70 else title[:67] + "..."
+    ax.set_title(f"{title}\nshaded: unstable ({int((~ch.stable).sum())} of "
+                 f"{ch.max_abs.size} points, max |mu| > 1 + {ch.tol:g}){speed}", fontsize=9)
     return ax
 
 
