@@ -1,0 +1,350 @@
+"""Boundary of the bistable speed range as a curve: saddle-nodes of the speed response
+continued in a second parameter (base pitching rate, unbalance, ...), with their cusp.
+
+From the speed branch at ``range2[0]`` (HB-AFT, condensed), every saddle-node (turning
+point ``dOmega/ds = 0``) is located and continued in (Omega, lam2) by the fold-augmented
+system of :mod:`rotorsfd.continuation.folds`::
+
+    R(xs, Omega, lam2) = 0,     g(xs, Omega, lam2) = 0     (g: bordered test function),
+
+with exact ``dR/dOmega`` and ``dR/dlam2`` (:meth:`RotorSystem.two_parameter_problem`).
+Between the two folds of a pair the middle (saddle) branch is unstable and the response
+bistable; the unstable width at lam2 is the distance in Omega~ between the two fold
+branches (the paper's Figure 19). Where the pair meets, the curve turns back in lam2:
+a cusp, beyond which the bistability has vanished. Each turn starts a new ``segment``.
+
+Per point: ``speed_rad_s``, ``speed_ratio`` = Omega / Omega_ref, the second parameter,
+``sfd_eccentricity`` = max_t |q_sfd| / C and ``amp_<n>`` = max_t sqrt(y^2 + z^2) [m] at
+each output node.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rotorsfd.analyses.response import (
+    _UNITS,
+    PARAMETER_PATHS,
+    _default_nodes,
+    _first_critical,
+    column_slug,
+    max_radius,
+    system_parameter,
+)
+from rotorsfd.continuation.folds import (
+    FoldBranch,
+    FoldOptions,
+    TwoParameterHB,
+    continue_folds,
+    locate_branch_fold,
+)
+from rotorsfd.errors import ConfigError
+from rotorsfd.harmonic.periodic import continue_periodic
+from rotorsfd.io import atomic
+from rotorsfd.model import dofs
+from rotorsfd.model.system import RotorSystem
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from rotorsfd.io.schema import Config
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass
+class CuspPoint:
+    """Where a fold pair meets (the bistability vanishes)."""
+
+    speed_rad_s: float
+    speed_ratio: float
+    value: float            #: second parameter (SI)
+    sfd_eccentricity: float
+
+
+@dataclass
+class FoldCurve:
+    """Fold curve(s) in (speed, second parameter); see the module docstring.
+
+    ``curves`` the continued :class:`~rotorsfd.continuation.folds.FoldBranch` objects
+    (one per saddle-node of the start branch not reached by an earlier curve);
+    ``start_folds`` the speeds [rad/s] of the saddle-nodes of the speed branch at
+    ``range2[0]``; ``table`` the per-point columns.
+    """
+
+    parameter: str
+    range2: tuple[float, float]
+    reference_speed: float
+    H: int
+    n_samples: int
+    nodes: tuple[int, ...]
+    start_folds: list[float]
+    curves: list[FoldBranch] = field(repr=False)
+    hb: TwoParameterHB = field(repr=False)
+    table: dict[str, FloatArray] = field(repr=False)
+    cusps: list[CuspPoint]
+    success: bool
+    message: str
+    timings: dict[str, float] = field(default_factory=dict)
+
+    FILES = ("fold_curve.csv", "fold_curve.json", "fold_curve.png")
+
+    @property
+    def units(self) -> str:
+        return _UNITS[self.parameter]
+
+    @property
+    def value_column(self) -> str:
+        """CSV column of the second parameter, e.g. ``base_pitching_rad_s``."""
+        return f"{column_slug(self.parameter)}_{column_slug(self.units)}"
+
+    def speeds_at(self, value: float) -> FloatArray:
+        """Fold speeds [rad/s] at second-parameter ``value`` (SI), sorted, re-solved on
+        the curves by Newton at fixed value (exact to the solver tolerance)."""
+        out: list[float] = []
+        for c in self.curves:
+            for z in c.solve_at(value / self.hb.scales[1]):
+                out.append(self.hb.from_z(z)[1])
+        return np.unique(np.round(np.array(out), 9))
+
+    def envelope(self, values: Sequence[float] | FloatArray
+                 ) -> tuple[FloatArray, FloatArray, NDArray[np.int64]]:
+        """(lowest, highest fold speed in Omega~, number of fold branches) at each value,
+        by linear interpolation along each segment (NaN where there is none)."""
+        values = np.atleast_1d(np.asarray(values, dtype=float))
+        lo = np.full(values.size, np.inf)
+        hi = np.full(values.size, -np.inf)
+        count = np.zeros(values.size, dtype=np.int64)
+        t = self.table
+        key = np.stack([t["curve"], t["segment"]], axis=1)
+        for c, s in np.unique(key, axis=0):
+            sel = (t["curve"] == c) & (t["segment"] == s)
+            v, r = t[self.value_column][sel], t["speed_ratio"][sel]
+            order = np.argsort(v)
+            v, r = v[order], r[order]
+            inside = (values >= v[0]) & (values <= v[-1])
+            ri = np.interp(values, v, r)
+            lo = np.where(inside, np.minimum(lo, ri), lo)
+            hi = np.where(inside, np.maximum(hi, ri), hi)
+            count += inside
+        none = count == 0
+        lo[none], hi[none] = np.nan, np.nan
+        return lo, hi, count
+
+    def unstable_width(self, values: Sequence[float] | FloatArray) -> FloatArray:
+        """Distance in Omega~ between the outermost fold branches at each value (0 where
+        fewer than two), by linear interpolation (:meth:`envelope`; exact fold speeds at
+        a value: :meth:`speeds_at`)."""
+        lo, hi, count = self.envelope(values)
+        return np.where(count >= 2, hi - lo, 0.0)
+
+    # ---- files -------------------------------------------------------------------------
+    def rows(self) -> tuple[list[str], list[tuple]]:
+        cols = list(self.table)
+        n = len(self.table["speed_rad_s"])
+        return cols, [tuple(self.table[c][i].item() for c in cols) for i in range(n)]
+
+    def summary(self) -> str:
+        lines = [f"fold curve in (speed, {self.parameter}) over {self.range2[0]:g} .. "
+                 f"{self.range2[1]:g} {self.units}, H = {self.H}, N_f = {self.n_samples}: "
+                 f"{len(self.table['speed_rad_s'])} points, {self.message}",
+                 "saddle-nodes at the start: " + ", ".join(
+                     f"Omega~ = {w / self.reference_speed:.5f}" for w in self.start_folds)]
+        for c in self.cusps:
+            lines.append(f"cusp (bistability vanishes): {self.parameter} = {c.value:.6g} "
+                         f"{self.units} at Omega~ = {c.speed_ratio:.5f} "
+                         f"({c.speed_rad_s:.2f} rad/s), eccentricity {c.sfd_eccentricity:.3f}")
+        if not self.cusps:
+            lines.append(f"no cusp in the range: the fold pair persists up to "
+                         f"{self.range2[1]:g} {self.units}")
+        lines.append("time: " + ", ".join(f"{k} {v:.2f} s" for k, v in self.timings.items()))
+        return "\n".join(lines)
+
+    def to_json(self) -> dict[str, Any]:
+        return {"parameter": self.parameter, "units": self.units,
+                "range": list(self.range2), "reference_speed_rad_s": self.reference_speed,
+                "harmonics": self.H, "n_samples": self.n_samples,
+                "start_folds_rad_s": self.start_folds,
+                "cusps": [vars(c) for c in self.cusps], "success": self.success,
+                "message": self.message, "timings_s": self.timings}
+
+    def write(self, directory: str | Path, plot: bool = True) -> dict[str, Path]:
+        """``fold_curve.csv`` (one row per point), ``fold_curve.json`` (cusps, start
+        folds, timings), ``fold_curve.png``; atomically."""
+        out = Path(directory)
+        paths = {name: out / name for name in self.FILES}
+        cols, rows = self.rows()
+        atomic.write_csv(paths["fold_curve.csv"], cols, rows)
+        atomic.write_json(paths["fold_curve.json"], self.to_json())
+        if plot:
+            atomic.save_figure(self.plot(), paths["fold_curve.png"], dpi=120)
+        else:
+            paths.pop("fold_curve.png")
+        return paths
+
+    def plot(self) -> Figure:
+        """Omega~ of the folds against the second parameter (bistable region shaded,
+        cusps marked) and the unstable width (the paper's Figure 19)."""
+        from matplotlib.figure import Figure
+
+        fig = Figure(figsize=(7, 7), layout="constrained")
+        ax, ax2 = fig.subplots(2, 1, sharex=True)
+        t = self.table
+        v = t[self.value_column]
+        for c in np.unique(t["curve"]):
+            sel = t["curve"] == c
+            ax.plot(v[sel], t["speed_ratio"][sel], "-", lw=1.5,
+                    label="fold curve" if c == 0 else None)
+        grid = np.linspace(min(self.range2), max(self.range2), 401)
+        lo, hi, count = self.envelope(grid)
+        ax.fill_between(grid, lo, hi, where=count >= 2, color="C1", alpha=0.25, lw=0,
+                        label="bistable (middle branch unstable)")
+        width = np.where(count >= 2, hi - lo, 0.0)
+        for cp in self.cusps:
+            ax.plot([cp.value], [cp.speed_ratio], "kv", ms=7,
+                    label=f"cusp {cp.value:.3g} {self.units}")
+        ax.set_ylabel("Omega~ of the saddle-nodes")
+        ax.set_title(f"Fold curve in (Omega, {self.parameter}), H = {self.H}", fontsize=9)
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3)
+        ax2.plot(grid, width, "-")
+        ax2.set_xlabel(f"{self.parameter} [{self.units}]")
+        ax2.set_ylabel("unstable width in Omega~")
+        ax2.grid(alpha=0.3)
+        return fig
+
+
+def _table(hb: TwoParameterHB, curves: list[FoldBranch], system: RotorSystem,
+           ref: float, nodes: Sequence[int], value_column: str) -> dict[str, FloatArray]:
+    cols: dict[str, list] = {k: [] for k in ("curve", "segment", "s", value_column,
+                                              "speed_rad_s", "speed_ratio",
+                                              "sfd_eccentricity")}
+    amp: dict[int, list] = {n: [] for n in nodes}
+    C = system.sfd.clearance
+    nl = system.nl_dofs
+    for k, c in enumerate(curves):
+        for z, seg, s in zip(c.z, c.segment, c.s, strict=True):
+            _, speed, value = hb.from_z(z)
+            X = hb.coefficients(z)
+            cols["curve"].append(k)
+            cols["segment"].append(int(seg))
+            cols["s"].append(float(s))
+            cols[value_column].append(value)
+            cols["speed_rad_s"].append(speed)
+            cols["speed_ratio"].append(speed / ref)
+            cols["sfd_eccentricity"].append(float(max_radius(X[:, nl[0]], X[:, nl[1]])) / C)
+            for n in nodes:
+                iy, iz = dofs.dof_index(n, "y"), dofs.dof_index(n, "z")
+                amp[n].append(float(max_radius(X[:, iy], X[:, iz])))
+    out = {k: np.asarray(v, dtype=np.int64 if k in ("curve", "segment") else float)
+           for k, v in cols.items()}
+    for n in nodes:
+        out[f"amp_{n}_m"] = np.asarray(amp[n])
+    return out
+
+
+def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_parameter: str,
+               range2: tuple[float, float], H: int = 3, *,
+               reference_speed: float | None = None, n_samples: int | None = None,
+               nodes: Sequence[int] | None = None, options: FoldOptions | None = None,
+               branch_options: dict[str, Any] | None = None) -> FoldCurve:
+    """Continue the saddle-nodes of the speed response in ``second_parameter``.
+
+    ``speed_range`` (rad/s) of the speed branch computed at ``range2[0]``; its
+    saddle-nodes are located and continued from ``range2[0]`` towards ``range2[1]``
+    (SI; a RotorSystem parameter such as ``"base.pitching"`` or a config path such as
+    ``"base.pitching.value"``). ``n_samples`` N_f (default: that of the speed branch);
+    ``options`` the fold-curve steps; ``branch_options`` go to ``continue_periodic``.
+    ConfigError if the speed branch at ``range2[0]`` has no saddle-node.
+    """
+    param = system_parameter(second_parameter)
+    if param == "speed":
+        raise ConfigError("fold_curve.parameter", second_parameter,
+                          "the second parameter must differ from the speed")
+    if range2[0] == range2[1]:
+        raise ConfigError("fold_curve.range", range2, "start and stop must differ")
+    ref = float(reference_speed if reference_speed is not None else _first_critical(system))
+    out_nodes = tuple(nodes) if nodes else _default_nodes(system)
+    family = system.two_parameter_problem(param)
+    t0 = time.perf_counter()
+    branch = continue_periodic(family.first(range2[0]), speed_range[0], speed_range[1], H,
+                               n_samples=n_samples, **(branch_options or {}))
+    folds = [locate_branch_fold(branch, int(i)) for i in branch.folds()]
+    t1 = time.perf_counter()
+    if not folds:
+        raise ConfigError("fold_curve.range", range2[0],
+                          f"the speed branch at {param} = {range2[0]:g} has no saddle-node "
+                          f"in {speed_range[0]:.6g} .. {speed_range[1]:.6g} rad/s "
+                          f"({branch.message}); start where the response is bistable")
+    N = n_samples or branch.n_samples
+    scales = (abs(speed_range[1] - speed_range[0]), abs(range2[1] - range2[0]))
+    hb = TwoParameterHB(family, H, N, scales, folds[0].xs, (folds[0].lam, range2[0]))
+    lam_range = (range2[0] / scales[1], range2[1] / scales[1])
+    curves: list[FoldBranch] = []
+    covered = [False] * len(folds)
+    messages = []
+    for i, p in enumerate(folds):
+        if covered[i]:
+            continue
+        covered[i] = True
+        curve = continue_folds(hb, hb.to_z(p.xs, p.lam, range2[0]), lam_range, options)
+        curves.append(curve)
+        messages.append(curve.message)
+        end_speed, end_value = hb.from_z(curve.z[-1])[1:]
+        if curve.cusps and np.isclose(end_value, range2[0], rtol=0, atol=1e-9 * scales[1]):
+            for j, q in enumerate(folds):
+                if not covered[j] and abs(q.lam - end_speed) <= 1e-6 * q.lam:
+                    covered[j] = True
+    t2 = time.perf_counter()
+    col = f"{column_slug(param)}_{column_slug(_UNITS[param])}"
+    table = _table(hb, curves, system, ref, out_nodes, col)
+    cusps = []
+    for c in curves:
+        for cp in c.cusps:
+            _, speed, value = hb.from_z(cp.z)
+            X = hb.coefficients(cp.z)
+            nl = system.nl_dofs
+            ecc = float(max_radius(X[:, nl[0]], X[:, nl[1]])) / system.sfd.clearance
+            cusps.append(CuspPoint(speed, speed / ref, value, ecc))
+    success = all(c.success for c in curves)
+    timings = {"speed_branch": t1 - t0, "fold_curve": t2 - t1,
+               "total": time.perf_counter() - t0}
+    return FoldCurve(param, (float(range2[0]), float(range2[1])), ref, H, N, out_nodes,
+                     [float(p.lam) for p in folds], curves, hb, table, cusps, success,
+                     "; ".join(messages), timings)
+
+
+def run_fold_curve(config: Config, parameter: str, start: Any, stop: Any, *,
+                   search_path: Path | None = None, harmonics: int | None = None,
+                   options: FoldOptions | None = None) -> FoldCurve:
+    """:func:`fold_curve` from a configuration: the speed range, H, output nodes and
+    reference speed of ``[analysis.response]`` / ``[reference]``; ``parameter`` a config
+    path (``base.pitching.value``, ``unbalance[0].magnitude``, ...) and ``start, stop``
+    its range (numbers in SI or strings with units)."""
+    from rotorsfd.api import reference_speed as config_reference_speed
+    from rotorsfd.io.schema import parameter_values
+    from rotorsfd.model.build import build_model
+
+    if config.sfd is None:
+        raise ConfigError("sfd", None, "the fold curve needs an [sfd] section")
+    param = system_parameter(parameter)
+    if param == "speed":
+        raise ConfigError("--parameter", parameter, "must differ from the speed")
+    m = build_model(config, search_path)
+    system = RotorSystem(m.rotor, m.sfd, m.sfd_node, m.unbalances, m.base_motion)
+    ref = config_reference_speed(config, system)
+    r = config.analysis.response
+    lo, hi = r.speed_range.bounds(ref)
+    path = parameter.strip()
+    if path not in PARAMETER_PATHS:
+        path = next(k for k, v in PARAMETER_PATHS.items() if v == param)
+    v0, v1 = parameter_values(config, path, [start, stop])
+    return fold_curve(system, (lo, hi), param, (v0, v1), harmonics or r.harmonics,
+                      reference_speed=ref, nodes=tuple(r.nodes) or None, options=options)
