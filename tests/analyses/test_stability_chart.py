@@ -149,3 +149,25 @@ def test_rotor_system_input_equals_the_config_run():
     with pytest.raises(ValueError, match="only 'speed'"):
         run_stability_chart(system, x=("rotor.supports[0].stiffness", [1e9]),
                             y=(FREQ, w_b), speed=250.0)
+
+
+def test_yawing_chart_equals_pitching_chart_and_rolling_runs():
+    """An isotropic rotor turned by 90 degrees about x: harmonic yawing gives the pitching
+    chart. Rolling (Coriolis C terms, Omega w_bx stiffness) gives a finite chart with its
+    own zones."""
+    w_b = np.linspace(220.0, 320.0, 100)
+    kw = {"x": (A0, [0.4]), "y": (FREQ, w_b), "n_intervals": 100, "n_modes": 4}
+    pitch = run_stability_chart(config_from_dict(_config()), **kw)
+    raw = _config()
+    raw["base"] = {"yawing": raw["base"].pop("pitching")}
+    kw_yaw = {**kw, "x": ("base.yawing.angle_amplitude", [0.4]),
+              "y": ("base.yawing.frequency", w_b)}
+    yaw = run_stability_chart(config_from_dict(raw), **kw_yaw)
+    np.testing.assert_allclose(yaw.chart.max_abs, pitch.chart.max_abs, atol=1e-9)
+    assert (~pitch.stable).sum() >= 3
+    raw["base"] = {"rolling": raw["base"].pop("yawing")}
+    kw_roll = {**kw, "x": ("base.rolling.angle_amplitude", [0.4]),
+               "y": ("base.rolling.frequency", w_b)}
+    roll = run_stability_chart(config_from_dict(raw), **kw_roll)
+    assert np.all(np.isfinite(roll.chart.max_abs))
+    assert not np.array_equal(roll.stable, pitch.stable)
