@@ -33,7 +33,7 @@ import sys
 import threading
 from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -389,6 +389,10 @@ def _check_axes(x: ChartAxis, y: ChartAxis, specs: Sequence[RateSpec], where: st
         if fld == "frequency" and np.any(ax.values <= 0):
             raise ConfigError(f"{where}.{name}", ax.path, "base frequencies must be > 0")
     harmonic = [i for i, s in enumerate(specs) if s.law == "harmonic"]
+    for name, ax in (("x", x), ("y", y)):
+        if ax.path == "speed" and not harmonic and np.any(ax.values == 0):
+            raise ConfigError(f"{where}.{name}", ax.path, "speed 0 without a harmonic base "
+                              "rate: no period (T = 2 pi / Omega)")
     freq_axes = {coefficient_target(a.path) for a in (x, y)} & {(i, "frequency")
                                                                for i in harmonic}
     freqs = {specs[i].frequency for i in harmonic}
@@ -460,10 +464,10 @@ def run_stability_chart(config_or_system: Config | RotorSystem, *,
         config = config_or_system
         sc = config.analysis.stability_chart
         specs = rate_specs_from_config(config)
-        xa = (ChartAxis(x[0].strip(), np.asarray(x[1], float).ravel(), "")
-              if x is not None else _axis_from_config(config, "x"))
-        ya = (ChartAxis(y[0].strip(), np.asarray(y[1], float).ravel(), "")
-              if y is not None else _axis_from_config(config, "y"))
+        xa = (_with_units(config, x, "x") if x is not None
+              else _axis_from_config(config, "x"))
+        ya = (_with_units(config, y, "y") if y is not None
+              else _axis_from_config(config, "y"))
         speed = sc.speed if speed is None else speed
         intervals = n_intervals or sc.intervals
         title = config.title
@@ -497,7 +501,7 @@ def run_stability_chart(config_or_system: Config | RotorSystem, *,
         assert config is not None
         return build_rotor(with_values(config, values))
 
-    # tasks: (row or column index, p1 values, p2 values, rotor, params)
+    # tasks: (index into the grid: a row, a column or a point, callable -> its chart)
     tasks: list[tuple[tuple[Any, Any], Callable[[], StabilityChart]]] = []
 
     def add(index: tuple[Any, Any], structural: dict[str, float], p1_t, p2_t,
@@ -537,12 +541,16 @@ def run_stability_chart(config_or_system: Config | RotorSystem, *,
             tqdm(total=len(tasks), desc="stability chart", disable=not progress,
                  file=sys.stderr, leave=False) as bar:
         futures = [(index, ex.submit(run)) for index, run in tasks]
-        for index, fut in futures:
-            ch = fut.result()
-            max_abs[index] = ch.max_abs.ravel()
-            crit[index] = ch.critical.ravel()
-            info = ch.info
-            bar.update()
+        try:
+            for index, fut in futures:
+                ch = fut.result()
+                max_abs[index] = ch.max_abs.ravel()
+                crit[index] = ch.critical.ravel()
+                info = ch.info
+                bar.update()
+        except BaseException:  # an error or Ctrl-C: do not wait for the remaining rows
+            ex.shutdown(wait=False, cancel_futures=True)
+            raise
     if not np.all(np.isfinite(max_abs)):
         from rotorsfd.errors import ConvergenceError
 
@@ -550,20 +558,22 @@ def run_stability_chart(config_or_system: Config | RotorSystem, *,
     info = {**info, "speed_rad_s": speed, "mode_cutoff_rad_s": cutoff}
     chart = StabilityChart(xa.values, ya.values, max_abs, crit, tol,
                            (xa.name, ya.name), info)
-    if config is not None:
-        xa, ya = (_with_units(config, a) for a in (xa, ya))
     return ChartResult(chart, xa, ya, speed,
                        _natural_frequencies(rotor0, specs, speed), title)
 
 
-def _with_units(config: Config, ax: ChartAxis) -> ChartAxis:
-    if ax.units:
-        return ax
+def _with_units(config: Config, axis: tuple[str, Sequence[float]], name: str) -> ChartAxis:
+    """A ChartAxis from ``(path, SI values)`` with the units of the field at path."""
     from rotorsfd.io.schema import resolve_kind
     from rotorsfd.io.units import KINDS
 
-    kind = "angular_velocity" if ax.path == "speed" else resolve_kind(config, ax.path)
-    return replace(ax, units=KINDS[kind].unit)
+    path = axis[0].strip()
+    try:
+        kind = "angular_velocity" if path == "speed" else resolve_kind(config, path)
+    except KeyError as exc:
+        raise ConfigError(f"analysis.stability_chart.{name}.parameter", path,
+                          exc.args[0]) from None
+    return ChartAxis(path, np.asarray(axis[1], float).ravel(), KINDS[kind].unit)
 
 
 def plot_chart(result: ChartResult, ax: Any = None) -> Any:
