@@ -115,7 +115,7 @@ def test_existing_folder_needs_resume_and_bad_task(tmp_path, capsys):
     assert "--resume" in capsys.readouterr().err
     assert main([*args, "--task", "synthetic", "--resume"]) == 0
     assert main(["sweep", str(cfg), "-o", str(tmp_path / "c"), "--task", "nope"]) == 2
-    assert "allowed: response, simulate, synthetic" in capsys.readouterr().err
+    assert "allowed: response, simulate, stability-chart, synthetic" in capsys.readouterr().err
 
 
 def test_scheduler_option_on_local_cluster(tmp_path):

@@ -159,8 +159,8 @@ def test_grid_and_task_from_config(tmp_path):
     r = run_sweep(config, None, "synthetic", directory=tmp_path / "o", workers=1,
                   progress=False)
     assert r.grid.shape == (2, 3) and r.counts()["ok"] == 6
-    with pytest.raises(ConfigError, match="not available yet"):
-        run_sweep(config, None, "stability-chart", directory=tmp_path / "p", progress=False)
+    with pytest.raises(ConfigError, match="allowed: response, simulate"):
+        run_sweep(config, None, "stability", directory=tmp_path / "p", progress=False)
 
 
 class DyingTask(SyntheticTask):

@@ -176,3 +176,24 @@ def test_response_sweep_on_process_cluster_equals_serial(tmp_path):
     for name in ("sweep.nc", "summary.csv", "sweep.json"):
         assert (tmp_path / "dask" / name).read_bytes() == \
             (tmp_path / "serial" / name).read_bytes()
+
+
+def test_stability_chart_sweep_equals_direct_charts(tmp_path):
+    from pathlib import Path
+
+    from rotorsfd.analyses.stability_chart import run_stability_chart
+    from rotorsfd.io.config import with_values
+
+    example = Path(__file__).resolve().parents[2] / "examples" / "fig6_duchemin_pitching.toml"
+    config = load_config(example, ["analysis.stability_chart.x.n=4",
+                                   "analysis.stability_chart.y.n=3"])
+    result = run_sweep(config, {"analysis.stability_chart.speed": [200.0, 250.0]},
+                       "stability-chart", directory=tmp_path, workers=1, progress=False)
+    assert result.counts()["ok"] == 2, result.summary()
+    ds = load_sweep(tmp_path)
+    assert ds["chart_max_multiplier"].shape == (2, 4, 3)
+    direct = run_stability_chart(with_values(config, {"analysis.stability_chart.speed": 250.0}))
+    np.testing.assert_array_equal(ds["chart_max_multiplier"].values[1], direct.chart.max_abs)
+    assert ds["max_multiplier"].values[1] == direct.chart.max_abs.max()
+    assert ds["unstable_points"].values[1] == int((~direct.chart.stable).sum())
+    assert str(ds["chart_x"].values[0]) == "base.pitching.frequency"

@@ -398,6 +398,8 @@ def run_sweep(config: Config, axes: Grid | Mapping[str, Sequence[Any]] | None = 
             executor.shutdown(interrupted=True)   # running points are abandoned
         bar.close()
         with contextlib.suppress(Exception):      # the partial files, if they can be
+            # what the store holds (a record saved just before the interrupt included)
+            result.records.update(store.finished(keys))
             result.write(out)
         raise
     bar.close()

@@ -19,6 +19,9 @@ Kinds (``make_task("name:key=value,...")``):
 - ``simulate``: a time integration (:func:`rotorsfd.analyses.simulate.run_simulation`);
   summary: motion class, max eccentricity, Lyapunov exponent, max r~ per node; Poincare
   points of the SFD node.
+- ``stability-chart``: a stability chart of the linear rotor
+  (:func:`rotorsfd.analyses.stability_chart.run_stability_chart`) per grid point;
+  summary: unstable share, max |mu| and where; arrays: the chart.
 - ``synthetic``: a cheap deterministic function of the grid values, for tests (options
   ``delay`` [s], ``fail_above`` (fails when the first value exceeds it), ``log`` (a file
   that gets one line per execution)).
@@ -312,14 +315,60 @@ def simulate_output(result: Any) -> PointOutput:
     return PointOutput(sc, arrays)
 
 
+# ---- stability chart -----------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class StabilityChartTask:
+    """A stability chart of the linear rotor at each grid point
+    (``[analysis.stability_chart]``, e.g. swept over the speed or a support stiffness);
+    summary: unstable share and the largest multiplier with where it occurs; arrays: the
+    chart (``max |mu|`` and stable flags over ``chart_x`` x ``chart_y``)."""
+
+    search_path: str | None = None
+
+    spec = "stability-chart"
+
+    def __call__(self, config: Config, values: Mapping[str, float]) -> PointOutput:
+        from pathlib import Path
+
+        from rotorsfd.analyses.stability_chart import run_stability_chart
+
+        result = run_stability_chart(config, progress=False, search_path=None
+                                     if self.search_path is None else Path(self.search_path))
+        return chart_output(result)
+
+
+def chart_output(result: Any) -> PointOutput:
+    """Summary scalars and arrays of a ChartResult (``chart.max_abs``, ``chart.stable``,
+    axes ``x``, ``y`` with ``path`` and ``values``)."""
+    m = np.asarray(result.chart.max_abs, dtype=float)
+    stable = np.asarray(result.chart.stable, dtype=bool)
+    i, j = np.unravel_index(int(np.argmax(m)), m.shape)
+    x, y = result.x, result.y
+    sc: dict[str, Scalar] = {
+        "chart_x": x.path, "chart_y": y.path, "chart_points": int(m.size),
+        "unstable_points": int((~stable).sum()),
+        "unstable_fraction": float((~stable).mean()),
+        "max_multiplier": float(m[i, j]),
+        "max_at_x": float(x.values[i]), "max_at_y": float(y.values[j])}
+    dims = ("chart_x", "chart_y")
+    arrays = {"chart_x_value": ArrayOut(dims[:1], np.asarray(x.values, dtype=float)),
+              "chart_y_value": ArrayOut(dims[1:], np.asarray(y.values, dtype=float)),
+              "chart_max_multiplier": ArrayOut(dims, m),
+              "chart_stable": ArrayOut(dims, stable.astype(np.int8))}
+    return PointOutput(sc, arrays)
+
+
 # ---- registry --------------------------------------------------------------------------------
 
 TASKS: dict[str, Callable[..., Any]] = {
     "response": ResponseTask,
     "simulate": SimulateTask,
+    "stability-chart": StabilityChartTask,
     "synthetic": SyntheticTask,
 }
-PLANNED = ("stability-chart",)
+PLANNED: tuple[str, ...] = ()
 
 
 def _option(text: str) -> Any:
@@ -345,7 +394,7 @@ def make_task(spec: str, *, search_path: str | os.PathLike[str] | None = None) -
         if not sep:
             raise ConfigError("--task", spec, "options are key=value, comma separated")
         opts[key.strip()] = _option(value.strip())
-    if name in ("response", "simulate") and search_path is not None:
+    if name in ("response", "simulate", "stability-chart") and search_path is not None:
         opts.setdefault("search_path", str(search_path))
     try:
         return TASKS[name](**opts)
