@@ -193,7 +193,7 @@ class FoldOptions:
     max_iter: int = 10
     max_points: int = 1000
     max_angle_deg: float = 20.0
-    max_turns: int = 4
+    max_turns: int = 20
     turn_tol: float = 1e-9
 
 
