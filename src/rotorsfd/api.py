@@ -37,6 +37,7 @@ __all__ = [
     "reference_speed",
     "run_bifurcation_diagram",
     "run_fit_supports",
+    "run_fold_curve",
     "run_modal",
     "run_response",
     "run_simulation",
@@ -271,3 +272,12 @@ def run_stability_chart(config: Any, **kwargs: Any) -> Any:
     from rotorsfd.analyses.stability_chart import run_stability_chart as _run
 
     return _run(config, **kwargs)
+
+
+def run_fold_curve(config: Any, parameter: str, start: Any, stop: Any, **kwargs: Any) -> Any:
+    """Saddle-nodes of the speed response continued in a second parameter (the boundary
+    of the bistable region and its cusp): see
+    :func:`rotorsfd.analyses.fold_curve.run_fold_curve`."""
+    from rotorsfd.analyses.fold_curve import run_fold_curve as _run
+
+    return _run(config, parameter, start, stop, **kwargs)

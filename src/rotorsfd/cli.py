@@ -437,5 +437,37 @@ def _stability_chart(args: argparse.Namespace, config: Any) -> int:
     return 0
 
 
+@command("fold-curve", "two-parameter continuation of the saddle-nodes of the speed "
+         "response ([analysis.response] speeds and H) in a second parameter: "
+         "fold_curve.csv, fold_curve.json, fold_curve.png (Omega~ of the folds and the "
+         "unstable width against the parameter; the cusp where the bistability vanishes); "
+         "exit 1 if the curve stops early (the points so far are written)",
+         output=True, quiet=True,
+         arguments=[arg("--parameter", default="base.pitching.value", metavar="PATH",
+                        help="second parameter: base.pitching.value (default), "
+                             "base.rolling.value, base.yawing.value, unbalance[0].magnitude"),
+                    arg("--from", dest="start", required=True, metavar="VALUE",
+                        help="start value, e.g. '0 rad/s' (SI if no unit); the speed branch "
+                             "there must have a saddle-node"),
+                    arg("--to", dest="stop", required=True, metavar="VALUE",
+                        help="end value, e.g. '10 rad/s'"),
+                    arg("--harmonics", type=int, metavar="H", help="override H")])
+def _fold_curve(args: argparse.Namespace, config: Any) -> int:
+    from rotorsfd import api
+
+    result = api.run_fold_curve(config, args.parameter, args.start, args.stop,
+                                search_path=Path(args.config).parent,
+                                harmonics=args.harmonics)
+    paths = result.write(args.output)
+    if not result.success:
+        print(f"rotorsfd: error: fold curve stopped early: {_one_line(result.message)}",
+              file=sys.stderr)
+        return 1
+    if not args.quiet:
+        print(result.summary())
+        print("wrote " + ", ".join(str(p) for p in paths.values()))
+    return 0
+
+
 if __name__ == "__main__":  # pragma: no cover
     sys.exit(main())

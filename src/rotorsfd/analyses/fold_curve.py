@@ -105,6 +105,18 @@ class FoldCurve:
         """CSV column of the second parameter, e.g. ``base_pitching_rad_s``."""
         return f"{column_slug(self.parameter)}_{column_slug(self.units)}"
 
+    @property
+    def bistability_end(self) -> float | None:
+        """Second-parameter value where the last fold pair meets: the extreme cusp in the
+        direction of the range, when every curve came back to ``range2[0]``; None when
+        a fold reaches ``range2[1]`` (the bistability persists) or there is no cusp."""
+        v = self.table[self.value_column]
+        span = self.range2[1] - self.range2[0]
+        if not self.cusps or np.any(np.abs(v - self.range2[1]) <= 1e-9 * abs(span)):
+            return None
+        values = [c.value for c in self.cusps]
+        return float(max(values) if span > 0 else min(values))
+
     def speeds_at(self, value: float) -> FloatArray:
         """Fold speeds [rad/s] at second-parameter ``value`` (SI), sorted, re-solved on
         the curves by Newton at fixed value (exact to the solver tolerance)."""
@@ -158,9 +170,12 @@ class FoldCurve:
                  "saddle-nodes at the start: " + ", ".join(
                      f"Omega~ = {w / self.reference_speed:.5f}" for w in self.start_folds)]
         for c in self.cusps:
-            lines.append(f"cusp (bistability vanishes): {self.parameter} = {c.value:.6g} "
+            lines.append(f"cusp (a fold pair meets): {self.parameter} = {c.value:.6g} "
                          f"{self.units} at Omega~ = {c.speed_ratio:.5f} "
                          f"({c.speed_rad_s:.2f} rad/s), eccentricity {c.sfd_eccentricity:.3f}")
+        end = self.bistability_end
+        if end is not None:
+            lines.append(f"bistability vanishes at {self.parameter} = {end:.6g} {self.units}")
         if not self.cusps:
             lines.append(f"no cusp in the range: the fold pair persists up to "
                          f"{self.range2[1]:g} {self.units}")
@@ -172,7 +187,8 @@ class FoldCurve:
                 "range": list(self.range2), "reference_speed_rad_s": self.reference_speed,
                 "harmonics": self.H, "n_samples": self.n_samples,
                 "start_folds_rad_s": self.start_folds,
-                "cusps": [vars(c) for c in self.cusps], "success": self.success,
+                "cusps": [vars(c) for c in self.cusps],
+                "bistability_end": self.bistability_end, "success": self.success,
                 "message": self.message, "timings_s": self.timings}
 
     def write(self, directory: str | Path, plot: bool = True) -> dict[str, Path]:
