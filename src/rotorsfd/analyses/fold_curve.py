@@ -14,8 +14,9 @@ branches (the paper's Figure 19). Where the pair meets, the curve turns back in 
 a cusp, beyond which the bistability has vanished. Each turn starts a new ``segment``.
 
 Per point: ``speed_rad_s``, ``speed_ratio`` = Omega / Omega_ref, the second parameter,
-``sfd_eccentricity`` = max_t |q_sfd| / C and ``amp_<n>`` = max_t sqrt(y^2 + z^2) [m] at
-each output node.
+``sfd_eccentricity`` = max_t |q_sfd| / C, ``aliasing`` (relative change of the film-force
+coefficients if N_f doubled) and ``amp_<n>_m`` = max_t sqrt(y^2 + z^2) [m] at each output
+node.
 """
 
 from __future__ import annotations
@@ -46,6 +47,7 @@ from rotorsfd.continuation.folds import (
     locate_branch_fold,
 )
 from rotorsfd.errors import ConfigError
+from rotorsfd.harmonic.fourier import aliasing_error, choose_n_samples, to_real
 from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.io import atomic
 from rotorsfd.model import dofs
@@ -166,7 +168,8 @@ class FoldCurve:
     def summary(self) -> str:
         lines = [f"fold curve in (speed, {self.parameter}) over {self.range2[0]:g} .. "
                  f"{self.range2[1]:g} {self.units}, H = {self.H}, N_f = {self.n_samples}: "
-                 f"{len(self.table['speed_rad_s'])} points, {self.message}",
+                 f"{len(self.table['speed_rad_s'])} points (aliasing <= "
+                 f"{np.max(self.table['aliasing']):.1g}), {self.message}",
                  "saddle-nodes at the start: " + ", ".join(
                      f"Omega~ = {w / self.reference_speed:.5f}" for w in self.start_folds)]
         for c in self.cusps:
@@ -241,7 +244,7 @@ def _table(hb: TwoParameterHB, curves: list[FoldBranch], system: RotorSystem,
            ref: float, nodes: Sequence[int], value_column: str) -> dict[str, FloatArray]:
     cols: dict[str, list] = {k: [] for k in ("curve", "segment", "s", value_column,
                                               "speed_rad_s", "speed_ratio",
-                                              "sfd_eccentricity")}
+                                              "sfd_eccentricity", "aliasing")}
     amp: dict[int, list] = {n: [] for n in nodes}
     C = system.sfd.clearance
     nl = system.nl_dofs
@@ -256,6 +259,8 @@ def _table(hb: TwoParameterHB, curves: list[FoldBranch], system: RotorSystem,
             cols["speed_rad_s"].append(speed)
             cols["speed_ratio"].append(speed / ref)
             cols["sfd_eccentricity"].append(float(max_radius(X[:, nl[0]], X[:, nl[1]])) / C)
+            xs = to_real(X)[:, nl]
+            cols["aliasing"].append(aliasing_error(hb.template.nl_force, xs, speed, hb.N))
             for n in nodes:
                 iy, iz = dofs.dof_index(n, "y"), dofs.dof_index(n, "z")
                 amp[n].append(float(max_radius(X[:, iy], X[:, iz])))
@@ -266,11 +271,51 @@ def _table(hb: TwoParameterHB, curves: list[FoldBranch], system: RotorSystem,
     return out
 
 
+def _trace(family: Any, H: int, N: int, scales: tuple[float, float], folds: list,
+           range2: tuple[float, float], options: FoldOptions | None
+           ) -> tuple[TwoParameterHB, list[FoldBranch], list[str]]:
+    """Fold curves from every located saddle-node not reached by an earlier curve."""
+    hb = TwoParameterHB(family, H, N, scales, folds[0].xs, (folds[0].lam, range2[0]))
+    lam_range = (range2[0] / scales[1], range2[1] / scales[1])
+    curves: list[FoldBranch] = []
+    covered = [False] * len(folds)
+    messages = []
+    for i, p in enumerate(folds):
+        if covered[i]:
+            continue
+        covered[i] = True
+        curve = continue_folds(hb, hb.to_z(p.xs, p.lam, range2[0]), lam_range, options)
+        curves.append(curve)
+        messages.append(curve.message)
+        end_speed, end_value = hb.from_z(curve.z[-1])[1:]
+        if curve.cusps and np.isclose(end_value, range2[0], rtol=0, atol=1e-9 * scales[1]):
+            for j, q in enumerate(folds):
+                if not covered[j] and abs(q.lam - end_speed) <= 1e-6 * q.lam:
+                    covered[j] = True
+    return hb, curves, messages
+
+
+def _worst_aliasing(hb: TwoParameterHB, curves: list[FoldBranch]
+                    ) -> tuple[float, FloatArray, float]:
+    """Largest aliasing estimate over the points (and that point's xs, frequency)."""
+    best = (-1.0, np.zeros(0), 0.0)
+    p = hb.template
+    for c in curves:
+        for z in c.z:
+            x, speed, _ = hb.from_z(z)
+            xs = x.reshape(2 * hb.H + 1, p.m)
+            a = aliasing_error(p.nl_force, xs, speed, hb.N)
+            if a > best[0]:
+                best = (a, xs, speed)
+    return best
+
+
 def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_parameter: str,
                range2: tuple[float, float], H: int = 3, *,
                reference_speed: float | None = None, n_samples: int | None = None,
                nodes: Sequence[int] | None = None, options: FoldOptions | None = None,
-               branch_options: dict[str, Any] | None = None) -> FoldCurve:
+               branch_options: dict[str, Any] | None = None, alias_tol: float = 1e-6,
+               n_samples_max: int = 1024) -> FoldCurve:
     """Continue the saddle-nodes of the speed response in ``second_parameter``.
 
     ``speed_range`` (rad/s) of the speed branch computed at ``range2[0]``; its
@@ -278,6 +323,10 @@ def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_par
     (SI; a RotorSystem parameter such as ``"base.pitching"`` or a config path such as
     ``"base.pitching.value"``). ``n_samples`` N_f (default: that of the speed branch);
     ``options`` the fold-curve steps; ``branch_options`` go to ``continue_periodic``.
+    N_f: with ``n_samples=None``, if doubling N_f would change the nonlinear-force
+    coefficients by more than ``alias_tol`` (relative) at some point of the curves,
+    N_f is raised (:func:`~rotorsfd.harmonic.fourier.choose_n_samples` at the worst
+    point, up to ``n_samples_max``) and the curves are traced again.
     ConfigError if the speed branch at ``range2[0]`` has no saddle-node.
     """
     param = system_parameter(second_parameter)
@@ -301,23 +350,15 @@ def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_par
                           f"({branch.message}); start where the response is bistable")
     N = n_samples or branch.n_samples
     scales = (abs(speed_range[1] - speed_range[0]), abs(range2[1] - range2[0]))
-    hb = TwoParameterHB(family, H, N, scales, folds[0].xs, (folds[0].lam, range2[0]))
-    lam_range = (range2[0] / scales[1], range2[1] / scales[1])
-    curves: list[FoldBranch] = []
-    covered = [False] * len(folds)
-    messages = []
-    for i, p in enumerate(folds):
-        if covered[i]:
-            continue
-        covered[i] = True
-        curve = continue_folds(hb, hb.to_z(p.xs, p.lam, range2[0]), lam_range, options)
-        curves.append(curve)
-        messages.append(curve.message)
-        end_speed, end_value = hb.from_z(curve.z[-1])[1:]
-        if curve.cusps and np.isclose(end_value, range2[0], rtol=0, atol=1e-9 * scales[1]):
-            for j, q in enumerate(folds):
-                if not covered[j] and abs(q.lam - end_speed) <= 1e-6 * q.lam:
-                    covered[j] = True
+    while True:
+        hb, curves, messages = _trace(family, H, N, scales, folds, range2, options)
+        if n_samples is not None or N >= n_samples_max:
+            break
+        worst, xs, w = _worst_aliasing(hb, curves)
+        if worst <= alias_tol:
+            break
+        N = choose_n_samples(hb.template.nl_force, xs, w, tol=alias_tol / 100,
+                             n_min=2 * N, n_max=n_samples_max)
     t2 = time.perf_counter()
     col = f"{column_slug(param)}_{column_slug(_UNITS[param])}"
     table = _table(hb, curves, system, ref, out_nodes, col)
