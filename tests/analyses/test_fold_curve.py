@@ -1,0 +1,104 @@
+"""Fold curve of the paper rotor (U = 144.02 g mm, C/R = 0.485 %, H = 3) in (speed, base
+pitching) and (speed, unbalance): against one-parameter speed branches; files and CLI."""
+
+import csv
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rotorsfd import api
+from rotorsfd.analyses.fold_curve import run_fold_curve
+from rotorsfd.cli import main
+from rotorsfd.continuation.folds import locate_branch_fold
+from rotorsfd.harmonic import continue_periodic
+
+ROOT = Path(__file__).resolve().parents[2]
+CONFIG = ROOT / "examples" / "paper_rotor.toml"
+U144 = "unbalance[0].magnitude=144.02 g*mm"
+REF = 811.3
+
+
+@pytest.fixture(scope="module")
+def config():
+    return api.load_config(CONFIG, [U144])
+
+
+@pytest.fixture(scope="module")
+def pitching(config):
+    return run_fold_curve(config, "base.pitching.value", 0.0, "10 rad/s")
+
+
+def one_parameter_folds(problem, n_samples: int) -> list[float]:
+    """Located turning points of the speed branch over Omega~ 0.5 .. 1.6 [rad/s]."""
+    b = continue_periodic(problem, 0.5 * REF, 1.6 * REF, 3, n_samples=n_samples)
+    return sorted(locate_branch_fold(b, int(i)).lam for i in b.folds())
+
+
+def test_start_folds_are_the_known_saddle_nodes(pitching):
+    assert pitching.success, pitching.message
+    np.testing.assert_allclose(sorted(np.array(pitching.start_folds) / REF),
+                               [1.0527, 1.0593], atol=1e-4)
+
+
+@pytest.mark.parametrize("w_by", [1.5, 3.0, 4.2])
+def test_fold_curve_passes_through_one_parameter_folds(pitching, w_by):
+    on_curve = pitching.speeds_at(w_by)
+    expected = one_parameter_folds(pitching.hb.problem.first(w_by), pitching.n_samples)
+    assert len(on_curve) == len(expected) == 2
+    np.testing.assert_allclose(on_curve, expected, rtol=1e-4)
+
+
+def test_cusp_ends_the_bistable_range(pitching):
+    """One curve from the upper fold at w_by = 0 through the cusp back to the lower one;
+    the bistability vanishes at the cusp (paper: below 4 rad/s; this model: ~4.4)."""
+    assert len(pitching.curves) == 1 and len(pitching.cusps) == 1
+    end = pitching.bistability_end
+    assert end == pytest.approx(pitching.cusps[0].value)
+    assert 4.0 < end < 5.0
+    width = pitching.unstable_width([0.0, 0.5 * end, 1.01 * end, 10.0])
+    assert width[0] == pytest.approx(1.0593 - 1.0527, abs=2e-4)
+    assert 0 < width[1] < width[0]
+    assert width[2] == width[3] == 0.0
+    assert pitching.speeds_at(1.01 * end).size == 0
+
+
+def test_fold_curve_in_the_unbalance(config):
+    """Decreasing U from 144.02 g mm: the folds meet at a cusp; the curve passes through
+    the folds of the speed branch at U = 120 g mm."""
+    curve = run_fold_curve(config, "unbalance[0].magnitude", "144.02 g*mm", "60 g*mm")
+    assert curve.success and len(curve.cusps) == 1, curve.message
+    assert 60e-6 < curve.bistability_end < 144.02e-6
+    U = 120e-6
+    expected = one_parameter_folds(curve.hb.problem.first(U), curve.n_samples)
+    np.testing.assert_allclose(curve.speeds_at(U), expected, rtol=1e-4)
+
+
+def test_files(pitching, tmp_path):
+    paths = pitching.write(tmp_path)
+    assert sorted(p.name for p in paths.values()) == sorted(pitching.FILES)
+    with open(paths["fold_curve.csv"]) as f:
+        rows = list(csv.DictReader(f))
+    assert len(rows) == len(pitching.table["speed_rad_s"])
+    assert {"curve", "segment", "base_pitching_rad_s", "speed_rad_s", "speed_ratio",
+            "sfd_eccentricity", "aliasing", "amp_8_m"} <= set(rows[0])
+    info = json.loads(paths["fold_curve.json"].read_text())
+    assert info["bistability_end"] == pytest.approx(pitching.bistability_end)
+    assert len(info["cusps"]) == 1
+
+
+def test_cli(tmp_path, capsys):
+    out = tmp_path / "fc"
+    status = main(["fold-curve", str(CONFIG), "--set", U144, "--from", "0 rad/s",
+                   "--to", "6 rad/s", "-o", str(out)])
+    assert status == 0
+    assert "bistability vanishes at base.pitching" in capsys.readouterr().out
+    assert (out / "fold_curve.csv").exists() and (out / "fold_curve.png").exists()
+
+
+def test_cli_no_fold_at_the_start(tmp_path, capsys):
+    status = main(["fold-curve", str(CONFIG), "--set", U144, "--from", "6 rad/s",
+                   "--to", "10 rad/s", "-o", str(tmp_path / "x")])
+    assert status == 2
+    assert "no saddle-node" in capsys.readouterr().err
