@@ -187,3 +187,26 @@ def test_options_reject_unknown_method():
 
     with pytest.raises(ConfigError):
         StabilityOptions(method="runge-kutta")
+
+
+def test_rotor_secondary_hopf_located_and_confirmed_by_hill(tmp_path):
+    """U = 300 g mm: before journal contact a complex pair leaves the unit circle."""
+    from response_helpers import small_rotor_toml
+
+    from rotorsfd import api
+
+    path = small_rotor_toml(tmp_path / "small.toml", unbalance="300 g*mm")
+    r = api.run_response(api.load_config(path), progress=False)
+    st = r.info["stability"]
+    hopf = [b for b in st.bifurcations if b.kind == "secondary-hopf"]
+    assert len(hopf) == 1
+    b = hopf[0]
+    assert abs(abs(b.critical) - 1) < 1e-5 and b.critical.imag > 1e-2
+    row = st.rows(r.reference_speed)[st.bifurcations.index(b)]
+    assert row["max_multiplier"] > 1 + st.tol and row["multiplier_im"] > 0
+    j = row["point"]
+    problem = r.system.periodic_problem("speed")
+    hill = FloquetEvaluator(problem, StabilityOptions(method="hill"))(
+        r.branch.lam[j], r.branch.X[j])
+    assert hill.crossing_type == "secondary-hopf"
+    assert abs(hill.max_abs - row["max_multiplier"]) < 1e-4
