@@ -102,3 +102,14 @@ def test_cli_no_fold_at_the_start(tmp_path, capsys):
                    "--to", "10 rad/s", "-o", str(tmp_path / "x")])
     assert status == 2
     assert "no saddle-node" in capsys.readouterr().err
+
+
+def test_no_cusp_in_the_range_gives_two_curves(config):
+    """Up to 3 rad/s the pair persists: one curve per fold, both reach the end."""
+    curve = run_fold_curve(config, "base.pitching.value", 0.0, 3.0)
+    assert curve.success and len(curve.curves) == 2 and not curve.cusps
+    assert curve.bistability_end is None
+    for c in curve.curves:
+        assert curve.hb.from_z(c.z[-1])[2] == pytest.approx(3.0)
+    assert curve.unstable_width([3.0])[0] > 0
+    assert "no cusp in the range" in curve.summary()

@@ -46,7 +46,7 @@ from rotorsfd.continuation.folds import (
     continue_folds,
     locate_branch_fold,
 )
-from rotorsfd.errors import ConfigError
+from rotorsfd.errors import ConfigError, ConvergenceError
 from rotorsfd.harmonic.fourier import aliasing_error, choose_n_samples, to_real
 from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.io import atomic
@@ -284,7 +284,8 @@ def _trace(family: Any, H: int, N: int, scales: tuple[float, float], folds: list
         if covered[i]:
             continue
         covered[i] = True
-        curve = continue_folds(hb, hb.to_z(p.xs, p.lam, range2[0]), lam_range, options)
+        curve = continue_folds(hb, hb.to_z(p.xs, p.lam, range2[0]), lam_range, options,
+                               lam_physical=lambda lam: lam * scales[1])
         curves.append(curve)
         messages.append(curve.message)
         end_speed, end_value = hb.from_z(curve.z[-1])[1:]
@@ -327,7 +328,8 @@ def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_par
     coefficients by more than ``alias_tol`` (relative) at some point of the curves,
     N_f is raised (:func:`~rotorsfd.harmonic.fourier.choose_n_samples` at the worst
     point, up to ``n_samples_max``) and the curves are traced again.
-    ConfigError if the speed branch at ``range2[0]`` has no saddle-node.
+    ConfigError if the speed branch at ``range2[0]`` has no saddle-node; ConvergenceError
+    if it stops (e.g. journal contact) before any.
     """
     param = system_parameter(second_parameter)
     if param == "speed":
@@ -343,6 +345,10 @@ def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_par
                                n_samples=n_samples, **(branch_options or {}))
     folds = [locate_branch_fold(branch, int(i)) for i in branch.folds()]
     t1 = time.perf_counter()
+    if not folds and not branch.success:
+        raise ConvergenceError(
+            f"the speed branch at {param} = {range2[0]:g} stopped before any saddle-node: "
+            f"{branch.message}")
     if not folds:
         raise ConfigError("fold_curve.range", range2[0],
                           f"the speed branch at {param} = {range2[0]:g} has no saddle-node "

@@ -230,14 +230,16 @@ def _locate_turn(fold: FoldSystem, z: FloatArray, t: FloatArray, z1: FloatArray,
 
 def continue_folds(base: TwoParameterSystem, z0: FloatArray, lam2_range: tuple[float, float],
                    options: FoldOptions | None = None,
-                   on_point: Callable[[FloatArray, int], None] | None = None) -> FoldBranch:
+                   on_point: Callable[[FloatArray, int], None] | None = None,
+                   lam_physical: Callable[[float], float] = float) -> FoldBranch:
     """Continue the fold near z0 (scaled ``(x, lam1, lam2)``) in lam2 over ``lam2_range``
     (scaled), from ``z0[-1]`` towards ``lam2_range[1]``.
 
     z0 is first corrected at fixed lam2 (Newton on ``[R; g] = 0``). Each time the curve
     turns back in lam2 (``dlam2/ds`` changes sign: a cusp), the turn is located, stored as
     a :class:`Cusp`, and the continuation goes on towards the other end of the range
-    (at most ``max_turns`` times). ``on_point(z, segment)`` is called at every point.
+    (at most ``max_turns`` times). ``on_point(z, segment)`` is called at every point;
+    ``lam_physical(lam2)`` converts the scaled lam2 for messages.
     Never raises after the first point: ``success`` False and a message on failure.
     """
     o = options or FoldOptions()
@@ -289,7 +291,8 @@ def continue_folds(base: TwoParameterSystem, z0: FloatArray, lam2_range: tuple[f
         restart = bool(zs)
         opts.max_points = o.max_points - len(zs) + int(restart)
         status = arclength(fold, z, J, ends[target],
-                           _skip_first(handler) if restart else handler, opts, t_prev=t_prev)
+                           _skip_first(handler) if restart else handler, opts,
+                           lam_physical=lam_physical, t_prev=t_prev)
         if not state["turned"]:
             return _result(zs, ts, ss, seg, cusps, status.success, status.message, fold)
         if len(cusps) > o.max_turns:
@@ -405,7 +408,7 @@ class TwoParameterHB:
             pair = []
             for p in (self.problem.first(lam2), self.problem.second(lam1)):
                 hb = CondensedHB(p, self.H, self.N)
-                hb.delta, hb._delta_real, hb.aft = self.delta, self._delta_real, self.aft
+                hb.delta, hb._delta_real = self.delta, self._delta_real
                 pair.append(hb)
             self._key, self._hb = (lam1, lam2), (pair[0], pair[1])
         return self._hb
