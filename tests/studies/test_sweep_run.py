@@ -154,6 +154,15 @@ def test_resume_with_an_extended_grid_reuses_finished_values(config, tmp_path):
     assert rec["index"] == [3] and rec["values"] == {"sfd.clearance_ratio": 0.005}
 
 
+def test_a_folder_in_use_is_refused(config, tmp_path):
+    from rotorsfd.studies.store import PointStore
+
+    with PointStore(tmp_path).lock():
+        with pytest.raises(ConfigError, match="another sweep is running"):
+            run_sweep(config, AXES, TASK, directory=tmp_path, workers=1, progress=False)
+    run_sweep(config, AXES, TASK, directory=tmp_path, workers=1, progress=False)
+
+
 def test_grid_and_task_from_config(tmp_path):
     config = load_config(sweep_toml(tmp_path / "rotor.toml"))
     r = run_sweep(config, None, "synthetic", directory=tmp_path / "o", workers=1,

@@ -1,5 +1,6 @@
 """Per-point results of a sweep on disk: ``DIR/points/<point_id>.json``, one file per
-finished grid point, written atomically, so that a killed sweep resumes where it stopped.
+finished grid point, written atomically, so that a killed sweep resumes where it stopped;
+``DIR/.sweep.lock`` keeps a second sweep out of a folder in use.
 
 A record (JSON object)::
 
@@ -20,9 +21,10 @@ are refused (a task returns None for missing values).
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -77,6 +79,26 @@ class PointStore:
 
     def __init__(self, directory: str | Path) -> None:
         self.directory = Path(directory) / "points"
+
+    @contextlib.contextmanager
+    def lock(self) -> Iterator[None]:
+        """Hold ``DIR/.sweep.lock`` (flock, released by the kernel even on SIGKILL) so that
+        two sweeps never write into the same folder; ConfigError if it is held."""
+        from rotorsfd.errors import ConfigError
+
+        self.directory.parent.mkdir(parents=True, exist_ok=True)
+        with open(self.directory.parent / ".sweep.lock", "a") as fh:
+            try:
+                import fcntl
+            except ImportError:  # pragma: no cover (not POSIX)
+                yield
+                return
+            try:
+                fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except OSError:
+                raise ConfigError("-o", str(self.directory.parent), "another sweep is "
+                                  "running in this folder") from None
+            yield
 
     def path(self, point_id: str) -> Path:
         return self.directory / f"{point_id}.json"

@@ -351,8 +351,16 @@ def run_sweep(config: Config, axes: Grid | Mapping[str, Sequence[Any]] | None = 
     grid = resolve_grid(config, axes)
     if task is None or isinstance(task, str):
         task = make_task(task or config.analysis.sweep.task, search_path=search_path)
-    out = Path(directory)
-    store = PointStore(out)
+    store = PointStore(directory)
+    with store.lock():
+        return _run(config, grid, task, store, Path(directory), executor, workers,
+                    scheduler, progress, resume, retry_failed)
+
+
+def _run(config: Config, grid: Grid, task: Task, store: PointStore, out: Path,
+         executor: Executor | None, workers: int | None, scheduler: str | None,
+         progress: bool, resume: bool, retry_failed: bool) -> SweepResult:
+    """run_sweep with the folder locked."""
     digest = config_digest(config, task.spec)
     points = list(grid.points())
     keys = {p.point_id: point_key(digest, p) for p in points}
