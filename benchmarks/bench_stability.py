@@ -1,172 +1,183 @@
-"""Benchmark of the Floquet tools (run: python benchmarks/bench_stability.py [--quick]).
+"""Floquet multipliers per continuation point, and stability charts on several executors.
 
-1. Per-point monodromy cost on the paper rotor (84 DOF, 2-DOF SFD Jacobian sampled on a
-   synthetic period-1 orbit at the SFD node, Omega = 850 rad/s):
-   full Newmark N = 400 (the paper's literal method), Craig-Bampton reduced Newmark,
-   full generalized-alpha (rho_inf = 0.6), Hill (symmetric and Koopman, on the reduced
-   model) and, as the reference, Magnus-4 on the full model (exact for the constant stiff
-   part). Reports time, max |mu| and the SFD-coupled leading multipliers.
-2. A 100 x 100 stability chart of a linear rotor under harmonic base pitching
-   ``w_by = A0 w_b sin(w_b t)`` (K(t) = K + w_by^2 (-T22 - P22 + D22), the base terms of
-   ``rotorsfd.model.base_terms``), Omega = 250 rad/s, on a 12-mode basis.
+``stability`` -- per point of the paper rotor's H = 3 branch (U = 144.02 g mm, the Table 1
+case; points before the first fold, on the unstable middle branch between the folds and
+past the resonance): our path (Newmark on the Craig-Bampton reduced model, M = 400,
+``method='newmark-cb'``, the default of ``[analysis.stability]``), the paper's literal
+method (Newmark monodromy of the full 84-DOF model, M = 400) and Hill's method (H = 8 on
+the same reduced model). Median time per point, ratio to ours, and the agreement of the
+critical multiplier: the multiplier of each method nearest to our critical one, and the
+largest |mu| of each (the full model's undamped structural modes sit at |mu| = 1).
+
+``chart`` -- the 100 x 100 stability chart of examples/fig6_duchemin_pitching.toml (linear
+single-disk rotor, harmonic base pitching, Omega = 250 rad/s, M = 400) serial, with the
+analysis' own thread pool (``workers=2``), on a process pool (rotorsfd.studies
+``ProcessExecutor``) and on a Dask ``LocalCluster`` (2 worker processes x 1 thread,
+``DaskExecutor``); rows split into chunks, the results checked equal to the serial map.
+Pool and cluster start-up are reported on their own (not in the medians).
+``--quick``: 8 x 8.
+
+Run: ``python -m benchmarks --only stability`` / ``--only chart``.
 """
 
 from __future__ import annotations
 
-import contextlib
-import sys
 import time
 
 import numpy as np
 
-from rotorsfd.stability.chart import LTPSystem, stability_chart
-from rotorsfd.stability.hill import fourier_coefficients, hill_floquet
-from rotorsfd.stability.monodromy import (
-    floquet_multipliers,
-    monodromy_generalized_alpha,
-    monodromy_magnus4,
-    monodromy_newmark,
+from benchmarks.common import (
+    ROOT,
+    W1,
+    Row,
+    interleaved,
+    paper_config,
+    paper_system,
+    response_options,
 )
-from rotorsfd.stability.reduction import craig_bampton
+
+FIG6 = ROOT / "examples" / "fig6_duchemin_pitching.toml"
+METHODS = {"newmark-cb": "ours: Newmark, Craig-Bampton (M=400)",
+           "newmark": "paper: Newmark, full model (M=400)",
+           "hill": "Hill (H=8, reduced model)"}
 
 
-def paper_rotor_problem(speed: float = 850.0, n_intervals: int = 400):
-    """M, D, K of the paper rotor and SFD Jacobian samples on a synthetic orbit."""
+def pick_points(branch) -> dict[str, int]:
+    """Indices of three points: before the folds, on the middle branch, after."""
+    folds = branch.folds()
+    speed = branch.lam / W1
+    out = {"Omega~ 0.8": int(np.argmin(np.abs(speed - 0.8)))}
+    if folds.size >= 2:
+        out["middle branch"] = int((folds[0] + folds[1]) // 2 + 1)
+    out["Omega~ 1.4"] = int(np.argmin(np.abs(speed - 1.4) + 10.0 * (np.arange(speed.size)
+                                                                       < (folds.max(initial=0)))))
+    return out
+
+
+def run_points(quick: bool = False, repeat: int = 3) -> list[Row]:
+    from rotorsfd.harmonic.periodic import continue_periodic
+    from rotorsfd.stability.orbit import orbit_floquet
+
+    problem = paper_system().periodic_problem()
+    branch = continue_periodic(problem, 0.5 * W1, 1.6 * W1, 3,
+                               **response_options(paper_config()))
+    points = pick_points(branch)
+    if quick:
+        points = dict(list(points.items())[:1])
+    rows: list[Row] = []
+    for label, i in points.items():
+        lam, X, w = branch.lam[i], branch.X[i], branch.frequency[i]
+        M, D, K = problem.matrices(lam)
+
+        def floquet(method: str, M=M, D=D, K=K, X=X, w=w):
+            return orbit_floquet(M, D, K, X, w, problem.nl_dofs, problem.nl_jacobian,
+                                 method=method, n_intervals=400, n_harmonics=8)
+
+        for m in METHODS:  # warm-up
+            floquet(m)
+        res = interleaved({m: (lambda m=m: floquet(m)) for m in METHODS}, repeat)
+        ours = res["newmark-cb"][2]
+        mu0 = ours.critical
+        case = f"H=3 point Omega~={lam / W1:.4f} ({label})"
+        for m, name in METHODS.items():
+            t, _, r = res[m]
+            near = r.multipliers[np.argmin(np.abs(r.multipliers - mu0))]
+            rows.append(Row(
+                "stability", case, name, t, ratio=t / res["newmark-cb"][0], ref="ours",
+                repeat=repeat,
+                note=(f"|mu|max {r.max_abs:.6f} ({'stable' if r.stable else 'unstable'}); "
+                      f"mu near ours' critical: {abs(near):.6f}, |d| {abs(near - mu0):.1e}"),
+                extra={"max_abs": r.max_abs, "critical": [mu0.real, mu0.imag],
+                       "nearest": [near.real, near.imag], "stable": bool(r.stable),
+                       "n_multipliers": int(r.multipliers.size)}))
+    return rows
+
+
+# ---- stability chart ------------------------------------------------------------------------
+
+
+def chart_axes(n: int) -> tuple[tuple[str, np.ndarray], tuple[str, np.ndarray]]:
+    """The Figure 6 config's axes, resampled to n x n."""
+    from rotorsfd.analyses.stability_chart import _axis_from_config
     from rotorsfd.io.config import load_config
-    from rotorsfd.model.build import build_rotor, build_sfd
 
-    cfg = load_config("examples/paper_rotor.toml")
-    rotor, sfd = build_rotor(cfg), build_sfd(cfg)
-    M, D, K = rotor.matrices(speed)
-    nl = [rotor.dof_index(1, "y"), rotor.dof_index(1, "z")]
-    C = cfg.sfd.resolved_clearance
-    T = 2 * np.pi / speed
-    t = np.arange(n_intervals + 1) * T / n_intervals
-    wt = speed * t
-    e = 0.4
-    y = C * (e * np.cos(wt) + 0.05 * np.cos(2 * wt))
-    z = C * (e * np.sin(wt) - 0.1)
-    vy = -C * speed * (e * np.sin(wt) + 0.1 * np.sin(2 * wt))
-    vz = C * speed * e * np.cos(wt)
-    Jq, Jv = sfd.jacobian(y, z, vy, vz)
-
-    def interp(J):
-        def f(tt: float) -> np.ndarray:
-            return np.array([[np.interp(tt, t, J[:, i, j]) for j in range(2)]
-                             for i in range(2)])
-        return f
-
-    # exact Jacobian at any t for the Magnus reference
-    def exact(kind: int):
-        def f(tt: float) -> np.ndarray:
-            w = speed * tt
-            yy = C * (e * np.cos(w) + 0.05 * np.cos(2 * w))
-            zz = C * (e * np.sin(w) - 0.1)
-            vyy = -C * speed * (e * np.sin(w) + 0.1 * np.sin(2 * w))
-            vzz = C * speed * e * np.cos(w)
-            return sfd.jacobian(yy, zz, vyy, vzz)[kind]
-        return f
-
-    return M, D, K, T, nl, Jq, Jv, exact(0), exact(1)
+    cfg = load_config(FIG6)
+    axes = []
+    for name in ("x", "y"):
+        a = _axis_from_config(cfg, name)
+        axes.append((a.path, np.linspace(a.values[0], a.values[-1], n)))
+    return axes[0], axes[1]
 
 
-def _timeit(fun, repeat: int = 3):
-    best = np.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = fun()
-        best = min(best, time.perf_counter() - t0)
-    return out, best
+def chart_rows(x: tuple[str, np.ndarray], y: tuple[str, np.ndarray], workers: int = 1
+               ) -> np.ndarray:
+    """max |mu| of the Figure 6 chart on the rows ``x`` (a task of the executors)."""
+    from rotorsfd.analyses.stability_chart import run_stability_chart
+    from rotorsfd.io.config import load_config
+
+    res = run_stability_chart(load_config(FIG6), x=x, y=y, workers=workers)
+    return res.chart.max_abs
 
 
-def bench_monodromy(quick: bool = False) -> None:
-    M, D, K, T, nl, Jq, Jv, fq, fv = paper_rotor_problem()
-    print(f"paper rotor: n = {M.shape[0]} DOF, T = {T:.4e} s, SFD |dF/dq|max = "
-          f"{np.abs(Jq).max():.3e} N/m, |dF/dv|max = {np.abs(Jv).max():.3e} N s/m")
-    kw = dict(nl_dofs=nl, dFdq=Jq, dFdv=Jv)
-    rows = []
-    full, tf = _timeit(lambda: monodromy_newmark(M, D, K, T, n_intervals=400, **kw))
-    rows.append(("full Newmark N=400 (paper)", tf, full))
-    ga, tg = _timeit(lambda: monodromy_generalized_alpha(M, D, K, T, n_intervals=400, **kw))
-    rows.append(("full gen-alpha N=400 rho=0.6", tg, ga))
-    for n_modes in (None, 12):
-        red, tr = _timeit(lambda n=n_modes: floquet_multipliers(M, D, K, T, n_modes=n,
-                                                                **kw))
-        rows.append((f"CB Newmark N=400, {red.info['n_modes']} modes", tr, red))
-    cb = craig_bampton(M, D, K, nl, omega_max=0.25 * 400 / T)
-    H = 8
-    Jq_hat = fourier_coefficients(Jq[:-1], 2 * H)
-    Jv_hat = fourier_coefficients(Jv[:-1], 2 * H)
-    for method in ("symmetric", "koopman"):
-        hr, th = _timeit(lambda m=method: hill_floquet(
-            cb.M, cb.D, cb.K, 2 * np.pi / T, nl_dofs=cb.nl_dofs, dFdq_hat=Jq_hat,
-            dFdv_hat=Jv_hat, n_harmonics=H, method=m), repeat=1)
-        rows.append((f"Hill {method} H={H} on CB model", th, hr))
-    if not quick:
-        ref, tm = _timeit(lambda: monodromy_magnus4(M, D, K, T, nl_dofs=nl, dFdq=fq,
-                                                    dFdv=fv, n_intervals=200), repeat=1)
-        rows.append(("full Magnus-4 N=200 (reference)", tm, ref))
-        refcb, tm = _timeit(lambda: monodromy_magnus4(cb.M, cb.D, cb.K, T,
-                                                      nl_dofs=cb.nl_dofs, dFdq=fq,
-                                                      dFdv=fv, n_intervals=200), repeat=1)
-        rows.append(("CB Magnus-4 N=200", tm, refcb))
-    print(f"{'method':38s} {'time [s]':>9s} {'|mu|max':>11s}  critical mu"
-          f"            Liouville err")
-    for name, tt, r in rows:
-        c = r.critical
-        print(f"{name:38s} {tt:9.4f} {r.max_abs:11.8f}  {c.real:+.6f}{c.imag:+.6f}j"
-              f"  {r.liouville_error:.2e}")
-    # the SFD-coupled multipliers: the largest ones of the reduced model, matched in
-    # the other results
-    lead = rows[2][2].multipliers[:4]
-    print("leading multipliers of the CB model and the nearest in each result:")
-    for name, _, r in rows:
-        near = [r.multipliers[np.argmin(np.abs(r.multipliers - m))] for m in lead]
-        print(f"  {name:38s} " + " ".join(f"{abs(x):.6f}" for x in near))
+def _on_executor(ex, x, y, n_chunks: int) -> np.ndarray:
+    chunks = np.array_split(np.arange(x[1].size), n_chunks)
+    futs = [ex.submit(chart_rows, (x[0], x[1][c]), y) for c in chunks]
+    return np.concatenate([f.result() for f in futs], axis=0)
 
 
-def pitching_chart_system(speed: float = 250.0):
-    """36-DOF shaft-disk rotor on a pitching base: LTP family over (w_b, A0)."""
-    from rotorsfd.model import Disk, LinearSupport, Material, RayleighDamping, Rotor, uniform_shaft
-    from rotorsfd.model.base_terms import base_basis
+def run_chart(quick: bool = False, repeat: int = 3, workers: int = 2) -> list[Row]:
+    from rotorsfd.studies.executors import DaskExecutor, ProcessExecutor
 
-    steel = Material(7800.0, 2.0e11, 7.7e10)
-    rotor = Rotor(uniform_shaft(0.4, 8, 0.0, 0.01, steel),
-                  disks=[Disk.from_geometry(4, 7800.0, 0.01, 0.075, 0.03)],
-                  supports=[LinearSupport.isotropic(1, 5e5), LinearSupport.isotropic(9, 5e5)],
-                  damping=RayleighDamping(0.0, 1e-5))
-    M, D, K = rotor.matrices(speed)
-    b = base_basis(rotor)
-    Kp = -b.matrix("T22") - b.matrix("P22") + b.matrix("D22")
-
-    def wy2(t, wb, a0):
-        return (a0 * wb * np.sin(wb * t)) ** 2
-
-    sys_ = LTPSystem(M, [(D, None)], [(K, None), (Kp, wy2)],
-                     period=lambda wb, a0: 2 * np.pi / wb)
-    return sys_, rotor
-
-
-def bench_chart(n: int = 100, workers: int = 2) -> None:
-    sys_, rotor = pitching_chart_system()
-    wb = np.linspace(20.0, 400.0, n)
-    a0 = np.linspace(0.0, 1.0, n)
+    n = 8 if quick else 100
+    x, y = chart_axes(n)
+    n_chunks = min(n, 4 * workers)
+    chart_rows((x[0], x[1][:1]), (y[0], y[1][:2]))  # warm-up
     t0 = time.perf_counter()
-    ch = stability_chart(sys_, wb, a0, n_intervals=200, n_modes=12, workers=workers,
-                         names=("w_b", "A0"))
-    dt = time.perf_counter() - t0
-    print(f"chart {n}x{n}, {rotor.n_dof} DOF -> 12 modes, N=200, workers={workers}: "
-          f"{dt:.1f} s; unstable fraction {np.mean(~ch.stable):.3f}, "
-          f"max |mu| {ch.max_abs.max():.4f}")
+    pool = ProcessExecutor(workers)
+    pool.submit(int, 0).result()
+    t_pool = time.perf_counter() - t0
+    from distributed import LocalCluster
+
+    t0 = time.perf_counter()
+    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                           dashboard_address=None, silence_logs=50)
+    dask = DaskExecutor(cluster.scheduler_address)
+    t_dask = time.perf_counter() - t0
+    try:
+        for ex in (pool, dask):  # warm-up: every worker imports and loads the kernels
+            _on_executor(ex, (x[0], x[1][:2 * workers]), (y[0], y[1][:2]), 2 * workers)
+        res = interleaved({
+            "serial": lambda: chart_rows(x, y),
+            "threads": lambda: chart_rows(x, y, workers=workers),
+            "pool": lambda: _on_executor(pool, x, y, n_chunks),
+            "dask": lambda: _on_executor(dask, x, y, n_chunks)}, repeat)
+    finally:
+        pool.shutdown()
+        dask.shutdown()
+        cluster.close()
+    ref = res["serial"][2]
+    case = f"chart {n}x{n} (Fig. 6 config, M=400), {workers} workers"
+    names = {"serial": "serial", "threads": f"analysis threads (workers={workers})",
+             "pool": f"process pool ({workers} processes)",
+             "dask": f"Dask LocalCluster ({workers} procs x 1 thread)"}
+    start = {"pool": t_pool, "dask": t_dask}
+    rows = []
+    for k, name in names.items():
+        t, _, out = res[k]
+        same = bool(np.allclose(out, ref, rtol=1e-12, atol=0.0))
+        note = f"max|mu| same as serial: {same}"
+        if k in start:
+            note += f"; start-up {start[k]:.2f} s (not in the time)"
+        rows.append(Row("chart", case, name, t, ratio=t / res["serial"][0], ref="serial",
+                        repeat=repeat, note=note,
+                        extra={"equal_to_serial": same, "startup_s": start.get(k),
+                               "unstable_fraction": float(np.mean(out > 1 + 1e-5))}))
+    return rows
 
 
 if __name__ == "__main__":
-    quick = "--quick" in sys.argv
-    try:  # small matrices: BLAS threads only add overhead
-        from threadpoolctl import threadpool_limits
-        limit = threadpool_limits(limits=1, user_api="blas")
-    except ImportError:
-        limit = contextlib.nullcontext()
-    with limit:
-        bench_monodromy(quick)
-        bench_chart(30 if quick else 100)
+    import sys
+
+    from benchmarks.__main__ import main
+
+    sys.exit(main(["--only", "stability", "--only", "chart", *sys.argv[1:]]))

@@ -1,213 +1,280 @@
-"""Benchmark: compiled Newmark integrator vs scipy ``solve_ivp`` (LSODA, Radau).
+"""Time integration of the paper rotor, 2000 periods x 200 steps: our compiled Newmark
+integrator vs scipy ``solve_ivp`` (LSODA, Radau) at matched accuracy, and vs ROSS's
+Newmark time response of the same linear rotor.
 
-Problem (mimics the paper's rotor): an 84-DOF chain, 42 nodes with ``y, z`` each,
-lumped masses, springs between neighbours and to the ground at both ends, light
-Rayleigh damping; a 2-DOF nonlinear radial damper at node 1
-(``F = -c0 v / (1 - e^2)^1.5``, ``e = |q|/C``, contact at ``e >= 0.99``) and a rotating
-unbalance force at node 15 at 0.9 times the first natural frequency.
+Problem: examples/paper_rotor.toml (84 DOF, pi-film SFD at node 1) at U = 144.02 g mm,
+Omega~ = 0.8 (a stable period-1 point), every node displaced 1 um at t = 0, as
+``rotorsfd simulate`` builds it (``time_domain_inputs``).
 
-1. Ours: 2000 periods x 200 steps (average acceleration), after compilation; the first
-   call (compilation or loading of the on-disk cache) is reported separately.
-2. Accuracy: from the steady state, ``n_short`` periods by each method; the error of
-   the last period's amplitudes (radial at the damper, ``y`` at the unbalance node)
-   against our integrator at 4000 steps a period.
-3. scipy: for each method the loosest ``rtol`` of a ladder whose error is at most ours,
-   timed (CPU time: the machine may be shared) over ``n_short`` periods and
-   extrapolated linearly to 2000 periods (stated in the output); analytic Jacobian
-   supplied.
+1. Ours: 2000 periods x 200 steps (average acceleration, Newton on the SFD DOFs),
+   median of the repeats, after the first call (compilation or cache load: see
+   ``coldstart``); SFD DOFs recorded every step.
+2. Accuracy: from the end state, ``n_short`` periods by ours at 200 steps a period and by
+   ours at 4000 (the reference); error = largest relative error of the last period's
+   amplitudes (max radial excursion at the SFD, half peak-to-peak y at the disk).
+3. scipy: for LSODA and Radau the loosest ``rtol`` of a ladder (``atol = rtol x scale``)
+   whose error is at most ours; that run's wall time over ``n_short`` periods
+   extrapolated linearly to 2000 periods (one run each: a 2000-period scipy run would take
+   hours; stated in the table). Analytic Jacobian supplied, SFD force from the same
+   compiled kernel.
+4. ROSS (optional; ``pip install --target benchmarks/.ross ross-rotordynamics
+   'plotly<7'`` plus its imports, see README): the LINEAR rotor (film off, centring spring
+   kept, no damping) under the same unbalance from rest, ``run_time_response(...,
+   method='newmark')`` over 2 periods x 200 steps in a subprocess, extrapolated
+   to 2000 periods, against ours on the same linear rotor in the same run; the two
+   responses of the disk node are compared (same model and scheme: they should agree).
+   Skipped with a message when ROSS does not import.
 
-All methods run on one core (BLAS threads set to 1 unless set in the environment).
-Run: ``python benchmarks/bench_timedomain.py [--short 40] [--json out.json]``.
+``--quick``: 20 periods, ``n_short`` = 1, scipy at rtol 1e-3 only (not matched), ROSS
+10 steps.
+Run: ``python -m benchmarks --only timedomain``.
 """
 
 from __future__ import annotations
 
+import json
+import math
 import os
+import time
 
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")  # one core for every method (set before numpy)
+import numpy as np
 
-import argparse  # noqa: E402
-import json  # noqa: E402
-import math  # noqa: E402
-import time  # noqa: E402
+from benchmarks.common import ROSS_DIR, W1, Row, median_time, paper_config, paper_system, run_python
 
-import numpy as np  # noqa: E402
-from numba import njit  # noqa: E402
-from scipy.integrate import solve_ivp  # noqa: E402
-
-from rotorsfd.timedomain import Forcing, HarmonicLoad, integrate  # noqa: E402
-from rotorsfd.timedomain import newmark as nm  # noqa: E402
-
-N_NODES = 42
-C_CLEAR = 0.127e-3
-PARAMS = np.array([2000.0, C_CLEAR, 0.99])
+SPEED_RATIO = 0.8
+RTOLS = (1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 1e-6, 1e-7)
 
 
-@njit(cache=True)
-def radial_damper(q: np.ndarray, v: np.ndarray, p: np.ndarray, F: np.ndarray,
-                  dFdq: np.ndarray, dFdv: np.ndarray) -> int:
-    """``F = -c0 v / (1 - e^2)^1.5``, ``e^2 = (y^2 + z^2)/C^2``; 1 if ``e >= e_max``."""
-    c0, C, emax = p[0], p[1], p[2]
-    e2 = (q[0] * q[0] + q[1] * q[1]) / (C * C)
-    if not e2 < emax * emax:
-        return 1
-    s = 1.0 - e2
-    c = c0 / (s * math.sqrt(s))
-    dc = 3.0 * c0 / (s * s * math.sqrt(s) * C * C)
-    for i in range(2):
-        F[i] = -c * v[i]
-        for j in range(2):
-            dFdv[i, j] = -c if i == j else 0.0
-            dFdq[i, j] = -v[i] * dc * q[j]
-    return 0
+def paper_inputs():
+    from rotorsfd.analyses.simulate import time_domain_inputs
+
+    system = paper_system()
+    return system, time_domain_inputs(system, SPEED_RATIO * W1)
 
 
-def chain() -> tuple[np.ndarray, np.ndarray, np.ndarray, Forcing]:
-    """Matrices and unbalance forcing of the 84-DOF chain."""
-    n = 2 * N_NODES
-    M = 0.5 * np.eye(n)
-    K = np.zeros((n, n))
-    kc = 5e8
-    for i in range(N_NODES - 1):
-        for d in range(2):
-            a, b = 2 * i + d, 2 * (i + 1) + d
-            K[a, a] += kc
-            K[b, b] += kc
-            K[a, b] -= kc
-            K[b, a] -= kc
-    for d in range(2):
-        K[d, d] += 1e7
-        K[n - 2 + d, n - 2 + d] += 1e7
-    D = 1e-6 * K + 1.0 * M
-    w1 = math.sqrt(np.linalg.eigvalsh(K / 0.5)[0])
-    omega = 0.9 * w1
-    f = 400e-6 * omega**2  # unbalance 400 g mm
-    fc, fs = np.zeros(n), np.zeros(n)
-    fc[2 * 14], fs[2 * 14 + 1] = f, f
-    return M, D, K, Forcing(omega=omega, harmonics=[HarmonicLoad(1.0, fc, fs)])
+def ours(inp, spp: int, periods: int, q0, v0, record_dofs=None, **kw):
+    from rotorsfd.timedomain import integrate
+
+    return integrate(inp.M, inp.D, inp.K, inp.nl_dofs, inp.kernel, inp.params, inp.forcing,
+                     steps_per_period=spp, n_periods=periods, q0=q0, v0=v0,
+                     record_dofs=record_dofs, **kw)
 
 
 def amplitudes(q: np.ndarray) -> np.ndarray:
-    """Last-period amplitudes: max radial at the damper, half peak-to-peak y at node 15."""
-    return np.array([np.max(np.hypot(q[:, 0], q[:, 1])),
-                     0.5 * np.ptp(q[:, 2])])
+    """Last-period amplitudes from columns (y_sfd, z_sfd, y_disk)."""
+    return np.array([np.max(np.hypot(q[:, 0], q[:, 1])), 0.5 * np.ptp(q[:, 2])])
 
 
-REC = [0, 1, 2 * 14]
+def scipy_run(inp, method: str, rtol: float, periods: int, q0, v0, t_eval):
+    """``solve_ivp`` of the first-order form with the analytic Jacobian (same kernel)."""
+    from scipy.integrate import solve_ivp
 
-
-def ours(M, D, K, fo, spp: int, n_periods: int, q0, v0):
-    t = time.perf_counter()
-    c = time.process_time()
-    r = integrate(M, D, K, [0, 1], radial_damper, PARAMS, fo, steps_per_period=spp,
-                  n_periods=n_periods, q0=q0, v0=v0, record_dofs=REC,
-                  record_start=(n_periods - 1) * spp)
-    return r, time.perf_counter() - t, time.process_time() - c
-
-
-def scipy_run(M, D, K, fo, method: str, rtol: float, n_periods: int, q0, v0):
-    n = M.shape[0]
-    Minv = np.linalg.inv(M)
-    A_q, A_v = -Minv @ K, -Minv @ D
+    n = inp.M.shape[0]
+    nl = np.asarray(inp.nl_dofs)
+    Minv = np.linalg.inv(inp.M)
+    A_q, A_v = -Minv @ inp.K, -Minv @ inp.D
+    fo = inp.forcing
+    f0 = np.zeros(n) if fo.constant is None else np.asarray(fo.constant, float)
     fc, fs = fo.harmonics[0].cos, fo.harmonics[0].sin
     w = fo.omega
     F = np.zeros(2)
     jq, jv = np.zeros((2, 2)), np.zeros((2, 2))
+    Mnl = Minv[:, nl]
     J = np.zeros((2 * n, 2 * n))
     J[:n, n:] = np.eye(n)
 
+    def force(y):
+        q = np.ascontiguousarray(y[nl])
+        v = np.ascontiguousarray(y[n + nl])
+        if inp.kernel(q, v, inp.params, F, jq, jv):
+            raise FloatingPointError("journal contact")
+
     def rhs(t: float, y: np.ndarray) -> np.ndarray:
-        q, v = y[:n], y[n:]
-        if radial_damper(np.ascontiguousarray(q[:2]), np.ascontiguousarray(v[:2]), PARAMS,
-                         F, jq, jv):
-            raise FloatingPointError("contact")
-        g = fc * math.cos(w * t) + fs * math.sin(w * t)
-        g[:2] += F
-        return np.concatenate([v, A_q @ q + A_v @ v + Minv @ g])
+        force(y)
+        g = Minv @ (f0 + fc * math.cos(w * t) + fs * math.sin(w * t)) + Mnl @ F
+        return np.concatenate([y[n:], A_q @ y[:n] + A_v @ y[n:] + g])
 
     def jac(t: float, y: np.ndarray) -> np.ndarray:
-        q, v = y[:n], y[n:]
-        radial_damper(np.ascontiguousarray(q[:2]), np.ascontiguousarray(v[:2]), PARAMS, F,
-                      jq, jv)
+        force(y)
         J[n:, :n] = A_q
         J[n:, n:] = A_v
-        J[n:, :2] += Minv[:, :2] @ jq
-        J[n:, n:n + 2] += Minv[:, :2] @ jv
+        J[n:, nl] += Mnl @ jq
+        J[n:, n + nl] += Mnl @ jv
         return J
 
-    T = fo.period
-    scale = np.concatenate([np.full(n, 1e-5), np.full(n, 1e-5 * w)])
-    t_eval = np.linspace((n_periods - 1) * T, n_periods * T, 401)
-    tic, c = time.perf_counter(), time.process_time()
-    sol = solve_ivp(rhs, (0.0, n_periods * T), np.concatenate([q0, v0]), method=method,
-                    rtol=rtol, atol=rtol * scale, jac=jac, t_eval=t_eval)
-    wall, cpu = time.perf_counter() - tic, time.process_time() - c
-    return sol, wall, cpu
+    C = 1.27e-4
+    scale = np.concatenate([np.full(n, C), np.full(n, C * w)])
+    t0 = time.perf_counter()
+    sol = solve_ivp(rhs, (0.0, periods * fo.period), np.concatenate([q0, v0]),
+                    method=method, rtol=rtol, atol=rtol * scale, jac=jac, t_eval=t_eval)
+    return sol, time.perf_counter() - t0
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--periods", type=int, default=2000)
-    ap.add_argument("--spp", type=int, default=200)
-    ap.add_argument("--short", type=int, default=40, help="periods for the scipy runs")
-    ap.add_argument("--json", default=None)
-    a = ap.parse_args()
-    M, D, K, fo = chain()
-    n = M.shape[0]
-    out: dict = {"n_dof": n, "periods": a.periods, "steps_per_period": a.spp,
-                 "omega": fo.omega}
+def run(quick: bool = False, repeat: int = 3) -> list[Row]:
+    from rotorsfd.analyses.simulate import displaced_state
 
-    # 1. ours, cold (first call) and warm
-    _r0, wall0, _ = ours(M, D, K, fo, a.spp, 2, 1e-6, 0.0)
-    out["first_call_s"] = wall0
-    out["run_steps_cache_hits"] = int(sum(nm.run_steps.stats.cache_hits.values()))
-    r, wall, cpu = ours(M, D, K, fo, a.spp, a.periods, 1e-6, 0.0)
-    assert r.success, r.message
-    out |= {"ours_wall_s": wall, "ours_cpu_s": cpu, "ours_loop_s": r.elapsed,
-            "newton_iterations_mean": r.newton_iterations_mean,
-            "eps_max_final_period": float(np.max(np.hypot(r.q[:, 0], r.q[:, 1])) / C_CLEAR)}
-    print(f"84-DOF chain, {a.periods} periods x {a.spp} steps: ours {wall:.2f} s wall, "
-          f"{cpu:.2f} s CPU (loop {r.elapsed:.2f} s); first call {wall0:.2f} s; "
-          f"Newton {r.newton_iterations_mean:.2f} it/step; eps_max "
-          f"{out['eps_max_final_period']:.3f}")
+    system, inp = paper_inputs()
+    n = inp.M.shape[0]
+    P = 20 if quick else 2000
+    n_short = 1 if quick else 20
+    q0 = displaced_state(n, 1e-6)
+    disk = system.rotor.dof_index(system.unbalances[0].node, "y")
+    rec = [int(inp.nl_dofs[0]), int(inp.nl_dofs[1]), disk]
+    ours(inp, 200, 1, q0, 0.0)  # compiled / cache loaded
+    t_ours, _, r = median_time(lambda: ours(inp, 200, P, q0, 0.0), repeat)
+    case = (f"paper rotor {n} DOF, Omega~={SPEED_RATIO}, {P} periods x 200 steps")
+    rows = [Row("timedomain", case, "ours: compiled Newmark", t_ours, ratio=1.0, ref="ours",
+                repeat=repeat, note=f"Newton {r.newton_iterations_mean:.2f} it/step",
+                extra={"elapsed_loop_s": r.elapsed})]
 
-    # 2. accuracy from the steady state over n_short periods
+    # accuracy from the end state
     qs, vs = r.q_final.copy(), r.v_final.copy()
-    ref, _, _ = ours(M, D, K, fo, 4000, a.short, qs, vs)
+    T = inp.forcing.period
+    ref = ours(inp, 4000, n_short, qs, vs, record_dofs=rec,
+               record_start=(n_short - 1) * 4000)
     amp_ref = amplitudes(ref.q)
-    r_s, _, _ = ours(M, D, K, fo, a.spp, a.short, qs, vs)
-    err_ours = float(np.max(np.abs(amplitudes(r_s.q) - amp_ref) / amp_ref))
-    out["ours_amplitude_error"] = err_ours
-    print(f"amplitude error (vs 4000 steps/period) over {a.short} periods: ours "
-          f"{err_ours:.2e}")
-
-    # 3. scipy at matched accuracy, extrapolated
-    best = math.inf
+    mine = ours(inp, 200, n_short, qs, vs, record_dofs=rec, record_start=(n_short - 1) * 200)
+    err_ours = float(np.max(np.abs(amplitudes(mine.q) - amp_ref) / amp_ref))
+    rows[0].note += f"; amplitude error {err_ours:.1e} (vs 4000 steps/period)"
+    rows[0].extra["amplitude_error"] = err_ours
+    t_eval = np.linspace((n_short - 1) * T, n_short * T, 401)
     for method in ("LSODA", "Radau"):
-        for rtol in (1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 1e-5, 1e-6, 1e-7):
-            sol, w_sc, c_sc = scipy_run(M, D, K, fo, method, rtol, a.short, qs, vs)
-            if not sol.success:
-                print(f"  {method} rtol={rtol:g}: failed ({sol.message})")
+        found = None
+        for rtol in (1e-3,) if quick else RTOLS:  # quick: one rtol (smoke only)
+            try:
+                sol, wall = scipy_run(inp, method, rtol, n_short, qs, vs, t_eval)
+            except FloatingPointError:
                 continue
-            err = float(np.max(np.abs(amplitudes(sol.y[REC].T) - amp_ref) / amp_ref))
-            extrap = c_sc * a.periods / a.short
-            print(f"  {method} rtol={rtol:g}: error {err:.2e}, {c_sc:.2f} s CPU "
-                  f"({w_sc:.2f} s wall) for {a.short} periods ({sol.nfev} f-evals, "
-                  f"{sol.njev} jac) -> {extrap:.0f} s CPU extrapolated to {a.periods}")
-            if err <= err_ours:
-                out[f"scipy_{method}"] = {"rtol": rtol, "error": err, "wall_short_s": w_sc,
-                                          "cpu_short_s": c_sc,
-                                          "cpu_extrapolated_s": extrap}
-                best = min(best, extrap)
+            if not sol.success:
+                continue
+            err = float(np.max(np.abs(amplitudes(sol.y[rec].T) - amp_ref) / amp_ref))
+            if err <= err_ours or quick:
+                found = (rtol, err, wall, sol)
                 break
-    out["speedup_vs_best_scipy_cpu"] = best / cpu
-    print(f"speed-up (CPU time) vs the best scipy method at matched accuracy "
-          f"(extrapolated from {a.short} periods): {best / cpu:.0f}x")
-    if a.json:
-        with open(a.json, "w") as fh:
-            json.dump(out, fh, indent=1)
+        if found is None:
+            rows.append(Row("timedomain", case, f"scipy {method}", float("nan"),
+                            note=f"no rtol down to {RTOLS[-1]:g} reached error {err_ours:.1e}"))
+            continue
+        rtol, err, wall, sol = found
+        est = wall * P / n_short
+        rows.append(Row("timedomain", case, f"scipy {method} (extrapolated)", est,
+                        ratio=est / t_ours, ref="ours",
+                        note=(f"rtol {rtol:g}, error {err:.1e}; {wall:.2f} s for {n_short} "
+                              f"periods x {P // n_short} ({sol.nfev} f, {sol.njev} jac)"),
+                        extra={"rtol": rtol, "error": err, "short_periods": n_short,
+                               "short_wall_s": wall}))
+    rows += ross_rows(system, inp, quick, repeat)
+    return rows
+
+
+# ---- ROSS: the linear rotor -------------------------------------------------------------
+
+ROSS_CODE = r"""
+import json, sys, time, warnings
+warnings.filterwarnings("ignore")
+t0 = time.perf_counter()
+import numpy as np
+import ross as rs
+t_import = time.perf_counter() - t0
+p = json.loads(%r)
+mat = rs.Material(name="steel", rho=p["rho"], E=p["E"], G_s=p["G"])
+L = p["length"] / p["n_el"]
+shaft = [rs.ShaftElement(L=L, idl=2 * p["ri"], odl=2 * p["ro"], material=mat,
+                         shear_effects=True, rotary_inertia=True, gyroscopic=True)
+         for _ in range(p["n_el"])]
+disk = rs.DiskElement.from_geometry(n=p["disk_node"], material=mat, width=p["width"],
+                                    i_d=2 * p["d_ri"], o_d=2 * p["d_ro"])
+brg = [rs.BearingElement(n=0, kxx=p["k_left"], cxx=0.0),
+       rs.BearingElement(n=p["n_el"], kxx=p["k_right"], cxx=0.0)]
+rotor = rs.Rotor(shaft, [disk], brg)
+w, spp, P = p["speed"], p["spp"], p["periods"]
+T = 2 * np.pi / w
+t = np.arange(round(P * spp) + 1) * T / spp
+F = np.zeros((t.size, rotor.ndof))
+nd = rotor.number_dof
+F[:, nd * p["disk_node"] + 0] = p["f"] * np.cos(w * t)
+F[:, nd * p["disk_node"] + 1] = p["f"] * np.sin(w * t)
+t0 = time.perf_counter()
+res = rotor.run_time_response(w, F, t, method="newmark")
+wall = time.perf_counter() - t0
+y = res.yout[:, nd * p["disk_node"] + 0]
+print(json.dumps({"import_s": t_import, "wall_s": wall, "ndof": rotor.ndof,
+                  "y_disk": y.tolist(), "version": rs.__version__}))
+"""
+
+
+def ross_skipped(case: str, why: str) -> list[Row]:
+    print(f"   skipped ROSS: {why}")
+    return [Row("timedomain", case, "ROSS Newmark", float("nan"), note=f"skipped: {why}")]
+
+
+def ross_env() -> dict[str, str]:
+    path = [str(ROSS_DIR), os.environ.get("PYTHONPATH", "")]
+    return {"PYTHONPATH": os.pathsep.join(p for p in path if p)}
+
+
+def ross_rows(system, inp, quick: bool, repeat: int) -> list[Row]:
+    case = "LINEAR paper rotor (film off), unbalance from rest, 200 steps/period"
+    if not ROSS_DIR.exists():
+        return ross_skipped(case, f"ROSS not installed in {ROSS_DIR} (see benchmarks/README.md)")
+    from rotorsfd.timedomain import Forcing
+
+    cfg = paper_config()
+    sh, dk = cfg.rotor.shaft[0], cfg.rotor.disks[0]
+    mat = cfg.materials[sh.material]
+    u = system.unbalances[0]
+    w = SPEED_RATIO * W1
+    P_ross = 0.05 if quick else 2
+    P = 20 if quick else 2000
+    Fc, Fs = system.unbalance_harmonics(w)
+    f = float(np.hypot(Fc, Fs).max())
+    p = {"rho": mat.density, "E": mat.young_modulus, "G": mat.shear_modulus,
+         "length": sh.length, "n_el": sh.n_elements, "ri": sh.inner_radius,
+         "ro": sh.outer_radius, "disk_node": dk.node - 1, "width": dk.thickness,
+         "d_ri": dk.inner_radius, "d_ro": dk.outer_radius,
+         "k_left": cfg.sfd.centring_stiffness, "k_right": cfg.rotor.supports[0].stiffness,
+         "speed": w, "spp": 200, "periods": P_ross, "f": f}
+    walls, out = [], {}
+    for _ in range(max(1, repeat)):
+        try:
+            out = run_python(ROSS_CODE % json.dumps(p), env=ross_env(), timeout=1800)
+        except (RuntimeError, OSError, ValueError) as exc:  # ROSS absent or broken
+            return ross_skipped(case, f"ROSS failed in a subprocess: {str(exc)[-300:]}")
+        walls.append(out["wall_s"])
+    t_ross = float(np.median(walls)) * P / P_ross
+    # ours on the same linear rotor (no film), same forcing, from rest
+    lin = Forcing(omega=w, harmonics=inp.forcing.harmonics)
+    disk = system.rotor.dof_index(u.node, "y")
+
+    def run_lin(periods: float):
+        from rotorsfd.timedomain import integrate
+
+        return integrate(inp.M, inp.D, inp.K, [], None, None, lin, steps_per_period=200,
+                         n_periods=periods, record_dofs=[disk])
+
+    run_lin(1)
+    t_lin, _, _ = median_time(lambda: run_lin(P), repeat)
+    short = run_lin(P_ross)
+    y_ours = short.q[:, 0]
+    y_ross = np.asarray(out["y_disk"])
+    m = min(y_ours.size, y_ross.size)
+    diff = float(np.max(np.abs(y_ours[:m] - y_ross[:m])) / np.max(np.abs(y_ours[:m])))
+    return [
+        Row("timedomain", case + f", {P} periods", "ours: compiled Newmark (linear)", t_lin,
+            ratio=1.0, ref="ours", repeat=repeat),
+        Row("timedomain", case + f", {P} periods",
+            f"ROSS {out['version']} Newmark (extrapolated)", t_ross, ratio=t_ross / t_lin,
+            ref="ours", repeat=repeat,
+            note=(f"{P_ross:g} periods in {np.median(walls):.2f} s x {P / P_ross:g}; "
+                  f"{out['ndof']} DOF (6/node); max|y_ours - y_ROSS|/max|y| = {diff:.1e} "
+                  f"over {P_ross:g} periods; import {out['import_s']:.1f} s"),
+            extra={"periods_run": P_ross, "wall_s": walls, "rel_diff_disk_y": diff}),
+    ]
 
 
 if __name__ == "__main__":
-    main()
+    import sys
+
+    from benchmarks.__main__ import main
+
+    sys.exit(main(["--only", "timedomain", *sys.argv[1:]]))
