@@ -20,13 +20,14 @@ Omega~ = 0.8 (a stable period-1 point), every node displaced 1 um at t = 0, as
 4. ROSS (optional; ``pip install --target benchmarks/.ross ross-rotordynamics
    'plotly<7'`` plus its imports, see README): the LINEAR rotor (film off, centring spring
    kept, no damping) under the same unbalance from rest, ``run_time_response(...,
-   method='newmark')`` over 2 periods x 200 steps in a subprocess, extrapolated
-   to 2000 periods, against ours on the same linear rotor in the same run; the two
-   responses of the disk node are compared (same model and scheme: they should agree).
+   method='newmark')`` over 1 and 2 periods x 200 steps (after a first call) in a
+   subprocess, extrapolated to 2000 periods from the cost per step (the difference of
+   the two runs) plus the per-call overhead, against ours on the same linear rotor in
+   the same run; the two responses of the disk node are compared (same model and scheme:
+   they should agree).
    Skipped with a message when ROSS does not import.
 
-``--quick``: 20 periods, ``n_short`` = 1, scipy at rtol 1e-3 only (not matched), ROSS
-10 steps.
+``--quick``: 20 periods, ``n_short`` = 1, scipy at rtol 1e-3 only (not matched), no ROSS.
 Run: ``python -m benchmarks --only timedomain``.
 """
 
@@ -187,18 +188,30 @@ disk = rs.DiskElement.from_geometry(n=p["disk_node"], material=mat, width=p["wid
 brg = [rs.BearingElement(n=0, kxx=p["k_left"], cxx=0.0),
        rs.BearingElement(n=p["n_el"], kxx=p["k_right"], cxx=0.0)]
 rotor = rs.Rotor(shaft, [disk], brg)
-w, spp, P = p["speed"], p["spp"], p["periods"]
+w, spp = p["speed"], p["spp"]
 T = 2 * np.pi / w
-t = np.arange(round(P * spp) + 1) * T / spp
-F = np.zeros((t.size, rotor.ndof))
 nd = rotor.number_dof
-F[:, nd * p["disk_node"] + 0] = p["f"] * np.cos(w * t)
-F[:, nd * p["disk_node"] + 1] = p["f"] * np.sin(w * t)
-t0 = time.perf_counter()
-res = rotor.run_time_response(w, F, t, method="newmark")
-wall = time.perf_counter() - t0
+
+
+def response(n_steps):
+    t = np.arange(n_steps + 1) * T / spp
+    F = np.zeros((t.size, rotor.ndof))
+    F[:, nd * p["disk_node"] + 0] = p["f"] * np.cos(w * t)
+    F[:, nd * p["disk_node"] + 1] = p["f"] * np.sin(w * t)
+    t0 = time.perf_counter()
+    res = rotor.run_time_response(w, F, t, method="newmark")
+    return time.perf_counter() - t0, res
+
+
+first, _ = response(5)  # first call (compilation, caches)
+walls = {}
+for n in (p["steps"] // 2, p["steps"]):
+    walls[n], res = response(n)
 y = res.yout[:, nd * p["disk_node"] + 0]
-print(json.dumps({"import_s": t_import, "wall_s": wall, "ndof": rotor.ndof,
+(na, ta), (nb, tb) = walls.items()
+slope = (tb - ta) / (nb - na)
+print(json.dumps({"import_s": t_import, "first_s": first, "wall_s": tb, "ndof": rotor.ndof,
+                  "per_step_s": slope, "overhead_s": ta - slope * na,
                   "y_disk": y.tolist(), "version": rs.__version__}))
 """
 
@@ -215,6 +228,8 @@ def ross_env() -> dict[str, str]:
 
 def ross_rows(system, inp, quick: bool, repeat: int) -> list[Row]:
     case = "LINEAR paper rotor (film off), unbalance from rest, 200 steps/period"
+    if quick:
+        return ross_skipped(case, "not in --quick (importing ROSS alone takes 5-15 s)")
     if not ROSS_DIR.exists():
         return ross_skipped(case, f"ROSS not installed in {ROSS_DIR} (see benchmarks/README.md)")
     from rotorsfd.timedomain import Forcing
@@ -224,7 +239,7 @@ def ross_rows(system, inp, quick: bool, repeat: int) -> list[Row]:
     mat = cfg.materials[sh.material]
     u = system.unbalances[0]
     w = SPEED_RATIO * W1
-    P_ross = 0.05 if quick else 2
+    P_ross = 2
     P = 20 if quick else 2000
     Fc, Fs = system.unbalance_harmonics(w)
     f = float(np.hypot(Fc, Fs).max())
@@ -233,15 +248,17 @@ def ross_rows(system, inp, quick: bool, repeat: int) -> list[Row]:
          "ro": sh.outer_radius, "disk_node": dk.node - 1, "width": dk.thickness,
          "d_ri": dk.inner_radius, "d_ro": dk.outer_radius,
          "k_left": cfg.sfd.centring_stiffness, "k_right": cfg.rotor.supports[0].stiffness,
-         "speed": w, "spp": 200, "periods": P_ross, "f": f}
-    walls, out = [], {}
+         "speed": w, "spp": 200, "steps": round(200 * P_ross), "f": f}
+    walls, steps, out = [], [], {}
     for _ in range(max(1, repeat)):
         try:
             out = run_python(ROSS_CODE % json.dumps(p), env=ross_env(), timeout=1800)
         except (RuntimeError, OSError, ValueError) as exc:  # ROSS absent or broken
             return ross_skipped(case, f"ROSS failed in a subprocess: {str(exc)[-300:]}")
         walls.append(out["wall_s"])
-    t_ross = float(np.median(walls)) * P / P_ross
+        steps.append(out["per_step_s"])
+    # per-step cost from two lengths (n/2 and n steps), plus the per-call overhead
+    t_ross = float(np.median(steps)) * 200 * P + max(0.0, out["overhead_s"])
     # ours on the same linear rotor (no film), same forcing, from rest
     lin = Forcing(omega=w, harmonics=inp.forcing.harmonics)
     disk = system.rotor.dof_index(u.node, "y")
@@ -265,10 +282,14 @@ def ross_rows(system, inp, quick: bool, repeat: int) -> list[Row]:
         Row("timedomain", case + f", {P} periods",
             f"ROSS {out['version']} Newmark (extrapolated)", t_ross, ratio=t_ross / t_lin,
             ref="ours", repeat=repeat,
-            note=(f"{P_ross:g} periods in {np.median(walls):.2f} s x {P / P_ross:g}; "
+            note=(f"{P_ross:g} periods in {np.median(walls):.2f} s; per step "
+                  f"{np.median(steps) * 1e3:.2f} ms (slope from 1 and {P_ross:g} periods) x "
+                  f"{200 * P} steps; first call {out['first_s']:.1f} s; "
                   f"{out['ndof']} DOF (6/node); max|y_ours - y_ROSS|/max|y| = {diff:.1e} "
                   f"over {P_ross:g} periods; import {out['import_s']:.1f} s"),
-            extra={"periods_run": P_ross, "wall_s": walls, "rel_diff_disk_y": diff}),
+            extra={"periods_run": P_ross, "wall_s": walls, "per_step_s": steps,
+                   "overhead_s": out["overhead_s"], "first_s": out["first_s"],
+                   "rel_diff_disk_y": diff}),
     ]
 
 
