@@ -42,6 +42,8 @@ class Executor(Protocol):
 
     def submit(self, fn: Callable[..., Any], /, *args: Any) -> FutureLike: ...
 
+    def share(self, obj: Any) -> Any: ...
+
     def as_completed(self, futures: Iterable[FutureLike]) -> Iterator[FutureLike]: ...
 
     def shutdown(self, interrupted: bool = False) -> None: ...
@@ -77,6 +79,10 @@ class _Base:
 
     def shutdown(self, interrupted: bool = False) -> None:
         pass
+
+    def share(self, obj: Any) -> Any:
+        """``obj`` as an argument for many calls (Dask: sent to the workers once)."""
+        return obj
 
 
 class _LazyFuture:
@@ -185,6 +191,9 @@ class DaskExecutor(_Base):
         self.workers = max(1, sum(w.get("nthreads", 1) for w in info["workers"].values()))
         self.description = f"Dask cluster {address}, {self.workers} threads"
         self._futures: list[Any] = []
+
+    def share(self, obj: Any) -> Any:
+        return self._client.scatter(obj, broadcast=True, hash=False)
 
     def submit(self, fn: Callable[..., Any], /, *args: Any) -> Any:
         fut = self._client.submit(_limited, fn, *args, pure=False)

@@ -381,7 +381,9 @@ def _run(config: Config, grid: Grid, task: Task, store: PointStore, out: Path,
     futures: dict[Any, GridPoint] = {}
     try:
         if todo:
-            futures = {executor.submit(execute_point, task, config, p, keys[p.point_id]): p
+            share = getattr(executor, "share", lambda obj: obj)
+            shared = share(config)
+            futures = {executor.submit(execute_point, task, shared, p, keys[p.point_id]): p
                        for p in todo}
             for fut in executor.as_completed(list(futures)):
                 try:
