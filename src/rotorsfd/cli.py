@@ -328,7 +328,8 @@ def _static(args: argparse.Namespace, config: Any) -> int:
                         help="grid axis replacing [analysis.sweep] axes (repeatable), e.g. "
                              "--axis 'sfd.clearance_ratio=0.4 %%,0.5 %%'"),
                     arg("--task", metavar="NAME[:K=V,...]",
-                        help="task kind (default: analysis.sweep.task)"),
+                        help="task kind: response, simulate, stability-chart, or "
+                             "synthetic (tests) (default: analysis.sweep.task)"),
                     arg("--workers", type=int, metavar="N",
                         help="local worker processes (default: the available CPUs)"),
                     arg("--scheduler", metavar="tcp://HOST:PORT",
