@@ -20,7 +20,7 @@ Omega~ = 0.8 (a stable period-1 point), every node displaced 1 um at t = 0, as
 4. ROSS (optional; ``pip install --target benchmarks/.ross ross-rotordynamics
    'plotly<7'`` plus its imports, see README): the LINEAR rotor (film off, centring spring
    kept, no damping) under the same unbalance from rest, ``run_time_response(...,
-   method='newmark')`` over 1 and 2 periods x 200 steps (after a first call) in a
+   method='newmark')`` over 5 and 10 periods x 200 steps (after a first call) in a
    subprocess, extrapolated to 2000 periods from the cost per step (the difference of
    the two runs) plus the per-call overhead, against ours on the same linear rotor in
    the same run; the two responses of the disk node are compared (same model and scheme:
@@ -239,7 +239,7 @@ def ross_rows(system, inp, quick: bool, repeat: int) -> list[Row]:
     mat = cfg.materials[sh.material]
     u = system.unbalances[0]
     w = SPEED_RATIO * W1
-    P_ross = 2
+    P_ross = 10
     P = 20 if quick else 2000
     Fc, Fs = system.unbalance_harmonics(w)
     f = float(np.hypot(Fc, Fs).max())
@@ -283,7 +283,8 @@ def ross_rows(system, inp, quick: bool, repeat: int) -> list[Row]:
             f"ROSS {out['version']} Newmark (extrapolated)", t_ross, ratio=t_ross / t_lin,
             ref="ours", repeat=repeat,
             note=(f"{P_ross:g} periods in {np.median(walls):.2f} s; per step "
-                  f"{np.median(steps) * 1e3:.2f} ms (slope from 1 and {P_ross:g} periods) x "
+                  f"{np.median(steps) * 1e3:.2f} ms (slope from {P_ross / 2:g} and "
+                  f"{P_ross:g} periods) x "
                   f"{200 * P} steps; first call {out['first_s']:.1f} s; "
                   f"{out['ndof']} DOF (6/node); max|y_ours - y_ROSS|/max|y| = {diff:.1e} "
                   f"over {P_ross:g} periods; import {out['import_s']:.1f} s"),
