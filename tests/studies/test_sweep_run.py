@@ -154,6 +154,16 @@ def test_resume_with_an_extended_grid_reuses_finished_values(config, tmp_path):
     assert rec["index"] == [3] and rec["values"] == {"sfd.clearance_ratio": 0.005}
 
 
+def test_a_grid_invalid_everywhere_is_a_config_error(config, tmp_path):
+    with pytest.raises(ConfigError, match=r"law = 'off'.*every grid point"):
+        run_sweep(config, {"base.pitching.value": [1.0, 2.0]}, TASK, directory=tmp_path,
+                  workers=1, progress=False)
+    r = run_sweep(config, {"sfd.clearance_ratio": [0.004, 1.5]}, TASK,
+                  directory=tmp_path / "b", workers=1, progress=False)
+    assert r.status("000001") == "failed"                   # one bad value: recorded
+    assert "clearance" in r.records["000001"]["message"]
+
+
 def test_a_folder_in_use_is_refused(config, tmp_path):
     from rotorsfd.studies.store import PointStore
 

@@ -373,6 +373,7 @@ def _run(config: Config, grid: Grid, task: Task, store: PointStore, out: Path,
         records = {k: r for k, r in records.items() if r["status"] != "failed"}
     result = SweepResult(grid, task.spec, records, dump_config(config))
     todo = [p for p in points if p.point_id not in records]
+    _check_some_point_valid(config, todo)
     own = executor is None
     if own and todo:
         executor = make_executor(workers, scheduler)
@@ -417,6 +418,22 @@ def _run(config: Config, grid: Grid, task: Task, store: PointStore, out: Path,
         executor.shutdown()
     result.write(out)
     return result
+
+
+def _check_some_point_valid(config: Config, points: Sequence[GridPoint]) -> None:
+    """Raise the first point's ConfigError if no point gives a valid config (the grid
+    itself is wrong, e.g. a base rate whose law is 'off'); single invalid points are
+    recorded as failed when they run."""
+    first: ConfigError | None = None
+    for p in points:
+        try:
+            with_values(config, p.as_dict())
+            return
+        except ConfigError as exc:
+            first = first or exc
+    if first is not None:
+        raise ConfigError(first.field, first.value, first.allowed + " (at every grid "
+                          "point)")
 
 
 def _n_failed(result: SweepResult) -> int:
