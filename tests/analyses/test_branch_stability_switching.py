@@ -20,21 +20,21 @@ from rotorsfd.harmonic.problem import PeriodicProblem
 C, B, K3, F = 0.05, 0.5, 0.5, 0.5
 
 
-def oscillator() -> PeriodicProblem:
+def oscillator(c: float = C, k3: float = K3, amp: float = F) -> PeriodicProblem:
     """``x'' + c x' + x + b x^2 + k3 x^3 = F cos(w t)``, lam = w."""
-    M, D, K, Z = np.eye(1), np.array([[C]]), np.eye(1), np.zeros((1, 1))
+    M, D, K, Z = np.eye(1), np.array([[c]]), np.eye(1), np.zeros((1, 1))
 
     def forcing(lam: float, H: int) -> np.ndarray:
         f = np.zeros((H + 1, 1), complex)
-        f[1, 0] = F
+        f[1, 0] = amp
         return f
 
     return PeriodicProblem(
         n_dof=1, nl_dofs=np.array([0]), matrices=lambda lam: (M, D, K),
         dmatrices=lambda lam: (Z, Z, Z), forcing=forcing,
         dforcing=lambda lam, H: np.zeros((H + 1, 1), complex), frequency=lambda lam: lam,
-        dfrequency=lambda lam: 1.0, nl_force=lambda q, v: -B * q**2 - K3 * q**3,
-        nl_jacobian=lambda q, v: ((-2 * B * q - 3 * K3 * q**2)[..., None],
+        dfrequency=lambda lam: 1.0, nl_force=lambda q, v: -B * q**2 - k3 * q**3,
+        nl_jacobian=lambda q, v: ((-2 * B * q - 3 * k3 * q**2)[..., None],
                                   np.zeros((*q.shape, 1))), name="quadratic-cubic oscillator")
 
 
@@ -102,3 +102,22 @@ def test_switch_to_the_period_two_branch_matches_time_integration(case):
     for y0 in ((x0 + 1e-3, v0), (0.0, 0.0)):           # near the orbit, and from rest
         a = time_domain_subharmonic(w, y0)
         assert abs(abs(a) - abs(X2[1, 0])) < 1e-7 * abs(X2[1, 0])
+
+
+def test_subcritical_period_doubling_continues_past_the_fold():
+    """Stronger forcing and damping (c 0.1, k3 0.1, F 1): the period-2 branch leaves the
+    lower PD backwards (subcritical, unstable), folds and comes back stable: two legs."""
+    p = oscillator(c=0.1, k3=0.1, amp=1.0)
+    branch = continue_periodic(p, 1.4, 3.5, 7, ds=0.05, ds_max=0.1)
+    pd = branch_stability(branch, p).bifurcations[0]
+    assert pd.kind == "period-doubling"
+    pt = branch.point_at(pd.s)
+    sw = switch_period_doubling(p, pt.lam, pt.X, (1.4, 2.6))
+    leg = sw.legs[0]
+    assert len(sw.legs) == 2 and leg.lam[0] < pd.lam          # subcritical
+    assert len(leg.folds()) >= 1 and leg.lam.min() < pd.lam - 0.05
+    st = branch_stability(leg, sw.problem)
+    assert not st.stable[0]                                    # born unstable
+    assert st.bifurcations[0].kind == "saddle-node"            # regains stability at a fold
+    assert st.stable[leg.folds()[0] + 2:].any()
+    np.testing.assert_allclose(sw.legs[1].X[0], leg.X[-1])     # second leg starts there
