@@ -35,6 +35,8 @@ REGISTRY: dict[str, tuple[str, str]] = {
     "memory": ("peak resident memory", "bench_memory:run"),
     "scaling": ("cost per continuation point against H and shaft elements",
                 "bench_scaling:run"),
+    "branch-stability": ("stability of every branch point + bifurcation location",
+                         "bench_branch_stability:run"),
 }
 
 
