@@ -30,9 +30,17 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.linalg import lapack
 
-from rotorsfd.harmonic.fourier import aft_matrices, to_complex, to_real
+from rotorsfd.harmonic import banded
+from rotorsfd.harmonic.aft_kernels import (
+    as_kernel_cfunc,
+    condensed_assembly,
+    condensed_residual,
+    force_coefficients,
+    project,
+)
+from rotorsfd.harmonic.fourier import aft_matrices, aliasing_error, to_complex, to_real
 from rotorsfd.harmonic.problem import PeriodicProblem
-from rotorsfd.harmonic.residual import nonlinear_coefficients, real_blocks
+from rotorsfd.harmonic.residual import nonlinear_coefficients, nonlinear_samples, real_blocks
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -74,6 +82,18 @@ def apply_blocks(A: ComplexArray, Y: FloatArray) -> FloatArray:
     return to_real(A @ to_complex(Y))
 
 
+def _kernel_status(problem: PeriodicProblem, status: int, q: FloatArray, v: FloatArray
+                   ) -> None:
+    """Raise for a nonzero status of a compiled AFT: sample status - 1 rejected by the
+    kernel (the force law's own error, e.g. JournalContactError), or a non-finite force."""
+    if status > 0:
+        problem.nl_force(q[status - 1], v[status - 1])
+        raise FloatingPointError(f"nonlinear kernel rejected the state q={q[status - 1]}, "
+                                 f"v={v[status - 1]}")
+    if status < 0:
+        raise FloatingPointError("non-finite nonlinear force in AFT")
+
+
 class CondensedHB:
     """HB-AFT residual condensed exactly onto nl_dofs (module docstring)."""
 
@@ -85,9 +105,14 @@ class CondensedHB:
         m = problem.m
         self.delta = np.zeros((H + 1, m, m), dtype=complex)
         self._delta_real = np.zeros((self.n_unknowns, self.n_unknowns))
+        self._delta_seen: tuple | None = None  # (delta object, its diagonal or None)
         self._cache: Condensed | None = None
-        self._band: tuple | None = None      # (kl, ku, gather/scatter indices, guard)
+        self._band: tuple[int, int] | None = None  # (kl, ku); (-1, -1): dense
+        self._scanned: tuple = (None,) * 6   # matrices known to lie inside the band
         self._last: tuple | None = None      # (lam, xs, G) of the last AFT
+        self._kernel = (as_kernel_cfunc(problem.nl_kernel)
+                        if problem.nl_kernel is not None else None)
+        self._work: tuple | None = None      # AFT work arrays
 
     # -- shift --------------------------------------------------------------------------
     def set_shift(self, xs: FloatArray, lam: float) -> None:
@@ -109,9 +134,19 @@ class CondensedHB:
         self._cache = None
         self._last = None
 
+    def _delta_diagonal(self) -> ComplexArray | None:
+        """Diagonal (H+1, m) of the shift, or None if it is not diagonal."""
+        seen = self._delta_seen
+        if seen is None or seen[0] is not self.delta:
+            d = np.ascontiguousarray(np.diagonal(self.delta, axis1=1, axis2=2))
+            diagonal = np.count_nonzero(self.delta) == np.count_nonzero(d)
+            self._delta_seen = seen = (self.delta, d if diagonal else None)
+        return seen[1]
+
     # -- condensation -------------------------------------------------------------------
     def condense(self, lam: float, deriv: bool = True) -> Condensed:
-        """Receptances and particular responses at lam (one complex LU per harmonic)."""
+        """Receptances and particular responses at lam (one complex LU per harmonic;
+        :mod:`rotorsfd.harmonic.banded` for banded matrices, LAPACK for dense ones)."""
         c = self._cache
         if c is not None and c.lam == lam and (c.dHt is not None or not deriv):
             return c
@@ -119,126 +154,141 @@ class CondensedHB:
         M, D, K = p.matrices(lam)
         w = p.frequency(lam)
         n = p.n_dof
-        F = p.forcing(lam, H)
-        rhs = np.zeros((n, m + 1), dtype=complex, order="F")
-        rhs[s, np.arange(m)] = 1.0
-        sel = np.asfortranarray(rhs[:, :m])
+        F = np.ascontiguousarray(p.forcing(lam, H), dtype=complex)
+        dM, dD, dK = p.dmatrices(lam) if deriv else (M, D, K)
+        dF = np.ascontiguousarray(p.dforcing(lam, H), dtype=complex) if deriv else F
+        dw = p.dfrequency(lam) if deriv else 0.0
         sol = np.empty((H + 1, n, m + 1), dtype=complex)
-        rows = np.empty((H + 1, m, n), dtype=complex)
-        band = self._band_structure(lam, M, D, K)
-        if band is not None:
-            self._banded_solves(M, D, K, w, band, rhs, sel, F, sol, rows if deriv else None)
-        else:
-            self._dense_solves(M, D, K, w, rhs, sel, F, sol, rows if deriv else None)
-        C, u = sol[:, :, :m], sol[:, :, m]
-        if not np.all(np.isfinite(sol)):
+        dsol = np.empty((H + 1, m, m + 1), dtype=complex)
+        Ht, dHt = np.empty((2, H + 1, m, m), dtype=complex)
+        Pt, dPt = np.empty((2, H + 1, m), dtype=complex)
+        mats = tuple(np.ascontiguousarray(A, dtype=float) for A in (M, D, K, dM, dD, dK))
+        diag = self._delta_diagonal()
+        # scan for nonzeros outside the band only the matrices not scanned before (the
+        # problem returns the same array objects for constant matrices, e.g. M and K)
+        check = np.array([A is not B for A, B in zip(mats, self._scanned, strict=True)])
+        status = banded.OUTSIDE_BAND
+        while status == banded.OUTSIDE_BAND:
+            kl, ku = self._bandwidths(mats)
+            if kl < 0 or diag is None:
+                self._dense_solves(*mats, w, dw, F, dF, deriv, sol, dsol)
+                status = banded._split(s, deriv, sol, dsol, Ht, Pt, dHt, dPt)
+                break
+            status = banded.condense_banded(*mats, w, dw, kl, ku, s, diag, F, dF, deriv,
+                                            check, sol, dsol, Ht, Pt, dHt, dPt)
+            if status == banded.OUTSIDE_BAND:
+                kl2, ku2 = _bandwidth(*mats)
+                self._band = (max(kl, kl2), max(ku, ku2))
+            else:
+                self._scanned = mats
+        if status > 0:
+            raise FloatingPointError(f"singular dynamic stiffness Z_{status - 1} "
+                                     f"(w={w:.6g}, lam={lam:.6g})")
+        if status == banded.NOT_FINITE:
             raise FloatingPointError(f"singular dynamic stiffness at lam={lam:.6g}")
-        out = Condensed(lam, C[:, s, :], u[:, s], u, C)
-        if deriv:
-            # T_k = S Zt_k^-1 dZ_k, dZ_k = dK - (kw)^2 dM - 2k^2 w w' M + ik(w' D + w dD)
-            dM, dD, dK = p.dmatrices(lam)
-            dw = p.dfrequency(lam)
-            R2 = np.concatenate([rows.real, rows.imag]).reshape(-1, n)
-
-            def prod(A: FloatArray) -> ComplexArray:
-                P = (R2 @ A).reshape(2, H + 1, m, n)
-                return P[0] + 1j * P[1]
-
-            k = np.arange(H + 1)[:, None, None]
-            T = 1j * k * prod(dw * D + w * dD)
-            if dK.any():
-                T += prod(dK)
-            if dM.any():
-                T -= (k * w) ** 2 * prod(dM)
-            if dw != 0.0:
-                T -= 2 * k**2 * w * dw * prod(M)
-            out.dHt = -T @ C
-            out.dPt = np.einsum("kmn,kn->km", rows, p.dforcing(lam, H)) \
-                - np.einsum("kmn,kn->km", T, u)
+        out = Condensed(lam, Ht, Pt, sol[:, :, m], sol[:, :, :m],
+                        dHt if deriv else None, dPt if deriv else None)
         self._cache = out
         return out
 
-    def _dense_solves(self, M, D, K, w, rhs, sel, F, sol, rows) -> None:
-        """Dense complex LU of Zt_k per harmonic; fills sol = Zt^-1 [S^T, F_k], rows."""
+    def _bandwidths(self, mats: list[FloatArray]) -> tuple[int, int]:
+        """(kl, ku) of the band used, found at the first call (the union of the patterns
+        of the matrices and their derivatives) and widened when the kernel meets a nonzero
+        outside it; (-1, -1) when the band is too wide to pay off (dense LAPACK)."""
+        if self._band is None:
+            self._band = _bandwidth(*mats)
+        kl, ku = self._band
+        if kl >= 0 and 3 * (kl + ku + 1) >= self.problem.n_dof:
+            self._band = (kl, ku) = (-1, -1)
+        return kl, ku
+
+    def _dense_solves(self, M, D, K, dM, dD, dK, w, dw, F, dF, deriv, sol, dsol) -> None:
+        """Dense complex LU (LAPACK) of Zt_k per harmonic; the same outputs as
+        :func:`rotorsfd.harmonic.banded.condense_banded`."""
         s, m, n = self.problem.nl_dofs, self.problem.m, self.problem.n_dof
         Zk = np.empty((n, n), dtype=complex)
+        rhs = np.zeros((n, m + 1), dtype=complex, order="F")
+        rhs[s, np.arange(m)] = 1.0
         for k in range(self.H + 1):
+            kw = k * w
             # Zk is C-ordered, so Zk.T is Fortran-contiguous: LAPACK factors Z_k^T in place
-            Zk.real = K - (k * w) ** 2 * M
-            Zk.imag = (k * w) * D
-            Zk[s, s] += np.diag(self.delta[k])
+            Zk.real = K - kw**2 * M
+            Zk.imag = kw * D
+            Zk[np.ix_(s, s)] += self.delta[k]
             lu, piv, info = lapack.zgetrf(Zk.T, overwrite_a=True)
             if info != 0:
                 raise FloatingPointError(f"singular dynamic stiffness Z_{k} (w={w:.6g})")
             rhs[:, m] = F[k]
             sol[k] = lapack.zgetrs(lu, piv, rhs, trans=1)[0]       # Z_k x = rhs
-            if rows is not None:
-                rows[k] = lapack.zgetrs(lu, piv, sel)[0].T        # rows s of Z_k^-1
-
-    def _band_structure(self, lam: float, M: FloatArray, D: FloatArray, K: FloatArray
-                        ) -> tuple | None:
-        """Band of the matrices (the union of their patterns and those of dmatrices, found
-        once), or None when it is too wide to pay off. Every call checks that M, D, K have
-        nothing outside the band (cheap gather), and widens it if they do."""
-        n = self.problem.n_dof
-        if self._band is not None:
-            out = self._band[-1]
-            if not any(np.take(A, out).any() for A in (M, D, K)):
-                return self._band if self._band[0] >= 0 else None
-        kl, ku = _bandwidth(M, D, K, *self.problem.dmatrices(lam))
-        if self._band is not None and self._band[0] >= 0:
-            kl, ku = max(kl, self._band[0]), max(ku, self._band[1])
-        i, j = np.indices((n, n))
-        inside = (i - j <= kl) & (j - i <= ku)
-        out = np.flatnonzero(~inside)
-        if 3 * (kl + ku + 1) >= n:
-            self._band = (-1, -1, out)
-            return None
-        ii, jj = i[inside], j[inside]
-        # LAPACK band storage ab[kl + ku + i - j, j]; stored as abT[j, kl + ku + i - j]
-        self._band = (kl, ku, ii * n + jj, jj, kl + ku + ii - jj, out)
-        return self._band
-
-    def _banded_solves(self, M, D, K, w, band, rhs, sel, F, sol, rows) -> None:
-        """Banded complex LU (LAPACK gbtrf) of Zt_k per harmonic; same outputs."""
-        s, m, n = self.problem.nl_dofs, self.problem.m, self.problem.n_dof
-        kl, ku, flat, jj, rr, _ = band
-        kw = w * np.arange(self.H + 1)[:, None]
-        vals = np.take(K, flat) - kw**2 * np.take(M, flat) + 1j * kw * np.take(D, flat)
-        abT = np.zeros((self.H + 1, n, 2 * kl + ku + 1), dtype=complex)
-        abT[:, jj, rr] = vals
-        abT[:, s, kl + ku] += np.diagonal(self.delta, axis1=1, axis2=2)
-        for k in range(self.H + 1):
-            lu, piv, info = lapack.zgbtrf(abT[k].T, kl, ku, overwrite_ab=True)
-            if info != 0:
-                raise FloatingPointError(f"singular dynamic stiffness Z_{k} (w={w:.6g})")
-            rhs[:, m] = F[k]
-            sol[k] = lapack.zgbtrs(lu, kl, ku, rhs, piv)[0]
-            if rows is not None:
-                rows[k] = lapack.zgbtrs(lu, kl, ku, sel, piv, trans=1)[0].T
+            if deriv:
+                dZ = (dK - kw**2 * dM - 2 * k * kw * dw * M) + 1j * k * (dw * D + w * dD)
+                r2 = -(dZ @ sol[k])
+                r2[:, m] += dF[k]
+                dsol[k] = lapack.zgetrs(lu, piv, np.asfortranarray(r2), trans=1)[0][s]
 
     # -- residual -----------------------------------------------------------------------
+    def _work_arrays(self) -> tuple:
+        if self._work is None:
+            N, nh, m = self.aft.N, 2 * self.H + 1, self.problem.m
+            self._work = (np.empty((N, m)), np.empty((N, m)), np.empty((N, m)),
+                          np.empty((N, m)), np.empty((N, m, m)), np.empty((N, m, m)),
+                          np.empty((nh, m, nh, m)), np.empty((nh, m)),
+                          np.zeros((self.H + 1, m, m), dtype=complex),
+                          np.zeros((self.H + 1, m), dtype=complex))
+        return self._work
+
     def residual(self, xs: FloatArray, lam: float, jac: bool = True
                  ) -> tuple[FloatArray, FloatArray | None, FloatArray | None]:
-        """Receptance-form residual R (2H+1, m); with jac also dR/dxs (nu, nu), dR/dlam."""
-        p, H = self.problem, self.H
-        xs = xs.reshape(2 * H + 1, p.m)
+        """Receptance-form residual R (2H+1, m); with jac also dR/dxs (nu, nu), dR/dlam
+        (the AFT and the assembly in compiled loops, :mod:`rotorsfd.harmonic.aft_kernels`)."""
+        p, H, nu = self.problem, self.H, self.n_unknowns
+        xs = np.ascontiguousarray(xs, dtype=float).reshape(2 * H + 1, p.m)
         w = p.frequency(lam)
+        dw = p.dfrequency(lam) if jac else 0.0
         cd = self.condense(lam, deriv=jac)
-        nl = nonlinear_coefficients(p, self.aft, xs, w, jac)
-        self._last = (lam, xs.copy(), nl.G)
-        Xs = to_complex(xs)
-        Gt = to_complex(nl.G) + np.einsum("kij,kj->ki", self.delta, Xs)
-        R = xs - to_real(cd.Pt + np.einsum("kij,kj->ki", cd.Ht, Gt))
+        q, dq, v, f, dfq, dfv, dG, dGdw, zH, zP = self._work_arrays()
+        dHt, dPt = (cd.dHt, cd.dPt) if jac else (zH, zP)
+        G = np.empty_like(xs)
+        R = np.empty_like(xs)
+        J = np.empty((nu, nu)) if jac else np.empty((0, 0))
+        dR = np.empty_like(xs)
+        a = self.aft
+        delta = np.ascontiguousarray(self.delta, dtype=complex)
+        if self._kernel is not None:
+            status = condensed_residual(self._kernel, p.nl_kernel_params, xs, w, dw, a.E,
+                                        a.Ed, a.P, delta, self._delta_real, cd.Ht, cd.Pt,
+                                        dHt, dPt, jac, q, dq, v, f, dfq, dfv, G, dG, dGdw,
+                                        R, J, dR)
+            _kernel_status(p, status, q, v)
+        else:
+            nl = nonlinear_samples(p, a, xs, w, jac)
+            if not project(a.P, a.E, a.Ed, w, nl[0], nl[1], nl[2], nl[3], jac, G, dG, dGdw):
+                raise FloatingPointError("non-finite nonlinear force in AFT")
+            condensed_assembly(xs, G, dG.reshape(nu, nu), dGdw, delta, self._delta_real,
+                               cd.Ht, cd.Pt, dHt, dPt, dw, jac, R, J, dR)
+        self._last = (lam, xs.copy(), G)
         if not jac:
             return R, None, None
-        nu = self.n_unknowns
-        dGt = (nl.dG.reshape(nu, nu) + self._delta_real).reshape(2 * H + 1, p.m, nu)
-        J = np.eye(nu) - apply_blocks(cd.Ht, dGt).reshape(nu, nu)
-        dGdl = p.dfrequency(lam) * to_complex(nl.dGdw)
-        dR = -to_real(cd.dPt + np.einsum("kij,kj->ki", cd.dHt, Gt)
-                      + np.einsum("kij,kj->ki", cd.Ht, dGdl))
         return R, J, dR.reshape(nu)
+
+    def aliasing(self, xs: FloatArray, lam: float) -> float:
+        """:func:`rotorsfd.harmonic.fourier.aliasing_error` at (xs, lam), the 2N-sample
+        force by the compiled kernel when the problem has one."""
+        p, H = self.problem, self.H
+        xs = np.ascontiguousarray(xs, dtype=float).reshape(2 * H + 1, p.m)
+        w, N = p.frequency(lam), self.aft.N
+        G_N = self.last_G(xs, lam)
+        if self._kernel is None or G_N is None:
+            return aliasing_error(p.nl_force, xs, w, N, G_N)
+        a2 = aft_matrices(H, 2 * N)
+        q, dq, v, f = (np.empty((2 * N, p.m)) for _ in range(4))
+        dfq, dfv = np.empty((2 * N, p.m, p.m)), np.empty((2 * N, p.m, p.m))
+        G2 = np.empty_like(xs)
+        status = force_coefficients(self._kernel, p.nl_kernel_params, xs, w, a2.E, a2.Ed,
+                                    a2.P, q, dq, v, f, dfq, dfv, G2)
+        _kernel_status(p, status, q, v)
+        scale = max(float(np.max(np.abs(G2))), np.finfo(float).tiny)
+        return float(np.max(np.abs(G2 - G_N))) / scale
 
     def schur_jacobian(self, J: FloatArray, dR: FloatArray, lam: float) -> FloatArray:
         """Jacobian [dR_schur/dxs, dR_schur/dlam] (nu, nu+1) from the receptance-form one

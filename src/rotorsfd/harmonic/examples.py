@@ -94,6 +94,13 @@ def sfd_nonlinearity(sfd):
     return force, jacobian, limit, force_jacobian
 
 
+def _kernel_of(sfd) -> dict:
+    """The SFD's compiled kernel for :class:`PeriodicProblem` (none for the radial damper)."""
+    if sfd is None:
+        return {}
+    return {"nl_kernel": sfd.numba_kernel, "nl_kernel_params": sfd.kernel_params}
+
+
 def jeffcott_damper(mass: float = 10.0, stiffness: float = 1e6, damping: float = 20.0,
                     unbalance: float = 1e-4, c0: float = 400.0, clearance: float = 2e-4,
                     static: tuple[float, float] = (0.0, 0.0), sfd=None) -> PeriodicProblem:
@@ -121,7 +128,8 @@ def jeffcott_damper(mass: float = 10.0, stiffness: float = 1e6, damping: float =
         n_dof=2, nl_dofs=np.array([0, 1]), matrices=_const(M, D, K), dmatrices=_const(Z, Z, Z),
         forcing=forcing, dforcing=dforcing, frequency=lambda lam: lam,
         dfrequency=lambda lam: 1.0, nl_force=force, nl_jacobian=jac, scaling=clearance,
-        nl_limit=limit, name="jeffcott_damper", nl_force_jacobian=both)
+        nl_limit=limit, name="jeffcott_damper", nl_force_jacobian=both,
+        **_kernel_of(sfd))
 
 
 def _beam_element(L: float, EI: float, rhoA: float) -> tuple[FloatArray, FloatArray]:
@@ -195,7 +203,7 @@ def beam_rotor(n_nodes: int = 21, unbalance: float = 1.44e-4, c0: float = 500.0,
         dmatrices=lambda lam: (Z, G, Z), forcing=forcing, dforcing=dforcing,
         frequency=lambda lam: lam, dfrequency=lambda lam: 1.0, nl_force=force,
         nl_jacobian=jac, scaling=clearance, nl_limit=limit, name="beam_rotor",
-        nl_force_jacobian=both)
+        nl_force_jacobian=both, **_kernel_of(sfd))
 
 
 def generic_chain(n: int = 6, nl: tuple[int, int] = (2, 3), seed: int = 0

@@ -75,7 +75,7 @@ class HBSystem:
         x, lam = self.from_z(z)
         R, J, dR = self.hb.residual(x, lam, jac=True)
         Jz = np.empty((self.n, self.n + 1))
-        Jz[:, :-1] = J * (self.cx[None, :] / self.cr[:, None])
+        Jz[:, :-1] = J if self.condensed else J * (self.cx[None, :] / self.cr[:, None])
         Jz[:, -1] = dR * (self.lam_scale / self.cr)
         return R.ravel() / self.cr, Jz
 
@@ -109,6 +109,8 @@ class HBSystem:
     def aliasing(self, z: FloatArray) -> float:
         x, lam = self.from_z(z)
         xs = self.hb.nl_part(x)
+        if isinstance(self.hb, CondensedHB):
+            return self.hb.aliasing(xs, lam)
         return aliasing_error(self.problem.nl_force, xs, self.problem.frequency(lam), self.N,
                               self.hb.last_G(xs, lam))
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -47,6 +48,11 @@ class PeriodicProblem:
     name : label for messages.
     nl_force_jacobian(q_nl, v_nl) -> (F, dF/dq, dF/dv), optional: both in one pass (e.g.
         ``SFD.force_and_jacobian``), used instead of two calls when given.
+    nl_kernel, nl_kernel_params : optional compiled form of the same force law, the
+        kernel of ``docs/INTERFACES.md`` (``kernel(q, v, params, F, dFdq, dFdv) -> int``,
+        one sample, nonzero on contact; e.g. ``SFD.numba_kernel``, ``SFD.kernel_params``).
+        When given, the condensed HB evaluates the AFT in compiled loops with it; it must
+        agree with nl_force / nl_jacobian (which still serve the other paths).
     """
 
     n_dof: int
@@ -64,6 +70,8 @@ class PeriodicProblem:
     name: str = field(default="periodic problem")
     nl_force_jacobian: Callable[[FloatArray, FloatArray],
                                 tuple[FloatArray, FloatArray, FloatArray]] | None = None
+    nl_kernel: Any = None
+    nl_kernel_params: FloatArray | None = None
 
     def __post_init__(self) -> None:
         self.nl_dofs = np.atleast_1d(np.asarray(self.nl_dofs, dtype=np.int64))
@@ -71,6 +79,10 @@ class PeriodicProblem:
             raise ValueError(f"nl_dofs {self.nl_dofs} out of range for n_dof={self.n_dof}")
         if len(np.unique(self.nl_dofs)) != len(self.nl_dofs):
             raise ValueError(f"nl_dofs {self.nl_dofs} has repeated entries")
+        if self.nl_kernel is not None:
+            self.nl_kernel_params = np.ascontiguousarray(
+                np.zeros(0) if self.nl_kernel_params is None else self.nl_kernel_params,
+                dtype=np.float64)
         c = np.broadcast_to(np.asarray(self.scaling, dtype=float), (self.n_dof,))
         if not np.all(np.isfinite(c)) or np.any(c <= 0):
             raise ValueError(f"scaling must be positive and finite, got {self.scaling!r}")

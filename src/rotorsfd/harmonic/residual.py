@@ -68,6 +68,27 @@ def nonlinear_coefficients(problem: PeriodicProblem, aft: AFTMatrices, xs: Float
     return NonlinearCoefficients(G, dG, dGdw, q)
 
 
+def nonlinear_samples(problem: PeriodicProblem, aft: AFTMatrices, xs: FloatArray,
+                      w: float, jac: bool = True
+                      ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """The force at the AFT samples by the problem's callables: ``(f (N, m), dF/dq,
+    dF/dv (N, m, m), dq/dtau (N, m))``, C-contiguous (dF/dq, dF/dv of shape (1, m, m)
+    and not computed when not jac)."""
+    dq_tau = aft.Ed @ xs
+    q, v = aft.E @ xs, w * dq_tau
+    if jac and problem.nl_force_jacobian is not None:
+        f, dfq, dfv = problem.nl_force_jacobian(q, v)
+    else:
+        f = problem.nl_force(q, v)
+        if jac:
+            dfq, dfv = problem.nl_jacobian(q, v)
+        else:
+            dfq = dfv = np.zeros((1, problem.m, problem.m))
+    c = np.ascontiguousarray
+    return (c(f, dtype=float), c(dfq, dtype=float), c(dfv, dtype=float),
+            c(dq_tau, dtype=float))
+
+
 def dynamic_stiffness(M: FloatArray, D: FloatArray, K: FloatArray, w: float,
                       H: int) -> ComplexArray:
     """``Z_k = K - (k w)^2 M + i k w D`` for k = 0..H, stacked (H+1, n, n)."""

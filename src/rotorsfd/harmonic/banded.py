@@ -1,0 +1,268 @@
+"""Compiled per-harmonic condensation of a banded dynamic stiffness (numba).
+
+For k = 0..H the shifted dynamic stiffness ``Zt_k = K - (kw)^2 M + i kw D + S^T Delta_k S``
+(Delta_k diagonal, on the nonlinear DOFs s) is factorised once by a complex banded LU with
+partial pivoting (the algorithm of LAPACK ``zgbtf2``: lower and upper bandwidths kl, ku,
+fill-in up to kl + ku above the diagonal, pivot = largest ``|re| + |im|``), and the same
+factors give
+
+- ``C_k = Zt_k^-1 S^T`` and ``u_k = Zt_k^-1 F_k`` (m + 1 right-hand sides), and
+- the exact lam-derivatives of the receptance and of the particular response from
+  ``d(Zt^-1) = -Zt^-1 dZ Zt^-1``: the rows s of ``Zt_k^-1 [-dZ_k C_k, dF_k - dZ_k u_k]``
+  are ``[dHt_k, dPt_k]``, with ``dZ_k = dK - (kw)^2 dM - 2 k^2 w w' M + i k (w' D + w dD)``.
+
+All harmonics in one call, no Python between them (the LU and the solves run at the speed
+of LAPACK ``zgbtrf``/``zgbtrs`` on these sizes, without their per-call overhead); the
+arithmetic is LAPACK's, so the results agree with it to rounding. Band storage (the
+transpose of LAPACK's): ``ab[j, kl + ku + i - j] = A[i, j]``, shape (n, 2 kl + ku + 1);
+column j of A is the contiguous row ``ab[j]``, its first kl entries hold the fill-in.
+(Running the H+1 factorisations side by side, harmonics as the innermost SIMD axis, was
+measured slower on the paper rotor: the loops are too short to vectorise.)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+#: return codes of :func:`condense_banded` (k + 1 > 0: Zt_k is singular)
+OK, OUTSIDE_BAND, NOT_FINITE = 0, -1, -2
+
+@njit(cache=True)
+def band_lu(ab: np.ndarray, kl: int, ku: int, ipiv: np.ndarray) -> int:
+    """In-place LU with partial pivoting of a band matrix (module docstring for the
+    storage; ``ab[j, :kl]`` zero on entry). Returns 0, or j + 1 if the pivot of column j
+    is exactly zero (singular)."""
+    n = ab.shape[0]
+    kv = kl + ku
+    ju = 0
+    for j in range(n):
+        km = min(kl, n - 1 - j)
+        jp = 0
+        big = abs(ab[j, kv].real) + abs(ab[j, kv].imag)
+        for t in range(1, km + 1):
+            a = ab[j, kv + t]
+            v = abs(a.real) + abs(a.imag)
+            if v > big:
+                big = v
+                jp = t
+        ipiv[j] = j + jp
+        if big == 0.0:
+            return j + 1
+        ju = max(ju, min(j + ku + jp, n - 1))
+        if jp != 0:
+            for c in range(j, ju + 1):
+                o = kv + j - c
+                tmp = ab[c, o]
+                ab[c, o] = ab[c, o + jp]
+                ab[c, o + jp] = tmp
+        r = 1.0 / ab[j, kv]
+        for t in range(1, km + 1):
+            ab[j, kv + t] *= r
+        for c in range(j + 1, ju + 1):
+            o = kv + j - c
+            a = ab[c, o]
+            if a != 0.0:
+                for t in range(1, km + 1):
+                    ab[c, o + t] -= ab[j, kv + t] * a
+    return 0
+
+@njit(cache=True)
+def band_solve(ab: np.ndarray, kl: int, ku: int, ipiv: np.ndarray, b: np.ndarray) -> None:
+    """Solve ``A x = b`` in place for the columns of b (n, nrhs) with the factors of
+    :func:`band_lu` (LAPACK ``zgbtrs``, no transpose)."""
+    n = ab.shape[0]
+    kv = kl + ku
+    nr = b.shape[1]
+    for j in range(n - 1):
+        p = ipiv[j]
+        if p != j:
+            for r in range(nr):
+                tmp = b[j, r]
+                b[j, r] = b[p, r]
+                b[p, r] = tmp
+        for t in range(1, min(kl, n - 1 - j) + 1):
+            lv = ab[j, kv + t]
+            if lv != 0.0:
+                for r in range(nr):
+                    b[j + t, r] -= lv * b[j, r]
+    for j in range(n - 1, -1, -1):
+        d = 1.0 / ab[j, kv]
+        for r in range(nr):
+            b[j, r] *= d
+        for i in range(max(0, j - kv), j):
+            uv = ab[j, kv + i - j]
+            if uv != 0.0:
+                for r in range(nr):
+                    b[i, r] -= uv * b[j, r]
+
+@njit(cache=True)
+def _outside_band(A: np.ndarray, kl: int, ku: int) -> bool:
+    n = A.shape[0]
+    for i in range(n):
+        for j in range(0, max(0, i - kl)):
+            if A[i, j] != 0.0:
+                return True
+        for j in range(min(n, i + ku + 1), n):
+            if A[i, j] != 0.0:
+                return True
+    return False
+
+@njit(cache=True)
+def _real_harmonic0(delta: np.ndarray, F: np.ndarray, dF: np.ndarray, deriv: bool) -> bool:
+    """Whether harmonic 0 is real (Delta_0, F_0 and, with deriv, dF_0 real)."""
+    for a in range(delta.shape[1]):
+        if delta[0, a].imag != 0.0:
+            return False
+    for i in range(F.shape[1]):
+        if F[0, i].imag != 0.0 or (deriv and dF[0, i].imag != 0.0):
+            return False
+    return True
+
+
+@njit(cache=True)
+def _static_harmonic(M: np.ndarray, K: np.ndarray, dK: np.ndarray, kl: int, ku: int,
+                     s: np.ndarray, delta: np.ndarray, F: np.ndarray, dF: np.ndarray,
+                     deriv: bool, sol: np.ndarray, dsol: np.ndarray) -> int:
+    """Harmonic 0 of :func:`condense_banded` in real arithmetic (``Zt_0 = K + S^T Delta_0
+    S``, ``dZ_0 = dK``; a quarter of the complex work), when it is real."""
+    n = K.shape[0]
+    m = s.shape[0]
+    kv = kl + ku
+    ab = np.zeros((n, 2 * kl + ku + 1))
+    for j in range(n):
+        for i in range(max(0, j - ku), min(n, j + kl + 1)):
+            ab[j, kv + i - j] = K[i, j]
+    for a in range(m):
+        ab[s[a], kv] += delta[0, a].real
+    ipiv = np.empty(n, dtype=np.int64)
+    if band_lu(ab, kl, ku, ipiv) != 0:
+        return 1
+    x = np.zeros((n, m + 1))
+    for i in range(n):
+        x[i, m] = F[0, i].real
+    for a in range(m):
+        x[s[a], a] = 1.0
+    band_solve(ab, kl, ku, ipiv, x)
+    for i in range(n):
+        for c in range(m + 1):
+            sol[0, i, c] = x[i, c]
+    if not deriv:
+        return 0
+    y = np.zeros((n, m + 1))
+    for i in range(n):
+        y[i, m] = dF[0, i].real
+        for j in range(max(0, i - kl), min(n, i + ku + 1)):
+            dz = dK[i, j]
+            if dz != 0.0:
+                for c in range(m + 1):
+                    y[i, c] -= dz * x[j, c]
+    band_solve(ab, kl, ku, ipiv, y)
+    for a in range(m):
+        for c in range(m + 1):
+            dsol[0, a, c] = y[s[a], c]
+    return 0
+
+
+@njit(cache=True)
+def condense_banded(M: np.ndarray, D: np.ndarray, K: np.ndarray, dM: np.ndarray,
+                    dD: np.ndarray, dK: np.ndarray, w: float, dw: float, kl: int, ku: int,
+                    s: np.ndarray, delta: np.ndarray, F: np.ndarray, dF: np.ndarray,
+                    deriv: bool, check: np.ndarray, sol: np.ndarray, dsol: np.ndarray,
+                    Ht: np.ndarray, Pt: np.ndarray, dHt: np.ndarray, dPt: np.ndarray) -> int:
+    """Condensation of all harmonics (module docstring).
+
+    Inputs: M, D, K, dM, dD, dK (n, n) C-contiguous; w, w' = dw/dlam; bandwidths kl, ku;
+    s (m,) nonlinear DOFs; delta (H+1, m) the diagonal of Delta_k; F, dF (H+1, n);
+    check (6,) bool: which of the six matrices to scan for nonzeros outside the band.
+    Outputs: sol (H+1, n, m+1) = ``Zt_k^-1 [S^T, F_k]``; with ``deriv``, dsol (H+1, m, m+1)
+    = rows s of ``Zt_k^-1 [-dZ_k C_k, dF_k - dZ_k u_k]``; the same split into the
+    receptance Ht (H+1, m, m), particular response Pt (H+1, m) and, with ``deriv``, their
+    derivatives dHt, dPt.
+    Returns OK (0); OUTSIDE_BAND (-1) if a checked matrix has a nonzero outside the band
+    (nothing computed: widen the band); k + 1 if Zt_k is exactly singular; NOT_FINITE
+    (-2) if an output is not finite.
+    """
+    n = K.shape[0]
+    m = s.shape[0]
+    nh = F.shape[0]
+    mats = (M, D, K, dM, dD, dK)
+    for i in range(6):
+        if check[i] and _outside_band(mats[i], kl, ku):
+            return OUTSIDE_BAND
+    kv = kl + ku
+    ab = np.zeros((n, 2 * kl + ku + 1), dtype=np.complex128)
+    ipiv = np.empty(n, dtype=np.int64)
+    rhs = np.empty((n, m + 1), dtype=np.complex128)
+    k0 = 0
+    if _real_harmonic0(delta, F, dF, deriv):
+        status = _static_harmonic(M, K, dK, kl, ku, s, delta, F, dF, deriv, sol, dsol)
+        if status != 0:
+            return status
+        k0 = 1
+    for k in range(k0, nh):
+        kw = k * w
+        kw2 = kw * kw
+        for j in range(n):
+            for t in range(kl):
+                ab[j, t] = 0.0
+            for i in range(max(0, j - ku), min(n, j + kl + 1)):
+                ab[j, kv + i - j] = complex(K[i, j] - kw2 * M[i, j], kw * D[i, j])
+        for a in range(m):
+            ab[s[a], kv] += delta[k, a]
+        info = band_lu(ab, kl, ku, ipiv)
+        if info != 0:
+            return k + 1
+        out = sol[k]
+        for i in range(n):
+            for c in range(m + 1):
+                out[i, c] = 0.0
+            out[i, m] = F[k, i]
+        for a in range(m):
+            out[s[a], a] = 1.0
+        band_solve(ab, kl, ku, ipiv, out)
+        if not deriv:
+            continue
+        # right-hand sides [-dZ_k C_k, dF_k - dZ_k u_k] = [0, dF_k] - dZ_k sol_k
+        c2 = 2.0 * k * k * w * dw
+        for i in range(n):
+            for c in range(m):
+                rhs[i, c] = 0.0
+            rhs[i, m] = dF[k, i]
+        for i in range(n):
+            for j in range(max(0, i - kl), min(n, i + ku + 1)):
+                dz = complex(dK[i, j] - kw2 * dM[i, j] - c2 * M[i, j],
+                             k * (dw * D[i, j] + w * dD[i, j]))
+                if dz != 0.0:
+                    for c in range(m + 1):
+                        rhs[i, c] -= dz * out[j, c]
+        band_solve(ab, kl, ku, ipiv, rhs)
+        for a in range(m):
+            for c in range(m + 1):
+                dsol[k, a, c] = rhs[s[a], c]
+    return _split(s, deriv, sol, dsol, Ht, Pt, dHt, dPt)
+
+
+@njit(cache=True)
+def _split(s: np.ndarray, deriv: bool, sol: np.ndarray, dsol: np.ndarray, Ht: np.ndarray,
+           Pt: np.ndarray, dHt: np.ndarray, dPt: np.ndarray) -> int:
+    """Ht, Pt (and dHt, dPt) from the rows s of sol (and dsol); NOT_FINITE or OK."""
+    nh, n, m1 = sol.shape
+    m = m1 - 1
+    for k in range(nh):
+        for i in range(n):
+            for c in range(m1):
+                if not np.isfinite(sol[k, i, c]):
+                    return NOT_FINITE
+        for a in range(m):
+            for c in range(m):
+                Ht[k, a, c] = sol[k, s[a], c]
+                if deriv:
+                    dHt[k, a, c] = dsol[k, a, c]
+            Pt[k, a] = sol[k, s[a], m]
+            if deriv:
+                dPt[k, a] = dsol[k, a, m]
+                for c in range(m1):
+                    if not np.isfinite(dsol[k, a, c]):
+                        return NOT_FINITE
+    return OK

@@ -1,0 +1,138 @@
+"""Compiled paths of the condensed HB: banded LU vs LAPACK, compiled AFT vs callables."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+import scipy.linalg
+
+from rotorsfd.harmonic import banded
+from rotorsfd.harmonic.condensation import CondensedHB
+from rotorsfd.harmonic.examples import beam_rotor, generic_chain, jeffcott_damper
+from rotorsfd.harmonic.residual import dynamic_stiffness
+from rotorsfd.sfd import SFD
+
+SFD_PAPER = SFD.from_ratios(0.0051, 1.27e-4, 0.00485, 0.325, cavitation="pi")
+
+
+def _rel(a, b):
+    return np.abs(a - b).max() / np.abs(b).max()
+
+
+def _state(H, m, amp, seed):
+    rng = np.random.default_rng(seed)
+    return amp * rng.normal(size=(2 * H + 1, m)) / np.arange(1, 2 * H + 2)[:, None]
+
+
+def test_band_lu_pivots_like_a_dense_solve():
+    """A band matrix that needs row interchanges (tiny diagonal): banded LU + solve
+    = dense LAPACK solve to 1e-12."""
+    rng = np.random.default_rng(1)
+    n, kl, ku = 30, 3, 2
+    A = np.zeros((n, n), dtype=complex)
+    for i in range(n):
+        for j in range(max(0, i - kl), min(n, i + ku + 1)):
+            A[i, j] = rng.normal() + 1j * rng.normal()
+        A[i, i] *= 1e-6
+    ab = np.zeros((n, 2 * kl + ku + 1), dtype=complex)
+    for j in range(n):
+        for i in range(max(0, j - ku), min(n, j + kl + 1)):
+            ab[j, kl + ku + i - j] = A[i, j]
+    ipiv = np.empty(n, dtype=np.int64)
+    assert banded.band_lu(ab, kl, ku, ipiv) == 0
+    assert np.any(ipiv != np.arange(n))
+    b = rng.normal(size=(n, 3)) + 1j * rng.normal(size=(n, 3))
+    x = b.copy()
+    banded.band_solve(ab, kl, ku, ipiv, x)
+    assert _rel(x, scipy.linalg.solve(A, b)) <= 1e-12
+
+
+@pytest.mark.parametrize("H", [3, 8])
+def test_banded_condensation_equals_dense_lapack(H):
+    """All outputs of the compiled banded path (receptance, particular response, their
+    lam-derivatives, recovery columns) = the dense LAPACK path to 1e-12."""
+    p = beam_rotor(rayleigh_beta=1e-5)
+    a, b = CondensedHB(p, H, 64), CondensedHB(p, H, 64)
+    xs = _state(H, 2, 0.2 * 1.27e-4, 5)
+    a.set_shift(xs, 900.0)
+    b.delta, b._delta_real = a.delta, a._delta_real
+    b._band = (-1, -1)                                  # force the dense path
+    ca, cb = a.condense(900.0), b.condense(900.0)
+    assert a._band[0] > 0 and b._band[0] < 0
+    # the two LUs differ by rounding, amplified by the condition number (resonances)
+    M, D, K = p.matrices(900.0)
+    kappa = 1.0
+    for k, Z in enumerate(dynamic_stiffness(M, D, K, 900.0, H)):
+        Z[np.ix_(p.nl_dofs, p.nl_dofs)] += a.delta[k]
+        kappa = max(kappa, np.linalg.cond(Z))
+    for name in ("Ht", "Pt", "u", "C", "dHt", "dPt"):
+        assert _rel(getattr(ca, name), getattr(cb, name)) <= max(1e-12, 1e-15 * kappa), name
+
+
+def test_band_widens_when_a_matrix_leaves_it():
+    """A coupling outside the band found at the first lam: the band grows, the result
+    equals the dense path."""
+    p0 = generic_chain(n=40, nl=(3, 30))
+    M, D, K = p0.matrices(0.5)
+
+    def matrices(lam):
+        Kl = K.copy()
+        if lam > 1.0:
+            Kl[0, 20] = Kl[20, 0] = -0.1
+        return M, D, Kl
+
+    p = dataclasses.replace(p0, matrices=matrices)
+    a, b = CondensedHB(p, 2, 16), CondensedHB(p, 2, 16)
+    b._band = (-1, -1)
+    a.condense(0.5)
+    band0 = a._band
+    ca, cb = a.condense(1.2), b.condense(1.2)
+    assert a._band[0] > band0[0] or a._band[0] < 0
+    for name in ("Ht", "Pt", "dHt", "dPt"):
+        assert _rel(getattr(ca, name), getattr(cb, name)) <= 1e-12, name
+
+
+@pytest.mark.parametrize("make, lam, amp", [
+    (lambda sfd: beam_rotor(sfd=sfd), 900.0, 0.3 * 1.27e-4),
+    (lambda sfd: jeffcott_damper(sfd=sfd, static=(0.0, -30.0)), 320.0, 0.3 * 1.27e-4),
+])
+def test_compiled_aft_equals_callables(make, lam, amp):
+    """Residual and exact Jacobians with the SFD's compiled kernel = with the vectorised
+    callables (the same force law) to 1e-12."""
+    pk = make(SFD_PAPER)
+    assert pk.nl_kernel is not None
+    pc = dataclasses.replace(pk, nl_kernel=None, nl_kernel_params=None)
+    H = 4
+    xs = _state(H, 2, amp, 7)
+    out = []
+    for p in (pk, pc):
+        hb = CondensedHB(p, H, 64)
+        hb.set_shift(xs, lam)
+        out.append((*hb.residual(xs, lam), hb.residual(xs, lam, jac=False)[0]))
+    for a, b in zip(*out, strict=True):
+        assert _rel(a, b) <= 1e-12
+
+
+def test_compiled_aft_contact_raises_the_force_law_error():
+    from rotorsfd.errors import JournalContactError
+
+    p = beam_rotor(sfd=SFD_PAPER)
+    hb = CondensedHB(p, 3, 32)
+    xs = np.zeros((7, 2))
+    xs[1, 0] = 1.5 * SFD_PAPER.clearance
+    with pytest.raises(JournalContactError):
+        hb.residual(xs, 900.0)
+
+
+def test_compiled_aliasing_equals_callables():
+    """Aliasing estimate (force at 2N samples) by the kernel = by the callables."""
+    pk = beam_rotor(sfd=SFD_PAPER)
+    pc = dataclasses.replace(pk, nl_kernel=None, nl_kernel_params=None)
+    xs = _state(3, 2, 0.3 * 1.27e-4, 9)
+    out = []
+    for p in (pk, pc):
+        hb = CondensedHB(p, 3, 32)
+        hb.set_shift(xs, 900.0)
+        hb.residual(xs, 900.0)
+        out.append(hb.aliasing(xs, 900.0))
+    assert out[0] > 0 and abs(out[0] - out[1]) <= 1e-9 * out[1]
