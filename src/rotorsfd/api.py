@@ -39,6 +39,7 @@ __all__ = [
     "run_fit_supports",
     "run_fold_curve",
     "run_modal",
+    "run_paper",
     "run_response",
     "run_simulation",
     "run_stability_chart",
@@ -281,3 +282,11 @@ def run_fold_curve(config: Any, parameter: str, start: Any, stop: Any, **kwargs:
     from rotorsfd.analyses.fold_curve import run_fold_curve as _run
 
     return _run(config, parameter, start, stop, **kwargs)
+
+
+def run_paper(output: Any, figures: Sequence[str] | None = None, **kwargs: Any) -> Any:
+    """Reproduce the paper's case studies and write the comparison report: see
+    :func:`rotorsfd.paper.run.run_paper`."""
+    from rotorsfd.paper.run import run_paper as _run
+
+    return _run(output, figures, **kwargs)

@@ -470,5 +470,29 @@ def _fold_curve(args: argparse.Namespace, config: Any) -> int:
     return 0
 
 
+@command("paper", "reproduce Zhang et al. 2025: run the paper's case studies, draw every "
+         "figure (DIR/fig<N>.png) and write DIR/report.md and a self-contained "
+         "DIR/report.html with our numbers beside the paper's; results per case in "
+         "DIR/cases/", config=False, output=True, quiet=True,
+         arguments=[arg("--figure", action="append", default=[], metavar="N",
+                        help="only this figure of the paper (repeatable), e.g. --figure 7"),
+                    arg("--quick", action="store_true",
+                        help="Figure 7 only (fixed base, Table 1): under a minute"),
+                    arg("--workers", type=int, metavar="N",
+                        help="worker processes (default: the CPUs, at most 2)")])
+def _paper(args: argparse.Namespace, config: Any) -> int:
+    from rotorsfd import api
+
+    try:
+        result = api.run_paper(args.output, args.figure, quick=args.quick,
+                               workers=args.workers, progress=not args.quiet)
+    except KeyError as exc:
+        raise ConfigError("--figure", args.figure, exc.args[0]) from None
+    if not args.quiet:
+        print(result.summary())
+        print(f"wrote {result.paths['report.md']}, {result.paths['report.html']}")
+    return 0
+
+
 if __name__ == "__main__":  # pragma: no cover
     sys.exit(main())
