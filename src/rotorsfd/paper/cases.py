@@ -1,0 +1,300 @@
+"""The case studies of Zhang et al. 2025 (Appl. Sci. 15, 1186) as a registry.
+
+A :class:`Case` is one computation: an example config, ``--set`` style overrides, the
+analysis to run (``kind``) and its options. A :class:`FigureSpec` groups the cases drawn in
+one of the paper's figures. A :class:`Claim` is a number (or a motion type) the paper
+reports, with the key of our value in a case's numbers, so the report can put them side
+by side. The variants of a figure are overrides of one config, not near-copies.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+#: Kinds of analysis a case runs (see :mod:`rotorsfd.paper.run`).
+KINDS = ("modal", "response", "simulate", "fold-curve", "width-sweep", "chart")
+
+
+@dataclass(frozen=True)
+class Case:
+    """One computation of the paper's section 3.3 / 4."""
+
+    name: str
+    config: str                         # file name in examples/
+    kind: str
+    overrides: tuple[str, ...] = ()
+    options: dict[str, Any] = field(default_factory=dict)
+    quick: tuple[str, ...] = ()         # extra overrides with --quick
+    note: str = ""
+
+    def __post_init__(self) -> None:
+        if self.kind not in KINDS:
+            raise ValueError(f"case {self.name}: unknown kind {self.kind!r}")
+
+
+@dataclass(frozen=True)
+class FigureSpec:
+    """One figure of the paper: the cases drawn and how (``plot`` of
+    :mod:`rotorsfd.paper.figures`)."""
+
+    number: str
+    title: str
+    cases: tuple[str, ...]
+    plot: str
+    options: dict[str, Any] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Claim:
+    """A value the paper reports and where ours is: ``numbers[key]`` of ``case``."""
+
+    section: str
+    quantity: str
+    paper: float | str | None
+    case: str
+    key: str
+    note: str = ""
+    band: float | None = None          # relative band for "agrees" on numbers
+
+
+# ---- the cases ------------------------------------------------------------------------------
+
+U72, U144, U252, U360 = "72.008 g*mm", "144.02 g*mm", "252 g*mm", "360.04 g*mm"
+
+
+def _u(value: str) -> str:
+    return f"unbalance[0].magnitude={value}"
+
+
+def _rate(component: str, value: float) -> str:
+    return f"base.{component}.value={value:g} rad/s"
+
+
+def _h(n: int) -> str:
+    return f"analysis.response.harmonics={n}"
+
+
+def _cases() -> list[Case]:
+    out = [
+        Case("modal", "paper_rotor.toml", "modal"),
+        Case("fig6", "fig6_duchemin_pitching.toml", "chart",
+             overrides=("analysis.stability_chart.x.n=71", "analysis.stability_chart.y.n=51"),
+             quick=("analysis.stability_chart.x.n=29", "analysis.stability_chart.y.n=21"),
+             note="grid 71 x 51 (the example's 100 x 100 costs ~4x more)"),
+    ]
+    for tag, u in (("u72", U72), ("u144", U144), ("u360", U360)):
+        out.append(Case(f"fig7-{tag}", "paper_rotor.toml", "response", (_u(u),)))
+    for sign, k in (("m", 0.95), ("p", 1.05)):
+        out.append(Case(f"sens-sfd{sign}", "paper_rotor.toml", "response",
+                        (_u(U144), f"sfd.centring_stiffness={10325127.78 * k:.6g} N/m"),
+                        note=f"SFD centring spring x {k}"))
+        out.append(Case(f"sens-right{sign}", "paper_rotor.toml", "response",
+                        (_u(U144), f"rotor.supports[0].stiffness={9551305.04 * k:.6g} N/m"),
+                        note=f"right support x {k}"))
+    for w in (0, 5, 10, 20):
+        out.append(Case(f"fig10-w{w}", "paper_rolling.toml", "response", (_rate("rolling", w),)))
+    for w in (0, 2, 4, 6, 8, 9, 10):
+        out.append(Case(f"fig12-w{w}", "paper_pitching.toml", "response",
+                        (_rate("pitching", w),), options={"orbits": [0.8, 1.03, 1.2, 1.5]}))
+    for w in (2, 4, 6, 9):
+        out.append(Case(f"fig16-w{w}", "paper_yawing.toml", "response", (_rate("yawing", w),),
+                        options={"orbits": [0.8, 1.03, 1.2, 1.5]}))
+    for tag, u in (("u252", U252), ("u360", U360)):
+        for w in (0, 6, 7, 8, 9):
+            out.append(Case(f"fig17-{tag}-w{w}", "paper_unbalance.toml", "response",
+                            (_u(u), _rate("pitching", w))))
+    out += [
+        Case("fig19-u144", "paper_unbalance.toml", "fold-curve", (_u(U144), _h(3)),
+             options={"range": [0.0, 10.0]}),
+        Case("fig19-u252", "paper_unbalance.toml", "fold-curve", (_u(U252),),
+             options={"range": [0.0, 10.0]}),
+        Case("fig19-u360", "paper_unbalance.toml", "width-sweep", (_u(U360),),
+             options={"values": [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10]},
+             quick=(), note="one speed branch per rate (no fold pair to continue)"),
+    ]
+    for cr in ("0.485", "0.61", "0.728"):
+        out.append(Case(f"fig21-cr{cr}", "paper_clearance.toml", "response",
+                        (f"sfd.clearance_ratio={cr} %",)))
+    for tag, u in (("u144", U144), ("u360", U360)):
+        out.append(Case(f"fig24-{tag}", "paper_clearance.toml", "response", (_u(u),)))
+    for s in (1.025, 1.05, 1.075, 1.10):
+        out.append(Case(f"fig23-s{s:g}", "paper_clearance.toml", "simulate",
+                        options={"speed_ratio": s}, quick=("analysis.simulate.periods=300",)))
+    return out
+
+
+CASES: dict[str, Case] = {c.name: c for c in _cases()}
+
+_ORB = {"orbits": [0.8, 1.03, 1.2, 1.5]}
+FIGURES: dict[str, FigureSpec] = {f.number: f for f in (
+    FigureSpec("6", "Stability chart, linear Duchemin rotor, harmonic pitching", ("fig6",),
+               "chart"),
+    FigureSpec("7", "Fixed base, U = 72.008 / 144.02 / 360.04 g mm (H = 3)",
+               ("fig7-u72", "fig7-u144", "fig7-u360"), "deflection"),
+    FigureSpec("9", "Harmonic components, fixed base, U = 360.04 g mm", ("fig7-u360",),
+               "harmonics", {"nodes": [1, 8]}),
+    FigureSpec("10", "Base rolling, U = 144.02 g mm (w_bx = 0, 5, 10, 20 rad/s)",
+               ("fig10-w0", "fig10-w5", "fig10-w10", "fig10-w20"), "deflection"),
+    FigureSpec("11", "Harmonic components, rolling w_bx = 10 rad/s", ("fig10-w10",),
+               "harmonics", {"nodes": [1, 8]}),
+    FigureSpec("12", "Base pitching, U = 144.02 g mm",
+               tuple(f"fig12-w{w}" for w in (0, 2, 4, 6, 9)), "deflection"),
+    FigureSpec("13", "Harmonic components, pitching w_by = 6 rad/s", ("fig12-w6",),
+               "harmonics", {"nodes": [1, 8]}),
+    FigureSpec("14", "Journal orbits, pitching w_by = 6 rad/s", ("fig12-w6",), "orbits",
+               _ORB),
+    FigureSpec("15", "Disk-node harmonics, pitching w_by = 8, 9, 10 rad/s",
+               ("fig12-w8", "fig12-w9", "fig12-w10"), "harmonics", {"nodes": [8]}),
+    FigureSpec("16", "Base yawing, U = 144.02 g mm (and orbits at w_bz = 6 rad/s)",
+               ("fig16-w2", "fig16-w4", "fig16-w6", "fig16-w9"), "yawing", _ORB),
+    FigureSpec("17", "Pitching, U = 252 / 360.04 g mm, H = 8 (SFD node)",
+               tuple(f"fig17-{u}-w{w}" for u in ("u252", "u360") for w in (0, 6, 7, 9)),
+               "deflection", {"nodes": [1]}),
+    FigureSpec("18", "Pitching, U = 252 / 360.04 g mm, H = 8 (disk node)",
+               tuple(f"fig17-{u}-w{w}" for u in ("u252", "u360") for w in (0, 6, 7, 9)),
+               "deflection", {"nodes": [8]}),
+    FigureSpec("19", "Unstable speed range against pitching rate",
+               ("fig19-u144", "fig19-u252", "fig19-u360"), "width"),
+    FigureSpec("20", "SFD-node harmonics, pitching w_by = 9 rad/s, U = 252 / 360.04 g mm",
+               ("fig17-u252-w9", "fig17-u360-w9"), "harmonics", {"nodes": [1]}),
+    FigureSpec("21", "C/R = 0.485 / 0.61 %, U = 252 g mm, w_by = 10 rad/s",
+               ("fig21-cr0.485", "fig21-cr0.61"), "directions"),
+    FigureSpec("22", "C/R = 0.728 %, U = 252 g mm, w_by = 10 rad/s", ("fig21-cr0.728",),
+               "directions"),
+    FigureSpec("23", "Time domain, C/R = 0.728 %, U = 252 g mm, w_by = 10 rad/s",
+               tuple(f"fig23-s{s:g}" for s in (1.025, 1.05, 1.075, 1.10)), "timedomain"),
+    FigureSpec("24", "C/R = 0.728 %, w_by = 10 rad/s, U = 144.02 / 360.04 g mm",
+               ("fig24-u144", "fig24-u360"), "directions"),
+)}
+
+#: Cases that are not in a figure but feed the report.
+EXTRA_CASES = ("modal", "sens-sfdm", "sens-sfdp", "sens-rightm", "sens-rightp")
+
+#: Figures run by ``--quick`` (one figure, under a minute).
+QUICK_FIGURES = ("7",)
+
+
+# ---- what the paper reports -----------------------------------------------------------------
+
+CLAIMS: tuple[Claim, ...] = (
+    Claim("Critical speeds", "1st forward critical speed [rad/s]", 811.3, "modal", "crit1",
+          "fitted (support stiffnesses)", 1e-6),
+    Claim("Critical speeds", "2nd forward critical speed [rad/s]", 2784.6, "modal", "crit2",
+          "fitted (support stiffnesses)", 1e-6),
+    Claim("Table 1", "U = 72.008: bifurcations", "none", "fig7-u72", "bifurcations"),
+    Claim("Table 1", "U = 144.02: upper saddle-node Omega~", 1.0565, "fig7-u144", "sn_hi",
+          band=5e-3),
+    Claim("Table 1", "U = 144.02: upper saddle-node |mu|max", 1.0048, "fig7-u144", "sn_hi_mu",
+          "critical multiplier at the nearest computed unstable point: depends on the step"),
+    Claim("Table 1", "U = 144.02: lower saddle-node Omega~", 1.0556, "fig7-u144", "sn_lo",
+          band=5e-3),
+    Claim("Table 1", "U = 144.02: lower saddle-node |mu|max", 1.0351, "fig7-u144", "sn_lo_mu",
+          "as above"),
+    Claim("Table 1", "U = 360.04: upper saddle-node Omega~", 1.2820, "fig7-u360", "sn_hi",
+          band=5e-3),
+    Claim("Table 1", "U = 360.04: upper saddle-node |mu|max", 1.0047, "fig7-u360", "sn_hi_mu"),
+    Claim("Table 1", "U = 360.04: lower saddle-node Omega~", 1.1245, "fig7-u360", "sn_lo",
+          band=5e-3),
+    Claim("Table 1", "U = 360.04: lower saddle-node |mu|max", 1.0189, "fig7-u360", "sn_lo_mu"),
+    Claim("Table 1", "U = 360.04: bifurcations of our branch", None, "fig7-u360",
+          "bifurcations"),
+    Claim("Table 1", "U = 360.04: where our branch ends", None, "fig7-u360", "end"),
+    Claim("Figure 9", "U = 360.04: response dominated by", "1X", "fig7-u360", "dominant"),
+    Claim("Figure 10", "rolling: resonance peak shifts lower with w_bx (20 vs 0 rad/s)",
+          "lower", "fig10-w20", "peak_shift_vs:fig10-w0"),
+    Claim("Figure 11", "rolling w_bx = 10: dominated by", "1X", "fig10-w10", "dominant"),
+    Claim("Figure 12", "pitching w_by = 2: bifurcations", "saddle-node pair", "fig12-w2",
+          "bifurcations"),
+    Claim("Figure 12", "pitching w_by = 4: bifurcations", "none", "fig12-w4", "bifurcations"),
+    Claim("Figure 12", "bistability vanishes at w_by [rad/s] (U = 144.02)", 4.0, "fig19-u144",
+          "end_rate", "paper: 'at 4 rad/s' (between 2 and 4)"),
+    Claim("Figure 15", "w_by = 8: disk 1X peak Omega~", 1.09, "fig12-w8", "disk_peaks",
+          band=1e-2),
+    Claim("Figure 15", "w_by = 9: disk 1X second peak Omega~", 1.40, "fig12-w9", "disk_peaks",
+          band=1e-2),
+    Claim("Figure 15", "w_by = 10: disk 1X second peak Omega~", "two peaks", "fig12-w10",
+          "disk_peaks"),
+    Claim("Figure 16", "yawing = pitching deflection at equal rate (6 rad/s)", "identical",
+          "fig16-w6", "same_as:fig12-w6"),
+    Claim("Figure 17", "U = 252, w_by = 6: bifurcations", "saddle-node pair", "fig17-u252-w6",
+          "bifurcations"),
+    Claim("Figure 17", "U = 252, w_by = 7: bifurcations", "none", "fig17-u252-w7",
+          "bifurcations"),
+    Claim("Figure 17", "U = 360.04, w_by = 9: bifurcations", "saddle-node pair",
+          "fig17-u360-w9", "bifurcations"),
+    Claim("Figure 19", "U = 144.02: unstable width at w_by = 0", "small", "fig19-u144",
+          "width0"),
+    Claim("Figure 19", "U = 144.02: no unstable range from w_by [rad/s]", 4.0, "fig19-u144",
+          "end_rate"),
+    Claim("Figure 19", "U = 252: unstable width at w_by = 0", 0.041, "fig19-u252", "width0",
+          band=0.05),
+    Claim("Figure 19", "U = 252: no unstable range from w_by [rad/s]", 7.0, "fig19-u252",
+          "end_rate"),
+    Claim("Figure 19", "U = 360.04: unstable width at w_by = 0", 0.195, "fig19-u360",
+          "width0", band=0.05),
+    Claim("Figure 19", "U = 360.04: unstable width at w_by = 10", 0.119, "fig19-u360",
+          "width10", band=0.05),
+    Claim("Figure 21", "C/R = 0.485 %: bifurcations", "none (stable)", "fig21-cr0.485",
+          "bifurcations"),
+    Claim("Figure 21", "C/R = 0.61 %: bifurcations", "saddle-nodes", "fig21-cr0.61",
+          "bifurcations"),
+    Claim("Table 3", "A: saddle-node Omega~ (|mu| 1.0589)", 1.0369, "fig21-cr0.728", "tab3:A"),
+    Claim("Table 3", "B: secondary Hopf Omega~ (0.5344 +/- 0.8634i, |mu| 1.0154)", 1.0982,
+          "fig21-cr0.728", "tab3:B"),
+    Claim("Table 3", "C: Omega~ (|mu| 1.0008)", 1.2977, "fig21-cr0.728", "tab3:C"),
+    Claim("Table 3", "D: Omega~ (|mu| 1.0716)", 1.1660, "fig21-cr0.728", "tab3:D"),
+    Claim("Table 3", "E: Omega~ (|mu| 1.0669)", 1.1760, "fig21-cr0.728", "tab3:E"),
+    Claim("Table 3", "F: Omega~ (|mu| 1.0818)", 1.1669, "fig21-cr0.728", "tab3:F"),
+    Claim("Table 3", "all bifurcations of our branch", None, "fig21-cr0.728", "bifurcations"),
+    Claim("Figure 23", "Omega~ = 1.025", "period-1", "fig23-s1.025", "motion"),
+    Claim("Figure 23", "Omega~ = 1.05", "chaotic (possibly)", "fig23-s1.05", "motion"),
+    Claim("Figure 23", "Omega~ = 1.075", "quasi-periodic", "fig23-s1.075", "motion"),
+    Claim("Figure 23", "Omega~ = 1.10", "period-1", "fig23-s1.1", "motion"),
+    Claim("Figure 24", "C/R = 0.728 %, U = 144.02: bifurcations", "none", "fig24-u144",
+          "bifurcations"),
+    Claim("Figure 24", "C/R = 0.728 %, U = 360.04: bifurcations", "saddle-node pair",
+          "fig24-u360", "bifurcations"),
+    Claim("Sensitivity", "U = 144.02 fold pair, SFD centring spring -5 %", None, "sens-sfdm",
+          "fold_shift:fig7-u144"),
+    Claim("Sensitivity", "U = 144.02 fold pair, SFD centring spring +5 %", None, "sens-sfdp",
+          "fold_shift:fig7-u144"),
+    Claim("Sensitivity", "U = 144.02 fold pair, right support -5 %", None, "sens-rightm",
+          "fold_shift:fig7-u144"),
+    Claim("Sensitivity", "U = 144.02 fold pair, right support +5 %", None, "sens-rightp",
+          "fold_shift:fig7-u144"),
+)
+
+
+def examples_dir() -> Path:
+    """The repository's ``examples/`` folder (the package is installed editable)."""
+    here = Path(__file__).resolve()
+    for parent in here.parents:
+        if (parent / "examples" / "paper_rotor.toml").is_file():
+            return parent / "examples"
+    raise FileNotFoundError("examples/paper_rotor.toml not found above "
+                            f"{here.parent}; pass the examples folder explicitly")
+
+
+def select(figures: list[str] | None = None, quick: bool = False
+           ) -> tuple[list[FigureSpec], list[Case]]:
+    """The figures to draw and the cases they need (every figure and extra case when
+    ``figures`` is empty; ``quick``: :data:`QUICK_FIGURES` unless figures are given)."""
+    if not figures:
+        figures = list(QUICK_FIGURES) if quick else list(FIGURES)
+        extra = () if quick else EXTRA_CASES
+    else:
+        extra = ("modal",)
+    unknown = [f for f in figures if f not in FIGURES]
+    if unknown:
+        raise KeyError(f"no figure {', '.join(unknown)} (known: {', '.join(FIGURES)})")
+    specs = [FIGURES[f] for f in figures]
+    names = list(dict.fromkeys([*extra, *(c for s in specs for c in s.cases)]))
+    # cases another case's numbers refer to (e.g. same_as:fig12-w6)
+    for claim in CLAIMS:
+        if claim.case in names and ":" in claim.key:
+            ref = claim.key.split(":", 1)[1]
+            if ref in CASES and ref not in names:
+                names.append(ref)
+    return specs, [CASES[n] for n in names]

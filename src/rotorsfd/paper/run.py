@@ -1,0 +1,353 @@
+"""Run the paper's cases (:mod:`rotorsfd.paper.cases`) and collect their numbers.
+
+:func:`run_case` runs one case and returns an :class:`Outcome`: ``numbers`` (what the
+report compares with the paper) and ``data`` (plain arrays for the figures); it never
+raises for a numerical failure (the outcome says ``failed`` and why). :func:`run_cases`
+runs several in a process pool with a progress bar.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import time
+import traceback
+from collections.abc import Callable, Sequence
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from rotorsfd.paper.cases import Case, examples_dir
+
+
+@dataclass
+class Outcome:
+    """What a case gave: status (``ok``, ``failed``: partial result, ``error``), numbers,
+    plot data, time."""
+
+    name: str
+    status: str
+    message: str = ""
+    elapsed: float = 0.0
+    numbers: dict[str, Any] = field(default_factory=dict)
+    data: dict[str, Any] = field(default_factory=dict)
+
+
+# ---- response -------------------------------------------------------------------------------
+
+
+def _segments(mask: np.ndarray) -> list[tuple[int, int]]:
+    """(first, last) index of each run of True."""
+    out, i = [], 0
+    while i < mask.size:
+        if mask[i]:
+            j = i
+            while j + 1 < mask.size and mask[j + 1]:
+                j += 1
+            out.append((i, j))
+            i = j + 1
+        else:
+            i += 1
+    return out
+
+
+def local_peaks(x: np.ndarray, y: np.ndarray, rel: float = 0.05) -> list[float]:
+    """x of the local maxima of y(x) along the branch (arc order) that stand out by ``rel``
+    of the largest value from the lowest point on both sides up to a higher value."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    out = []
+    top = float(np.max(y)) if y.size else 0.0
+    for i in range(1, y.size - 1):
+        if y[i] >= y[i - 1] and y[i] > y[i + 1]:
+            left = y[:i][::-1]
+            right = y[i + 1:]
+            lmin = min(left[: np.argmax(left > y[i])].min(initial=y[i]) if np.any(left > y[i])
+                       else left.min(), y[i])
+            rmin = min(right[: np.argmax(right > y[i])].min(initial=y[i])
+                       if np.any(right > y[i]) else right.min(), y[i])
+            if y[i] - max(lmin, rmin) > rel * top:
+                out.append(float(x[i]))
+    return out
+
+
+def _wave(X: np.ndarray, n: int = 256) -> np.ndarray:
+    """y(theta) on n phases from coefficients X_k (k = 0..H)."""
+    k = np.arange(X.shape[-1])
+    th = 2 * np.pi * np.arange(n + 1) / n
+    return (X @ np.exp(1j * np.outer(k, th))).real
+
+
+def response_numbers(result: Any, orbits: Sequence[float] = ()) -> tuple[dict, dict]:
+    """Numbers and plot data of a :class:`~rotorsfd.analyses.response.ResponseResult`."""
+    from rotorsfd.model import dofs
+
+    table = result.table()
+    s = np.asarray(table["speed_ratio"], float)
+    C = result.clearance
+    rows = [{k: (v if k == "type" else float(v)) for k, v in b.items()}
+            for b in (result.bifurcations or [])]
+    sn = sorted((b for b in rows if b["type"] == "saddle-node"), key=lambda b: b["speed_ratio"])
+    n: dict[str, Any] = {"bifurcations": [(b["type"], b["speed_ratio"], b["max_multiplier"],
+                                           b["multiplier_re"], b["multiplier_im"])
+                                          for b in rows],
+                         "success": result.success, "n_points": int(s.size),
+                         "H": int(result.branch.H)}
+    if sn:
+        n.update(sn_hi=sn[-1]["speed_ratio"], sn_hi_mu=sn[-1]["max_multiplier"],
+                 sn_lo=sn[0]["speed_ratio"], sn_lo_mu=sn[0]["max_multiplier"])
+    if len(sn) >= 2:
+        n["width"] = sn[-1]["speed_ratio"] - sn[0]["speed_ratio"]
+    ecc = np.asarray(table[f"defl_{result.system.sfd_node}"], float)
+    n["end"] = (f"reached Omega~ = {s[-1]:.4f}" if result.success else
+                f"stopped at Omega~ = {s[-1]:.4f}, eps = {ecc[-1]:.3f}")
+    n["message"] = result.message
+    sfd = result.system.sfd_node
+    d1 = np.asarray(table[f"defl_{sfd}"])
+    i = int(np.argmax(d1))
+    n["peak_ratio"], n["peak_defl"] = float(s[i]), float(d1[i])
+    h = [np.asarray(table[f"amp_{sfd}_y_h{k}"])[i] for k in range(1, result.branch.H + 1)]
+    n["dominant"] = ("1X" if h[0] > 5 * max(h[1:], default=0.0)
+                     else f"mixed (h1/h2 = {h[0] / max(h[1], 1e-30):.2f})")
+    disk = [d.node for d in result.system.rotor.disks]
+    if disk and f"amp_{disk[0]}_y_h1" in table:
+        n["disk_peaks"] = local_peaks(s, np.asarray(table[f"amp_{disk[0]}_y_h1"]))
+    data: dict[str, Any] = {k: np.asarray(v) for k, v in table.items()}
+    data["bifurcations"] = rows
+    data["nodes"] = list(result.nodes)
+    data["H"] = int(result.branch.H)
+    data["clearance"] = C
+    X = result.branch.X
+    for node in result.nodes:
+        for d in ("y", "z"):
+            w = _wave(X[:, :, dofs.dof_index(node, d)], 128) / C
+            data[f"max_{node}_{d}"] = w.max(axis=1)
+            data[f"min_{node}_{d}"] = w.min(axis=1)
+    orb = []
+    for target in orbits:
+        j = int(np.argmin(np.abs(s - target)))
+        orb.append((float(s[j]), _wave(X[j, :, dofs.dof_index(sfd, "y")]) / C,
+                    _wave(X[j, :, dofs.dof_index(sfd, "z")]) / C))
+    data["orbits"] = orb
+    return n, data
+
+
+#: Overrides of every response case: continue until the journal is within 0.5 % of the
+#: clearance (default 0.95), so that a branch ends at contact rather than at the limiter.
+RESPONSE_DEFAULTS = ("analysis.response.max_eccentricity=0.995",)
+
+
+# ---- the kinds -------------------------------------------------------------------------------
+
+
+def _config(case: Case, examples: Path, quick: bool, extra: Sequence[str] = ()) -> Any:
+    from rotorsfd.io.config import load_config
+
+    base = RESPONSE_DEFAULTS if case.kind in ("response", "width-sweep") else ()
+    return load_config(examples / case.config,
+                       [*base, *case.overrides, *(case.quick if quick else ()), *extra])
+
+
+def _modal(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
+    from rotorsfd.api import run_modal
+
+    r = run_modal(config)
+    if out is not None:
+        r.write(out)
+    n = {f"crit{c.mode}": float(c.speed_rad_s) for c in r.critical_speeds}
+    return n, {}
+
+
+def _response(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
+    from rotorsfd.api import run_response
+
+    r = run_response(config, progress=False)
+    if out is not None:
+        r.write(out)
+    return response_numbers(r, case.options.get("orbits", ()))
+
+
+def _simulate(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
+    from rotorsfd.api import run_simulation
+
+    r = run_simulation(config, speed_ratio=case.options["speed_ratio"], progress=False,
+                       lyapunov_periods=0)
+    if out is not None:
+        r.write(out)
+    c = r.column(r.plot_node)
+    scale = r.clearance or 1.0
+    keep = 20 * int(r.settings["steps_per_period"])
+    ev = r.motion.evidence if r.motion is not None else {}
+    n = {"motion": r.motion_name, "n_distinct_poincare": ev.get("n_distinct_poincare"),
+         "max_eccentricity": r.max_eccentricity}
+    data = {"y": r.q[-keep:, c, 0] / scale, "z": r.q[-keep:, c, 1] / scale,
+            "vy": r.v[-keep:, c, 0] / (scale * r.speed),
+            "py": r.poincare_q[:, c, 0] / scale, "pz": r.poincare_q[:, c, 1] / scale,
+            "pvy": r.poincare_v[:, c, 0] / (scale * r.speed),
+            "speed_ratio": r.speed_ratio, "motion": r.motion_name}
+    return n, data
+
+
+def _fold_curve(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
+    from rotorsfd.api import run_fold_curve
+
+    lo, hi = case.options["range"]
+    f = run_fold_curve(config, "base.pitching.value", lo, hi)
+    if out is not None:
+        f.write(out)
+    grid = np.linspace(lo, hi, 201)
+    w = f.unstable_width(grid)
+    n = {"end_rate": f.bistability_end, "width0": float(f.unstable_width([lo])[0]),
+         "width10": float(f.unstable_width([hi])[0]),
+         "start_folds": [x / f.reference_speed for x in f.start_folds],
+         "success": f.success, "message": f.message}
+    return n, {"rate": grid, "width": w}
+
+
+def _width_sweep(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
+    from rotorsfd.api import run_response
+    from rotorsfd.io.config import with_values
+
+    values = [float(v) for v in case.options["values"]]
+    widths, notes = [], []
+    for v in values:
+        r = run_response(with_values(config, {"base.pitching.value": v}), progress=False)
+        num, _ = response_numbers(r)
+        if "width" in num:
+            widths.append(num["width"])
+            notes.append(f"{v:g}: folds {num['sn_lo']:.4f}-{num['sn_hi']:.4f}")
+        elif r.success:
+            widths.append(0.0)
+            notes.append(f"{v:g}: no fold")
+        else:
+            widths.append(float("nan"))
+            notes.append(f"{v:g}: {num['end']}")
+    w = np.array(widths)
+    zero = [v for v, x in zip(values, w, strict=True) if x == 0.0]
+    n = {"width0": widths[0], "width10": widths[-1], "end_rate": zero[0] if zero else None,
+         "notes": notes}
+    return n, {"rate": np.array(values), "width": w}
+
+
+def _chart(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
+    from rotorsfd.api import run_stability_chart
+
+    r = run_stability_chart(config, workers=1, progress=False)
+    if out is not None:
+        r.write(out)
+    n = {"unstable_fraction": float((~r.stable).mean())}
+    return n, {"x": r.x.values, "y": r.y.values, "max_abs": r.chart.max_abs,
+               "x_label": f"{r.x.path} [{r.x.units}]", "y_label": f"{r.y.path} [{r.y.units}]"}
+
+
+RUNNERS: dict[str, Callable[[Case, Any, Path | None], tuple[dict, dict]]] = {
+    "modal": _modal, "response": _response, "simulate": _simulate,
+    "fold-curve": _fold_curve, "width-sweep": _width_sweep, "chart": _chart}
+
+
+def run_case(case: Case, examples: Path | None = None, quick: bool = False,
+             out: Path | None = None) -> Outcome:
+    """Run one case; results files into ``out/<case>`` when ``out`` is given."""
+    from rotorsfd.errors import RotorsfdError
+
+    t0 = time.perf_counter()
+    examples = examples or examples_dir()
+    try:
+        config = _config(case, examples, quick)
+        numbers, data = RUNNERS[case.kind](case, config, None if out is None
+                                           else out / case.name)
+    except RotorsfdError as exc:
+        return Outcome(case.name, "failed", " ".join(str(exc).split()),
+                       time.perf_counter() - t0)
+    except Exception as exc:  # a bug: the other cases still run
+        return Outcome(case.name, "error", f"{type(exc).__name__}: {exc} "
+                       f"{traceback.format_exc(limit=-2)}", time.perf_counter() - t0)
+    status = "ok" if numbers.get("success", True) else "failed"
+    return Outcome(case.name, status, str(numbers.get("message", "")),
+                   time.perf_counter() - t0, numbers, data)
+
+
+def _worker_init() -> None:
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+
+def run_cases(cases: Sequence[Case], *, examples: Path | None = None, quick: bool = False,
+              out: Path | None = None, workers: int | None = None,
+              progress: bool = True) -> dict[str, Outcome]:
+    """Run ``cases`` (longest first) in ``workers`` processes (default: the CPUs, at most
+    2; 1: in this process) with a tqdm bar on stderr."""
+    from tqdm import tqdm
+
+    examples = examples or examples_dir()
+    workers = workers or min(2, os.cpu_count() or 1)
+    order = sorted(cases, key=lambda c: -COST.get(c.kind, 1))
+    results: dict[str, Outcome] = {}
+    bar = tqdm(total=len(order), desc="paper", disable=not progress, file=sys.stderr,
+               dynamic_ncols=True)
+    try:
+        if workers == 1:
+            for c in order:
+                bar.set_postfix_str(c.name)
+                results[c.name] = run_case(c, examples, quick, out)
+                bar.update()
+        else:
+            with ProcessPoolExecutor(workers, initializer=_worker_init) as pool:
+                futures = {pool.submit(run_case, c, examples, quick, out): c for c in order}
+                for f in as_completed(futures):
+                    o = f.result()
+                    results[o.name] = o
+                    bar.set_postfix_str(f"{o.name} {o.status} {o.elapsed:.0f} s")
+                    bar.update()
+    finally:
+        bar.close()
+    return {c.name: results[c.name] for c in cases}
+
+
+#: Rough relative cost per kind (longest first keeps both workers busy).
+COST = {"chart": 10, "width-sweep": 8, "simulate": 3, "fold-curve": 2, "response": 1,
+        "modal": 1}
+
+
+@dataclass
+class PaperResult:
+    """What ``rotorsfd paper`` produced."""
+
+    outcomes: dict[str, Outcome]
+    paths: dict[str, Path]
+    elapsed: float
+
+    def summary(self) -> str:
+        bad = [o for o in self.outcomes.values() if o.status != "ok"]
+        lines = [f"{len(self.outcomes)} cases in {self.elapsed:.0f} s, {len(bad)} not ok"]
+        lines += [f"  {o.name}: {o.status}: {o.message[:150]}" for o in bad]
+        return "\n".join(lines)
+
+
+def run_paper(output: str | Path, figures: Sequence[str] | None = None, *,
+              quick: bool = False, workers: int | None = None, progress: bool = True,
+              examples: Path | None = None) -> PaperResult:
+    """Run the cases of ``figures`` (all by default; ``quick``: Figure 7 only, shorter
+    settings), draw the figures and write the report into ``output``."""
+    import io
+
+    from rotorsfd.paper.cases import select
+    from rotorsfd.paper.figures import draw
+    from rotorsfd.paper.report import DIAGNOSES, write_report
+
+    t0 = time.perf_counter()
+    out = Path(output)
+    specs, cases = select(list(figures or []), quick)
+    outcomes = run_cases(cases, examples=examples, quick=quick, out=out / "cases",
+                         workers=workers, progress=progress)
+    pngs: dict[str, bytes] = {}
+    for spec in specs:
+        fig = draw(spec, outcomes)
+        if fig is not None:
+            buf = io.BytesIO()
+            fig.savefig(buf, format="png", dpi=110)
+            pngs[spec.number] = buf.getvalue()
+    elapsed = time.perf_counter() - t0
+    paths = write_report(out, outcomes, pngs, elapsed=elapsed, diagnoses=DIAGNOSES)
+    return PaperResult(outcomes, paths, elapsed)
