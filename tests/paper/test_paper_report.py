@@ -1,0 +1,81 @@
+"""The report generator: rows beside the paper's, report.md and a self-contained
+report.html from a small set of outcomes (no computation)."""
+
+from __future__ import annotations
+
+import base64
+import io
+import json
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from rotorsfd.cli import main
+from rotorsfd.paper.cases import FIGURES
+from rotorsfd.paper.figures import draw
+from rotorsfd.paper.report import comparison_rows, write_report
+from rotorsfd.paper.run import Outcome
+
+
+def _response(name, bifs, success=True):
+    s = np.linspace(0.5, 1.6, 50)
+    data = {"speed_ratio": s, "defl_1": np.exp(-(s - 1.05) ** 2 * 40),
+            "defl_8": np.exp(-(s - 1.05) ** 2 * 40) * 1.5, "stable": np.ones(50, bool),
+            "bifurcations": [{"type": t, "speed_ratio": x, "max_multiplier": m}
+                             for t, x, m, *_ in bifs], "H": 3, "clearance": 1.27e-4,
+            "nodes": [1, 8], "orbits": []}
+    for n in (1, 8):
+        data[f"static_{n}_y"] = np.zeros(50)
+        for k in (1, 2, 3):
+            data[f"amp_{n}_y_h{k}"] = data[f"defl_{n}"] * 1.27e-4 / k ** 3
+    numbers = {"bifurcations": bifs, "success": success, "end": "reached Omega~ = 1.6000",
+               "peak_ratio": 1.05, "dominant": "1X"}
+    sn = sorted(b[1] for b in bifs if b[0] == "saddle-node")
+    if sn:
+        numbers.update(sn_hi=sn[-1], sn_lo=sn[0], sn_hi_mu=1.013, sn_lo_mu=1.0145)
+    return Outcome(name, "ok", "", 1.0, numbers, data)
+
+
+def _outcomes():
+    return {"modal": Outcome("modal", "ok", "", 1.0, {"crit1": 811.3, "crit2": 2784.6}),
+            "fig7-u72": _response("fig7-u72", []),
+            "fig7-u144": _response("fig7-u144", [
+                ("saddle-node", 1.0593460, 1.01304, 1.01304, 0.0),
+                ("saddle-node", 1.0526554, 1.01453, 1.01453, 0.0)]),
+            "fig7-u360": _response("fig7-u360", [
+                ("secondary-hopf", 1.2881, 1.00004, 0.988, 0.155)], success=False)}
+
+
+def test_rows_beside_the_paper():
+    rows = {r.quantity: r for r in comparison_rows(_outcomes())}
+    r = rows["U = 144.02: upper saddle-node Omega~"]
+    assert (r.paper, r.ours, r.verdict) == ("1.0565", "1.0593", "agrees")
+    assert r.difference.startswith("+0.002846")
+    assert rows["U = 72.008: bifurcations"].verdict == "agrees"
+    assert rows["U = 360.04: upper saddle-node Omega~"].verdict == "differs"
+    assert rows["1st forward critical speed [rad/s]"].verdict == "agrees"
+
+
+def test_write_report(tmp_path):
+    outcomes = _outcomes()
+    fig = draw(FIGURES["7"], outcomes)
+    assert isinstance(fig, Figure)
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=50)
+    paths = write_report(tmp_path, outcomes, {"7": buf.getvalue()}, elapsed=1.0)
+    md = (tmp_path / "report.md").read_text()
+    assert "| Table 1 | U = 144.02: upper saddle-node Omega~ | 1.0565 | 1.0593 |" in md
+    assert "## Where we differ from the paper" in md and "![Figure 7](fig7.png)" in md
+    page = (tmp_path / "report.html").read_text()
+    assert "<table>" in page and "<td>1.0565</td>" in page
+    b64 = base64.b64encode(buf.getvalue()).decode()
+    assert f"data:image/png;base64,{b64}" in page and "fig7.png" not in page.split("<img")[1]
+    data = json.loads((tmp_path / "results.json").read_text())
+    assert data["cases"]["fig7-u144"]["numbers"]["sn_hi"] == 1.059346
+    assert {"fig7.png", "report.md", "report.html", "results.json"} <= set(paths)
+    assert not list(tmp_path.glob("*.tmp*"))
+
+
+def test_cli_unknown_figure(tmp_path, capsys):
+    assert main(["paper", "-o", str(tmp_path), "--figure", "99", "-q"]) == 2
+    assert "no figure 99" in capsys.readouterr().err
