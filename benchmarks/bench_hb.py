@@ -23,9 +23,22 @@ Run: ``python -m benchmarks --only hb`` (or ``python benchmarks/bench_hb.py``).
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+
+if __package__ in (None, ""):  # run as a script: make the repository's `benchmarks` importable
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
 import numpy as np
 
-from benchmarks.common import W1, Row, interleaved, paper_config, paper_system, response_options
+from benchmarks.common import (
+    W1,
+    Row,
+    interleaved,
+    paper_config,
+    paper_system,
+    response_options,
+)
 
 
 def branch_difference(a, b) -> float:
@@ -115,8 +128,7 @@ def point_rows(problem, H: int, repeat: int, quick: bool) -> list[Row]:
 
 
 if __name__ == "__main__":
-    import sys
-
     from benchmarks.__main__ import main
 
-    sys.exit(main(["--only", "hb", *sys.argv[1:]]))
+    # --paper (the old flag) is accepted and ignored: the paper rotor is the case now
+    sys.exit(main(["--only", "hb", *(a for a in sys.argv[1:] if a != "--paper")]))
