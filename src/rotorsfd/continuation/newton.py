@@ -22,6 +22,7 @@ from typing import Protocol
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.linalg import lapack
 
 FloatArray = NDArray[np.float64]
 
@@ -47,6 +48,19 @@ class NewtonResult:
     converged: bool
     norm: float
     message: str
+
+
+def _bordered_solve(J: FloatArray, a: FloatArray, rhs: FloatArray) -> FloatArray:
+    """Solve ``[J; a^T] x = rhs`` (LAPACK gesv without numpy's per-call overhead, which
+    dominates for the small condensed systems); LinAlgError if exactly singular."""
+    n = J.shape[0]
+    A = np.empty((n + 1, n + 1))
+    A[:n] = J
+    A[n] = a
+    x, info = lapack.dgesv(A, rhs, overwrite_a=True)[2:]
+    if info != 0:
+        raise np.linalg.LinAlgError("singular extended Jacobian")
+    return x
 
 
 def _safe_evaluate(system: ContinuationSystem, z: FloatArray
@@ -75,15 +89,17 @@ def newton_extended(system: ContinuationSystem, z0: FloatArray, a: FloatArray, b
         return NewtonResult(z, None, None, 0, False, np.inf, f"at the initial guess: {ev}")
     R, J = ev
     norm = np.inf
+    Rext = np.empty(system.n + 1)
     for it in range(max_iter + 1):
-        Rext = np.append(R, a @ z - b)
-        norm = float(np.linalg.norm(Rext))
+        Rext[:-1] = R
+        Rext[-1] = a @ z - b
+        norm = float(np.sqrt(Rext @ Rext))
         if norm <= tol:
             return NewtonResult(z, R, J, it, True, norm, "converged")
         if it == max_iter:
             break
         try:
-            dz = np.linalg.solve(np.vstack([J, a]), -Rext)
+            dz = _bordered_solve(J, a, -Rext)
         except np.linalg.LinAlgError:
             return NewtonResult(z, R, J, it, False, norm, "singular extended Jacobian")
         alpha, reason = 1.0, ""
@@ -121,7 +137,7 @@ def tangent(J: FloatArray, t_prev: FloatArray, weights: FloatArray | None = None
     rhs[-1] = 1.0
     row = w * t_prev if np.any(w * t_prev) else t_prev
     try:
-        t = np.linalg.solve(np.vstack([J, row]), rhs)
+        t = _bordered_solve(J, row, rhs)
         if not np.all(np.isfinite(t)):
             raise np.linalg.LinAlgError
     except np.linalg.LinAlgError:

@@ -60,6 +60,13 @@ class Condensed:
     dPt: ComplexArray | None = None
 
 
+def _c_float(A: FloatArray) -> FloatArray:
+    """A itself if C-contiguous float64 (the usual case), else a converted copy."""
+    if type(A) is np.ndarray and A.dtype == np.float64 and A.flags.c_contiguous:
+        return A
+    return np.ascontiguousarray(A, dtype=np.float64)
+
+
 def _positive_diagonal(A: FloatArray) -> FloatArray:
     """Diagonal matrix of the positive part of diag(A)."""
     return np.diag(np.maximum(np.diag(A), 0.0))
@@ -162,11 +169,13 @@ class CondensedHB:
         dsol = np.empty((H + 1, m, m + 1), dtype=complex)
         Ht, dHt = np.empty((2, H + 1, m, m), dtype=complex)
         Pt, dPt = np.empty((2, H + 1, m), dtype=complex)
-        mats = tuple(np.ascontiguousarray(A, dtype=float) for A in (M, D, K, dM, dD, dK))
+        mats = tuple(_c_float(A) for A in (M, D, K, dM, dD, dK))
         diag = self._delta_diagonal()
         # scan for nonzeros outside the band only the matrices not scanned before (the
         # problem returns the same array objects for constant matrices, e.g. M and K)
-        check = np.array([A is not B for A, B in zip(mats, self._scanned, strict=True)])
+        sc = self._scanned
+        check = np.array([mats[0] is not sc[0], mats[1] is not sc[1], mats[2] is not sc[2],
+                          mats[3] is not sc[3], mats[4] is not sc[4], mats[5] is not sc[5]])
         status = banded.OUTSIDE_BAND
         while status == banded.OUTSIDE_BAND:
             kl, ku = self._bandwidths(mats)
