@@ -87,16 +87,21 @@ def plot(res, path: Path) -> None:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import matplotlib.ticker
 
     fig, axes = plt.subplots(1, 2, figsize=(9, 3.8), constrained_layout=True)
     for ax, axis, label in ((axes[0], "H", "harmonics H (20 elements)"),
                             (axes[1], "elements", "shaft elements (H = 3)")):
-        for path, mark in (("condensed", "o-"), ("full", "s--")):
-            data = res.get((axis, path))
+        for kind, mark in (("condensed", "o-"), ("full", "s--")):
+            data = res.get((axis, kind))
             if not data:
                 continue
             x, y = np.array(data, float).T
-            ax.loglog(x, 1e3 * y, mark, label=f"{path} (p = {exponent(x, y):.2f})")
+            ax.loglog(x, 1e3 * y, mark, label=f"{kind} (p = {exponent(x, y):.2f})")
+        sizes = sorted({v for (a, _), d in res.items() if a == axis for v, _ in d})
+        if sizes:
+            ax.set_xticks(sizes, [str(int(v)) for v in sizes])
+            ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         ax.set_xlabel(label)
         ax.set_ylabel("time per continuation point [ms]")
         ax.grid(True, which="both", alpha=0.3)
@@ -104,3 +109,28 @@ def plot(res, path: Path) -> None:
     fig.suptitle("rotorsfd HB continuation, paper rotor from Omega~ 0.95: cost per point")
     fig.savefig(path, dpi=120)
     plt.close(fig)
+
+
+def plot_from_results(results: Path, out: Path) -> None:
+    """Redraw the figure from a results file (rows of the ``scaling`` fits)."""
+    import json
+
+    res = {}
+    for r in json.loads(Path(results).read_text())["rows"]:
+        if r["bench"] == "scaling" and "sizes" in r["extra"]:
+            axis = r["case"].split()[2]
+            kind = r["method"].split(":")[0]
+            res[(axis, kind)] = list(zip(r["extra"]["sizes"], r["extra"]["seconds_per_point"],
+                                         strict=True))
+    plot(res, out)
+
+
+if __name__ == "__main__":
+    import sys
+
+    if sys.argv[1:2] == ["--plot-from"]:  # python -m benchmarks.bench_scaling --plot-from F
+        plot_from_results(Path(sys.argv[2]), HERE / "scaling.png")
+        sys.exit(0)
+    from benchmarks.__main__ import main
+
+    sys.exit(main(["--only", "scaling", *sys.argv[1:]]))
