@@ -61,6 +61,9 @@ class Claim:
 
 # ---- the cases ------------------------------------------------------------------------------
 
+#: Modal damping ratio of the diagnosis cases (the paper states no structural damping).
+DIAGNOSIS_DAMPING = 0.002
+
 U72, U144, U252, U360 = "72.008 g*mm", "144.02 g*mm", "252 g*mm", "360.04 g*mm"
 
 
@@ -119,7 +122,16 @@ def _cases() -> list[Case]:
                         (f"sfd.clearance_ratio={cr} %",)))
     for tag, u in (("u144", U144), ("u360", U360)):
         out.append(Case(f"fig24-{tag}", "paper_clearance.toml", "response", (_u(u),)))
-    for s in (1.025, 1.05, 1.075, 1.10):
+    damp = ("rotor.damping.kind=modal", f"rotor.damping.ratio={DIAGNOSIS_DAMPING}")
+    out += [
+        Case("damp-u144", "paper_rotor.toml", "response", (_u(U144), *damp),
+             note="diagnosis: light structural damping (not in the paper)"),
+        Case("damp-u360", "paper_rotor.toml", "response", (_u(U360), *damp),
+             note="diagnosis: light structural damping (not in the paper)"),
+        Case("damp-fig22", "paper_clearance.toml", "response", damp,
+             note="diagnosis: light structural damping (not in the paper)"),
+    ]
+    for s in (1.025, 1.04, 1.05, 1.075, 1.10):
         out.append(Case(f"fig23-s{s:g}", "paper_clearance.toml", "simulate",
                         options={"speed_ratio": s}, quick=("analysis.simulate.periods=300",)))
     return out
@@ -164,9 +176,12 @@ FIGURES: dict[str, FigureSpec] = {f.number: f for f in (
     FigureSpec("22", "C/R = 0.728 %, U = 252 g mm, w_by = 10 rad/s", ("fig21-cr0.728",),
                "directions"),
     FigureSpec("23", "Time domain, C/R = 0.728 %, U = 252 g mm, w_by = 10 rad/s",
-               tuple(f"fig23-s{s:g}" for s in (1.025, 1.05, 1.075, 1.10)), "timedomain"),
+               tuple(f"fig23-s{s:g}" for s in (1.025, 1.04, 1.05, 1.075, 1.10)),
+               "timedomain"),
     FigureSpec("24", "C/R = 0.728 %, w_by = 10 rad/s, U = 144.02 / 360.04 g mm",
                ("fig24-u144", "fig24-u360"), "directions"),
+    FigureSpec("D", "Diagnosis: Table 1 and Figure 22 cases with 0.2 % modal damping",
+               ("damp-u144", "damp-u360", "damp-fig22"), "deflection"),
 )}
 
 #: Cases that are not in a figure but feed the report.
@@ -249,6 +264,8 @@ CLAIMS: tuple[Claim, ...] = (
     Claim("Table 3", "F: Omega~ (|mu| 1.0818)", 1.1669, "fig21-cr0.728", "tab3:F"),
     Claim("Table 3", "all bifurcations of our branch", None, "fig21-cr0.728", "bifurcations"),
     Claim("Figure 23", "Omega~ = 1.025", "period-1", "fig23-s1.025", "motion"),
+    Claim("Figure 23", "Omega~ = 1.04 (inside our HB period-doubling range)", None,
+          "fig23-s1.04", "motion"),
     Claim("Figure 23", "Omega~ = 1.05", "chaotic (possibly)", "fig23-s1.05", "motion"),
     Claim("Figure 23", "Omega~ = 1.075", "quasi-periodic", "fig23-s1.075", "motion"),
     Claim("Figure 23", "Omega~ = 1.10", "period-1", "fig23-s1.1", "motion"),
@@ -256,6 +273,22 @@ CLAIMS: tuple[Claim, ...] = (
           "bifurcations"),
     Claim("Figure 24", "C/R = 0.728 %, U = 360.04: bifurcations", "saddle-node pair",
           "fig24-u360", "bifurcations"),
+    Claim("Diagnosis", "0.2 % damping, U = 144.02: upper saddle-node Omega~", 1.0565,
+          "damp-u144", "sn_hi", band=5e-3),
+    Claim("Diagnosis", "0.2 % damping, U = 144.02: lower saddle-node Omega~", 1.0556,
+          "damp-u144", "sn_lo", band=5e-3),
+    Claim("Diagnosis", "0.2 % damping, U = 360.04: upper saddle-node Omega~", 1.2820,
+          "damp-u360", "sn_hi", band=5e-3),
+    Claim("Diagnosis", "0.2 % damping, U = 360.04: lower saddle-node Omega~", 1.1245,
+          "damp-u360", "sn_lo", band=1e-2),
+    Claim("Diagnosis", "0.2 % damping, U = 360.04: bifurcations", "saddle-node pair",
+          "damp-u360", "bifurcations"),
+    Claim("Diagnosis", "0.2 % damping, Table 3 case: bifurcations (paper: SN 1.0369; SH "
+          "1.0982; 1.2977; 1.1660; 1.1760; 1.1669)", None, "damp-fig22", "bifurcations"),
+    Claim("Diagnosis", "0.2 % damping, Table 3 C (|mu| 1.0008)", 1.2977, "damp-fig22",
+          "tab3:C"),
+    Claim("Diagnosis", "0.2 % damping, Table 3 D (|mu| 1.0716)", 1.1660, "damp-fig22",
+          "tab3:D"),
     Claim("Sensitivity", "U = 144.02 fold pair, SFD centring spring -5 %", None, "sens-sfdm",
           "fold_shift:fig7-u144"),
     Claim("Sensitivity", "U = 144.02 fold pair, SFD centring spring +5 %", None, "sens-sfdp",
