@@ -11,7 +11,9 @@ Usage::
 
 Modules: ``fourier`` (real DFT matrices, N_f rule), ``problem`` (PeriodicProblem),
 ``residual`` (full HB residual and Jacobians), ``condensation`` (exact condensation),
-``periodic`` (solvers), ``examples`` (Duffing, Jeffcott, 84-DOF beam rotor, test chain).
+``banded`` and ``aft_kernels`` (its compiled loops: banded LU of all harmonics, AFT and
+assembly), ``periodic`` (solvers), ``examples`` (Duffing, Jeffcott, 84-DOF beam rotor,
+test chain).
 """
 
 from rotorsfd.harmonic.condensation import CondensedHB
