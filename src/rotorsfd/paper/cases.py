@@ -130,6 +130,9 @@ def _cases() -> list[Case]:
              note="diagnosis: light structural damping (not in the paper)"),
         Case("damp-fig22", "paper_clearance.toml", "response", damp,
              note="diagnosis: light structural damping (not in the paper)"),
+        Case("damp-fig19-u360", "paper_unbalance.toml", "width-sweep", (_u(U360), *damp),
+             options={"values": [0, 2, 4, 6, 8, 10]},
+             note="diagnosis: Figure 19 for U = 360.04 g mm with 0.2 % modal damping"),
     ]
     for s in (1.025, 1.04, 1.05, 1.075, 1.10):
         out.append(Case(f"fig23-s{s:g}", "paper_clearance.toml", "simulate",
@@ -168,7 +171,7 @@ FIGURES: dict[str, FigureSpec] = {f.number: f for f in (
                tuple(f"fig17-{u}-w{w}" for u in ("u252", "u360") for w in (0, 6, 7, 9)),
                "deflection", {"nodes": [8]}),
     FigureSpec("19", "Unstable speed range against pitching rate",
-               ("fig19-u144", "fig19-u252", "fig19-u360"), "width"),
+               ("fig19-u144", "fig19-u252", "fig19-u360", "damp-fig19-u360"), "width"),
     FigureSpec("20", "SFD-node harmonics, pitching w_by = 9 rad/s, U = 252 / 360.04 g mm",
                ("fig17-u252-w9", "fig17-u360-w9"), "harmonics", {"nodes": [1]}),
     FigureSpec("21", "C/R = 0.485 / 0.61 %, U = 252 g mm, w_by = 10 rad/s",
@@ -283,6 +286,10 @@ CLAIMS: tuple[Claim, ...] = (
           "damp-u360", "sn_lo", band=1e-2),
     Claim("Diagnosis", "0.2 % damping, U = 360.04: bifurcations", "saddle-node pair",
           "damp-u360", "bifurcations"),
+    Claim("Diagnosis", "0.2 % damping: U = 360.04 unstable width at w_by = 0", 0.195,
+          "damp-fig19-u360", "width0", band=0.05),
+    Claim("Diagnosis", "0.2 % damping: U = 360.04 unstable width at w_by = 10", 0.119,
+          "damp-fig19-u360", "width10", band=0.05),
     Claim("Diagnosis", "0.2 % damping, Table 3 case: bifurcations (paper: SN 1.0369; SH "
           "1.0982; 1.2977; 1.1660; 1.1760; 1.1669)", None, "damp-fig22", "bifurcations"),
     Claim("Diagnosis", "0.2 % damping, Table 3 C (|mu| 1.0008)", 1.2977, "damp-fig22",
@@ -316,7 +323,7 @@ def select(figures: list[str] | None = None, quick: bool = False
     ``figures`` is empty; ``quick``: :data:`QUICK_FIGURES` unless figures are given)."""
     if not figures:
         figures = list(QUICK_FIGURES) if quick else list(FIGURES)
-        extra = () if quick else EXTRA_CASES
+        extra = ("modal",) if quick else EXTRA_CASES
     else:
         extra = ("modal",)
     unknown = [f for f in figures if f not in FIGURES]

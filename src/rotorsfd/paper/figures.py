@@ -12,6 +12,7 @@ from rotorsfd.paper.cases import FigureSpec
 from rotorsfd.paper.run import Outcome
 from rotorsfd.plots.response import mark_bifurcations, styled_line
 
+YMAX = 6.0        # deflection axes clipped here (r~ near journal contact can reach 500)
 XLABEL = r"$\tilde\Omega = \Omega / 811.3$ rad/s"
 
 
@@ -34,6 +35,9 @@ def _deflection(spec: FigureSpec, res: list[Outcome]) -> Figure:
             styled_line(ax, x, y, d.get("stable"), label=_label(o.name), lw=1.3)
             if d["bifurcations"]:
                 mark_bifurcations(ax, x, y, d["bifurcations"], "speed_ratio")
+        top = max(float(np.max(o.data[f"defl_{node}"])) for o in res)
+        if top > YMAX:   # a branch running into the locked-SFD resonance
+            ax.set_ylim(0, YMAX)
         ax.set_xlabel(XLABEL)
         ax.set_ylabel(rf"$\tilde r$ at node {node}")
         ax.set_title(f"node {node} ({'SFD' if node == 1 else 'disk'})", fontsize=9)
@@ -109,8 +113,11 @@ def _width(spec: FigureSpec, res: list[Outcome]) -> Figure:
     ax = fig.add_subplot()
     for o in res:
         d = o.data
+        label = o.name.replace("damp-fig19-", "0.2 % damping, ").replace("fig19-", "")
+        if np.all(np.isnan(d["width"])):
+            label += ": journal contact, no fold"
         ax.plot(d["rate"], d["width"], "-o" if len(d["rate"]) < 30 else "-", ms=3,
-                label=_label(o.name))
+                label=label)
     paper = {"U = 252 (paper)": ([0, 7], [0.041, 0.0]),
              "U = 360.04 (paper)": ([0, 10], [0.195, 0.119])}
     for name, (x, y) in paper.items():
@@ -161,10 +168,18 @@ def _timedomain(spec: FigureSpec, res: list[Outcome]) -> Figure:
         ax.set_title("phase", fontsize=9)
         ax = fig.add_subplot(len(res), 3, 3 * i + 3)
         ax.plot(d["py"], d["pvy"], "k.", ms=3)
+        ax.set_xlim(*_span(d["y"]))       # the phase plane's scale: one point looks
+        ax.set_ylim(*_span(d["vy"]))      # like one point
         ax.set_xlabel("y / C")
         ax.set_ylabel(r"$\dot y / (C \Omega)$")
         ax.set_title("Poincare section", fontsize=9)
     return fig
+
+
+def _span(x: Any) -> tuple[float, float]:
+    lo, hi = float(np.min(x)), float(np.max(x))
+    pad = 0.05 * (hi - lo) or 1e-3
+    return lo - pad, hi + pad
 
 
 def _chart(spec: FigureSpec, res: list[Outcome]) -> Figure:

@@ -121,6 +121,8 @@ def _value(claim: Claim, outcomes: Mapping[str, Outcome]) -> tuple[str, str, str
                 f"{n['sn_hi'] - m['sn_hi']:+.5f} / {n['sn_lo'] - m['sn_lo']:+.5f}", "ours only")
     if key == "motion":
         ours = str(n.get("motion"))
+        if claim.paper is None:
+            return ours, "", "ours only"
         want = str(claim.paper).split(" ")[0]
         ok = ours.startswith(want)
         return ours, "same" if ok else "differs qualitatively", "agrees" if ok else "differs"

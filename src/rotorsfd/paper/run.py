@@ -25,7 +25,8 @@ from rotorsfd.paper.cases import Case, examples_dir
 
 @dataclass
 class Outcome:
-    """What a case gave: status (``ok``, ``failed``: partial result, ``error``), numbers,
+    """What a case gave: status (``ok``; ``partial``: the branch stopped early, e.g. at
+    journal contact, its points kept; ``failed``: no result; ``error``: a bug), numbers,
     plot data, time."""
 
     name: str
@@ -264,8 +265,8 @@ def run_case(case: Case, examples: Path | None = None, quick: bool = False,
     except Exception as exc:  # a bug: the other cases still run
         return Outcome(case.name, "error", f"{type(exc).__name__}: {exc} "
                        f"{traceback.format_exc(limit=-2)}", time.perf_counter() - t0)
-    status = "ok" if numbers.get("success", True) else "failed"
-    return Outcome(case.name, status, str(numbers.get("message", "")),
+    status = "ok" if numbers.get("success", True) else "partial"
+    return Outcome(case.name, status, str(numbers.get("end") or numbers.get("message", "")),
                    time.perf_counter() - t0, numbers, data)
 
 
@@ -320,7 +321,10 @@ class PaperResult:
 
     def summary(self) -> str:
         bad = [o for o in self.outcomes.values() if o.status != "ok"]
-        lines = [f"{len(self.outcomes)} cases in {self.elapsed:.0f} s, {len(bad)} not ok"]
+        part = sum(o.status == "partial" for o in bad)
+        lines = [f"{len(self.outcomes)} cases in {self.elapsed:.0f} s: "
+                 f"{len(self.outcomes) - len(bad)} ok, {part} partial (branch ended early, "
+                 f"see the report), {len(bad) - part} failed"]
         lines += [f"  {o.name}: {o.status}: {o.message[:150]}" for o in bad]
         return "\n".join(lines)
 
