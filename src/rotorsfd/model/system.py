@@ -224,12 +224,9 @@ class RotorSystem:
 
         sfd = self.sfd
 
-        def nl_force(q: np.ndarray, v: np.ndarray) -> np.ndarray:
-            Fy, Fz = sfd.force(q[..., 0], q[..., 1], v[..., 0], v[..., 1])
-            return np.stack([Fy, Fz], axis=-1)
-
-        def nl_jacobian(q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-            return sfd.jacobian(q[..., 0], q[..., 1], v[..., 0], v[..., 1])
+        def nl_force_jacobian(q: np.ndarray, v: np.ndarray
+                              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+            return sfd.force_and_jacobian(q[..., 0], q[..., 1], v[..., 0], v[..., 1])
 
         def nl_limit(q: np.ndarray) -> float:
             return float(np.max(np.hypot(q[..., 0], q[..., 1]))) / sfd.clearance
@@ -237,7 +234,9 @@ class RotorSystem:
         return PeriodicProblem(
             n_dof=self.n_dof, nl_dofs=self.nl_dofs, matrices=matrices, dmatrices=dmatrices,
             forcing=forcing, dforcing=dforcing, frequency=frequency, dfrequency=dfrequency,
-            nl_force=nl_force, nl_jacobian=nl_jacobian, scaling=self.dof_scale(),
+            nl_force=sfd.nl_force, nl_jacobian=sfd.nl_jacobian,
+            nl_force_jacobian=nl_force_jacobian, nl_kernel=sfd.numba_kernel,
+            nl_kernel_params=sfd.kernel_params, scaling=self.dof_scale(),
             nl_limit=nl_limit, name=f"rotor-SFD response in {parameter}")
 
     def dof_scale(self) -> np.ndarray:
