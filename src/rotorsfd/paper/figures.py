@@ -133,11 +133,11 @@ def _directions(spec: FigureSpec, res: list[Outcome]) -> Figure:
     fig = Figure(figsize=(11, 4.4), layout="constrained")
     for k, d_name in enumerate(("y", "z")):
         ax = fig.add_subplot(1, 2, k + 1)
-        for o in res:
+        for i, o in enumerate(res):
             d = o.data
             for side in ("max", "min"):
                 y = d[f"{side}_1_{d_name}"]
-                styled_line(ax, d["speed_ratio"], y, d.get("stable"),
+                styled_line(ax, d["speed_ratio"], y, d.get("stable"), color=f"C{i}",
                             label=_label(o.name) if side == "max" else None, lw=1.2)
                 if d["bifurcations"]:
                     mark_bifurcations(ax, d["speed_ratio"], y, d["bifurcations"],
