@@ -307,9 +307,10 @@ CLAIMS: tuple[Claim, ...] = (
 
 
 def examples_dir() -> Path:
-    """The repository's ``examples/`` folder (the package is installed editable)."""
+    """The repository's ``examples/`` folder: ``./examples`` (the README runs from the
+    repository root, whatever the install), else the one above the package (editable)."""
     here = Path(__file__).resolve()
-    for parent in here.parents:
+    for parent in (Path.cwd(), *here.parents):
         if (parent / "examples" / "paper_rotor.toml").is_file():
             return parent / "examples"
     raise FileNotFoundError("examples/paper_rotor.toml not found above "
