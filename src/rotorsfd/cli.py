@@ -290,13 +290,17 @@ def _fit_supports(args: argparse.Namespace, config: Any) -> int:
 
 @command("response", "periodic response by harmonic balance and arc-length continuation "
          "([analysis.response]): branch.nc, branch.csv, response plots; exit 1 if the "
-         "branch stops early (the points so far are written)", output=True, quiet=True)
+         "branch stops early (the points so far are written)", output=True, quiet=True,
+         arguments=[arg("--multipliers-at", type=float, default=None, metavar="X",
+                        help="multipliers.png at the point nearest this speed ratio "
+                             "Omega/Omega_ref (the parameter in SI for a non-speed branch); "
+                             "default: the point of largest |mu|max")])
 def _response(args: argparse.Namespace, config: Any) -> int:
     from rotorsfd import api
 
     result = api.run_response(config, search_path=Path(args.config).parent,
                               progress=not args.quiet)
-    paths = result.write(args.output)
+    paths = result.write(args.output, multipliers_at=args.multipliers_at)
     if not result.success:
         print(f"rotorsfd: error: {_one_line(result.message)}", file=sys.stderr)
         return 1

@@ -28,8 +28,9 @@ def test_response_command_end_to_end(tmp_path):
     assert proc.returncode == 0, proc.stderr
     assert "ok: reached the end of the range" in proc.stdout
     assert sorted(p.name for p in out.iterdir()) == [
-        "bifurcations.csv", "branch.csv", "branch.nc", "response_deflection.png",
-        "response_node1.png", "response_node3.png"]  # stability on by default
+        "bifurcations.csv", "branch.csv", "branch.nc", "multipliers.png",
+        "response_deflection.png", "response_node1.png",
+        "response_node3.png"]  # stability on by default
     with (out / "branch.csv").open() as fh:
         rows = list(csv.DictReader(fh))
     assert float(rows[-1]["speed_ratio"]) == pytest.approx(1.2, rel=1e-12)

@@ -40,8 +40,8 @@ def test_columns_documented_order(written):
     expected += ["defl_1", "defl_3", "stable", "max_multiplier"]  # stability on by default
     assert header == expected
     assert sorted(paths) == ["bifurcations.csv", "branch.csv", "branch.nc",
-                             "response_deflection.png", "response_node1.png",
-                             "response_node3.png"]
+                             "multipliers.png", "response_deflection.png",
+                             "response_node1.png", "response_node3.png"]
     assert not [p for p in paths["branch.csv"].parent.iterdir() if p.name.startswith(".")]
     assert result.success and result.branch.n_points > 20
 

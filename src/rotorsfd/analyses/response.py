@@ -15,7 +15,9 @@ bifurcations: computed after the branch by
 :func:`~rotorsfd.analyses.branch_stability.branch_stability` when
 ``[analysis.stability].enabled`` (or ``stability_options`` is given); alternatively a
 ``stability`` hook called at every converged point fills them, or
-:meth:`ResponseResult.with_stability` adds them afterwards; they are written when present.
+:meth:`ResponseResult.with_stability` adds them afterwards; they are written when present,
+with ``multipliers.png`` (the multipliers of one point against the unit circle,
+:meth:`ResponseResult.plot_multipliers`).
 """
 
 from __future__ import annotations
@@ -271,9 +273,13 @@ class ResponseResult:
                                       {"long_name": "multipliers in the row (rest is 0)"})
         return ds
 
-    def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
+    def write(self, directory: str | Path, plots: bool = True,
+              multipliers_at: float | None = None) -> dict[str, Path]:
         """Write ``branch.nc``, ``branch.csv``, ``bifurcations.csv`` (when there is a
-        bifurcation table) and the plots (``response_*.png``) atomically."""
+        bifurcation table) and the plots (``response_*.png``, and ``multipliers.png`` when
+        the multipliers are known: at the point nearest ``multipliers_at``, a speed ratio
+        for a speed branch, else the parameter in SI; default the point of largest
+        ``|mu|max``) atomically."""
         from rotorsfd.io import atomic
         from rotorsfd.io.branch_files import BIFURCATION_COLUMNS, write_netcdf, write_table
 
@@ -286,7 +292,75 @@ class ResponseResult:
         if plots:
             for name, fig in self.plot().items():
                 paths[name] = atomic.save_figure(fig, out / name, dpi=120)
+            if self.multipliers is not None and self.branch.n_points:
+                at = ({} if multipliers_at is None else {"speed_ratio": multipliers_at}
+                      if self.is_speed else {"parameter": multipliers_at})
+                fig = self.plot_multipliers(**at)
+                paths["multipliers.png"] = atomic.save_figure(fig, out / "multipliers.png",
+                                                              dpi=120)
         return paths
+
+    # ---- multipliers of one point ---------------------------------------------------------
+    @property
+    def multiplier_counts(self) -> NDArray[np.int64]:
+        """Multipliers in each row of ``multipliers`` (the rest of a row is zero padding,
+        see :class:`~rotorsfd.analyses.branch_stability.BranchStability`); the full row
+        width when no counts were recorded (stability hook, :meth:`with_stability`)."""
+        if self.multipliers is None:
+            raise ValueError("no multipliers: run the response with stability enabled")
+        n, width = self.multipliers.shape[0], self.multipliers.shape[-1]
+        counts = self.info.get("n_multipliers")
+        if counts is not None and np.shape(counts) == (n,) and max(counts, default=0) <= width:
+            return np.asarray(counts, dtype=np.int64)
+        return np.full(n, width, dtype=np.int64)
+
+    def point_multipliers(self, index: int) -> NDArray[np.complex128]:
+        """The Floquet multipliers of point ``index`` (padding dropped)."""
+        if self.multipliers is None:
+            raise ValueError("no multipliers: run the response with stability enabled")
+        i = range(self.branch.n_points)[index]
+        row = np.asarray(self.multipliers[i], dtype=complex).ravel()
+        return row[: int(self.multiplier_counts[i])].copy()
+
+    def point_index(self, speed_ratio: float | None = None,
+                    parameter: float | None = None) -> int:
+        """Index of the point nearest ``speed_ratio`` (Omega / Omega_ref) or ``parameter``
+        (the continuation parameter, SI); with neither, the point of largest ``|mu|max``.
+        Where a fold puts several points near the same value, the first nearest wins."""
+        if speed_ratio is not None and parameter is not None:
+            raise ValueError("give speed_ratio or parameter, not both")
+        if speed_ratio is not None:
+            x, target = self.speeds / self.reference_speed, float(speed_ratio)
+        elif parameter is not None:
+            x, target = np.asarray(self.branch.lam, dtype=float), float(parameter)
+        else:
+            if self.max_multiplier is not None:
+                return int(np.argmax(self.max_multiplier))
+            if self.multipliers is None:
+                raise ValueError("no multipliers: run the response with stability enabled")
+            return int(np.argmax(np.abs(self.multipliers).max(axis=-1)))
+        return int(np.argmin(np.abs(x - target)))
+
+    def plot_multipliers(self, index: int | None = None, speed_ratio: float | None = None,
+                         parameter: float | None = None) -> Figure:
+        """The multipliers of one point against the unit circle
+        (:func:`rotorsfd.plots.response.plot_multipliers`): point ``index``, or the one
+        chosen by :meth:`point_index`."""
+        from rotorsfd.plots.response import plot_multipliers
+
+        if index is not None and (speed_ratio is not None or parameter is not None):
+            raise ValueError("give index, speed_ratio or parameter, not several")
+        i = (range(self.branch.n_points)[index] if index is not None
+             else self.point_index(speed_ratio, parameter))
+        mu = self.point_multipliers(i)
+        ratio = self.speeds[i] / self.reference_speed
+        where = (f"Omega~ = {ratio:.5g} (point {i})" if self.is_speed else
+                 f"{self.parameter} = {self.branch.lam[i]:.5g} {self.parameter_units}, "
+                 f"Omega~ = {ratio:.4g} (point {i})")
+        mm = None if self.max_multiplier is None else float(self.max_multiplier[i])
+        st = None if self.stable is None else bool(self.stable[i])
+        return plot_multipliers(mu, where=where, max_multiplier=mm, stable=st,
+                                title=self.title)
 
     # ---- plots and text -------------------------------------------------------------------
     def plot(self) -> dict[str, Figure]:

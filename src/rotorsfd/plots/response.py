@@ -99,3 +99,42 @@ def response_figures(table: Mapping[str, Any], *, x_name: str, x_label: str,
 
 def _short(text: str, n: int = 80) -> str:
     return text if len(text) <= n else text[: n - 3] + "..."
+
+
+def plot_multipliers(multipliers: Any, *, where: str, max_multiplier: float | None = None,
+                     stable: bool | None = None, title: str = "") -> Figure:
+    """The Floquet multipliers of one branch point in the complex plane against the unit
+    circle (``multipliers.png``): one marker per multiplier, the critical one (largest
+    ``|mu|``) highlighted; ``where`` names the point (e.g. ``"Omega~ = 1.05"``) in the
+    title, with ``|mu|max`` (default: the largest modulus given)."""
+    mu = np.asarray(multipliers, dtype=complex).ravel()
+    if mu.size == 0:
+        raise ValueError("no multipliers to plot")
+    i = int(np.argmax(np.abs(mu)))
+    rest = np.delete(mu, i)
+    mu_max = float(abs(mu[i])) if max_multiplier is None else float(max_multiplier)
+
+    fig = Figure(figsize=(5.2, 5.2), layout="constrained")
+    ax = fig.add_subplot()
+    theta = np.linspace(0.0, 2 * np.pi, 361)
+    ax.plot(np.cos(theta), np.sin(theta), "-", color="0.5", lw=1.0, label="unit circle",
+            gid="unit-circle")
+    ax.axhline(0.0, color="0.85", lw=0.6, zorder=0)
+    ax.axvline(0.0, color="0.85", lw=0.6, zorder=0)
+    ax.plot(rest.real, rest.imag, "x", color="C0", ms=6, ls="none", label="multipliers",
+            gid="multipliers")
+    ax.plot([mu[i].real], [mu[i].imag], "o", color="C3", ms=9, mfc="none", mew=1.8,
+            ls="none", label=rf"critical, $|\mu|$ = {abs(mu[i]):.4f}", gid="critical")
+    r = max(1.15, 1.1 * float(np.abs(mu).max()))
+    ax.set_xlim(-r, r)
+    ax.set_ylim(-r, r)
+    ax.set_aspect("equal")
+    ax.set_xlabel(r"Re $\mu$")
+    ax.set_ylabel(r"Im $\mu$")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="upper right")
+    state = "" if stable is None else (" (stable)" if stable else " (unstable)")
+    head = f"{_short(title, 70)}\n" if title else ""
+    ax.set_title(f"{head}Floquet multipliers at {_short(where, 70)}\n"
+                 rf"$|\mu|_{{max}}$ = {mu_max:.5f}{state}", fontsize=9)
+    return fig
