@@ -40,21 +40,6 @@ class Outcome:
 # ---- response -------------------------------------------------------------------------------
 
 
-def _segments(mask: np.ndarray) -> list[tuple[int, int]]:
-    """(first, last) index of each run of True."""
-    out, i = [], 0
-    while i < mask.size:
-        if mask[i]:
-            j = i
-            while j + 1 < mask.size and mask[j + 1]:
-                j += 1
-            out.append((i, j))
-            i = j + 1
-        else:
-            i += 1
-    return out
-
-
 def local_peaks(x: np.ndarray, y: np.ndarray, rel: float = 0.05) -> list[float]:
     """x of the local maxima of y(x) along the branch (arc order) that stand out by ``rel``
     of the largest value from the lowest point on both sides up to a higher value."""
