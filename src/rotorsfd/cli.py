@@ -200,6 +200,12 @@ def progress(iterable: Iterable[Any], *, quiet: bool = False, total: int | None 
 # ---- commands ----------------------------------------------------------------------------------
 
 
+def _print_written(result: Any, paths: dict[str, Path], quiet: bool) -> None:
+    """Print a result's summary and the files written (nothing when ``quiet``)."""
+    if not quiet:
+        print(result.summary())
+        print("wrote " + ", ".join(str(p) for p in paths.values()))
+
 @command("config show", "print the resolved configuration (SI units, defaults filled in)",
          arguments=[arg("--format", choices=("toml", "json"), default="toml",
                         help="output format (default: toml)")])
@@ -304,9 +310,7 @@ def _response(args: argparse.Namespace, config: Any) -> int:
     if not result.success:
         print(f"rotorsfd: error: {_one_line(result.message)}", file=sys.stderr)
         return 1
-    if not args.quiet:
-        print(result.summary())
-        print("wrote " + ", ".join(str(p) for p in paths.values()))
+    _print_written(result, paths, args.quiet)
     return 0
 
 
@@ -396,9 +400,7 @@ def _simulate(args: argparse.Namespace, config: Any) -> int:
                                 lyapunov_periods=args.lyapunov_periods,
                                 progress=not args.quiet)
     paths = result.write(args.output)
-    if not args.quiet:
-        print(result.summary())
-        print("wrote " + ", ".join(str(p) for p in paths.values()))
+    _print_written(result, paths, args.quiet)
     return 0
 
 
@@ -417,9 +419,7 @@ def _bifurcation_diagram(args: argparse.Namespace, config: Any) -> int:
     for p in result.contacts:
         print(f"rotorsfd: error: {p.direction} sweep stopped at {p.speed:.6g} rad/s: "
               f"{p.contact}", file=sys.stderr)
-    if not args.quiet:
-        print(result.summary())
-        print("wrote " + ", ".join(str(p) for p in paths.values()))
+    _print_written(result, paths, args.quiet)
     return 0 if result.success else 1
 
 @command("stability-chart", "stability chart of the linear rotor (film off) under harmonic "
@@ -436,9 +436,7 @@ def _stability_chart(args: argparse.Namespace, config: Any) -> int:
                                      search_path=Path(args.config).parent,
                                      progress=not args.quiet)
     paths = result.write(args.output)
-    if not args.quiet:
-        print(result.summary())
-        print("wrote " + ", ".join(str(p) for p in paths.values()))
+    _print_written(result, paths, args.quiet)
     return 0
 
 
@@ -468,9 +466,7 @@ def _fold_curve(args: argparse.Namespace, config: Any) -> int:
         print(f"rotorsfd: error: fold curve stopped early: {_one_line(result.message)}",
               file=sys.stderr)
         return 1
-    if not args.quiet:
-        print(result.summary())
-        print("wrote " + ", ".join(str(p) for p in paths.values()))
+    _print_written(result, paths, args.quiet)
     return 0
 
 
