@@ -96,6 +96,21 @@ def _check_square(M: ArrayLike, D: ArrayLike, K: ArrayLike):
     return M, D, K
 
 
+def _prepare(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, n_intervals: int,
+             nl_dofs: ArrayLike) -> tuple[NDArray, NDArray, NDArray, NDArray, int, float]:
+    """Checked (M, D, K), the nonlinear DOF indices, N and the step h = T / N."""
+    M, D, K = _check_square(M, D, K)
+    _check_period(period, n_intervals)
+    N = int(n_intervals)
+    return M, D, K, np.asarray(nl_dofs, dtype=np.intp).ravel(), N, period / N
+
+
+def _trace_MinvD(M: NDArray, D: NDArray, nl: NDArray, Cn: NDArray) -> NDArray:
+    """tr(M^-1 (D - P C_nl(t_j) P^T)) at every sample: the Liouville integrand."""
+    MinvP = np.linalg.solve(M, np.eye(M.shape[0])[:, nl])[nl] if nl.size else np.zeros((0, 0))
+    return np.trace(np.linalg.solve(M, D)) - np.einsum("ij,tji->t", MinvP, Cn)
+
+
 def monodromy_newmark(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, *,
                       nl_dofs: ArrayLike = (), dFdq: JacobianInput = None,
                       dFdv: JacobianInput = None, n_intervals: int = 400,
@@ -112,13 +127,8 @@ def monodromy_newmark(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, *
 
     Returns a ``FloquetResult`` with the (2n, 2n) monodromy for the state ``(q, q')``.
     """
-    M, D, K = _check_square(M, D, K)
-    _check_period(period, n_intervals)
-    n = M.shape[0]
-    nl = np.asarray(nl_dofs, dtype=np.intp).ravel()
-    m = nl.size
-    N = int(n_intervals)
-    h = period / N
+    M, D, K, nl, N, h = _prepare(M, D, K, period, n_intervals, nl_dofs)
+    n, m = M.shape[0], nl.size
     Kn = sample_jacobian(dFdq, period, N, m)
     Cn = sample_jacobian(dFdv, period, N, m)
 
@@ -143,8 +153,7 @@ def monodromy_newmark(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, *
         X = Y
     Phi = _finite(np.vstack([X, V]), "newmark", period)
     mu = sort_multipliers(np.linalg.eigvals(Phi))
-    trace = np.trace(np.linalg.solve(M, D)) - np.einsum(
-        "ij,tji->t", np.linalg.solve(M, np.eye(n)[:, nl])[nl] if m else np.zeros((0, 0)), Cn)
+    trace = _trace_MinvD(M, D, nl, Cn)
     return FloquetResult(mu, float(period), "newmark", liouville_log_det(trace, period),
                          Phi, tol, {"n_intervals": N, "n_dof": n})
 
@@ -176,13 +185,8 @@ def monodromy_generalized_alpha(M: ArrayLike, D: ArrayLike, K: ArrayLike, period
     """
     if not 0.0 <= rho_inf < 1.0:
         raise ConfigError("rho_inf", rho_inf, "0 <= rho_inf < 1")
-    M, D, K = _check_square(M, D, K)
-    _check_period(period, n_intervals)
-    n = M.shape[0]
-    nl = np.asarray(nl_dofs, dtype=np.intp).ravel()
-    m = nl.size
-    N = int(n_intervals)
-    h = period / N
+    M, D, K, nl, N, h = _prepare(M, D, K, period, n_intervals, nl_dofs)
+    n, m = M.shape[0], nl.size
     am = (2 * rho_inf - 1) / (rho_inf + 1)
     af = rho_inf / (rho_inf + 1)
     g = 0.5 - am + af
@@ -218,8 +222,7 @@ def monodromy_generalized_alpha(M: ArrayLike, D: ArrayLike, K: ArrayLike, period
         V = Vp + g * h * A
     Phi = _finite(np.vstack([X, V]), "generalized-alpha", period)
     mu = sort_multipliers(np.linalg.eigvals(Phi))
-    trace = np.trace(np.linalg.solve(M, D)) - np.einsum(
-        "ij,tji->t", np.linalg.solve(M, np.eye(n)[:, nl])[nl] if m else np.zeros((0, 0)), Cn)
+    trace = _trace_MinvD(M, D, nl, Cn)
     return FloquetResult(mu, float(period), "generalized-alpha",
                          liouville_log_det(trace, period), Phi, tol,
                          {"n_intervals": N, "n_dof": n, "rho_inf": rho_inf})
@@ -241,13 +244,8 @@ def monodromy_magnus4(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, *
     Gauss points ``t + (1/2 -+ sqrt(3)/6) h``; ``Phi <- expm(Omega) Phi``. Exact (to expm
     accuracy) for constant coefficients; error O(h^4) otherwise. Cost O(N (2n)^3 * ~20).
     """
-    M, D, K = _check_square(M, D, K)
-    _check_period(period, n_intervals)
-    n = M.shape[0]
-    nl = np.asarray(nl_dofs, dtype=np.intp).ravel()
-    m = nl.size
-    N = int(n_intervals)
-    h = period / N
+    M, D, K, nl, N, h = _prepare(M, D, K, period, n_intervals, nl_dofs)
+    n, m = M.shape[0], nl.size
     Minv = np.linalg.inv(M)
     zero = np.zeros((m, m))
 
