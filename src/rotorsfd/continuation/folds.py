@@ -39,7 +39,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Protocol
+from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import NDArray
@@ -197,34 +197,52 @@ class FoldOptions:
     turn_tol: float = 1e-9
 
 
+def _illinois(g: Callable[[float], tuple[float, Any]], a: float, fa: float, b: float,
+              fb: float, done: Callable[[float, float, float, float], bool],
+              max_iter: int) -> tuple[float, Any]:
+    """Root of a sign-changing f on [a, b] by regula falsi with the Illinois modification.
+
+    ``g(x) -> (f(x), payload)`` (the payload is what the caller wants at the root);
+    ``done(x, f, a, b)`` says when to stop. Returns (x, payload) of the last evaluation.
+    """
+    side = 0
+    x, payload = b, None
+    for _ in range(max_iter):
+        x = (a * fb - b * fa) / (fb - fa)
+        f, payload = g(x)
+        if done(x, f, a, b):
+            break
+        if f * fb < 0:
+            a, fa = b, fb
+            b, fb = x, f
+            side = 0
+        else:
+            b, fb = x, f
+            if side == -1:
+                fa *= 0.5
+            side = -1
+    return x, payload
+
+
 def _locate_turn(fold: FoldSystem, z: FloatArray, t: FloatArray, z1: FloatArray,
                  t1: FloatArray, tol: float, turn_tol: float
                  ) -> tuple[FloatArray, FloatArray, float]:
     """Point between z (tangent t) and z1 where the tangent's lam2 entry vanishes
     (Illinois on the arc length d from z); returns (z, t, d)."""
     W = metric(fold)
-    a, fa = 0.0, float(t[-1])
-    b = float(t @ (W * (z1 - z)))
-    fb = float(t1[-1])
-    zc, tc, side = z1, t1, 0
-    for _ in range(60):
-        d = (a * fb - b * fa) / (fb - fa)
+
+    def g(d: float) -> tuple[float, tuple[FloatArray, FloatArray]]:
         res = newton_extended(fold, z + d * t, W * t, float((W * t) @ z) + d, tol, 30)
         if not res.converged:
             raise ConvergenceError(f"fold curve: locating the cusp failed: {res.message}")
-        zc, tc = res.z, tangent(res.J, t, W)
-        f = float(tc[-1])
-        if abs(f) <= turn_tol or abs(b - a) <= 1e-14 * max(1.0, abs(b)):
-            return zc, tc, d
-        if f * fb < 0:
-            a, fa = b, fb
-            b, fb = d, f
-            side = 0
-        else:
-            b, fb = d, f
-            if side == -1:
-                fa *= 0.5
-            side = -1
+        tc = tangent(res.J, t, W)
+        return float(tc[-1]), (res.z, tc)
+
+    def done(d: float, f: float, a: float, b: float) -> bool:
+        return abs(f) <= turn_tol or abs(b - a) <= 1e-14 * max(1.0, abs(b))
+
+    d, (zc, tc) = _illinois(g, 0.0, float(t[-1]), float(t @ (W * (z1 - z))), float(t1[-1]),
+                            done, 60)
     return zc, tc, d
 
 
@@ -335,24 +353,15 @@ def locate_branch_fold(branch: Branch, i: int, rtol: float = 1e-10,
     if fa * fb > 0:
         raise ValueError(f"no sign change of dlam/ds between points {i} and {i + 1}")
     width = b - a
-    side = 0
-    p = branch.point_at(0.5 * (a + b))
-    for _ in range(max_iter):
-        s = (a * fb - b * fa) / (fb - fa)
+
+    def g(s: float) -> tuple[float, BranchPoint]:
         p = branch.point_at(s)
-        f = p.dlam_ds
-        if f == 0.0 or min(abs(s - a), abs(s - b)) <= rtol * width:
-            return p
-        if f * fb < 0:
-            a, fa = b, fb
-            b, fb = s, f
-            side = 0
-        else:
-            b, fb = s, f
-            if side == -1:
-                fa *= 0.5
-            side = -1
-    return p
+        return p.dlam_ds, p
+
+    def done(s: float, f: float, a: float, b: float) -> bool:
+        return f == 0.0 or min(abs(s - a), abs(s - b)) <= rtol * width
+
+    return _illinois(g, a, fa, b, fb, done, max_iter)[1]
 
 
 # ---- the condensed HB residual in two parameters -----------------------------------------
