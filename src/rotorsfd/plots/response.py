@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 
 MARKERS = {"saddle-node": "o", "period-doubling": "s", "secondary-hopf": "^"}
 
@@ -42,13 +43,32 @@ def styled_line(ax: Axes, x: Any, y: Any, stable: Any = None, **kw: Any) -> None
 
 def mark_bifurcations(ax: Axes, x: Any, y: Any, bifurcations: Sequence[Mapping[str, Any]],
                       x_key: str) -> None:
-    """Markers at the bifurcations (y interpolated along the branch curve in order)."""
+    """Markers at the bifurcations, at the branch point nearest in x among the points
+    next to the bifurcation's bracket (``point``), so a fold marks the right sheet."""
     x, y = np.asarray(x, float), np.asarray(y, float)
     for b in bifurcations:
         xb = float(b[x_key])
-        i = int(np.argmin(np.abs(x - xb)))
+        near = np.arange(len(x))
+        if b.get("point") is not None and not np.isnan(float(b["point"])):
+            p = int(b["point"])
+            near = near[max(p - 1, 0):p + 3]
+        i = int(near[np.argmin(np.abs(x[near] - xb))])
         ax.plot([xb], [y[i]], MARKERS.get(b["type"], "x"), color="k", ms=6,
                 mfc="none", zorder=5)
+
+
+def key_legend(ax: Axes, stable: Any, bifurcations: Sequence[Mapping[str, Any]] | None
+               ) -> None:
+    """A second legend explaining the line styles and the bifurcation markers used."""
+    handles = []
+    if stable is not None and not np.all(np.asarray(stable, bool)):
+        handles += [Line2D([], [], color="0.3", ls="-", label="stable"),
+                    Line2D([], [], color="0.3", ls="--", label="unstable")]
+    for kind in dict.fromkeys(b["type"] for b in bifurcations or ()):
+        handles.append(Line2D([], [], ls="none", marker=MARKERS.get(kind, "x"), color="k",
+                              mfc="none", label=kind))
+    if handles:
+        ax.add_artist(ax.legend(handles=handles, fontsize=8, loc="upper left"))
 
 
 def response_figures(table: Mapping[str, Any], *, x_name: str, x_label: str,
@@ -74,7 +94,8 @@ def response_figures(table: Mapping[str, Any], *, x_name: str, x_label: str,
     ax.set_ylabel(r"$\tilde r = \max_t \sqrt{y^2 + z^2} / C$")
     ax.set_title(_short(title or "Frequency response"), fontsize=9)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
+    key_legend(ax, stable, bifurcations)
+    ax.legend(fontsize=8, loc="upper right")
     figs["response_deflection.png"] = fig
 
     for n in nodes:
