@@ -5,6 +5,14 @@ An override is ``KEY=VALUE``: KEY a dotted path into the TOML (``rotor.shaft[0].
 or ``rotor.shaft.0.length``; lists are indexed from 0), VALUE a TOML value or, if it is not
 one, a bare string (so ``0.61 %`` and ``none`` need no quotes). Every problem is raised as
 one :class:`~rotorsfd.errors.ConfigError` naming the field, the value and what is allowed.
+
+Inheritance: a top-level ``extends = "base.toml"`` (a path relative to the folder of the
+file that contains it; chains allowed) reads that file first and merges this file's tables
+into it key by key, recursively; scalars and arrays (arrays of tables such as
+``[[unbalance]]`` included) replace the base's wholesale. :func:`load_config` and
+:func:`read_config` resolve it before the overrides and the validation.
+:func:`config_from_dict` resolves it only when given ``base_dir`` (the folder a relative
+``extends`` is taken from); without it a dict that still holds ``extends`` is an error.
 """
 
 from __future__ import annotations
@@ -53,12 +61,67 @@ def read_toml(path: str | Path) -> dict[str, Any]:
 
 
 def load_config(path: str | Path, overrides: Iterable[str] = ()) -> Config:
-    """Read, override (``KEY=VALUE`` strings) and validate the TOML configuration."""
-    return config_from_dict(read_toml(path), overrides)
+    """Read (``extends`` resolved), override (``KEY=VALUE`` strings) and validate the TOML
+    configuration."""
+    return config_from_dict(read_config(path), overrides)
 
 
-def config_from_dict(raw: Mapping[str, Any], overrides: Iterable[str] = ()) -> Config:
-    """Validate a raw (TOML-like) dict after applying ``KEY=VALUE`` overrides."""
+EXTENDS = "extends"
+
+
+def read_config(path: str | Path) -> dict[str, Any]:
+    """The raw table of the TOML file ``path`` with its ``extends`` chain resolved: the
+    base file(s) first, this file's tables merged into them (:func:`merge_tables`)."""
+    return _resolve_extends(read_toml(path), Path(path).parent, (Path(path),))
+
+
+def merge_tables(base: Mapping[str, Any], top: Mapping[str, Any]) -> dict[str, Any]:
+    """``base`` with ``top`` merged into it: tables key by key, recursively; any other
+    value of ``top`` (scalar, array, array of tables) replaces the base's wholesale."""
+    out = _deep_copy(base)
+    for key, value in top.items():
+        if isinstance(value, Mapping) and isinstance(out.get(key), dict):
+            out[key] = merge_tables(out[key], value)
+        else:
+            out[key] = _deep_copy(value)
+    return out
+
+
+def _resolve_extends(raw: Mapping[str, Any], base_dir: Path,
+                     chain: tuple[Path, ...]) -> dict[str, Any]:
+    """``raw`` (read from ``chain[-1]``, or a dict when ``chain`` is empty) merged into the
+    config its ``extends`` names, relative to ``base_dir``."""
+    if EXTENDS not in raw:
+        return _deep_copy(raw)
+    value = raw[EXTENDS]
+    where = f" (in {chain[-1]})" if chain else ""
+    if not isinstance(value, str) or not value.strip():
+        raise ConfigError(EXTENDS, value, "must be a string: the path of the base config "
+                          f"file, relative to the folder of the file that contains it{where}")
+    path = base_dir / value
+    if not path.is_file():
+        raise ConfigError(EXTENDS, value, f"no such file: {path} (the path is relative to "
+                          f"the folder of the file that contains it{where})")
+    seen = [p.resolve() for p in chain]
+    if path.resolve() in seen:
+        cycle = " -> ".join(p.name for p in (*chain[seen.index(path.resolve()):], path))
+        raise ConfigError(EXTENDS, value, f"a cycle: {cycle}; a config may extend another "
+                          "only if that one does not lead back to it")
+    base = _resolve_extends(read_toml(path), path.parent, (*chain, path))
+    return merge_tables(base, {k: v for k, v in raw.items() if k != EXTENDS})
+
+
+def config_from_dict(raw: Mapping[str, Any], overrides: Iterable[str] = (),
+                     base_dir: str | Path | None = None) -> Config:
+    """Validate a raw (TOML-like) dict after applying ``KEY=VALUE`` overrides. A top-level
+    ``extends`` is resolved relative to ``base_dir``; without ``base_dir`` it is an error
+    (a dict does not know which folder its path is relative to)."""
+    if EXTENDS in raw:
+        if base_dir is None:
+            raise ConfigError(EXTENDS, raw[EXTENDS], "config_from_dict cannot resolve it: "
+                              "pass base_dir (the folder the path is relative to) or use "
+                              "load_config(path)")
+        raw = _resolve_extends(raw, Path(base_dir), ())
     data = _deep_copy(raw)
     for item in overrides:
         key, value = parse_override(item)
