@@ -399,7 +399,7 @@ class TwoParameterHB:
         self.cx = np.tile(p1.dof_scale[p1.nl_dofs], 2 * H + 1)
         hb = CondensedHB(p1, H, N)
         hb.set_shift(np.reshape(xs0, (2 * H + 1, p1.m)), lam0[0])
-        self.delta, self._delta_real = hb.delta, hb._delta_real
+        self._shifted = hb   # holds the fixed shift, passed on by CondensedHB.with_problem
         self.aft = hb.aft
         self._key: tuple[float, float] | None = None
         self._hb: tuple[CondensedHB, CondensedHB] | None = None
@@ -414,12 +414,9 @@ class TwoParameterHB:
 
     def _condensers(self, lam1: float, lam2: float) -> tuple[CondensedHB, CondensedHB]:
         if self._key != (lam1, lam2) or self._hb is None:
-            pair = []
-            for p in (self.problem.first(lam2), self.problem.second(lam1)):
-                hb = CondensedHB(p, self.H, self.N)
-                hb.delta, hb._delta_real = self.delta, self._delta_real
-                pair.append(hb)
-            self._key, self._hb = (lam1, lam2), (pair[0], pair[1])
+            self._key = (lam1, lam2)
+            self._hb = (self._shifted.with_problem(self.problem.first(lam2)),
+                        self._shifted.with_problem(self.problem.second(lam1)))
         return self._hb
 
     def evaluate(self, z: FloatArray) -> tuple[FloatArray, FloatArray]:

@@ -141,6 +141,17 @@ class CondensedHB:
         self._cache = None
         self._last = None
 
+    def with_problem(self, problem: PeriodicProblem) -> CondensedHB:
+        """A condenser of another problem on the same nonlinear DOFs (the same system at
+        other parameter values, or its view in another parameter) with the same H, N and
+        this one's shift Delta, held fixed (shared, not copied)."""
+        if problem.m != self.problem.m:
+            raise ValueError(f"the shift is for {self.problem.m} nonlinear DOFs, the "
+                             f"problem has {problem.m}")
+        hb = CondensedHB(problem, self.H, self.aft.N)
+        hb.delta, hb._delta_real = self.delta, self._delta_real
+        return hb
+
     def _delta_diagonal(self) -> ComplexArray | None:
         """Diagonal (H+1, m) of the shift, or None if it is not diagonal."""
         seen = self._delta_seen
