@@ -98,13 +98,14 @@ def integer(doc: str, *, ge: int | None = None, le: int | None = None,
 NODE = integer("node number (1-based, as in the paper)", ge=1)
 NAME_PATTERN = r"^[A-Za-z_][A-Za-z0-9_\-]*$"
 NAME = Annotated[str, Field(pattern=NAME_PATTERN,
-                            description="name of a [materials.<name>] table (letters, digits, "
-                                        "'_' and '-')")]
+                            description="name of a [materials.<name>] table; allowed: "
+                                        "letters, digits, '_' and '-', starting with a "
+                                        "letter or '_'")]
 LABEL = Annotated[str, Field(description="a free label, used in messages and plots")]
 CALLABLE = Annotated[str | None, Field(
     pattern=r"^[A-Za-z_][\w.]*:[A-Za-z_]\w*$",
-    description="a Python callable as 'module:function' (importable, e.g. from the "
-                "config file's folder)")]
+    description="a Python function f(t) (importable, e.g. from the config file's folder); "
+                "allowed: 'module:function'")]
 
 
 class Section(BaseModel):
@@ -194,7 +195,8 @@ class DiskConfig(Section):
 
     node: NODE
     name: LABEL = ""
-    material: Annotated[str | None, Field(description="material name (geometry form)")] = None
+    material: Annotated[str | None, Field(description="material (geometry form); allowed: "
+                                          "the name of a [materials.<name>] table")] = None
     inner_radius: quantity("length", "bore radius (geometry form; default 0, a solid disk)",
                            ge=0, optional=True) = None
     outer_radius: quantity("length", "outer radius (geometry form)", gt=0, optional=True) = None
@@ -399,8 +401,8 @@ class _Component(Section):
                         optional=True) = None
     phase: quantity("angle", "phase of the harmonic law", optional=True) = None
     callable: CALLABLE = None
-    derivative: CALLABLE = Field(None, description="optional 'module:function' giving "
-                                 "f'(t) of the callable law (default: complex step)")
+    derivative: CALLABLE = Field(None, description="the derivative f'(t) of the callable "
+                                 "law (default: by complex step); allowed: 'module:function'")
 
     _alt_amplitude: ClassVar[str] = ""  # name of the alternative amplitude field
     _law_fields: ClassVar[dict[str, tuple[str, ...]]] = {}  # fields of extra laws
@@ -513,8 +515,9 @@ class GravityConfig(Section):
     enabled: bool = Field(False, description="include gravity (the paper neglects it)")
     magnitude: quantity("acceleration", "gravitational acceleration g", ge=0) = 9.80665
     direction: list[float] = Field([0.0, 0.0, -1.0], min_length=3, max_length=3,
-                                   description="direction of g in the base frame at t = 0 "
-                                               "(x, y, z); normalised on use")
+                                   description="direction (x, y, z) of g in the base frame "
+                                               "at t = 0, normalised on use; allowed: 3 "
+                                               "finite numbers, not all zero")
     frame: Literal["inertial", "base"] = Field(
         "inertial", description="'inertial': g fixed in space (turns in the base frame as "
                                 "the base rotates); 'base': g fixed to the base")
@@ -541,8 +544,9 @@ class ReferenceConfig(Section):
     """Reference speed of the dimensionless speed Omega~ = Omega / Omega_ref."""
 
     speed: Annotated[float | Literal["first_critical"], BeforeValidator(_speed_or_keyword),
-                     Field(description="Omega_ref [rad/s] > 0, or 'first_critical' (the "
-                                       "first forward critical speed, computed)")
+                     Field(description="Omega_ref, or 'first_critical': the first forward "
+                                       "critical speed, computed [rad/s]; allowed: > 0 "
+                                       "rad/s, or 'first_critical'")
                      ] = "first_critical"
 
     @model_validator(mode="after")
@@ -581,23 +585,27 @@ class SpeedRange(Section):
         return self.start_ratio * reference_speed, self.stop_ratio * reference_speed
 
 
-def _path_field(doc: str) -> Any:
-    return Annotated[str, Field(pattern=r"^[A-Za-z_][\w]*(\[\d+\]|\.\w+)*$", description=doc)]
-
-
 PARAMETER_DOC = ("'speed' or the dotted path of a scalar config field, e.g. "
                  "'base.pitching.value', 'unbalance[0].magnitude', 'sfd.clearance_ratio'")
+
+
+def _path_field(doc: str) -> Any:
+    return Annotated[str, Field(pattern=r"^[A-Za-z_][\w]*(\[\d+\]|\.\w+)*$",
+                                description=f"{doc}; allowed: {PARAMETER_DOC}")]
+
+
+_PARAMETER_VALUE = "a number in SI units or a string with the parameter's units"
 
 
 class ParameterAxis(Section):
     """A grid over one scalar config field (or 'speed'); values take that field's units."""
 
-    parameter: _path_field(PARAMETER_DOC)
-    start: Any = Field(None, description="first value (units of the parameter)")
-    stop: Any = Field(None, description="last value (units of the parameter)")
+    parameter: _path_field("the parameter of the axis")
+    start: Any = Field(None, description=f"first value; allowed: {_PARAMETER_VALUE}")
+    stop: Any = Field(None, description=f"last value; allowed: {_PARAMETER_VALUE}")
     n: integer("number of grid values", ge=1, le=100000) = 11
     values: list[Any] | None = Field(None, description="explicit values instead of "
-                                     "start/stop/n (units of the parameter)")
+                                     f"start/stop/n; allowed: a list, each {_PARAMETER_VALUE}")
 
     @model_validator(mode="after")
     def _form(self):
@@ -633,7 +641,7 @@ class ResponseAnalysis(Section):
     harmonics: integer("number of harmonics H", ge=1, le=64) = 3
     n_samples: integer("time samples per period N_f of the AFT (default: chosen free of "
                        "aliasing)", ge=3, le=65536, optional=True) = None
-    parameter: _path_field("continuation parameter: " + PARAMETER_DOC) = "speed"
+    parameter: _path_field("continuation parameter") = "speed"
     speed_range: SpeedRange = SpeedRange(start_ratio=0.5, stop_ratio=1.6)
     speed: quantity("angular_velocity", "fixed speed when the parameter is not 'speed'",
                     gt=0, optional=True) = None
@@ -641,7 +649,8 @@ class ResponseAnalysis(Section):
                           "not 'speed'", gt=0, optional=True) = None
     parameter_range: list[Any] | None = Field(
         None, min_length=2, max_length=2,
-        description="[start, stop] of a non-speed parameter (its units)")
+        description="[start, stop] of a non-speed parameter; allowed: a list of 2 items, "
+                    f"each {_PARAMETER_VALUE}")
     step_initial: quantity("ratio", "initial arc-length step (scaled variables)", gt=0) = 0.01
     step_min: quantity("ratio", "smallest step before the branch stops", gt=0) = 1e-6
     step_max: quantity("ratio", "largest step", gt=0) = 0.1
