@@ -235,12 +235,14 @@ def _config_schema(args: argparse.Namespace, config: Any) -> int:
     return 0
 
 
-@command("config fields", "print the reference of every config field (Markdown table: "
-         "type, SI unit, default, allowed range)", config=False)
+@command("config fields", "print the reference of every config field: SI unit, default, "
+         "allowed values or range (the README's configuration reference)", config=False,
+         arguments=[arg("--format", choices=["markdown", "csv", "json"], default="markdown",
+                        help="markdown (one table per section; default), csv or json")])
 def _config_fields(args: argparse.Namespace, config: Any) -> int:
-    from rotorsfd.io.reference import markdown_reference
+    from rotorsfd.io.reference import FORMATS
 
-    sys.stdout.write(markdown_reference())
+    sys.stdout.write(FORMATS[args.format]())
     return 0
 
 

@@ -231,8 +231,8 @@ def test_every_field_documented():
     assert len(docs) > 100
     assert all(d.description for d in docs), [d.path for d in docs if not d.description]
     table = markdown_reference()
-    assert "| `sfd.clearance_ratio` | quantity | 1 |" in table
-    assert "`rotor.shaft[].length`" in table
+    assert "| `clearance_ratio` | `1` | `-` | 0 < value < 1 |" in table  # in [sfd]
+    assert "`shaft[].length`" in table
 
 
 @pytest.mark.parametrize(("override", "field"), [
