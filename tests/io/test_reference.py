@@ -47,9 +47,9 @@ def _rendered_paths(markdown: str) -> list[str]:
     headings and the (relative) keys of its rows."""
     paths, section = [], None
     for line in markdown.splitlines():
-        if line.startswith("#### "):
-            m = re.fullmatch(r"#### `\[\[?([^\]]+)\]\]?`", line)
-            section = m[1] + ("[]" if line.startswith("#### `[[") else "") if m else ""
+        if line.startswith("### "):
+            m = re.fullmatch(r"### `\[\[?([^\]]+)\]\]?`", line)
+            section = m[1] + ("[]" if line.startswith("### `[[") else "") if m else ""
         elif line.startswith("| `"):
             key = line.split("`")[1]
             assert section is not None, line

@@ -340,7 +340,7 @@ LEGEND = ("Values are SI numbers in the unit shown, or strings with units (`\"0.
           "an optional setting). `[]` in a key marks a list of tables (`[[...]]` in TOML).")
 
 
-def markdown_reference(heading: str = "####") -> str:
+def markdown_reference(heading: str = "###") -> str:
     """The field reference as Markdown: a legend, then one table per section."""
     lines = [LEGEND]
     for s in sections():
