@@ -8,8 +8,8 @@ import csv
 
 import numpy as np
 import pytest
-from response_helpers import small_rotor_toml
 
+from rotors import small_rotor_toml
 from rotorsfd import api
 from rotorsfd.analyses.bifurcation_diagram import run_bifurcation_diagram, sweep_speeds
 from rotorsfd.cli import main

@@ -123,8 +123,7 @@ def test_newmark_and_hill_agree_near_duffing_folds(duffing_case, n_intervals, at
 def rotor_case(tmp_path_factory):
     """The small rotor of the response tests (SFD at node 1): a saddle-node pair at
     U = 100 g mm."""
-    from response_helpers import small_rotor_toml
-
+    from rotors import small_rotor_toml
     from rotorsfd import api
 
     path = small_rotor_toml(tmp_path_factory.mktemp("bs") / "small.toml",
@@ -191,8 +190,7 @@ def test_options_reject_unknown_method():
 
 def test_rotor_secondary_hopf_located_and_confirmed_by_hill(tmp_path):
     """U = 300 g mm: before journal contact a complex pair leaves the unit circle."""
-    from response_helpers import small_rotor_toml
-
+    from rotors import small_rotor_toml
     from rotorsfd import api
 
     path = small_rotor_toml(tmp_path / "small.toml", unbalance="300 g*mm")

@@ -6,8 +6,8 @@ from __future__ import annotations
 import csv
 
 import numpy as np
-from response_helpers import small_rotor_toml
 
+from rotors import small_rotor_toml
 from rotorsfd.cli import main
 from rotorsfd.io.branch_files import BIFURCATION_COLUMNS, read_branch
 

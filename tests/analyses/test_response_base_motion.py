@@ -6,8 +6,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from response_helpers import small_rotor_toml
 
+from rotors import small_rotor_toml
 from rotorsfd import api
 from rotorsfd.harmonic.periodic import solve_periodic
 from rotorsfd.linear import eigen

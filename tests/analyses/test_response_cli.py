@@ -11,8 +11,8 @@ import sys
 
 import numpy as np
 import pytest
-from response_helpers import small_rotor_toml
 
+from rotors import small_rotor_toml
 from rotorsfd.cli import main
 from rotorsfd.io.branch_files import read_branch
 

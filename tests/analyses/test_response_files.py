@@ -8,8 +8,8 @@ import math
 
 import numpy as np
 import pytest
-from response_helpers import small_rotor_toml
 
+from rotors import small_rotor_toml
 from rotorsfd import api
 from rotorsfd.analyses.response import max_radius
 from rotorsfd.io.branch_files import BIFURCATION_COLUMNS, coefficients, read_branch

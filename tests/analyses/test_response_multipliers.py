@@ -7,8 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from response_helpers import small_rotor_toml
 
+from rotors import small_rotor_toml
 from rotorsfd import api
 from rotorsfd.cli import main
 

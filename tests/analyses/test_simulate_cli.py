@@ -9,8 +9,8 @@ import json
 import numpy as np
 import pytest
 import xarray as xr
-from response_helpers import small_rotor_toml
 
+from rotors import small_rotor_toml
 from rotorsfd.cli import main
 
 C = 0.127e-3

@@ -1,5 +1,6 @@
-"""A small rotor-SFD configuration for the response tests (4 shaft elements, one disk,
-an SFD with a centring spring at node 1, a linear support at node 5)."""
+"""The small rotor-SFD configuration of the response and sweep tests (4 shaft elements,
+one disk, an SFD with a centring spring at node 1, a linear support at node 5), importable
+as ``rotors`` from any test (tests/ is on the path: its conftest.py)."""
 
 from __future__ import annotations
 
