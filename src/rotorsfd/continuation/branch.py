@@ -53,8 +53,11 @@ class Branch:
     s : (n_points,) arc length from the first point, ``cumsum(ds)`` (scaled units).
     jacobians : (n_points, nu, nu+1) ``[dR/dx, dR/dlam]`` at each point (physical units;
         condensed: Schur-form residual on nl_dofs), or None if not stored.
-    aliasing : (n_points,) relative change of the nonlinear-force coefficients if N_f
-        doubled (:func:`rotorsfd.harmonic.fourier.aliasing_error`).
+    aliasing : (n_points,) sampling-error estimate of the N_f rule used
+        (``info["n_samples_rule"]``, see :func:`rotorsfd.harmonic.continue_periodic`):
+        "adaptive", the change of the scaled residual if N_f doubled; "grow", the relative
+        change of the nonlinear-force coefficients
+        (:func:`rotorsfd.harmonic.fourier.aliasing_error`).
     success, message : scipy-style outcome.
     H, n_samples, nl_dofs, condensed, lam_scale : the discretisation used.
     """

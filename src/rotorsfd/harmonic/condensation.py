@@ -291,24 +291,45 @@ class CondensedHB:
             return R, None, None
         return R, J, dR.reshape(nu)
 
+    def force_coefficients(self, xs: FloatArray, lam: float, N: int) -> FloatArray:
+        """Nonlinear-force coefficients G (2H+1, m) at (xs, lam) with N samples: those of
+        the last residual evaluation when it was there with this N, else one AFT (the
+        compiled kernel when the problem has one)."""
+        p, H = self.problem, self.H
+        xs = np.ascontiguousarray(xs, dtype=float).reshape(2 * H + 1, p.m)
+        if N == self.aft.N:
+            G = self.last_G(xs, lam)
+            if G is not None:
+                return G
+        w = p.frequency(lam)
+        a = aft_matrices(H, N)
+        if self._kernel is None:
+            return nonlinear_coefficients(p, a, xs, w, jac=False).G
+        q, dq, v, f = (np.empty((N, p.m)) for _ in range(4))
+        dfq, dfv = np.empty((N, p.m, p.m)), np.empty((N, p.m, p.m))
+        G = np.empty_like(xs)
+        status = force_coefficients(self._kernel, p.nl_kernel_params, xs, w, a.E, a.Ed,
+                                    a.P, q, dq, v, f, dfq, dfv, G)
+        _kernel_status(p, status, q, v)
+        return G
+
     def aliasing(self, xs: FloatArray, lam: float) -> float:
         """:func:`rotorsfd.harmonic.fourier.aliasing_error` at (xs, lam), the 2N-sample
         force by the compiled kernel when the problem has one."""
         p, H = self.problem, self.H
         xs = np.ascontiguousarray(xs, dtype=float).reshape(2 * H + 1, p.m)
-        w, N = p.frequency(lam), self.aft.N
         G_N = self.last_G(xs, lam)
         if self._kernel is None or G_N is None:
-            return aliasing_error(p.nl_force, xs, w, N, G_N)
-        a2 = aft_matrices(H, 2 * N)
-        q, dq, v, f = (np.empty((2 * N, p.m)) for _ in range(4))
-        dfq, dfv = np.empty((2 * N, p.m, p.m)), np.empty((2 * N, p.m, p.m))
-        G2 = np.empty_like(xs)
-        status = force_coefficients(self._kernel, p.nl_kernel_params, xs, w, a2.E, a2.Ed,
-                                    a2.P, q, dq, v, f, dfq, dfv, G2)
-        _kernel_status(p, status, q, v)
+            return aliasing_error(p.nl_force, xs, p.frequency(lam), self.aft.N, G_N)
+        G2 = self.force_coefficients(xs, lam, 2 * self.aft.N)
         scale = max(float(np.max(np.abs(G2))), np.finfo(float).tiny)
         return float(np.max(np.abs(G2 - G_N))) / scale
+
+    def displacement_of(self, dG: FloatArray, lam: float) -> FloatArray:
+        """Change of the receptance-form residual (units of length, real layout (2H+1, m))
+        caused by a change dG of the nonlinear-force coefficients: ``-Ht_k dG_k``."""
+        Ht = self.condense(lam, deriv=False).Ht
+        return -to_real(np.einsum("kij,kj->ki", Ht, to_complex(dG)))
 
     def schur_jacobian(self, J: FloatArray, dR: FloatArray, lam: float) -> FloatArray:
         """Jacobian [dR_schur/dxs, dR_schur/dlam] (nu, nu+1) from the receptance-form one

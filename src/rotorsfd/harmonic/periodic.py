@@ -27,9 +27,15 @@ from rotorsfd.continuation.newton import NewtonResult, newton_extended, tangent
 from rotorsfd.errors import ConvergenceError
 from rotorsfd.harmonic.blas import single_threaded_blas
 from rotorsfd.harmonic.condensation import CondensedHB
-from rotorsfd.harmonic.fourier import aliasing_error, choose_n_samples, to_real
+from rotorsfd.harmonic.fourier import (
+    aft_matrices,
+    aliasing_error,
+    choose_n_samples,
+    default_min_samples,
+    to_real,
+)
 from rotorsfd.harmonic.problem import PeriodicProblem
-from rotorsfd.harmonic.residual import FullHB
+from rotorsfd.harmonic.residual import FullHB, nonlinear_coefficients
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -107,12 +113,70 @@ class HBSystem:
         return X
 
     def aliasing(self, z: FloatArray) -> float:
+        """Relative change of the nonlinear-force coefficients if N doubled
+        (:func:`~rotorsfd.harmonic.fourier.aliasing_error`; the ``"grow"`` rule)."""
         x, lam = self.from_z(z)
         xs = self.hb.nl_part(x)
         if isinstance(self.hb, CondensedHB):
             return self.hb.aliasing(xs, lam)
         return aliasing_error(self.problem.nl_force, xs, self.problem.frequency(lam), self.N,
                               self.hb.last_G(xs, lam))
+
+    # sampling error in the units of the convergence test (the "adaptive" N_f rule) ----------
+    def force_coefficients(self, z: FloatArray, N: int) -> FloatArray:
+        """Nonlinear-force coefficients (2H+1, m) at z computed with N samples."""
+        x, lam = self.from_z(z)
+        xs = np.ascontiguousarray(self.hb.nl_part(x))
+        if isinstance(self.hb, CondensedHB):
+            return self.hb.force_coefficients(xs, lam, N)
+        G = self.hb.last_G(xs, lam) if N == self.N else None
+        if G is None:
+            G = nonlinear_coefficients(self.problem, aft_matrices(self.H, N), xs,
+                                       self.problem.frequency(lam), jac=False).G
+        return G
+
+    def residual_change(self, z: FloatArray, dG: FloatArray) -> float:
+        """2-norm of the change of the scaled residual (the quantity the Newton test
+        bounds by tol) caused by a change dG (2H+1, m) of the force coefficients:
+        ``|Ht dG| / c`` condensed (a displacement over the length scale), ``|dG| / (c
+        kappa)`` at nl_dofs in the full residual (a force over the force scale)."""
+        s = self.problem.nl_dofs
+        if isinstance(self.hb, CondensedHB):
+            _, lam = self.from_z(z)
+            r = self.hb.displacement_of(dG, lam) / self.cr.reshape(2 * self.H + 1, -1)
+        else:
+            r = dG / self.cr.reshape(2 * self.H + 1, -1)[:, s]
+        return float(np.linalg.norm(r))
+
+    def sampling_error(self, z: FloatArray, N: int, G_hi: FloatArray | None = None
+                       ) -> tuple[float, FloatArray]:
+        """Error estimate of N samples at z: :meth:`residual_change` of ``G_2N - G_N``
+        (``G_hi`` = G_2N if known); returns it and G_N."""
+        G_lo = self.force_coefficients(z, N)
+        if G_hi is None:
+            G_hi = self.force_coefficients(z, 2 * N)
+        return self.residual_change(z, G_hi - G_lo), G_lo
+
+    def smallest_n_samples(self, z: FloatArray, n_min: int, n_max: int, target: float
+                           ) -> int:
+        """Smallest power of two N in [n_min, n_max] whose :meth:`sampling_error` at z is
+        <= target (n_max if none)."""
+        N = n_min
+        while N < n_max and self.sampling_error(z, N)[0] > target:
+            N *= 2
+        return min(N, n_max)
+
+    def coarser_n_samples(self, z: FloatArray, n_floor: int, target: float) -> int:
+        """This N halved while the error of the halved count (against the current one)
+        stays <= target and N/2 >= n_floor."""
+        N = self.N
+        G_hi = self.force_coefficients(z, N)
+        while N // 2 >= n_floor:
+            err, G_lo = self.sampling_error(z, N // 2, G_hi)
+            if err > target:
+                break
+            N, G_hi = N // 2, G_lo
+        return N
 
 
 def _initial_guess(problem: PeriodicProblem, H: int, lam: float,
@@ -211,6 +275,13 @@ def solve_periodic(problem: PeriodicProblem, lam: float, H: int,
                             system.N, system.aliasing(res.z), condensed)
 
 
+#: N_f rules of :func:`continue_periodic` (``n_samples_rule``).
+N_SAMPLES_RULES = ("adaptive", "grow")
+#: The adaptive rule halves N_f only when the halved count's sampling error is below this
+#: fraction of ``alias_tol`` (doubling is at ``alias_tol``): the band is the hysteresis.
+COARSEN_FRACTION = 0.1
+
+
 @_one_blas_thread
 def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float, H: int,
                       X0: ComplexArray | None = None, *, n_samples: int | None = None,
@@ -218,16 +289,37 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
                       ds_min: float = 1e-6, ds_max: float = 0.05, max_iter: int = 8,
                       max_points: int = 2000, max_angle_deg: float = 20.0,
                       lam_scale: float | None = None, limit_max: float = 1.0,
-                      alias_tol: float = 1e-6, n_samples_max: int = 2048,
+                      alias_tol: float | None = None, n_samples_max: int = 2048,
+                      n_samples_rule: str = "adaptive",
                       store_jacobians: bool | None = None, callback: EventHook | None = None
                       ) -> Branch:
     """Branch of periodic solutions from lam_start towards lam_end (pseudo arc-length).
 
     Steps ``ds, ds_min, ds_max`` are arc lengths in the scaled unknowns (module docstring).
-    N_f: with ``n_samples=None`` the rule of :func:`~rotorsfd.harmonic.fourier.choose_n_samples`
-    at the first point, then, at every converged point, if doubling N_f would change the
-    nonlinear-force coefficients by more than ``alias_tol`` (relative), N_f is doubled
-    (the rule again, up to ``n_samples_max``) and the point re-solved before going on.
+    N_f: a given ``n_samples`` is used throughout. With ``n_samples=None`` the first point
+    uses the rule of :func:`~rotorsfd.harmonic.fourier.choose_n_samples`, then, at every
+    converged point, ``n_samples_rule``:
+
+    - ``"adaptive"`` (default): the sampling error is the 2-norm of the change of the
+      scaled residual (the quantity the Newton test bounds by ``tol``) if N_f doubled:
+      ``|Ht_k (G_k(2N) - G_k(N))| / c`` condensed (the force error of the retained
+      harmonics as the displacement it causes, over the length scale), ``|G(2N) - G(N)| /
+      (c kappa)`` at nl_dofs for the full residual. Above ``alias_tol`` (default ``tol``:
+      aliasing moves the residual no more than the convergence test allows) N_f becomes
+      the smallest power of two (<= ``n_samples_max``) whose error is <= alias_tol there
+      and the point is re-solved; when the error of N_f/2 (against N_f) is below
+      ``COARSEN_FRACTION * alias_tol``, N_f is halved (repeatedly, not below
+      ``default_min_samples(H)``) and the branch goes on from the same point.
+    - ``"grow"`` (the rule before the adaptive one, kept for comparison): if doubling N_f
+      changes the force coefficients by more than ``alias_tol`` (default 1e-6) relative
+      to the largest (:func:`~rotorsfd.harmonic.fourier.aliasing_error`), N_f is re-chosen
+      by ``choose_n_samples`` at ``alias_tol / 100`` (at least doubled) and the point
+      re-solved; N_f never comes down.
+
+    A re-solved point keeps its lam, or near a fold (``|dlam/ds|`` small in the scaled
+    unknowns) its position along the tangent. ``Branch.aliasing`` holds the rule's error
+    estimate at every point (with a given n_samples too), ``Branch.info["n_samples"]``
+    N_f.
     ``callback(point: BranchPoint)`` is called at every converged point (the first too);
     returning True stops the continuation there (success, message says so).
     ``store_jacobians`` (default: only when condensed) keeps ``Branch.jacobians``.
@@ -235,6 +327,14 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
     message saying where (lam) and why. Raises ConvergenceError only if the first point
     cannot be found.
     """
+    if n_samples_rule not in N_SAMPLES_RULES:
+        raise ValueError(f"n_samples_rule must be one of {N_SAMPLES_RULES}, "
+                         f"got {n_samples_rule!r}")
+    adaptive = n_samples is None and n_samples_rule == "adaptive"
+    grow = n_samples is None and n_samples_rule == "grow"
+    if alias_tol is None:
+        alias_tol = tol if n_samples_rule == "adaptive" else 1e-6
+    n_floor = min(default_min_samples(H), n_samples_max)
     scale = lam_scale or (abs(lam_end - lam_start) or max(abs(lam_start), 1.0))
     first = solve_periodic.__wrapped__(problem, lam_start, H, X0, n_samples=n_samples,
                                        condensed=condensed, tol=tol, limit_max=limit_max)
@@ -242,47 +342,77 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
         store_jacobians = condensed
     keys = ("lam", "X", "w", "t", "it", "ds", "J", "al", "N", "z", "sys")
     out: dict[str, list] = {k: [] for k in keys}
-    state: dict = {"refine": False, "s": 0.0}
+    state: dict = {"refine": False, "coarsen": False, "skip": False, "s": 0.0}
     opts = ArcLengthOptions(ds=ds, ds_min=ds_min, ds_max=ds_max, tol=tol, max_iter=max_iter,
                             max_points=max_points, max_angle=float(np.radians(max_angle_deg)))
     X_start, lam0, N, t_prev = first.X, lam_start, first.n_samples, None
     while True:
         system, res0 = _start_point(problem, H, lam0, X_start, N, condensed, scale,
-                                    limit_max, tol, max_iter)
+                                    limit_max, tol, max_iter, t_prev)
 
         def on_point(z: FloatArray, t: FloatArray, Jz: FloatArray, it: int, step: float,
                      system: HBSystem = system) -> bool:
+            if state["skip"]:   # restart after N_f was halved: this point is stored already
+                state["skip"] = False
+                return False
             x, lam = system.from_z(z)
+            if n_samples_rule == "adaptive":
+                al = system.sampling_error(z, system.N)[0]
+                if adaptive and al > alias_tol and system.N < n_samples_max:
+                    N_up = system.smallest_n_samples(z, 2 * system.N, n_samples_max,
+                                                     alias_tol)
+                    state.update(refine=True, X=system.coefficients(z), lam=lam, t=t,
+                                 step=step, N=N_up)
+                    return True
+            else:
+                al = system.aliasing(z)
+                if grow and al > alias_tol and system.N < n_samples_max:
+                    state.update(refine=True, X=system.coefficients(z), lam=lam, t=t,
+                                 step=step, N=None)
+                    return True
             X = system.coefficients(z)
             J = system.physical_jacobian(z, Jz) if store_jacobians or callback else None
             w = problem.frequency(lam)
-            al = system.aliasing(z)
-            if n_samples is None and al > alias_tol and system.N < n_samples_max:
-                state.update(refine=True, X=X, lam=lam, t=t, step=step)
-                return True
             step = step or state.pop("step", 0.0)
             state["s"] += step
             vals = (lam, X, w, t, it, step, J, al, system.N, z, system)
             for key, val in zip(out, vals, strict=True):
                 out[key].append(val)
-            if callback is None:
-                return False
-            point = BranchPoint(len(out["lam"]) - 1, lam, X, x, t, J, it, w, state["s"],
-                                float(t[-1]) * scale)
-            return bool(callback(point))
+            stop = False
+            if callback is not None:
+                point = BranchPoint(len(out["lam"]) - 1, lam, X, x, t, J, it, w, state["s"],
+                                    float(t[-1]) * scale)
+                stop = bool(callback(point))
+            if adaptive and not stop and system.N > n_floor:
+                N_down = system.coarser_n_samples(z, n_floor, COARSEN_FRACTION * alias_tol)
+                if N_down < system.N:
+                    state.update(coarsen=True, X=X, lam=lam, t=t, N=N_down)
+                    return True
+            return stop
 
-        opts.max_points = max_points - len(out["lam"])
+        opts.max_points = max_points - len(out["lam"]) + (1 if state["skip"] else 0)
         status = arclength(system, res0.z, res0.J, lam_end / scale, on_point, opts,
                            lam_physical=lambda lh: lh * scale, t_prev=t_prev,
                            lam_start=lam_start / scale)
-        if not state["refine"]:
+        state["skip"] = False
+        if state["refine"]:
+            # sampling error too large: more samples, re-solve this point, go on
+            state["refine"] = False
+            X_start, lam0, t_prev, N = state["X"], state["lam"], state["t"], state["N"]
+            if N is None:   # the "grow" rule
+                xs = to_real(X_start)[:, problem.nl_dofs]
+                N = choose_n_samples(problem.nl_force, xs, problem.frequency(lam0),
+                                     tol=alias_tol / 100, n_min=2 * system.N,
+                                     n_max=n_samples_max)
+        elif state["coarsen"]:
+            # fewer samples suffice: go on from the stored point (unless the range ended)
+            state["coarsen"] = False
+            if not status.message.startswith("stopped by the callback"):
+                break
+            X_start, lam0, t_prev, N = state["X"], state["lam"], state["t"], state["N"]
+            state["skip"] = True
+        else:
             break
-        # aliasing too large: more samples (the rule at this point), re-solve, go on
-        state["refine"] = False
-        X_start, lam0, t_prev = state["X"], state["lam"], state["t"]
-        xs = to_real(X_start)[:, problem.nl_dofs]
-        N = choose_n_samples(problem.nl_force, xs, problem.frequency(lam0), tol=alias_tol / 100,
-                             n_min=2 * system.N, n_max=n_samples_max)
         opts.ds = status.ds
     al = np.array(out["al"])
     msg = status.message
@@ -297,7 +427,9 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
         jacobians=np.array(out["J"]) if store_jacobians else None, aliasing=al,
         success=status.success, message=msg, H=H, n_samples=system.N,
         nl_dofs=problem.nl_dofs.copy(), condensed=condensed, lam_scale=scale,
-        info={"n_samples": np.array(out["N"], dtype=np.int64)},
+        info={"n_samples": np.array(out["N"], dtype=np.int64),
+              "n_samples_rule": n_samples_rule,
+              "alias_tol": alias_tol},
         resolver=_Resolver(problem, out["z"], out["t"], s_all, out["sys"], tol, scale))
 
 
@@ -331,14 +463,22 @@ class _Resolver:
                            self.problem.frequency(lam), float(s), float(t[-1]) * self.scale)
 
 
+#: A re-solved point keeps its lam unless the scaled tangent's lam component is below this
+#: (near a fold, where fixed lam is singular): then it stays on the plane normal to t.
+FOLD_TANGENT = 0.1
+
+
 def _start_point(problem: PeriodicProblem, H: int, lam: float, X: ComplexArray, N: int,
-                 condensed: bool, scale: float, limit_max: float, tol: float, max_iter: int
-                 ) -> tuple[HBSystem, NewtonResult]:
-    """Continuation system with N samples and the point at lam solved in it."""
+                 condensed: bool, scale: float, limit_max: float, tol: float, max_iter: int,
+                 t: FloatArray | None = None) -> tuple[HBSystem, NewtonResult]:
+    """Continuation system with N samples and the point at lam solved in it (at fixed lam,
+    or on the plane through it normal to the tangent t near a fold)."""
     system, z0 = _setup(problem, H, lam, X, N, condensed, scale, limit_max)
-    e = np.zeros(system.n + 1)
-    e[-1] = 1.0
-    res = newton_extended(system, z0, e, float(z0[-1]), tol, max(max_iter, 20))
+    a = np.zeros(system.n + 1)
+    a[-1] = 1.0
+    if t is not None and abs(t[-1]) < FOLD_TANGENT:
+        a = system.weights * t
+    res = newton_extended(system, z0, a, float(a @ z0), tol, max(max_iter, 20))
     if not res.converged:
         raise ConvergenceError(f"{problem.name}: point lost at lam={lam:.8g} with "
                                f"N_f={N}: {res.message}")
