@@ -37,6 +37,8 @@ REGISTRY: dict[str, tuple[str, str]] = {
                 "bench_scaling:run"),
     "branch-stability": ("stability of every branch point + bifurcation location",
                          "bench_branch_stability:run"),
+    "nf": ("AFT samples N_f along a pitching branch: adaptive vs the old grow-only rule",
+           "bench_nf:run"),
 }
 
 
