@@ -1,10 +1,14 @@
 """The case studies of Zhang et al. 2025 (Appl. Sci. 15, 1186) as a registry.
 
-A :class:`Case` is one computation: an example config, ``--set`` style overrides, the
-analysis to run (``kind``) and its options. A :class:`FigureSpec` groups the cases drawn in
-one of the paper's figures. A :class:`Claim` is a number (or a motion type) the paper
-reports, with the key of our value in a case's numbers, so the report can put them side
-by side. The variants of a figure are overrides of one config, not near-copies.
+A :class:`Case` is one computation: the config of its figure (``examples/paper/*.toml``,
+each extending one of the family files ``examples/paper_*.toml``), ``--set`` style
+overrides that select the variant, the analysis to run (``kind``) and its options. A
+figure's variants are the ``[analysis.sweep]`` axes of its config, so ``rotorsfd sweep
+FILE`` runs the whole figure and a case's overrides name one of the axes' values (a test
+checks it; the diagnosis ``damp-*`` and sensitivity ``sens-*`` cases add values the paper
+does not have). A :class:`FigureSpec` groups the cases drawn in one of the paper's
+figures. A :class:`Claim` is a number (or a motion type) the paper reports, with the key
+of our value in a case's numbers, so the report can put them side by side.
 """
 
 from __future__ import annotations
@@ -22,7 +26,7 @@ class Case:
     """One computation of the paper's section 3.3 / 4."""
 
     name: str
-    config: str                         # file name in examples/
+    config: str                         # path relative to examples/
     kind: str
     overrides: tuple[str, ...] = ()
     options: dict[str, Any] = field(default_factory=dict)
@@ -75,67 +79,78 @@ def _rate(component: str, value: float) -> str:
     return f"base.{component}.value={value:g} rad/s"
 
 
-def _h(n: int) -> str:
-    return f"analysis.response.harmonics={n}"
+#: The config of each figure (in examples/; its [analysis.sweep] axes are the figure's
+#: variants, which a case's overrides select).
+FIG6 = "paper/fig06_stability_chart.toml"
+FIG7 = "paper/fig07_table1_fixed_base.toml"
+FIG10 = "paper/fig10_11_rolling.toml"
+FIG12 = "paper/fig12_15_pitching.toml"
+FIG16 = "paper/fig16_yawing.toml"
+FIG17 = "paper/fig17_20_unbalance_h8.toml"
+FIG19 = "paper/fig19_unstable_range.toml"
+FIG21 = "paper/fig21_22_table3_clearance.toml"
+FIG23 = "paper/fig23_time_domain.toml"
+FIG24 = "paper/fig24_clearance_unbalance.toml"
 
 
 def _cases() -> list[Case]:
     out = [
         Case("modal", "paper_rotor.toml", "modal"),
-        Case("fig6", "fig6_duchemin_pitching.toml", "chart",
+        Case("fig6", FIG6, "chart",
              quick=("analysis.stability_chart.x.n=29", "analysis.stability_chart.y.n=21"),
              note="the example's 100 x 100 grid"),
     ]
     for tag, u in (("u72", U72), ("u144", U144), ("u360", U360)):
-        out.append(Case(f"fig7-{tag}", "paper_rotor.toml", "response", (_u(u),)))
+        out.append(Case(f"fig7-{tag}", FIG7, "response", (_u(u),)))
     for sign, k in (("m", 0.95), ("p", 1.05)):
-        out.append(Case(f"sens-sfd{sign}", "paper_rotor.toml", "response",
+        out.append(Case(f"sens-sfd{sign}", FIG7, "response",
                         (_u(U144), f"sfd.centring_stiffness={10325127.78 * k:.6g} N/m"),
                         note=f"SFD centring spring x {k}"))
-        out.append(Case(f"sens-right{sign}", "paper_rotor.toml", "response",
+        out.append(Case(f"sens-right{sign}", FIG7, "response",
                         (_u(U144), f"rotor.supports[0].stiffness={9551305.04 * k:.6g} N/m"),
                         note=f"right support x {k}"))
     for w in (0, 5, 10, 20):
-        out.append(Case(f"fig10-w{w}", "paper_rolling.toml", "response", (_rate("rolling", w),)))
+        out.append(Case(f"fig10-w{w}", FIG10, "response", (_rate("rolling", w),)))
     for w in (0, 2, 4, 6, 8, 9, 10):
-        out.append(Case(f"fig12-w{w}", "paper_pitching.toml", "response",
+        out.append(Case(f"fig12-w{w}", FIG12, "response",
                         (_rate("pitching", w),), options={"orbits": [0.8, 1.03, 1.2, 1.5]}))
     for w in (2, 4, 6, 9):
-        out.append(Case(f"fig16-w{w}", "paper_yawing.toml", "response", (_rate("yawing", w),),
+        out.append(Case(f"fig16-w{w}", FIG16, "response", (_rate("yawing", w),),
                         options={"orbits": [0.8, 1.03, 1.2, 1.5]}))
     for tag, u in (("u252", U252), ("u360", U360)):
         for w in (0, 6, 7, 8, 9):
-            out.append(Case(f"fig17-{tag}-w{w}", "paper_unbalance.toml", "response",
+            out.append(Case(f"fig17-{tag}-w{w}", FIG17, "response",
                             (_u(u), _rate("pitching", w))))
     out += [
-        Case("fig19-u144", "paper_unbalance.toml", "fold-curve", (_u(U144), _h(3)),
+        Case("fig19-u144", FIG19, "fold-curve", (_u(U144),),
+             options={"range": [0.0, 10.0], "harmonics": 3}),
+        Case("fig19-u252", FIG19, "fold-curve", (_u(U252),),
              options={"range": [0.0, 10.0]}),
-        Case("fig19-u252", "paper_unbalance.toml", "fold-curve", (_u(U252),),
-             options={"range": [0.0, 10.0]}),
-        Case("fig19-u360", "paper_unbalance.toml", "width-sweep", (_u(U360),),
+        Case("fig19-u360", FIG19, "width-sweep", (_u(U360),),
              options={"values": [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10]},
              quick=(), note="one speed branch per rate (no fold pair to continue)"),
     ]
     for cr in ("0.485", "0.61", "0.728"):
-        out.append(Case(f"fig21-cr{cr}", "paper_clearance.toml", "response",
+        out.append(Case(f"fig21-cr{cr}", FIG21, "response",
                         (f"sfd.clearance_ratio={cr} %",)))
     for tag, u in (("u144", U144), ("u360", U360)):
-        out.append(Case(f"fig24-{tag}", "paper_clearance.toml", "response", (_u(u),)))
+        out.append(Case(f"fig24-{tag}", FIG24, "response", (_u(u),)))
     damp = ("rotor.damping.kind=modal", f"rotor.damping.ratio={DIAGNOSIS_DAMPING}")
     out += [
-        Case("damp-u144", "paper_rotor.toml", "response", (_u(U144), *damp),
+        Case("damp-u144", FIG7, "response", (_u(U144), *damp),
              note="diagnosis: light structural damping (not in the paper)"),
-        Case("damp-u360", "paper_rotor.toml", "response", (_u(U360), *damp),
+        Case("damp-u360", FIG7, "response", (_u(U360), *damp),
              note="diagnosis: light structural damping (not in the paper)"),
-        Case("damp-fig22", "paper_clearance.toml", "response", damp,
+        Case("damp-fig22", FIG21, "response", damp,
              note="diagnosis: light structural damping (not in the paper)"),
-        Case("damp-fig19-u360", "paper_unbalance.toml", "width-sweep", (_u(U360), *damp),
+        Case("damp-fig19-u360", FIG19, "width-sweep", (_u(U360), *damp),
              options={"values": [0, 2, 4, 6, 8, 10]},
              note="diagnosis: Figure 19 for U = 360.04 g mm with 0.2 % modal damping"),
     ]
     for s in (1.025, 1.04, 1.05, 1.075, 1.10):
-        out.append(Case(f"fig23-s{s:g}", "paper_clearance.toml", "simulate",
-                        options={"speed_ratio": s}, quick=("analysis.simulate.periods=300",)))
+        out.append(Case(f"fig23-s{s:g}", FIG23, "simulate",
+                        (f"analysis.simulate.speed_ratio={s:g}",),
+                        quick=("analysis.simulate.periods=300",)))
     return out
 
 
@@ -307,14 +322,16 @@ CLAIMS: tuple[Claim, ...] = (
 
 
 def examples_dir() -> Path:
-    """The repository's ``examples/`` folder: ``./examples`` (the README runs from the
-    repository root, whatever the install), else the one above the package (editable)."""
-    here = Path(__file__).resolve()
-    for parent in (Path.cwd(), *here.parents):
-        if (parent / "examples" / "paper_rotor.toml").is_file():
-            return parent / "examples"
-    raise FileNotFoundError("examples/paper_rotor.toml not found above "
-                            f"{here.parent}; pass the examples folder explicitly")
+    """The example configs: the package's ``rotorsfd/examples`` (in the repository a
+    symbolic link to its ``examples/`` folder, in a wheel a copy of it), else the
+    ``examples/`` folder above the package (a checkout without symbolic links)."""
+    here = Path(__file__).resolve().parent
+    for folder in (here.parent / "examples",
+                   *(p / "examples" for p in here.parents)):
+        if (folder / "paper_rotor.toml").is_file():
+            return folder.resolve()
+    raise FileNotFoundError(f"examples/paper_rotor.toml not found in or above {here.parent}; "
+                            "pass the examples folder explicitly")
 
 
 def select(figures: list[str] | None = None, quick: bool = False

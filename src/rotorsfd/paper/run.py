@@ -120,20 +120,14 @@ def response_numbers(result: Any, orbits: Sequence[float] = ()) -> tuple[dict, d
     return n, data
 
 
-#: Overrides of every response case: continue until the journal is within 0.5 % of the
-#: clearance (default 0.95), so that a branch ends at contact rather than at the limiter.
-RESPONSE_DEFAULTS = ("analysis.response.max_eccentricity=0.995",)
-
-
 # ---- the kinds -------------------------------------------------------------------------------
 
 
 def _config(case: Case, examples: Path, quick: bool, extra: Sequence[str] = ()) -> Any:
     from rotorsfd.io.config import load_config
 
-    base = RESPONSE_DEFAULTS if case.kind in ("response", "width-sweep") else ()
     return load_config(examples / case.config,
-                       [*base, *case.overrides, *(case.quick if quick else ()), *extra])
+                       [*case.overrides, *(case.quick if quick else ()), *extra])
 
 
 def _modal(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
@@ -158,7 +152,7 @@ def _response(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
 def _simulate(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
     from rotorsfd.api import run_simulation
 
-    r = run_simulation(config, speed_ratio=case.options["speed_ratio"], progress=False,
+    r = run_simulation(config, speed_ratio=case.options.get("speed_ratio"), progress=False,
                        lyapunov_periods=0)
     if out is not None:
         r.write(out)
@@ -180,7 +174,8 @@ def _fold_curve(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
     from rotorsfd.api import run_fold_curve
 
     lo, hi = case.options["range"]
-    f = run_fold_curve(config, "base.pitching.value", lo, hi)
+    f = run_fold_curve(config, "base.pitching.value", lo, hi,
+                       harmonics=case.options.get("harmonics"))
     if out is not None:
         f.write(out)
     grid = np.linspace(lo, hi, 201)
