@@ -70,7 +70,10 @@ class StabilityOptions:
     """How the multipliers are computed and bifurcations located.
 
     ``method`` one of :data:`METHODS`; ``n_intervals`` Newmark intervals per period
-    (paper: 400); ``n_harmonics`` Hill truncation; ``n_modes`` / ``omega_max`` the kept
+    (paper: 400); ``n_harmonics`` Hill truncation (default: the orbit's H, at least 8;
+    Hill's exponents need at least the harmonics of the orbit: with fewer, on the paper
+    rotor near journal contact, a period doubling came out as spurious saddle-nodes);
+    ``n_modes`` / ``omega_max`` the kept
     fixed-interface modes (default ``omega_max = n_intervals / (4 T)`` at each point);
     ``tol`` unstable when ``|mu|max > 1 + tol``; ``rtol`` relative parameter tolerance of
     located bifurcations (``locate=False``: linear interpolation between points);
@@ -80,7 +83,7 @@ class StabilityOptions:
 
     method: str = "newmark-cb"
     n_intervals: int = 400
-    n_harmonics: int = 8
+    n_harmonics: int | None = None
     n_modes: int | None = None
     omega_max: float | None = None
     rho_inf: float = 0.6
@@ -179,13 +182,14 @@ class FloquetEvaluator:
                                  n_intervals=o.n_intervals, rho_inf=o.rho_inf, tol=o.tol)
         red = self.reduced(lam, T)
         if o.method.startswith("hill"):
-            L = 2 * o.n_harmonics
+            H = o.n_harmonics if o.n_harmonics is not None else max(8, X.shape[0] - 1)
+            L = 2 * H
             q, v = orbit_samples(Xnl, w, 4 * (2 * L + 1), endpoint=False)
             Jq, Jv = p.nl_jacobian(q, v)
             res = hill_floquet(red.M, red.D, red.K, w, nl_dofs=red.nl_dofs,
                                dFdq_hat=fourier_coefficients(Jq, L),
                                dFdv_hat=fourier_coefficients(Jv, L),
-                               n_harmonics=o.n_harmonics,
+                               n_harmonics=H,
                                method="koopman" if o.method == "hill-koopman"
                                else "symmetric", tol=o.tol)
         else:
@@ -347,6 +351,23 @@ def _floquet_crossing(fold: Bifurcation, bracket: Bracket, solve_at: Callable,
                         "gap measures the HB truncation error: raise H to shrink it")
 
 
+def _hill_resolution(results: list[FloquetResult]) -> list[str]:
+    """A message when Hill's largest multiplier is not resolved by the truncation (its
+    ladder defect, :func:`rotorsfd.stability.hill.ladder_defect`, above ``LADDER_TOL``) at
+    some points: its value and crossing type are then unreliable."""
+    from rotorsfd.stability.hill import LADDER_TOL
+
+    d = np.array([r.info.get("critical_defect", 0.0) for r in results], dtype=float)
+    bad = ~(d <= LADDER_TOL)
+    if not results or not bad.any():
+        return []
+    H = results[0].info.get("n_harmonics")
+    return [f"hill (H = {H}): the largest multiplier is not resolved by the truncation at "
+            f"{int(bad.sum())} of {len(results)} points (ladder defect up to "
+            f"{np.nanmax(np.where(bad, d, np.nan)):.1e} > {LADDER_TOL:g}): its value and "
+            "crossing type are unreliable there; raise n_harmonics or use newmark-cb"]
+
+
 def branch_stability(branch: Branch, problem: PeriodicProblem,
                      options: StabilityOptions | None = None, *,
                      progress: Callable[[int, int], None] | None = None) -> BranchStability:
@@ -380,7 +401,7 @@ def branch_stability(branch: Branch, problem: PeriodicProblem,
         return p.lam, ev(p.lam, p.X).multipliers, p.dlam_ds
 
     bifs: list[Bifurcation] = []
-    messages: list[str] = []
+    messages: list[str] = _hill_resolution(results)
     can_locate = o.locate and branch.resolver is not None
     for br in brackets:
         ia, ib = index[id(br.a)], index[id(br.b)]

@@ -10,7 +10,18 @@ Each physical exponent appears 2H+1 times (shifted by ``i k w``); two selections
 
 * ``'symmetric'``: keep the 2n eigenvalues whose eigenvectors are most centred on the
   zeroth harmonic, i.e. smallest ``|sum_l l |c_l|^2 / sum_l |c_l|^2|`` (symmetric-weight
-  criterion, Lazarus & Thomas 2010); multipliers ``exp(lambda T)``.
+  criterion, Lazarus & Thomas 2010); multipliers ``exp(lambda T)``. Only eigenvalues that
+  belong to a ladder are eligible first: a physical exponent reappears shifted by
+  ``+-i w`` (its ``ladder defect``, the distance in units of w to the nearest eigenvalue
+  at ``lambda +- i w``, is the truncation error); an eigenvalue of the truncated matrix
+  that is not (defect ~ 1) is spurious. For a real ``A(t)`` a *real* eigenvalue has a
+  conjugate-symmetric eigenvector, so its centroid is exactly 0 whether it is physical
+  or not: without the ladder test, spurious real eigenvalues (stiff, strongly
+  time-varying film coefficients near journal contact) outrank the true exponents with
+  ``Im = w/2`` (centroid 1/2, multiplier -1) and turn a period doubling into a
+  'saddle-node' or hide it. ``info``: ``n_spurious`` (selected exponents without a
+  ladder), ``critical_defect`` (ladder defect of the exponent of largest multiplier:
+  above ``LADDER_TOL`` the truncation H is too small for it, raise H).
 * ``'koopman'``: sorting-free Koopman-Hill projection (Bayer & Leine 2023)::
 
       Phi(T) = C expm(H_hill T) W,  C = [I I ... I],  W = e_0 (x) I
@@ -98,21 +109,67 @@ def first_order_coefficients(M: ArrayLike, D: ArrayLike, K: ArrayLike,
     return A
 
 
+LADDER_TOL = 1e-2
+"""An exponent is resolved by the Hill truncation when its ladder defect (module
+docstring, units of w) is at most this; it is spurious above ``SPURIOUS_DEFECT``."""
+SPURIOUS_DEFECT = 0.1
+
+
+def ladder_defect(lam: NDArray, omega: float) -> NDArray[np.float64]:
+    """For each Hill eigenvalue, ``max_{k=+-1} min_j |lam_j - lam - i k w| / w``: about 0
+    (the truncation error) for the central members of the ladder of a physical exponent,
+    about 1 for a spurious eigenvalue of the truncated matrix."""
+    from scipy.spatial import cKDTree
+
+    pts = np.column_stack([lam.real, lam.imag]) / omega
+    tree = cKDTree(pts)
+    shift = np.array([0.0, 1.0])
+    up, _ = tree.query(pts + shift)
+    down, _ = tree.query(pts - shift)
+    return np.maximum(up, down)
+
+
 def _select_centred(lam: NDArray, centroid: NDArray, omega: float, count: int,
-                    rel_tol: float = 1e-6) -> NDArray[np.intp]:
-    """Indices of ``count`` exponents by increasing ``|centroid|``, skipping shifted copies
-    ``lam' = lam + i k omega`` (k != 0) of exponents already taken (they tie at
-    ``|centroid| = 1/2`` when ``Im lam = omega/2``)."""
+                    rel_tol: float = 1e-6, defect: NDArray | None = None
+                    ) -> NDArray[np.intp]:
+    """Indices of ``count`` exponents by increasing ``|centroid|``, those with a ladder
+    (``defect <= SPURIOUS_DEFECT``, if given) first, skipping shifted copies
+    ``lam' = lam + i k omega`` (k != 0) of exponents already taken: exact ones (they tie
+    at ``|centroid| = 1/2`` when ``Im lam = omega/2``) and, with ``defect``, truncated
+    ones (``|lam' - lam - i k omega| <= |k| (defect + defect')``, defects up to
+    ``LADDER_TOL``), which would otherwise fill the count twice with one multiplier."""
+    if defect is None:
+        spurious, slack = np.zeros(lam.size, bool), np.zeros(lam.size)
+    else:
+        spurious = ~(defect <= SPURIOUS_DEFECT)
+        slack = np.where(defect <= LADDER_TOL, defect, 0.0)
     taken: list[int] = []
-    for i in np.argsort(np.abs(centroid), kind="stable"):
+    for i in np.lexsort((np.abs(centroid), spurious)):
         d = lam[i] - lam[taken] if taken else np.empty(0)
         k = np.rint(d.imag / omega)
-        copy = (k != 0) & (np.abs(d - 1j * k * omega) <= rel_tol * omega)
+        tol = rel_tol + np.abs(k) * (slack[i] + slack[taken])
+        copy = (k != 0) & (np.abs(d - 1j * k * omega) <= tol * omega)
         if not copy.any():
             taken.append(int(i))
             if len(taken) == count:
                 break
     return np.asarray(taken, dtype=np.intp)
+
+
+def _multipliers(lam: NDArray, defect: NDArray, omega: float, T: float,
+                 rel_tol: float = 1e-9) -> NDArray[np.complex128]:
+    """``exp(lam T)``, real when ``Im lam`` is a multiple of ``omega/2`` to within the
+    exponent's truncation error (its ladder defect, at most ``LADDER_TOL``): for a real
+    system the exact Hill spectrum is conjugate-symmetric and a multiplier -1 (+1) has
+    ``Im lam = (k + 1/2) omega`` (``k omega``) exactly; truncation shifts it by about the
+    defect, which would make a period-doubling multiplier complex (a 'secondary-hopf')."""
+    mu = np.exp(lam * T)
+    half = lam.imag / (0.5 * omega)
+    k = np.rint(half)
+    tol = np.maximum(rel_tol, np.where(defect <= LADDER_TOL, defect, 0.0))
+    real = np.abs(half - k) * 0.5 <= tol
+    mu[real] = np.exp(lam.real[real] * T) * np.where(k[real] % 2 == 0, 1.0, -1.0)
+    return mu
 
 
 def hill_floquet(M: ArrayLike, D: ArrayLike, K: ArrayLike, omega: float, *,
@@ -142,9 +199,12 @@ def hill_floquet(M: ArrayLike, D: ArrayLike, K: ArrayLike, omega: float, *,
         w = np.abs(vec.reshape(2 * H + 1, Ns, -1)) ** 2
         w = w.sum(axis=1)
         centroid = np.arange(-H, H + 1) @ w / w.sum(axis=0)
-        sel = _select_centred(lam, centroid, omega, Ns)
-        mu = np.exp(lam[sel] * T)
+        defect = ladder_defect(lam, omega)
+        sel = _select_centred(lam, centroid, omega, Ns, defect=defect)
+        mu = _multipliers(lam[sel], defect[sel], omega, T)
         info["max_centroid"] = float(np.abs(centroid[sel]).max())
+        info["n_spurious"] = int(np.sum(~(defect[sel] <= SPURIOUS_DEFECT)))
+        info["critical_defect"] = float(defect[sel][np.argmax(np.abs(mu))])
         return FloquetResult(sort_multipliers(mu), T, "hill-symmetric", log_det, None, tol,
                              info)
     if method == "koopman":
