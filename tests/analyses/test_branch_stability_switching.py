@@ -86,8 +86,9 @@ def test_switch_to_the_period_two_branch_matches_time_integration(case):
     p, branch, st = case
     pd = st.bifurcations[0]
     pt = branch.point_at(pd.s)
-    sw = switch_period_doubling(p, pt.lam, pt.X, (1.9, 2.1), delta=0.01)
-    assert sw.singular_value < 1e-3 and sw.coupling < 1e-12
+    sw = switch_period_doubling(p, pt.lam, pt.X, (1.9, 2.1), delta=0.01, ds_max=0.05)
+    assert sw.singular_value < 1e-8 and sw.coupling < 1e-12
+    assert abs(sw.lam_bifurcation - pd.lam) < 1e-4     # HB PD (4H harmonics) = monodromy's
     leg = sw.legs[0]
     assert leg.success and len(sw.legs) == 1
     assert abs(leg.lam[0] - pd.lam) < 1e-3 and sw.subharmonic_amplitude(0)[0] < 0.05
@@ -121,3 +122,27 @@ def test_subcritical_period_doubling_continues_past_the_fold():
     assert st.bifurcations[0].kind == "saddle-node"            # regains stability at a fold
     assert st.stable[leg.folds()[0] + 2:].any()
     np.testing.assert_allclose(sw.legs[1].X[0], leg.X[-1])     # second leg starts there
+    # the first leg stopped because it went back past its own first point, inside the
+    # requested range (1.4, 2.6): the message says that, not "out of the range"
+    assert "went above the start of its range" in leg.message
+    assert "out of the range" not in leg.message and "turned back at a fold" in sw.message
+
+
+def test_period_two_bubble_closes_at_the_second_period_doubling(case):
+    """Over the whole range the period-2 branch born at the lower PD folds at w ~ 2.136 and
+    ends on the period-1 branch at the upper PD (the branch and its T-shifted mirror are a
+    closed bubble): traced once, ``closed``, rejoining where the monodromy says; its
+    multipliers over 2T (``stability``) are +1 at the fold and at the upper PD."""
+    p, branch, st = case
+    pd1, pd2 = st.bifurcations
+    pt = branch.point_at(pd1.s)
+    sw = switch_period_doubling(p, pt.lam, pt.X, (1.6, 2.4), delta=0.01, ds_max=0.05)
+    assert sw.closed and len(sw.legs) == 1 and "closed bubble" in sw.message
+    assert abs(sw.lam_rejoin - pd2.lam) < 2e-3
+    assert abs(sw.lam.max() - 2.1358) < 1e-3                    # the fold
+    (s2,) = sw.stability()
+    folds = sorted(b.lam for b in s2.bifurcations if b.kind == "saddle-node")
+    assert abs(folds[0] - pd2.lam) < 1e-3 and abs(folds[-1] - 2.1358) < 1e-3
+    lower = sw.lam < pd2.lam - 0.01
+    amp = sw.subharmonic_amplitude(0)
+    assert s2.stable[lower & (amp > 0.05)].all()                # stable from the lower PD
