@@ -74,7 +74,8 @@ def arclength(system: ContinuationSystem, z0: FloatArray, J0: FloatArray, lam_en
 
     The first tangent is oriented along ``t_prev`` if given (a restart inside a branch),
     else towards lam_end; ``lam_start`` (default z0[-1]) is the start of the range, for
-    the test "turned back out of the range".
+    the test "turned back": the branch stops when it goes back past lam_start (after a
+    fold), and the message says so.
     Ends with success when lam_end is reached (the last point solved at lam_end exactly),
     or when ``on_point`` returns True; ends with ``success = False`` when the corrector
     fails below ds_min, when the branch turns back out of the range, or at max_points.
@@ -134,8 +135,11 @@ def arclength(system: ContinuationSystem, z0: FloatArray, J0: FloatArray, lam_en
         if stop:
             return ArcLengthStatus(True, f"stopped by the callback at {at(z)}", n_points, ds)
         if (lam_new - lam_first) * direction < 0.0:
-            return ArcLengthStatus(False, f"the branch turned back out of the range at {at(z)}",
-                                   n_points, ds)
+            side = "below" if direction > 0 else "above"
+            return ArcLengthStatus(
+                False, f"the branch turned back and went {side} the start of its "
+                f"range lam={lam_physical(lam_first):.8g} (towards "
+                f"lam={lam_physical(lam_end):.8g}) at {at(z)}", n_points, ds)
         if res.iterations <= o.easy_iter:
             ds = min(ds * o.grow, o.ds_max)
         else:
