@@ -385,6 +385,13 @@ def _ratio(text: str) -> float:
                     arg("--from-hb", action="store_true",
                         help="start on the HB periodic solution at that speed (H from "
                              "[analysis.response]) instead of the displaced state"),
+                    arg("--hb-phase", type=_ratio, default=0.0, metavar="P",
+                        help="with --from-hb: start on the HB orbit a fraction P of the "
+                             "period later (e.g. 0.5; off the orbit at t = 0 unless it is "
+                             "symmetric: a way to find a coexisting attractor)"),
+                    arg("--initial-state", type=Path, metavar="DIR_OR_NC",
+                        help="start from the final state of a previous run (its output "
+                             "directory or timeseries.nc); same speed: continues it"),
                     arg("--record-periods", type=int, metavar="N",
                         help="last periods kept in timeseries.nc (default: poincare_periods)"),
                     arg("--lyapunov-periods", type=int, metavar="N",
@@ -396,9 +403,13 @@ def _simulate(args: argparse.Namespace, config: Any) -> int:
     if args.speed is not None and args.speed_ratio is not None:
         raise ConfigError("--speed/--speed-ratio", (args.speed, args.speed_ratio),
                           "give --speed or --speed-ratio, not both")
+    if args.hb_phase and not args.from_hb:
+        raise ConfigError("--hb-phase", args.hb_phase, "needs --from-hb")
     result = api.run_simulation(config, args.speed, speed_ratio=args.speed_ratio,
                                 search_path=Path(args.config).parent,
-                                from_hb=args.from_hb, record_periods=args.record_periods,
+                                from_hb=args.from_hb, hb_phase=args.hb_phase,
+                                initial_state=args.initial_state,
+                                record_periods=args.record_periods,
                                 lyapunov_periods=args.lyapunov_periods,
                                 progress=not args.quiet)
     paths = result.write(args.output)

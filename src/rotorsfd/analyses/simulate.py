@@ -16,7 +16,15 @@ run are folded into the constant matrices). The step is ``T / steps_per_period``
 Initial state: every node displaced by ``initial_displacement`` in y and z (translations
 only, rotations and velocities zero; the paper's "every node displaced 1 um"), or the HB
 periodic solution at that speed (``from_hb``): ``q(0) = Re sum X_k``,
-``v(0) = Re sum i k Omega X_k``.
+``v(0) = Re sum i k Omega X_k``; with ``hb_phase = p`` the state of that orbit a fraction
+p of the period later, ``X_k exp(i k 2 pi p)``, put at t = 0 (off the orbit unless it is
+symmetric: a way to land on a coexisting attractor); or the final state of a previous run
+(``initial_state``: its ``timeseries.nc`` or directory, :func:`load_state`).
+``timeseries.nc`` stores the final state of every DOF (``final_displacement``,
+``final_velocity``) with its time ``t_final_s`` and the rotor phase ``Omega t mod 2 pi``.
+A run from a saved state at the same speed continues it exactly (t0 = the saved time);
+at another speed it starts at the time where the new rotor phase equals the saved one
+(constant base), so the unbalance force has no phase jump.
 """
 
 from __future__ import annotations
@@ -172,9 +180,17 @@ def hb_state(X: np.ndarray, speed: float) -> tuple[np.ndarray, np.ndarray]:
     return X.sum(axis=0).real.copy(), (1j * k * speed * X).sum(axis=0).real.copy()
 
 
+def shift_phase(X: np.ndarray, phase: float) -> np.ndarray:
+    """Coefficients of ``q(t + phase T)``: ``X_k exp(i k 2 pi phase)``, X (H+1, ...)."""
+    k = np.arange(X.shape[0]).reshape((-1,) + (1,) * (X.ndim - 1))
+    return X * np.exp(2j * math.pi * k * float(phase))
+
+
 def hb_start(system: RotorSystem, speed: float, harmonics: int = 3,
-             n_samples: int | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """Initial state on the HB periodic solution at ``speed`` (constant base only).
+             n_samples: int | None = None, phase: float = 0.0
+             ) -> tuple[np.ndarray, np.ndarray]:
+    """Initial state on the HB periodic solution at ``speed`` (constant base only), taken
+    a fraction ``phase`` of the period later (:func:`shift_phase`).
 
     Newton from the linearised response; if that fails (strongly nonlinear points), the
     branch is continued from ``speed / 2`` and its first arrival at ``speed`` taken.
@@ -184,7 +200,7 @@ def hb_start(system: RotorSystem, speed: float, harmonics: int = 3,
     problem = system.periodic_problem()
     try:
         sol = solve_periodic(problem, speed, harmonics, n_samples=n_samples)
-        return hb_state(sol.X, speed)
+        return hb_state(shift_phase(sol.X, phase), speed)
     except ConvergenceError as first:
         branch = continue_periodic(problem, 0.5 * speed, speed, harmonics,
                                    n_samples=n_samples, limit_max=0.999)
@@ -192,7 +208,55 @@ def hb_start(system: RotorSystem, speed: float, harmonics: int = 3,
             raise ConvergenceError(
                 f"HB start at {speed:.6g} rad/s: {' '.join(str(first).split())}; "
                 f"continuation from {0.5 * speed:.6g} rad/s: {branch.message}") from None
-        return hb_state(branch.X[-1], speed)
+        return hb_state(shift_phase(branch.X[-1], phase), speed)
+
+
+@dataclass(frozen=True)
+class SavedState:
+    """The final state of a run (``timeseries.nc``): every DOF's displacement ``q`` [m]
+    and velocity ``v`` [m/s] at time ``t`` [s], rotor speed ``speed`` [rad/s]."""
+
+    q: np.ndarray
+    v: np.ndarray
+    t: float
+    speed: float
+    source: str = ""
+
+    @property
+    def phase(self) -> float:
+        """Rotor phase ``Omega t mod 2 pi`` at the saved time [rad]."""
+        return float(math.fmod(self.speed * self.t, 2.0 * math.pi))
+
+    def start_time(self, speed: float) -> float:
+        """Start time of a run at ``speed`` from this state: the saved time at the same
+        speed (exact continuation), else the time where ``speed * t`` is the saved phase."""
+        if abs(speed - self.speed) <= 1e-12 * self.speed:
+            return self.t
+        return self.phase / speed
+
+
+def timeseries_path(path: str | Path) -> Path:
+    """``path`` itself, or ``path/timeseries.nc`` for a directory."""
+    p = Path(path)
+    return p / "timeseries.nc" if p.is_dir() else p
+
+
+def load_state(path: str | Path) -> SavedState:
+    """The final state stored in a ``timeseries.nc`` (or a directory holding one)."""
+    import xarray as xr
+
+    p = timeseries_path(path)
+    if not p.is_file():
+        raise ConfigError("initial_state", str(path), "no such file (give a simulate "
+                          "output directory or its timeseries.nc)")
+    with xr.open_dataset(p) as ds:
+        if "final_displacement" not in ds or "t_final_s" not in ds.attrs:
+            raise ConfigError("initial_state", str(path), "this timeseries.nc has no final "
+                              "state (written by an older rotorsfd): run it again")
+        return SavedState(np.asarray(ds["final_displacement"].values, float),
+                          np.asarray(ds["final_velocity"].values, float),
+                          float(ds.attrs["t_final_s"]), float(ds.attrs["speed_rad_s"]),
+                          str(p))
 
 
 # ---- chunked integration ---------------------------------------------------------------------
@@ -393,9 +457,18 @@ class SimulationResult:
         if self.clearance is not None:
             attrs["clearance_m"] = self.clearance
             attrs["sfd_node"] = int(self.sfd_node)
+        attrs["t_final_s"] = float(self.t_final)
+        attrs["final_phase_rad"] = float(math.fmod(self.speed * self.t_final, 2 * math.pi))
+        attrs["initial_state"] = str(self.settings.get("initial_state", ""))
+        coords["dof"] = ("dof", np.arange(self.q_final.size, dtype=np.int32),
+                         {"description": "global DOF index: 4 (node - 1) + (y, z, ty, tz)"})
         return xr.Dataset(
             {"displacement": (("time", "node", "direction"), self.q[sl], {"units": "m"}),
-             "velocity": (("time", "node", "direction"), self.v[sl], {"units": "m/s"})},
+             "velocity": (("time", "node", "direction"), self.v[sl], {"units": "m/s"}),
+             "final_displacement": ("dof", self.q_final, {
+                 "units": "m or rad", "description": "every DOF at t_final_s (a start "
+                 "state for rotorsfd simulate --initial-state)"}),
+             "final_velocity": ("dof", self.v_final, {"units": "m/s or rad/s"})},
             coords=coords, attrs=attrs)
 
     def poincare_table(self) -> dict[str, np.ndarray]:
@@ -530,6 +603,7 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
                    periods: int | None = None, poincare_periods: int | None = None,
                    record_periods: int | None = None, lyapunov_periods: int | None = None,
                    initial_displacement: float | None = None, from_hb: bool = False,
+                   hb_phase: float = 0.0, initial_state: str | Path | SavedState | None = None,
                    harmonics: int | None = None, q0: Any = None, v0: Any = None,
                    nodes: Sequence[int] | None = None, chunk_periods: int | None = None,
                    progress: bool = True, title: str | None = None) -> SimulationResult:
@@ -541,7 +615,10 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
     100 Poincare periods, 1 um, Newmark). ``record_periods`` (default
     ``poincare_periods``): periods kept in the time series; ``lyapunov_periods`` (default
     ``min(100, periods)``, 0: none): length of the Lyapunov run from the final state.
-    ``q0, v0`` override the initial state (full DOF vectors).
+    ``q0, v0`` override the initial state (full DOF vectors). ``from_hb`` with
+    ``hb_phase`` (fraction of the period): start on the HB orbit shifted by that phase;
+    ``initial_state``: the final state of a previous run (``timeseries.nc``, its
+    directory, or a :class:`SavedState`), see the module docstring for its start time.
     """
     from rotorsfd.io.schema import SimulateAnalysis
 
@@ -593,28 +670,46 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
         if not 1 <= n <= system.rotor.n_nodes:
             raise ConfigError(f"{FIELD}.nodes", n, f"must be 1..{system.rotor.n_nodes}")
     T = 2.0 * math.pi / speed
-    inputs = time_domain_inputs(system, speed, horizon=(n_per + n_ly + 1) * T)
     n = system.n_dof
+    t_start = 0.0
+    if sum(x for x in (q0 is not None or v0 is not None, from_hb,
+                       initial_state is not None)) > 1:
+        raise ConfigError("initial state", "several", "give one of q0/v0, from_hb and "
+                          "initial_state")
     if q0 is not None or v0 is not None:
         start = "given"
         q_init = np.zeros(n) if q0 is None else np.asarray(q0, float)
         v_init = np.zeros(n) if v0 is None else np.asarray(v0, float)
+    elif initial_state is not None:
+        saved = initial_state if isinstance(initial_state, SavedState) \
+            else load_state(initial_state)
+        if saved.q.size != n:
+            raise ConfigError("initial_state", saved.source, f"has {saved.q.size} DOFs, "
+                              f"this model {n}")
+        q_init, v_init = saved.q.copy(), saved.v.copy()
+        t_start = saved.start_time(speed) if system.base.is_constant else saved.t
+        start = (f"final state of {saved.source or 'a previous run'} (t = {saved.t:.6g} s "
+                 f"at {saved.speed:.6g} rad/s; this run starts at t = {t_start:.6g} s)")
     elif from_hb:
         if system.sfd is None or not system.base.is_constant:
             raise ConfigError("from_hb", True, "the HB start needs an SFD and a constant "
                               "base motion (start from the displaced state instead)")
-        start = f"HB periodic solution (H={H})"
-        q_init, v_init = hb_start(system, speed, H, h_samples)
+        start = f"HB periodic solution (H={H})" + (
+            f" shifted by {hb_phase:g} of the period" if hb_phase else "")
+        q_init, v_init = hb_start(system, speed, H, h_samples, phase=hb_phase)
     else:
         start = f"every node displaced {disp:g} m in y and z"
         q_init, v_init = displaced_state(n, disp), np.zeros(n)
+    inputs = time_domain_inputs(system, speed,
+                                horizon=t_start + (n_per + n_ly + 1) * T)
     rd = [dofs.dof_index(nd, d) for nd in out_nodes for d in DIRECTIONS]
     clearance = system.sfd.clearance if system.sfd is not None else None
     settings = {"speed_rad_s": speed, "speed_ratio": speed / ref if ref else None,
                 "reference_speed_rad_s": ref, "scheme": scheme, **opts,
                 "steps_per_period": spp, "periods": n_per, "poincare_periods": n_pc,
                 "record_periods": n_rec, "lyapunov_periods": n_ly, "initial_state": start,
-                "initial_displacement_m": disp, "time_varying_matrices":
+                "initial_displacement_m": disp, "start_time_s": t_start,
+                "time_varying_matrices":
                 inputs.time_varying is not None, "dt_s": T / spp}
     bar = _progress_bar(progress, n_per, "simulate")
     last = [0]
@@ -629,7 +724,7 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
                                  record_dofs=rd, record_periods=max(n_rec, n_pc),
                                  poincare_periods=n_pc,
                                  method_options=opts, chunk_periods=chunk_periods,
-                                 progress=tick, clearance=clearance)
+                                 progress=tick, clearance=clearance, t0=t_start)
     finally:
         bar.close()
     settings["elapsed_integration_s"] = time.perf_counter() - tic
