@@ -238,6 +238,131 @@ class BaseBasis:
         return C, K, F
 
 
+# ---------------------------------------------------------------------------------------
+# polynomial form in one parameter (the linear part of a continuation, assembled once)
+# ---------------------------------------------------------------------------------------
+#: Variables in which the coefficients are polynomials: the speed (degree 1) and a constant
+#: base rate (degree 2), everything else of the base state held.
+POLYNOMIAL_VARIABLES: tuple[str, ...] = ("speed", "wx", "wy", "wz")
+
+
+def coefficient_polynomial(state: BaseState, speed: float, variable: str
+                           ) -> tuple[BaseCoefficients, BaseCoefficients, BaseCoefficients]:
+    """(c0, c1, c2) with coefficients(p) = c0 + p c1 + p^2 c2 exactly (algebraically), p
+    the speed or one base rate (``variable`` in POLYNOMIAL_VARIABLES), the rest of
+    (state, speed) held; the value of p in (state, speed) itself is ignored.
+
+    The coefficients (module docstring) are affine in Omega and at most quadratic in each
+    rate: c0 is their value at p = 0, c1 their p-derivative there and c2 half the second
+    derivative, which does not depend on the state (small integers, found exactly from
+    the derivative at p = 1 and p = 0 with everything else zero).
+    """
+    if variable not in POLYNOMIAL_VARIABLES:
+        raise ValueError(f"variable must be one of {POLYNOMIAL_VARIABLES}, not {variable!r}")
+    if variable == "speed":
+        c2 = BaseCoefficients(np.zeros(12), np.zeros(12), np.zeros(8))
+        return (base_coefficients(state, 0.0),
+                base_coefficient_derivatives(state, 0.0)["speed"], c2)
+    i = RATE_NAMES.index(variable) - 1
+    w = np.array(state.w, dtype=float)
+    w[i] = 0.0
+    st0 = BaseState(w, np.asarray(state.dw, dtype=float), state.a0, state.v0, state.g)
+    zero = BaseState.fixed()
+    unit = BaseState(np.eye(3)[i], np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3))
+    d1 = base_coefficient_derivatives(unit, 0.0)[variable]
+    d0 = base_coefficient_derivatives(zero, 0.0)[variable]
+    c2 = BaseCoefficients(0.5 * (d1.c_C - d0.c_C), 0.5 * (d1.c_K - d0.c_K),
+                          0.5 * (d1.c_F - d0.c_F))
+    return (base_coefficients(st0, speed),
+            base_coefficient_derivatives(st0, speed)[variable], c2)
+
+
+def _sum_terms(weights: np.ndarray, arrays: np.ndarray) -> np.ndarray | None:
+    """sum_i weights_i arrays_i over the nonzero weights only; None if all are zero."""
+    out = None
+    for c, A in zip(np.asarray(weights, dtype=float), arrays, strict=True):
+        if c != 0.0:
+            out = c * A if out is None else out + c * A
+    return out
+
+
+def _add(a: np.ndarray | None, b: np.ndarray | None) -> np.ndarray | None:
+    if a is None:
+        return b
+    return a if b is None else a + b
+
+
+class PolynomialTerms:
+    """Damping, stiffness and load as polynomials in one parameter p, assembled once:
+
+        D(p) = sum_j p^j D_j,  K(p) = sum_j p^j K_j,  F(p) = sum_j p^j F_j   (j = 0, 1, 2)
+
+    with ``None`` for a zero term. Evaluating costs one scaled add per nonzero term of
+    degree >= 1 (no tensordot over the basis); a quantity with no such term is returned
+    as the same array object at every p (so that callers can tell it is constant, as the
+    condensation's band scan does), a zero one and a constant one's derivative as the
+    shared ``zero`` (``zero_vector``). Treat the returned arrays as read-only.
+    """
+
+    def __init__(self, n: int, D: tuple = (), K: tuple = (), F: tuple = ()) -> None:
+        self.n = n
+        self.D, self.K, self.F = (tuple(t) + (None,) * (3 - len(t)) for t in (D, K, F))
+        self.zero = np.zeros((n, n))
+        self.zero_vector = np.zeros(n)
+
+    @classmethod
+    def of_base(cls, basis: BaseBasis, state: BaseState, speed: float, variable: str
+                ) -> PolynomialTerms:
+        """C_base, K_base, F_base of the base state as polynomials in ``variable``
+        (:func:`coefficient_polynomial`), only the nonzero coefficients combined."""
+        cos = coefficient_polynomial(state, speed, variable)
+        return cls(basis.n_dof, tuple(_sum_terms(c.c_C, basis.matrices) for c in cos),
+                   tuple(_sum_terms(c.c_K, basis.matrices) for c in cos),
+                   tuple(_sum_terms(c.c_F, basis.vectors) for c in cos))
+
+    def plus(self, D: tuple = (), K: tuple = ()) -> PolynomialTerms:
+        """A copy with the polynomial coefficients ``D``, ``K`` (None: zero) added
+        (``plus(D=(C, G))`` adds C + p G); an added term alone is kept as the object."""
+        def add(a: tuple, b: tuple) -> tuple:
+            b = tuple(b) + (None,) * (3 - len(b))
+            return tuple(_add(y, x) for x, y in zip(a, b, strict=True))
+        return PolynomialTerms(self.n, add(self.D, D), add(self.K, K), self.F)
+
+    @staticmethod
+    def _value(terms: tuple, p: float, zero: np.ndarray) -> np.ndarray:
+        out = terms[0]
+        if terms[1] is not None:
+            out = p * terms[1] if out is None else out + p * terms[1]
+        if terms[2] is not None:
+            out = (p * p) * terms[2] if out is None else out + (p * p) * terms[2]
+        return zero if out is None else out
+
+    @staticmethod
+    def _slope(terms: tuple, p: float, zero: np.ndarray) -> np.ndarray:
+        if terms[2] is None:
+            return zero if terms[1] is None else terms[1]
+        out = (2.0 * p) * terms[2]
+        return out if terms[1] is None else terms[1] + out
+
+    def damping(self, p: float) -> np.ndarray:
+        return self._value(self.D, p, self.zero)
+
+    def stiffness(self, p: float) -> np.ndarray:
+        return self._value(self.K, p, self.zero)
+
+    def load(self, p: float) -> np.ndarray:
+        return self._value(self.F, p, self.zero_vector)
+
+    def ddamping(self, p: float) -> np.ndarray:
+        return self._slope(self.D, p, self.zero)
+
+    def dstiffness(self, p: float) -> np.ndarray:
+        return self._slope(self.K, p, self.zero)
+
+    def dload(self, p: float) -> np.ndarray:
+        return self._slope(self.F, p, self.zero_vector)
+
+
 def base_basis(rotor) -> BaseBasis:
     """Assemble the 12 constant matrices and 8 vectors of a rotor (shaft, disks, masses)."""
     n = rotor.n_dof
@@ -277,7 +402,8 @@ def base_static_deflection(rotor, state: BaseState, speed: float = 0.0,
 class MovingBaseRotor:
     """LinearDynamics view of a rotor on a base in a constant state.
 
-    ``matrices(speed) -> (M, C + speed G + C_base, K + K_base)``; ``force(speed) -> F_base``.
+    ``matrices(speed) -> (M, C + speed G + C_base, K + K_base)``; ``force(speed) -> F_base``
+    (the base terms assembled once as polynomials in the speed, :class:`PolynomialTerms`).
     """
 
     def __init__(self, rotor, state: BaseState) -> None:
@@ -285,13 +411,22 @@ class MovingBaseRotor:
         self.state = state
         self.basis = base_basis(rotor)
         self.n_dof = rotor.n_dof
+        self._terms: PolynomialTerms | None = None
+
+    @property
+    def terms(self) -> PolynomialTerms:
+        if self._terms is None:
+            r = self.rotor
+            self._terms = PolynomialTerms.of_base(self.basis, self.state, 0.0, "speed").plus(
+                D=(r.C, r.G), K=(r.K,))
+        return self._terms
 
     def matrices(self, speed: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        C_b, K_b, _ = assemble_base(self.rotor, self.state, speed, self.basis)
-        return self.rotor.M, self.rotor.C + speed * self.rotor.G + C_b, self.rotor.K + K_b
+        t = self.terms
+        return self.rotor.M, t.damping(speed), t.stiffness(speed)
 
     def force(self, speed: float) -> np.ndarray:
-        return assemble_base(self.rotor, self.state, speed, self.basis)[2]
+        return self.terms.load(speed).copy()
 
 
 # ---------------------------------------------------------------------------------------

@@ -24,6 +24,7 @@ from rotorsfd.model.base_motion import BaseMotion, BaseState, Constant
 from rotorsfd.model.base_terms import (
     BaseBasis,
     BaseCoefficients,
+    PolynomialTerms,
     base_basis,
     base_coefficient_derivatives,
     base_coefficients,
@@ -62,6 +63,7 @@ class RotorSystem:
     unbalances: Sequence[Unbalance] = ()
     base: BaseMotion = field(default_factory=BaseMotion)
     _basis: BaseBasis | None = field(default=None, init=False, repr=False)
+    _speed_terms: tuple | None = field(default=None, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         self.unbalances = tuple(self.unbalances)
@@ -108,23 +110,55 @@ class RotorSystem:
         return self.base.state(0.0)
 
     # ---- LinearDynamics ----------------------------------------------------------------
+    def linear_terms(self, parameter: str = "speed", speed: float | None = None,
+                     state: BaseState | None = None) -> PolynomialTerms:
+        """The linear part as polynomials in a continuation parameter (assembled once):
+        damping ``C + Omega G + C_base``, stiffness ``K + K_base`` and load ``F_base``
+        (film off, no unbalance) in the speed, or in a constant base rate
+        (``base.rolling|pitching|yawing``) at the fixed ``speed``; ``state`` (default: the
+        constant base state) with the parameter's own value ignored. See
+        :class:`~rotorsfd.model.base_terms.PolynomialTerms`."""
+        st = self.constant_base_state() if state is None else state
+        r = self.rotor
+        if parameter == "speed":
+            if self.base.is_fixed and state is None:
+                return PolynomialTerms(self.n_dof, D=(r.C, r.G), K=(r.K,))
+            return PolynomialTerms.of_base(self.basis, st, 0.0, "speed").plus(
+                D=(r.C, r.G), K=(r.K,))
+        if parameter not in _RATE_NAME:
+            raise ConfigError("parameter", parameter,
+                              "linear terms are polynomial in the speed or a base rate")
+        om = float(speed)
+        return PolynomialTerms.of_base(self.basis, st, om, _RATE_NAME[parameter]).plus(
+            D=(r.C + om * r.G,), K=(r.K,))
+
+    def _speed_polynomial(self) -> PolynomialTerms:
+        """linear_terms("speed") of the current base state, cached by that state."""
+        st = self.constant_base_state()
+        key = b"".join(np.asarray(v, dtype=float).tobytes()
+                       for v in (st.w, st.dw, st.a_eff)) + bytes([self.base.is_fixed])
+        key += id(self.rotor).to_bytes(8, "little")
+        if self._speed_terms is None or self._speed_terms[0] != key:
+            self._speed_terms = (key, self.linear_terms("speed"))
+        return self._speed_terms[1]
+
     def _base_terms(self, state: BaseState, speed: float
                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(C_base, K_base, F_base) by the direct combination of the basis (reference)."""
         if self.base.is_fixed:
             n = self.n_dof
             return np.zeros((n, n)), np.zeros((n, n)), np.zeros(n)
         return self.basis.combine(base_coefficients(state, speed))
 
     def matrices(self, speed: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(M, C + speed G + C_base, K + K_base) under the constant base motion, film off."""
-        state = self.constant_base_state()
-        C_b, K_b, _ = self._base_terms(state, speed)
-        r = self.rotor
-        return r.M, r.C + speed * r.G + C_b, r.K + K_b
+        """(M, C + speed G + C_base, K + K_base) under the constant base motion, film off
+        (read-only: a matrix free of the speed is the same array at every call)."""
+        lin = self._speed_polynomial()
+        return self.rotor.M, lin.damping(speed), lin.stiffness(speed)
 
     def static_force(self, speed: float) -> np.ndarray:
         """Constant load F_base (base acceleration, gravity, gyroscopic moments) [N, N m]."""
-        return self._base_terms(self.constant_base_state(), speed)[2]
+        return self._speed_polynomial().load(speed).copy()
 
     def unbalance_harmonics(self, speed: float) -> tuple[np.ndarray, np.ndarray]:
         """(F_c, F_s): F_mu = F_c cos(Omega t) + F_s sin(Omega t) (paper eq. 5-6)."""
@@ -132,13 +166,22 @@ class RotorSystem:
                                    self.constant_base_state())
 
     # ---- harmonic balance --------------------------------------------------------------
-    def periodic_problem(self, parameter: str = "speed", speed: float | None = None
-                         ) -> PeriodicProblem:
+    def periodic_problem(self, parameter: str = "speed", speed: float | None = None,
+                         assembly: str = "polynomial") -> PeriodicProblem:
         """The HB problem with continuation parameter ``parameter`` (see PARAMETERS).
 
         For parameters other than the speed, ``speed`` fixes the rotor speed. Every
         derivative with respect to the parameter is exact.
+
+        ``assembly="polynomial"`` (default): the linear part (damping, stiffness, base
+        load) is assembled once as a polynomial in the parameter (:meth:`linear_terms`;
+        affine in the speed, quadratic in a base rate) and evaluated per call with a
+        scaled add or two; parameter-free matrices are the same objects at every call.
+        ``"direct"``: the base terms recombined from the basis at every call (the
+        reference, for tests and benchmarks); equal to round-off.
         """
+        if assembly not in ("polynomial", "direct"):
+            raise ConfigError("assembly", assembly, "must be 'polynomial' or 'direct'")
         if self.sfd is None:
             raise ConfigError("sfd", None, "the nonlinear response needs an [sfd] section")
         if parameter not in PARAMETERS:
@@ -175,27 +218,66 @@ class RotorSystem:
                 return d[_RATE_NAME[parameter]]
             return BaseCoefficients(np.zeros(12), np.zeros(12), np.zeros(8))
 
-        def matrices(lam: float):
-            om, st, _ = at(lam)
-            if fixed_base:
-                return r.M, r.C + om * r.G, r.K
-            C_b, K_b, _ = basis.combine(base_coefficients(st, om))
-            return r.M, r.C + om * r.G + C_b, r.K + K_b
+        if assembly == "polynomial":
+            if parameter in _RATE_INDEX:
+                lin = self.linear_terms(parameter, speed, state0)
+            else:
+                lin = self.linear_terms("speed", state=None if fixed_base else state0)
+            if parameter == "unbalance.magnitude":   # the linear part is free of lam
+                const = (r.M, lin.damping(float(speed)), lin.stiffness(float(speed)))
+                lin = PolynomialTerms(self.n_dof, D=(const[1],), K=(const[2],),
+                                      F=(lin.load(float(speed)),))
+            last: list = [None, None, None]   # lam, matrices, dmatrices: same lam, same objects
 
-        def dmatrices(lam: float):
-            om, st, _ = at(lam)
-            zero = np.zeros_like(r.M)
-            dG = r.G if parameter == "speed" else zero
-            if fixed_base:
-                return zero, dG, zero
-            dC_b, dK_b, _ = basis.combine(coefficient_derivative(om, st))
-            return zero, dG + dC_b, dK_b
+            def matrices(lam: float):
+                if last[0] != lam:
+                    last[0], last[1], last[2] = lam, None, None
+                if last[1] is None:
+                    last[1] = (r.M, lin.damping(lam), lin.stiffness(lam))
+                return last[1]
+
+            def dmatrices(lam: float):
+                if last[0] != lam:
+                    last[0], last[1], last[2] = lam, None, None
+                if last[2] is None:
+                    last[2] = (lin.zero, lin.ddamping(lam), lin.dstiffness(lam))
+                return last[2]
+
+            def base_load(lam: float) -> np.ndarray:
+                return lin.load(lam)
+
+            def dbase_load(lam: float) -> np.ndarray:
+                return lin.dload(lam)
+        else:
+            def matrices(lam: float):
+                om, st, _ = at(lam)
+                if fixed_base:
+                    return r.M, r.C + om * r.G, r.K
+                C_b, K_b, _ = basis.combine(base_coefficients(st, om))
+                return r.M, r.C + om * r.G + C_b, r.K + K_b
+
+            def dmatrices(lam: float):
+                om, st, _ = at(lam)
+                zero = np.zeros_like(r.M)
+                dG = r.G if parameter == "speed" else zero
+                if fixed_base:
+                    return zero, dG, zero
+                dC_b, dK_b, _ = basis.combine(coefficient_derivative(om, st))
+                return zero, dG + dC_b, dK_b
+
+            def base_load(lam: float) -> np.ndarray:
+                om, st, _ = at(lam)
+                return basis.combine(base_coefficients(st, om))[2]
+
+            def dbase_load(lam: float) -> np.ndarray:
+                om, st, _ = at(lam)
+                return basis.combine(coefficient_derivative(om, st))[2]
 
         def forcing(lam: float, H: int) -> np.ndarray:
             om, st, scale = at(lam)
             F = np.zeros((H + 1, self.n_dof), dtype=complex)
             if not fixed_base:
-                F[0] = basis.combine(base_coefficients(st, om))[2]
+                F[0] = base_load(lam)
             if H >= 1 and self.unbalances:
                 Fc, Fs = unbalance_harmonics(self.unbalances, r, om, st)
                 F[1] = scale * (Fc - 1j * Fs)
@@ -205,7 +287,7 @@ class RotorSystem:
             om, st, scale = at(lam)
             dF = np.zeros((H + 1, self.n_dof), dtype=complex)
             if not fixed_base:
-                dF[0] = basis.combine(coefficient_derivative(om, st))[2]
+                dF[0] = dbase_load(lam)
             if H >= 1 and self.unbalances:
                 if parameter == "unbalance.magnitude":
                     Fc, Fs = unbalance_harmonics(self.unbalances, r, om, st)
