@@ -302,12 +302,17 @@ def _fit_supports(args: argparse.Namespace, config: Any) -> int:
          arguments=[arg("--multipliers-at", type=float, default=None, metavar="X",
                         help="multipliers.png at the point nearest this speed ratio "
                              "Omega/Omega_ref (the parameter in SI for a non-speed branch); "
-                             "default: the point of largest |mu|max")])
+                             "default: the point of largest |mu|max"),
+                    arg("--from-orbit", type=Path, metavar="DIR_OR_NC",
+                        help="start the branch on the last period of a time-domain orbit "
+                             "(rotorsfd simulate output), Newton-corrected at its speed, "
+                             "and continue it both ways over the speed range, stopping "
+                             "when it closes on itself (an isola)")])
 def _response(args: argparse.Namespace, config: Any) -> int:
     from rotorsfd import api
 
     result = api.run_response(config, search_path=Path(args.config).parent,
-                              progress=not args.quiet)
+                              progress=not args.quiet, from_orbit=args.from_orbit)
     paths = result.write(args.output, multipliers_at=args.multipliers_at)
     if not result.success:
         print(f"rotorsfd: error: {_one_line(result.message)}", file=sys.stderr)

@@ -389,6 +389,12 @@ class ResponseResult:
             r = self.deflection(n)
             i = int(np.argmax(r))
             lines.append(f"node {n}: max r~ = {r[i]:.4g} at {x_name} = {x[i]:.5g}")
+        if "orbit_difference" in self.info:
+            lines.append(f"from the orbit {self.info['from_orbit']} at Omega~ = "
+                         f"{self.info['orbit_speed'] / self.reference_speed:.6g}: HB orbit "
+                         f"within {self.info['orbit_difference']:.2g} C of it over the "
+                         "period; " + ("the branch closes on itself (an isola)"
+                                       if self.info["closed"] else "not a closed loop"))
         if self.stable is not None:
             lines.append(f"unstable points: {int(np.sum(~self.stable))} of {b.n_points}")
         for row in self.bifurcations or ():
@@ -464,7 +470,8 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
                  stability: StabilityHook | None = None,
                  stability_options: StabilityOptions | bool | None = None,
                  callback: Callable[[BranchPoint], bool | None] | None = None,
-                 title: str | None = None, **options: Any) -> ResponseResult:
+                 title: str | None = None, from_orbit: Any = None,
+                 closure_tol: float | None = None, **options: Any) -> ResponseResult:
     """Continue periodic solutions and return a :class:`ResponseResult`.
 
     From a Config: everything from ``[analysis.response]`` and ``[reference]``; keyword
@@ -478,6 +485,14 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
     the located bifurcations after the branch. ``callback(point)`` returning True stops
     the branch. A failed step never raises: the result then has ``success`` False and the
     points so far.
+
+    ``from_orbit`` (a simulate ``timeseries.nc``, its directory, or a SimulationResult;
+    speed parameter only): the branch starts at the orbit's speed from the Fourier
+    coefficients of its last period, Newton-corrected (``info["orbit_difference"]``: the
+    largest difference over the period between that HB orbit and the recorded one, in
+    clearances), and is continued in both directions, stopping when it closes on itself
+    (an isola, ``info["closed"]``; ``closure_tol`` see
+    :func:`~rotorsfd.analyses.orbit_branch.continue_both_ways`).
     """
     if isinstance(config_or_system, RotorSystem):
         system = config_or_system
@@ -523,14 +538,20 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
         return stop_now
 
     t0 = time.perf_counter()
+    orbit_info: dict[str, Any] = {}
     try:
-        branch = continue_periodic(problem, start, stop, H, X0, callback=hook, **opts)
+        if from_orbit is not None:
+            branch, orbit_info = _branch_from_orbit(problem, sys_param, from_orbit, H,
+                                                    start, stop, hook, closure_tol, opts)
+        else:
+            branch = continue_periodic(problem, start, stop, H, X0, callback=hook, **opts)
     finally:
         bar.close()
     result = ResponseResult(branch, system, float(ref), tuple(out_nodes),
                             tuple(directions or ("y", "z")), path,
                             None if sys_param == "speed" else float(speed), name,
                             time.perf_counter() - t0)
+    result.info.update(orbit_info)
     if data and len(data) >= branch.n_points:
         pts = [data[i] for i in range(branch.n_points)]
         mu = None
@@ -541,6 +562,27 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
     elif stability is None and floquet is not None and branch.n_points:
         result = _with_branch_stability(result, problem, floquet, progress)
     return result
+
+
+def _branch_from_orbit(problem: Any, sys_param: str, from_orbit: Any, H: int,
+                       start: float, stop: float, hook: Any, closure_tol: float | None,
+                       opts: dict[str, Any]) -> tuple[Branch, dict[str, Any]]:
+    """The branch through a time-domain orbit (see :func:`run_response`) and its info."""
+    from rotorsfd.analyses.orbit_branch import CLOSURE_TOL, continue_both_ways, orbit_start
+
+    if sys_param != "speed":
+        raise ConfigError("from_orbit", sys_param, "a branch from a time-domain orbit is "
+                          "continued in the rotor speed")
+    solve = {k: opts[k] for k in ("n_samples", "tol") if k in opts}
+    sol, fit, diff = orbit_start(problem, from_orbit, H, **solve)
+    branch = continue_both_ways(problem, fit.speed, sol.X, H, min(start, stop),
+                                max(start, stop), callback=hook,
+                                closure_tol=closure_tol or CLOSURE_TOL, **opts)
+    info = {"from_orbit": fit.source, "orbit_speed": fit.speed,
+            "orbit_difference": diff, "orbit_fit_truncation": fit.difference(),
+            "closed": bool(branch.info.get("closed")),
+            "start_index": int(branch.info.get("start_index", 0))}
+    return branch, info
 
 
 def _stability_options(config: Config | None, given: StabilityOptions | bool | None
