@@ -39,6 +39,8 @@ REGISTRY: dict[str, tuple[str, str]] = {
                          "bench_branch_stability:run"),
     "nf": ("AFT samples N_f along a pitching branch: adaptive vs the old grow-only rule",
            "bench_nf:run"),
+    "linear": ("linear part of the HB problem on a moving base: assembled once vs per call",
+               "bench_linear:run"),
 }
 
 
