@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Any
 
 #: Kinds of analysis a case runs (see :mod:`rotorsfd.paper.run`).
-KINDS = ("modal", "response", "simulate", "fold-curve", "width-sweep", "chart")
+KINDS = ("modal", "response", "simulate", "fold-curve", "width-sweep", "chart", "isola")
 
 
 @dataclass(frozen=True)
@@ -151,6 +151,11 @@ def _cases() -> list[Case]:
         out.append(Case(f"fig23-s{s:g}", FIG23, "simulate",
                         (f"analysis.simulate.speed_ratio={s:g}",),
                         quick=("analysis.simulate.periods=300",)))
+    out.append(Case("fig23-isola", FIG23, "isola", ("analysis.simulate.speed_ratio=1.075",),
+                    options={"harmonics": 16, "hb_phase": 0.5,
+                             "speeds": [1.07, 1.065, 1.06], "lyapunov_periods": 200},
+                    note="diagnosis: the second attractor at 1.075 (HB orbit shifted by "
+                         "T/2), its isola, and the time domain down the isola"))
     return out
 
 
@@ -195,6 +200,9 @@ FIGURES: dict[str, FigureSpec] = {f.number: f for f in (
     FigureSpec("23", "Time domain, C/R = 0.728 %, U = 252 g mm, w_by = 10 rad/s",
                tuple(f"fig23-s{s:g}" for s in (1.025, 1.04, 1.05, 1.075, 1.10)),
                "timedomain"),
+    FigureSpec("23b", "Diagnosis: the isola of the C/R = 0.728 % case (H = 16) beside "
+               "the main branch, and the time domain on it", ("fig23-isola", "fig21-cr0.728"),
+               "isola"),
     FigureSpec("24", "C/R = 0.728 %, w_by = 10 rad/s, U = 144.02 / 360.04 g mm",
                ("fig24-u144", "fig24-u360"), "directions"),
     FigureSpec("D", "Diagnosis: Table 1 and Figure 22 cases with 0.2 % modal damping",
@@ -286,6 +294,25 @@ CLAIMS: tuple[Claim, ...] = (
     Claim("Figure 23", "Omega~ = 1.05", "chaotic (possibly)", "fig23-s1.05", "motion"),
     Claim("Figure 23", "Omega~ = 1.075", "quasi-periodic", "fig23-s1.075", "motion"),
     Claim("Figure 23", "Omega~ = 1.10", "period-1", "fig23-s1.1", "motion"),
+    Claim("Figure 23", "Omega~ = 1.075 from the HB orbit shifted by T/2 (second attractor)",
+          "quasi-periodic", "fig23-isola", "motion_second",
+          "a second stable period-1 orbit: the isola (rows below)"),
+    Claim("Figure 23", "isola: Omega~ = 1.07 (from the 1.075 state)", "quasi-periodic",
+          "fig23-isola", "motion_1.07", "paper: 1.075 quasi-periodic"),
+    Claim("Figure 23", "isola: Omega~ = 1.065 (from the 1.07 state)", None, "fig23-isola",
+          "motion_1.065"),
+    Claim("Figure 23", "isola: Omega~ = 1.06 (from the 1.065 state)", "chaotic (possibly)",
+          "fig23-isola", "motion_1.06", "paper: 1.05 possibly chaotic"),
+    Claim("Table 3", "A (saddle-node 1.0369) vs the lower fold of our isola", 1.0369,
+          "fig23-isola", "iso_fold_lo", band=5e-3),
+    Claim("Table 3", "B (secondary Hopf 1.0982, 0.5344 +/- 0.8634i) vs our isola's "
+          "secondary Hopf", 1.0982, "fig23-isola", "iso_sh", band=5e-3),
+    Claim("Table 3", "isola: upper fold Omega~", None, "fig23-isola", "iso_fold_hi"),
+    Claim("Table 3", "isola: HB orbit (H = 16) vs the time-domain orbit at 1.075, max "
+          "over the period [C]", None, "fig23-isola", "iso_orbit_difference",
+          "H truncation and the T/200 Newmark step near eps 0.99"),
+    Claim("Table 3", "isola: all bifurcations (closed loop)", None, "fig23-isola",
+          "bifurcations"),
     Claim("Figure 24", "C/R = 0.728 %, U = 144.02: bifurcations", "none", "fig24-u144",
           "bifurcations"),
     Claim("Figure 24", "C/R = 0.728 %, U = 360.04: bifurcations", "saddle-node pair",

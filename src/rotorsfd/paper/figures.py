@@ -176,6 +176,35 @@ def _timedomain(spec: FigureSpec, res: list[Outcome]) -> Figure:
     return fig
 
 
+def _isola(spec: FigureSpec, res: list[Outcome]) -> Figure:
+    """Main branch and isola (journal deflection, node 1), then the Poincare sections of
+    the time-domain runs on the isola (y, y' / (C Omega))."""
+    iso = next((o for o in res if "runs" in o.data), None)
+    runs = ([iso.data["second"], *iso.data["runs"]] if iso else [])
+    fig = Figure(figsize=(5.5 + 3.2 * len(runs), 4.2), layout="constrained")
+    ax = fig.add_subplot(1, 1 + len(runs), 1)
+    for o in res:
+        d = o.data
+        x, y = d["speed_ratio"], d["defl_1"]
+        styled_line(ax, x, y, d.get("stable"), lw=1.3,
+                    label="isola (from the orbit)" if o is iso else f"main ({_label(o.name)})")
+        if d["bifurcations"]:
+            mark_bifurcations(ax, x, y, d["bifurcations"], "speed_ratio")
+    ax.set_xlim(1.0, 1.12)
+    ax.set_ylim(0.4, 1.0)
+    ax.set_xlabel(XLABEL)
+    ax.set_ylabel(r"$\tilde r$ at node 1 (SFD)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    for k, d in enumerate(runs):
+        ax = fig.add_subplot(1, 1 + len(runs), k + 2)
+        ax.plot(d["py"], d["pvy"], "k.", ms=3)
+        ax.set_xlabel("y / C")
+        ax.set_ylabel(r"$\dot y / (C \Omega)$")
+        ax.set_title(f"Omega~ = {d['speed_ratio']:.3f}: {d['motion']}", fontsize=9)
+    return fig
+
+
 def _span(x: Any) -> tuple[float, float]:
     lo, hi = float(np.min(x)), float(np.max(x))
     pad = 0.05 * (hi - lo) or 1e-3
@@ -197,7 +226,7 @@ def _chart(spec: FigureSpec, res: list[Outcome]) -> Figure:
 
 PLOTS = {"deflection": _deflection, "harmonics": _harmonics, "orbits": _orbit_fig,
          "yawing": _yawing, "width": _width, "directions": _directions,
-         "timedomain": _timedomain, "chart": _chart}
+         "timedomain": _timedomain, "chart": _chart, "isola": _isola}
 
 
 def draw(spec: FigureSpec, outcomes: Mapping[str, Outcome]) -> Figure | None:

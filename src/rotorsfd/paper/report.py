@@ -122,8 +122,11 @@ def _value(claim: Claim, outcomes: Mapping[str, Outcome]) -> tuple[str, str, str
             return _bifs(n["bifurcations"]), "", "ours only"
         return (f"SN {n['sn_hi']:.5f} / {n['sn_lo']:.5f}",
                 f"{n['sn_hi'] - m['sn_hi']:+.5f} / {n['sn_lo'] - m['sn_lo']:+.5f}", "ours only")
-    if key == "motion":
-        ours = str(n.get("motion"))
+    if key == "motion" or key.startswith("motion_"):
+        ours = str(n.get(key if key != "motion_second" else "second_motion"))
+        ly = n.get("lyapunov_" + key.removeprefix("motion_"))
+        if ly is not None:
+            ours += f" (Lyapunov {ly:+.2g}/period)"
         if claim.paper is None:
             return ours, "", "ours only"
         want = str(claim.paper).split(" ")[0]
@@ -382,9 +385,24 @@ DIAGNOSES: dict[str, str] = {
         "1.2819 and contact at 1.3089; no saddle-nodes. With 0.2 % modal damping the "
         "paper's pattern appears: saddle-nodes near 1.15 with a secondary Hopf at 1.154 "
         "(paper D-F 1.166-1.176, B 1.0982) and an upper fold at 1.2696 (paper C 1.2977). "
-        "The paper's quasi-periodic motion at 1.075 and possibly chaotic motion at 1.05 "
-        "need unstable periodic solutions there; ours are stable at both speeds, so the "
-        "time domain gives period-1 (consistent with our HB and Floquet results).",
+        "On the main branch our time domain gives period-1 at 1.05 and 1.075 (stable "
+        "there). But the model has a second, separate branch: an isola. Started from the "
+        "HB orbit shifted by half a period, the time domain at 1.075 lands on a second "
+        "stable period-1 orbit (journal near (-0.24, -0.90) C, eps 0.993); the branch "
+        "through it (H = 16) closes on itself between folds 1.0259 and 1.0939, stable "
+        "from a secondary Hopf at 1.0641 (multiplier -0.36 + 0.93i) to near the upper "
+        "fold, period doublings at 1.0275 and 1.0550 on its unstable part. Going down "
+        "on that attractor in the time domain (each speed from the previous state): "
+        "quasi-periodic at 1.07 (closed Poincare curve, Lyapunov < 0), period-10 locking "
+        "at 1.065, an irregular section at 1.06 (Lyapunov about +2e-4 per period, "
+        "classified quasi-periodic). That is the paper's Figure 23 sequence (Table 3 A "
+        "and B bound it), shifted 0.01-0.03 lower in Omega~: the unstated support "
+        "stiffnesses move folds by about 0.01 (sensitivity rows). The paper most "
+        "probably followed this branch (its start state differs from ours); 0.2-0.5 % "
+        "damping removes the isola, so damping is not the explanation here. The time "
+        "domain's torus at 1.07 lies above the HB secondary Hopf (1.0641): the T/200 "
+        "Newmark step and the H = 16 truncation differ by 0.057 C on this orbit near "
+        "eps 0.99, enough to move a weak Hopf by a few thousandths.",
     "|mu|max at the folds":
         "a multiplier is exactly +1 at a fold; the value at the nearest computed point "
         "depends on the step (paper and ours). Not a model difference.",

@@ -170,6 +170,80 @@ def _simulate(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
     return n, data
 
 
+def _td_data(r: Any, keep_periods: int = 20) -> dict[str, Any]:
+    """Orbit, phase and Poincare arrays of a SimulationResult at its journal, in C."""
+    c = r.column(r.plot_node)
+    scale = r.clearance or 1.0
+    keep = keep_periods * int(r.settings["steps_per_period"])
+    return {"y": r.q[-keep:, c, 0] / scale, "z": r.q[-keep:, c, 1] / scale,
+            "vy": r.v[-keep:, c, 0] / (scale * r.speed),
+            "py": r.poincare_q[:, c, 0] / scale, "pz": r.poincare_q[:, c, 1] / scale,
+            "pvy": r.poincare_v[:, c, 0] / (scale * r.speed),
+            "speed_ratio": r.speed_ratio, "motion": r.motion_name}
+
+
+def _isola(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
+    """A coexisting attractor and its isola (Figure 23 / Table 3 diagnosis):
+    (a) time domain from the HB orbit shifted by ``hb_phase`` of the period; (b) the
+    branch through that orbit (``harmonics``), continued until it closes, with its
+    bifurcations; (c) time domain at ``speeds``, each from the previous run's final
+    state, with the Lyapunov exponent."""
+    from rotorsfd.api import run_response, run_simulation
+    from rotorsfd.io.config import with_values
+
+    o = case.options
+    H = int(o.get("harmonics", 16))
+    n_ly = int(o.get("lyapunov_periods", 200))
+    cfg = with_values(config, {"analysis.response.harmonics": H})
+    a = run_simulation(cfg, progress=False, from_hb=True, hb_phase=float(o["hb_phase"]),
+                       lyapunov_periods=0)
+    if out is not None:
+        a.write(out / "a-second-attractor", plots=False)
+    j = a.column(a.sfd_node)
+    n: dict[str, Any] = {
+        "second_motion": a.motion_name, "second_eps": a.max_eccentricity,
+        "second_y": float(a.poincare_q[-1, j, 0] / a.clearance),
+        "second_z": float(a.poincare_q[-1, j, 1] / a.clearance)}
+    iso = run_response(cfg, from_orbit=a, progress=False)
+    if out is not None:
+        iso.write(out / "b-isola", plots=False)
+    num, data = response_numbers(iso)
+    ref = iso.reference_speed
+    rows = sorted(data["bifurcations"], key=lambda b: b["speed_ratio"])
+    lam = iso.branch.lam / ref
+    folds = sorted(float(lam[i]) for i in iso.branch.folds())
+    sh = [b for b in rows if b["type"] == "secondary-hopf"]
+    n.update({"iso_closed": iso.info.get("closed"), "iso_orbit_difference":
+              iso.info.get("orbit_difference"), "bifurcations": num["bifurcations"],
+              "success": iso.success, "end": iso.message,
+              "iso_fold_lo": folds[0] if folds else None,
+              "iso_fold_hi": folds[-1] if folds else None,
+              "iso_range": [float(lam.min()), float(lam.max())],
+              "iso_pd": [b["speed_ratio"] for b in rows if b["type"] == "period-doubling"]})
+    if sh:
+        n["iso_sh"] = sh[0]["speed_ratio"]
+        n["iso_sh_mu"] = [sh[0]["multiplier_re"], sh[0]["multiplier_im"]]
+    if iso.stable is not None:
+        st = lam[iso.stable]
+        n["iso_stable"] = [float(st.min()), float(st.max())] if st.size else None
+    runs = []
+    state: Any = a
+    from rotorsfd.analyses.simulate import SavedState
+
+    for s_ in o.get("speeds", ()):
+        saved = SavedState(state.q_final, state.v_final, state.t_final, state.speed)
+        r = run_simulation(config, speed_ratio=float(s_), progress=False,
+                           initial_state=saved, lyapunov_periods=n_ly)
+        if out is not None:
+            r.write(out / f"c-{s_:g}", plots=False)
+        n[f"motion_{s_:g}"] = r.motion_name
+        n[f"lyapunov_{s_:g}"] = r.lyapunov.per_period if r.lyapunov else None
+        runs.append(_td_data(r))
+        state = r
+    data.update(second=_td_data(a), runs=runs)
+    return n, data
+
+
 def _fold_curve(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
     from rotorsfd.api import run_fold_curve
 
@@ -225,7 +299,8 @@ def _chart(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
 
 RUNNERS: dict[str, Callable[[Case, Any, Path | None], tuple[dict, dict]]] = {
     "modal": _modal, "response": _response, "simulate": _simulate,
-    "fold-curve": _fold_curve, "width-sweep": _width_sweep, "chart": _chart}
+    "fold-curve": _fold_curve, "width-sweep": _width_sweep, "chart": _chart,
+    "isola": _isola}
 
 
 def run_case(case: Case, examples: Path | None = None, quick: bool = False,
@@ -287,7 +362,7 @@ def run_cases(cases: Sequence[Case], *, examples: Path | None = None, quick: boo
 
 
 #: Rough relative cost per kind (longest first keeps both workers busy).
-COST = {"chart": 10, "width-sweep": 8, "simulate": 3, "fold-curve": 2, "response": 1,
+COST = {"isola": 12, "chart": 10, "width-sweep": 8, "simulate": 3, "fold-curve": 2, "response": 1,
         "modal": 1}
 
 
