@@ -324,8 +324,9 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
     returning True stops the continuation there (success, message says so).
     ``store_jacobians`` (default: only when condensed) keeps ``Branch.jacobians``.
     Never raises on a failed step: returns the points so far with ``success = False`` and a
-    message saying where (lam) and why. Raises ConvergenceError only if the first point
-    cannot be found.
+    message saying where (lam) and why; this includes the re-solve of a point after N_f
+    changed ("re-solve at N_f=... failed at lam=..."). Raises ConvergenceError only if the
+    first point cannot be found.
     """
     if n_samples_rule not in N_SAMPLES_RULES:
         raise ValueError(f"n_samples_rule must be one of {N_SAMPLES_RULES}, "
@@ -346,9 +347,10 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
     opts = ArcLengthOptions(ds=ds, ds_min=ds_min, ds_max=ds_max, tol=tol, max_iter=max_iter,
                             max_points=max_points, max_angle=float(np.radians(max_angle_deg)))
     X_start, lam0, N, t_prev = first.X, lam_start, first.n_samples, None
+    system, res0 = _start_point(problem, H, lam0, X_start, N, condensed, scale, limit_max,
+                                tol, max_iter, t_prev)
+    failed: str | None = None
     while True:
-        system, res0 = _start_point(problem, H, lam0, X_start, N, condensed, scale,
-                                    limit_max, tol, max_iter, t_prev)
 
         def on_point(z: FloatArray, t: FloatArray, Jz: FloatArray, it: int, step: float,
                      system: HBSystem = system) -> bool:
@@ -414,8 +416,18 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
         else:
             break
         opts.ds = status.ds
+        why = "raised for the sampling error" if N > system.N else "lowered"
+        try:
+            system, res0 = _start_point(problem, H, lam0, X_start, N, condensed, scale,
+                                        limit_max, tol, max_iter, t_prev)
+        except ConvergenceError as exc:
+            # keep the promise: a failed step ends the branch, it does not raise
+            failed = (f"re-solve at N_f={N} failed at lam={lam0:.8g} (N_f {why} from "
+                      f"{system.N}; the branch ends at the last point with N_f="
+                      f"{system.N}): {' '.join(str(exc).split())}")
+            break
     al = np.array(out["al"])
-    msg = status.message
+    msg = status.message if failed is None else failed
     if al.size and al.max() > alias_tol:
         msg += (f"; warning: aliasing up to {al.max():.2g} (N_f={system.N}); "
                 "consider a larger n_samples")
@@ -425,7 +437,7 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
         tangents=np.array(out["t"]), iterations=np.array(out["it"], dtype=np.int64),
         ds=np.array(out["ds"]), s=s_all,
         jacobians=np.array(out["J"]) if store_jacobians else None, aliasing=al,
-        success=status.success, message=msg, H=H, n_samples=system.N,
+        success=status.success and failed is None, message=msg, H=H, n_samples=system.N,
         nl_dofs=problem.nl_dofs.copy(), condensed=condensed, lam_scale=scale,
         info={"n_samples": np.array(out["N"], dtype=np.int64),
               "n_samples_rule": n_samples_rule,
