@@ -113,3 +113,32 @@ def test_no_cusp_in_the_range_gives_two_curves(config):
         assert curve.hb.from_z(c.z[-1])[2] == pytest.approx(3.0)
     assert curve.unstable_width([3.0])[0] > 0
     assert "no cusp in the range" in curve.summary()
+
+
+def test_n_samples_by_the_adaptive_rule_criterion():
+    """The fold curve chooses N_f by the criterion of continue_periodic's adaptive rule
+    (the sampling error in the units of the Newton test, <= the fold tolerance 1e-8 at
+    every point). Paper rotor, Figure 19 config, U = 144.02 g mm, H = 3, w_by 0 .. 6: the
+    old relative rule kept N_f = 32 (error up to 1.6e-7, cusp at 4.4097388 rad/s); the
+    new one takes 64 and its cusp agrees with N_f = 1024 to 1e-10 relative (measured 8e-11;
+    4.40972573 rad/s at Omega~ = 1.06006038)."""
+    from rotorsfd.analyses.fold_curve import fold_curve
+    from rotorsfd.continuation.folds import FoldOptions
+    from rotorsfd.model.build import build_model
+    from rotorsfd.model.system import RotorSystem
+
+    cfg = api.load_config(ROOT / "examples" / "paper" / "fig19_unstable_range.toml", [U144])
+    m = build_model(cfg)
+    system = RotorSystem(m.rotor, m.sfd, m.sfd_node, m.unbalances, m.base_motion)
+    ref = api.reference_speed(cfg, system)
+    speeds = cfg.analysis.response.speed_range.bounds(ref)
+    runs = {N: fold_curve(system, speeds, "base.pitching", (0.0, 6.0), 3,
+                          reference_speed=ref, n_samples=N) for N in (None, 1024)}
+    ada, fine = runs[None], runs[1024]
+    assert ada.success and len(ada.cusps) == len(fine.cusps) == 1, ada.message
+    assert ada.n_samples == 64
+    assert np.max(ada.table["aliasing"]) <= FoldOptions().tol
+    assert ada.cusps[0].value == pytest.approx(fine.cusps[0].value, rel=1e-9)
+    assert ada.cusps[0].value == pytest.approx(4.40972573, abs=1e-7)
+    assert ada.cusps[0].speed_ratio == pytest.approx(fine.cusps[0].speed_ratio, rel=1e-10)
+    np.testing.assert_allclose(ada.speeds_at(3.0), fine.speeds_at(3.0), rtol=1e-9)

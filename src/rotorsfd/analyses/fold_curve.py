@@ -14,9 +14,12 @@ branches (the paper's Figure 19). Where the pair meets, the curve turns back in 
 a cusp, beyond which the bistability has vanished. Each turn starts a new ``segment``.
 
 Per point: ``speed_rad_s``, ``speed_ratio`` = Omega / Omega_ref, the second parameter,
-``sfd_eccentricity`` = max_t |q_sfd| / C, ``aliasing`` (relative change of the film-force
-coefficients if N_f doubled) and ``amp_<n>_m`` = max_t sqrt(y^2 + z^2) [m] at each output
-node.
+``sfd_eccentricity`` = max_t |q_sfd| / C, ``aliasing`` (the sampling error of N_f in the
+units of the Newton test: the change of the scaled residual if N_f doubled,
+:meth:`TwoParameterHB.sampling_error
+<rotorsfd.continuation.folds.TwoParameterHB.sampling_error>`, the criterion of
+``continue_periodic``'s adaptive N_f rule) and ``amp_<n>_m`` = max_t sqrt(y^2 + z^2) [m]
+at each output node.
 """
 
 from __future__ import annotations
@@ -47,7 +50,7 @@ from rotorsfd.continuation.folds import (
     locate_branch_fold,
 )
 from rotorsfd.errors import ConfigError, ConvergenceError
-from rotorsfd.harmonic.fourier import aliasing_error, choose_n_samples, to_real
+from rotorsfd.harmonic.fourier import smallest_n_samples
 from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.io import atomic
 from rotorsfd.model import dofs
@@ -259,8 +262,7 @@ def _table(hb: TwoParameterHB, curves: list[FoldBranch], system: RotorSystem,
             cols["speed_rad_s"].append(speed)
             cols["speed_ratio"].append(speed / ref)
             cols["sfd_eccentricity"].append(float(max_radius(X[:, nl[0]], X[:, nl[1]])) / C)
-            xs = to_real(X)[:, nl]
-            cols["aliasing"].append(aliasing_error(hb.template.nl_force, xs, speed, hb.N))
+            cols["aliasing"].append(hb.sampling_error(z, hb.N))
             for n in nodes:
                 iy, iz = dofs.dof_index(n, "y"), dofs.dof_index(n, "z")
                 amp[n].append(float(max_radius(X[:, iy], X[:, iz])))
@@ -296,27 +298,26 @@ def _trace(family: Any, H: int, N: int, scales: tuple[float, float], folds: list
     return hb, curves, messages
 
 
-def _worst_aliasing(hb: TwoParameterHB, curves: list[FoldBranch]
-                    ) -> tuple[float, FloatArray, float]:
-    """Largest aliasing estimate over the points (and that point's xs, frequency)."""
-    best = (-1.0, np.zeros(0), 0.0)
-    p = hb.template
+def _needed_n_samples(hb: TwoParameterHB, curves: list[FoldBranch], target: float,
+                      n_max: int) -> int:
+    """The smallest power of two N >= hb.N whose sampling error
+    (:meth:`TwoParameterHB.sampling_error`, the criterion of ``continue_periodic``'s
+    adaptive rule) is <= target at every point of the curves (n_max if none)."""
+    N = hb.N
     for c in curves:
         for z in c.z:
-            x, speed, _ = hb.from_z(z)
-            xs = x.reshape(2 * hb.H + 1, p.m)
-            a = aliasing_error(p.nl_force, xs, speed, hb.N)
-            if a > best[0]:
-                best = (a, xs, speed)
-    return best
+            if N < n_max and hb.sampling_error(z, N) > target:
+                N = smallest_n_samples(lambda n, z=z: hb.sampling_error(z, n), 2 * N, n_max,
+                                       target)
+    return N
 
 
 def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_parameter: str,
                range2: tuple[float, float], H: int = 3, *,
                reference_speed: float | None = None, n_samples: int | None = None,
                nodes: Sequence[int] | None = None, options: FoldOptions | None = None,
-               branch_options: dict[str, Any] | None = None, alias_tol: float = 1e-6,
-               n_samples_max: int = 1024) -> FoldCurve:
+               branch_options: dict[str, Any] | None = None,
+               alias_tol: float | None = None, n_samples_max: int = 1024) -> FoldCurve:
     """Continue the saddle-nodes of the speed response in ``second_parameter``.
 
     ``speed_range`` (rad/s) of the speed branch computed at ``range2[0]``; its
@@ -324,10 +325,14 @@ def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_par
     (SI; a RotorSystem parameter such as ``"base.pitching"`` or a config path such as
     ``"base.pitching.value"``). ``n_samples`` N_f (default: that of the speed branch);
     ``options`` the fold-curve steps; ``branch_options`` go to ``continue_periodic``.
-    N_f: with ``n_samples=None``, if doubling N_f would change the nonlinear-force
-    coefficients by more than ``alias_tol`` (relative) at some point of the curves,
-    N_f is raised (:func:`~rotorsfd.harmonic.fourier.choose_n_samples` at the worst
-    point, up to ``n_samples_max``) and the curves are traced again.
+    N_f: with ``n_samples=None``, the curves start with the largest N_f the speed
+    branch's adaptive rule used at the points around its saddle-nodes; the criterion is
+    that of the adaptive rule (one function:
+    :meth:`~rotorsfd.harmonic.condensation.CondensedHB.sampling_error`): if the change of
+    the scaled residual when N_f doubles exceeds ``alias_tol`` (default: the fold
+    continuation's Newton tolerance ``options.tol``) at some point of the curves, N_f
+    becomes the smallest power of two (up to ``n_samples_max``) that meets it at every
+    point and the curves are traced again.
     ConfigError if the speed branch at ``range2[0]`` has no saddle-node; ConvergenceError
     if it stops (e.g. journal contact) before any.
     """
@@ -354,17 +359,22 @@ def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_par
                           f"the speed branch at {param} = {range2[0]:g} has no saddle-node "
                           f"in {speed_range[0]:.6g} .. {speed_range[1]:.6g} rad/s "
                           f"({branch.message}); start where the response is bistable")
-    N = n_samples or branch.n_samples
+    if n_samples:
+        N = n_samples
+    else:   # what the speed branch's adaptive rule chose around its saddle-nodes
+        Nb = branch.info["n_samples"]
+        N = int(max(Nb[min(int(i) + k, len(Nb) - 1)] for i in branch.folds() for k in (0, 1)))
+    if alias_tol is None:
+        alias_tol = (options or FoldOptions()).tol
     scales = (abs(speed_range[1] - speed_range[0]), abs(range2[1] - range2[0]))
     while True:
         hb, curves, messages = _trace(family, H, N, scales, folds, range2, options)
         if n_samples is not None or N >= n_samples_max:
             break
-        worst, xs, w = _worst_aliasing(hb, curves)
-        if worst <= alias_tol:
+        N_new = _needed_n_samples(hb, curves, alias_tol, n_samples_max)
+        if N_new <= N:
             break
-        N = choose_n_samples(hb.template.nl_force, xs, w, tol=alias_tol / 100,
-                             n_min=2 * N, n_max=n_samples_max)
+        N = N_new
     t2 = time.perf_counter()
     col = f"{column_slug(param)}_{column_slug(_UNITS[param])}"
     table = _table(hb, curves, system, ref, out_nodes, col)

@@ -443,6 +443,15 @@ class TwoParameterHB:
         xs, l1, l2 = self.from_z(z)
         return self._condensers(l1, l2)[0].recover(xs, l1)
 
+    def sampling_error(self, z: FloatArray, N: int) -> float:
+        """Error of N AFT samples at z in the units of the Newton test of R (scaled by
+        c): :meth:`CondensedHB.sampling_error
+        <rotorsfd.harmonic.condensation.CondensedHB.sampling_error>`, the criterion of
+        ``continue_periodic``'s adaptive N_f rule."""
+        xs, l1, l2 = self.from_z(z)
+        xs = np.ascontiguousarray(xs.reshape(2 * self.H + 1, self.template.m))
+        return self._condensers(l1, l2)[0].sampling_error(xs, l1, N)[0]
+
     def z_from_point(self, X: ComplexArray, lam1: float, lam2: float) -> FloatArray:
         """Scaled z of all-DOF coefficients X (H+1, n_dof) at (lam1, lam2)."""
         return self.to_z(to_real(np.asarray(X))[:, self.template.nl_dofs], lam1, lam2)

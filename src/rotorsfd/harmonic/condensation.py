@@ -325,6 +325,26 @@ class CondensedHB:
         scale = max(float(np.max(np.abs(G2))), np.finfo(float).tiny)
         return float(np.max(np.abs(G2 - G_N))) / scale
 
+    def sampling_error(self, xs: FloatArray, lam: float, N: int,
+                       G_hi: FloatArray | None = None) -> tuple[float, FloatArray]:
+        """Error of N AFT samples at (xs, lam) in the units of the Newton test of the
+        scaled receptance-form residual: the 2-norm of ``Ht_k (G_k(2N) - G_k(N)) / c`` (the
+        force error of the retained harmonics as the displacement it causes, over the
+        length scale c of each nonlinear DOF); ``G_hi`` = G(2N) if known. Returns it and
+        G(N). The one N_f criterion of condensed HB: ``continue_periodic``'s adaptive rule
+        and the fold curve (:func:`~rotorsfd.harmonic.fourier.smallest_n_samples`)."""
+        G_lo = self.force_coefficients(xs, lam, N)
+        if G_hi is None:
+            G_hi = self.force_coefficients(xs, lam, 2 * N)
+        return self.residual_change(G_hi - G_lo, lam), G_lo
+
+    def residual_change(self, dG: FloatArray, lam: float) -> float:
+        """2-norm of the change of the scaled residual (:meth:`displacement_of` over the
+        length scale c of each nonlinear DOF) caused by a change dG of the force
+        coefficients."""
+        c = self.problem.dof_scale[self.problem.nl_dofs]
+        return float(np.linalg.norm(self.displacement_of(dG, lam) / c[None, :]))
+
     def displacement_of(self, dG: FloatArray, lam: float) -> FloatArray:
         """Change of the receptance-form residual (units of length, real layout (2H+1, m))
         caused by a change dG of the nonlinear-force coefficients: ``-Ht_k dG_k``."""

@@ -112,6 +112,16 @@ def aliasing_error(force: Callable[[FloatArray, FloatArray], FloatArray],
     return float(np.max(np.abs(out[1] - out[0]))) / scale
 
 
+def smallest_n_samples(error: Callable[[int], float], n_min: int, n_max: int,
+                       target: float) -> int:
+    """Smallest power of two N in [n_min, n_max] (n_min a power of two) with
+    ``error(N) <= target``, doubling from n_min; n_max if none."""
+    N = n_min
+    while N < n_max and error(N) > target:
+        N *= 2
+    return min(N, n_max)
+
+
 def choose_n_samples(force: Callable[[FloatArray, FloatArray], FloatArray],
                      xs: FloatArray, w: float, tol: float = 1e-8,
                      n_min: int | None = None, n_max: int = 4096) -> int:

@@ -32,6 +32,7 @@ from rotorsfd.harmonic.fourier import (
     aliasing_error,
     choose_n_samples,
     default_min_samples,
+    smallest_n_samples,
     to_real,
 )
 from rotorsfd.harmonic.problem import PeriodicProblem
@@ -140,18 +141,19 @@ class HBSystem:
         bounds by tol) caused by a change dG (2H+1, m) of the force coefficients:
         ``|Ht dG| / c`` condensed (a displacement over the length scale), ``|dG| / (c
         kappa)`` at nl_dofs in the full residual (a force over the force scale)."""
-        s = self.problem.nl_dofs
         if isinstance(self.hb, CondensedHB):
-            _, lam = self.from_z(z)
-            r = self.hb.displacement_of(dG, lam) / self.cr.reshape(2 * self.H + 1, -1)
-        else:
-            r = dG / self.cr.reshape(2 * self.H + 1, -1)[:, s]
+            return self.hb.residual_change(dG, self.from_z(z)[1])
+        r = dG / self.cr.reshape(2 * self.H + 1, -1)[:, self.problem.nl_dofs]
         return float(np.linalg.norm(r))
 
     def sampling_error(self, z: FloatArray, N: int, G_hi: FloatArray | None = None
                        ) -> tuple[float, FloatArray]:
         """Error estimate of N samples at z: :meth:`residual_change` of ``G_2N - G_N``
         (``G_hi`` = G_2N if known); returns it and G_N."""
+        if isinstance(self.hb, CondensedHB):   # the same criterion as the fold curve
+            x, lam = self.from_z(z)
+            return self.hb.sampling_error(np.ascontiguousarray(self.hb.nl_part(x)), lam, N,
+                                          G_hi)
         G_lo = self.force_coefficients(z, N)
         if G_hi is None:
             G_hi = self.force_coefficients(z, 2 * N)
@@ -161,10 +163,8 @@ class HBSystem:
                            ) -> int:
         """Smallest power of two N in [n_min, n_max] whose :meth:`sampling_error` at z is
         <= target (n_max if none)."""
-        N = n_min
-        while N < n_max and self.sampling_error(z, N)[0] > target:
-            N *= 2
-        return min(N, n_max)
+        return smallest_n_samples(lambda N: self.sampling_error(z, N)[0], n_min, n_max,
+                                  target)
 
     def coarser_n_samples(self, z: FloatArray, n_floor: int, target: float) -> int:
         """This N halved while the error of the halved count (against the current one)
