@@ -1,14 +1,22 @@
 """Brute-force bifurcation diagram: Poincare points of the time-domain motion against the
 rotor speed, swept up and then down (``[analysis.bifurcation_diagram]``).
 
-At each speed the integration starts from the end state of the previous speed (the first
-from ``[analysis.simulate] initial_displacement``, or the HB orbit), runs
-``settle_periods`` and records the Poincare points of ``record_periods`` more. Runs at
-each speed start at t = 0, so the unbalance angle ``Omega t`` is continuous (every run
-lasts a whole number of periods); a time-varying base law restarts its phase at each
-speed. Coexisting attractors show as a difference of the up and down sweeps (jumps and
-hysteresis). Journal contact ends that sweep: the down sweep then starts afresh at the
-top speed; the contacts are listed and reported.
+At each speed the integration starts from the end state of the previous speed, runs
+``settle_periods`` and records the Poincare points of ``record_periods`` more. A speed
+with no previous state (the first of a sweep, unless the sweep before ended at the same
+speed, and the speed after a failed one) starts *fresh*: by default on the HB periodic
+solution at that speed (:func:`~rotorsfd.analyses.simulate.hb_start`, H of
+``[analysis.response]``), so that the start's transient does not reach the clearance,
+and from the displaced state of ``[analysis.simulate] initial_displacement`` when no HB
+solution can be computed (time-varying base, no SFD, no convergence); with
+``start_state="displaced"`` the first speed of a sweep starts displaced (the speed after
+a failed one still from the HB orbit). Each speed records its start (``previous``, ``hb`` or
+``displaced``). Runs at each speed start at t = 0, so the unbalance angle ``Omega t`` is
+continuous (every run lasts a whole number of periods); a time-varying base law restarts
+its phase at each speed. Coexisting attractors show as a difference of the up and down
+sweeps (jumps and hysteresis). A speed that meets journal contact (or whose time stepping
+fails) is recorded as failed with the reason, and the sweep goes on at the next speed from
+a fresh start; the failures are listed and reported.
 """
 
 from __future__ import annotations
@@ -34,7 +42,7 @@ from rotorsfd.analyses.simulate import (
     system_from_config,
     time_domain_inputs,
 )
-from rotorsfd.errors import ConfigError, ConvergenceError, JournalContactError
+from rotorsfd.errors import ConfigError, ConvergenceError, JournalContactError, RotorsfdError
 from rotorsfd.model import dofs
 from rotorsfd.model.system import RotorSystem
 
@@ -44,6 +52,8 @@ if TYPE_CHECKING:
     from rotorsfd.io.schema import Config
 
 FIELD = "analysis.bifurcation_diagram"
+#: Fresh starts of a sweep (``run_bifurcation_diagram(start_state=...)``).
+FRESH_STARTS = ("hb", "displaced")
 
 
 @dataclass
@@ -61,6 +71,7 @@ class SpeedPoint:
     max_eccentricity: float | None
     contact: str | None = None
     settled: bool = True
+    start: str = "previous"     #: the initial state: "previous", "hb" or "displaced"
 
 
 @dataclass
@@ -113,8 +124,10 @@ class BifurcationDiagramResult:
 
     def speeds_table(self) -> dict[str, np.ndarray]:
         """``speeds.csv``: per speed ``direction, speed_rad_s, speed_ratio, motion,
-        n_distinct_poincare (-1: unknown), max_eccentricity (-1: none), contact (0/1),
-        settled (0: a period-n class whose Poincare points still drift)``. The motion is
+        n_distinct_poincare (-1: unknown), max_eccentricity (-1: none), contact (0/1: the
+        speed failed, journal contact or time stepping; diagram.json says why), settled (0:
+        a period-n class whose Poincare points still drift), start`` (initial state:
+        ``previous`` speed's end state, ``hb`` orbit or ``displaced``). The motion is
         classified without a Lyapunov exponent (Poincare points and spectral lines)."""
         ref = self.reference_speed
         cols = {"direction": [p.direction for p in self.points],
@@ -126,7 +139,8 @@ class BifurcationDiagramResult:
                 "max_eccentricity": [-1.0 if p.max_eccentricity is None
                                      else p.max_eccentricity for p in self.points],
                 "contact": [p.contact is not None for p in self.points],
-                "settled": [p.settled for p in self.points]}
+                "settled": [p.settled for p in self.points],
+                "start": [p.start for p in self.points]}
         if not ref:
             cols.pop("speed_ratio")
         return {k: np.asarray(v) for k, v in cols.items()}
@@ -144,7 +158,8 @@ class BifurcationDiagramResult:
                      "settings": self.settings, "nodes": list(self.nodes),
                      "clearance_m": self.clearance, "elapsed_s": self.elapsed,
                      "contacts": [{"direction": p.direction, "speed_rad_s": p.speed,
-                                   "message": p.contact} for p in self.contacts],
+                                   "start": p.start, "message": p.contact}
+                                  for p in self.contacts],
                      "notes": self.notes, "title": self.title}))}
         if plots:
             paths["diagram.png"] = atomic.save_figure(self.plot(), out / "diagram.png",
@@ -172,8 +187,12 @@ class BifurcationDiagramResult:
                  f"{self.settings['settle_periods']} + {self.settings['record_periods']} "
                  f"periods each, {self.elapsed:.1f} s",
                  "motions: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items()))]
-        lines += [f"contact ({p.direction} sweep) at {p.speed:.6g} rad/s: {p.contact}"
-                  for p in self.contacts]
+        starts: dict[str, int] = {}
+        for p in self.points:
+            starts[p.start] = starts.get(p.start, 0) + 1
+        lines.append("starts: " + ", ".join(f"{k} {v}" for k, v in sorted(starts.items())))
+        lines += [f"failed ({p.direction} sweep, {p.start} start) at {p.speed:.6g} rad/s: "
+                  f"{p.contact}" for p in self.contacts]
         lines += [f"note: {n}" for n in self.notes]
         return "\n".join(lines)
 
@@ -199,12 +218,17 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
                             steps_per_period: int | None = None, scheme: str | None = None,
                             alpha: float | None = None,
                             initial_displacement: float | None = None,
-                            from_hb: bool = False, harmonics: int | None = None,
+                            from_hb: bool = False, start_state: str = "hb",
+                            harmonics: int | None = None,
                             reference_speed: float | None = None,
                             nodes: Sequence[int] | None = None, progress: bool = True,
                             title: str | None = None) -> BifurcationDiagramResult:
     """Sweep the speed (rad/s; from a Config: ``[analysis.bifurcation_diagram]``, the
-    scheme, steps per period and initial state of ``[analysis.simulate]``)."""
+    scheme, steps per period and initial displacement of ``[analysis.simulate]``).
+
+    ``start_state`` the fresh start (module docstring): ``"hb"`` (default; the displaced
+    state where no HB solution can be computed) or ``"displaced"``; ``from_hb=True`` is
+    ``"hb"`` (kept for the command line)."""
     from tqdm import tqdm
 
     from rotorsfd.io.schema import BifurcationDiagramAnalysis, SimulateAnalysis
@@ -235,6 +259,11 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
         H = harmonics or config.analysis.response.harmonics
         name = config.title if title is None else title
         out_nodes = tuple(nodes) if nodes else tuple(config.output_nodes("simulate"))
+    if from_hb:
+        start_state = "hb"
+    if start_state not in FRESH_STARTS:
+        raise ConfigError("start_state", start_state,
+                          f"must be one of {', '.join(FRESH_STARTS)}")
     if not (start > 0 and stop > 0 and start != stop):
         raise ConfigError(f"{FIELD}.speed_range", (start, stop),
                           "speeds must be > 0 and differ")
@@ -251,29 +280,36 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
     settings = {"speed_start_rad_s": min(start, stop), "speed_stop_rad_s": max(start, stop),
                 "n_speeds": n, "direction": direction, "settle_periods": settle,
                 "record_periods": rec, "steps_per_period": spp, **opts,
-                "initial_state": "HB" if from_hb else f"displaced {disp:g} m",
+                "initial_state": (f"HB (H={H}), displaced {disp:g} m where it fails"
+                                  if start_state == "hb" else f"displaced {disp:g} m"),
                 "reference_speed_rad_s": ref}
     nn = len(out_nodes)
 
-    def fresh(speed: float) -> tuple[np.ndarray, np.ndarray]:
-        if from_hb:
-            return hb_start(system, speed, H)
-        return displaced_state(system.n_dof, disp), np.zeros(system.n_dof)
-
     points: list[SpeedPoint] = []
     notes: list[str] = []
+
+    def fresh(d: str, speed: float, hb: bool) -> tuple[np.ndarray, np.ndarray, str]:
+        """(q0, v0, start) at speed: the HB orbit (if hb), or the displaced state."""
+        if hb:
+            try:
+                return (*hb_start(system, speed, H), "hb")
+            except (RotorsfdError, FloatingPointError, np.linalg.LinAlgError) as exc:
+                notes.append(f"{d} sweep at {speed:.6g} rad/s: no HB start ("
+                             f"{' '.join(str(exc).split())}); displaced {disp:g} m instead")
+        return displaced_state(system.n_dof, disp), np.zeros(system.n_dof), "displaced"
+
     state: tuple[np.ndarray, np.ndarray] | None = None
-    stopped: set[str] = set()
+    origin, restart = "previous", False
     tic = time.perf_counter()
     bar = tqdm(total=len(runs), desc="bifurcation diagram", disable=not progress,
                file=sys.stderr, dynamic_ncols=True, leave=False)
     try:
         for d, speed in runs:
             bar.update()
-            if d in stopped:
-                continue
             if state is None:
-                state = fresh(speed)
+                # after a failed speed always the HB orbit if there is one
+                q0, v0, origin = fresh(d, speed, start_state == "hb" or restart)
+                state = (q0, v0)
             bar.set_postfix_str(f"{d} {speed / ref if ref else speed:.4g}")
             inputs = time_domain_inputs(system, speed,
                                         horizon=(settle + rec + 1) * 2 * math.pi / speed)
@@ -288,12 +324,12 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
                 empty = np.zeros((0, nn, 2))
                 kind = "contact" if isinstance(exc, JournalContactError) else "failed"
                 points.append(SpeedPoint(d, speed, np.zeros(0), empty, empty, kind, None,
-                                         None, msg))
-                notes.append(f"{d} sweep stopped at {speed:.6g} rad/s ({kind}); the next "
-                             "sweep starts from the initial state")
-                stopped.add(d)
-                state = None
+                                         None, msg, start=origin))
+                notes.append(f"{d} sweep: {kind} at {speed:.6g} rad/s ({origin} start); "
+                             "the sweep goes on from a fresh start")
+                state, restart = None, True
                 continue
+            start_of_run, origin, restart = origin, "previous", False
             state = (tr.q_final, tr.v_final)
             j = out_nodes.index(system.sfd_node) if system.sfd_node in out_nodes else 0
             mc = classify(tr.poincare_q, tr.poincare_v, tr.q, tr.v,
@@ -305,7 +341,8 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
                 d, speed, tr.poincare_t, tr.poincare_q.reshape(-1, nn, 2),
                 tr.poincare_v.reshape(-1, nn, 2), mc.motion if mc else "unclassified",
                 mc.evidence.get("n_distinct_poincare") if mc else None, eps,
-                settled=bool(mc.evidence.get("settled", True)) if mc else True))
+                settled=bool(mc.evidence.get("settled", True)) if mc else True,
+                start=start_of_run))
     finally:
         bar.close()
     return BifurcationDiagramResult(points, out_nodes, ref, clearance, settings,
