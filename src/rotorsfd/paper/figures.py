@@ -185,20 +185,22 @@ def _isola(spec: FigureSpec, res: list[Outcome]) -> Figure:
     ax = fig.add_subplot(1, 1 + len(runs), 1)
     for o in res:
         d = o.data
-        x, y = d["speed_ratio"], d["defl_1"]
+        x, y = d["speed_ratio"], d["defl_8"]
         styled_line(ax, x, y, d.get("stable"), lw=1.3,
                     label="isola (from the orbit)" if o is iso else f"main ({_label(o.name)})")
         if d["bifurcations"]:
             mark_bifurcations(ax, x, y, d["bifurcations"], "speed_ratio")
     ax.set_xlim(1.0, 1.12)
-    ax.set_ylim(0.4, 1.0)
     ax.set_xlabel(XLABEL)
-    ax.set_ylabel(r"$\tilde r$ at node 1 (SFD)")
+    ax.set_ylabel(r"$\tilde r$ at node 8 (disk)")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
     for k, d in enumerate(runs):
         ax = fig.add_subplot(1, 1 + len(runs), k + 2)
         ax.plot(d["py"], d["pvy"], "k.", ms=3)
+        if d["motion"] == "period-1":      # one point: show it on the phase plane's scale
+            ax.set_xlim(*_span(d["y"]))
+            ax.set_ylim(*_span(d["vy"]))
         ax.set_xlabel("y / C")
         ax.set_ylabel(r"$\dot y / (C \Omega)$")
         ax.set_title(f"Omega~ = {d['speed_ratio']:.3f}: {d['motion']}", fontsize=9)
