@@ -423,20 +423,27 @@ def _simulate(args: argparse.Namespace, config: Any) -> int:
 
 
 @command("bifurcation-diagram", "brute-force bifurcation diagram: the speed swept up then "
-         "down over [analysis.bifurcation_diagram], each speed from the previous end state; "
+         "down over [analysis.bifurcation_diagram], each speed from the previous end state "
+         "(a sweep's first speed, and the speed after a failed one, from the HB orbit); "
          "diagram.csv (Poincare points), speeds.csv, diagram.json, diagram.png; exit 1 if "
-         "a sweep met journal contact (the rest is written)", output=True, quiet=True,
-         arguments=[arg("--from-hb", action="store_true",
-                        help="start the first speed on its HB periodic solution")])
+         "a speed met journal contact (recorded, the sweep goes on)", output=True,
+         quiet=True,
+         arguments=[arg("--start", choices=("hb", "displaced"), default="hb",
+                        help="fresh start of a sweep: 'hb' (the HB periodic solution, "
+                             "default) or 'displaced' (every node displaced by "
+                             "[analysis.simulate] initial_displacement)"),
+                    arg("--from-hb", action="store_true",
+                        help="same as --start hb (kept for older scripts)")])
 def _bifurcation_diagram(args: argparse.Namespace, config: Any) -> int:
     from rotorsfd import api
 
+    start = "hb" if args.from_hb else args.start
     result = api.run_bifurcation_diagram(config, search_path=Path(args.config).parent,
-                                         from_hb=args.from_hb, progress=not args.quiet)
+                                         start_state=start, progress=not args.quiet)
     paths = result.write(args.output)
     for p in result.contacts:
-        print(f"rotorsfd: error: {p.direction} sweep stopped at {p.speed:.6g} rad/s: "
-              f"{p.contact}", file=sys.stderr)
+        print(f"rotorsfd: error: {p.direction} sweep: speed {p.speed:.6g} rad/s failed "
+              f"({p.contact}); the sweep went on", file=sys.stderr)
     _print_written(result, paths, args.quiet)
     return 0 if result.success else 1
 

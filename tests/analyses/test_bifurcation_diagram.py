@@ -98,3 +98,20 @@ def test_sweep_order() -> None:
     assert runs == [("up", 1.0), ("up", 2.0), ("up", 3.0), ("down", 3.0), ("down", 2.0),
                     ("down", 1.0)]
     assert sweep_speeds(1.0, 3.0, 2, "down") == [("down", 3.0), ("down", 1.0)]
+
+
+def test_cli_start_choice(case, tmp_path) -> None:
+    path = case[0]
+    sets = [a for s in DIAGRAM for a in ("--set", s)]
+    sets += ["--set", "analysis.bifurcation_diagram.speed_range.n=2", "--set",
+             "analysis.bifurcation_diagram.settle_periods=20", "--set",
+             "analysis.bifurcation_diagram.direction=up"]
+    starts = {}
+    for start in ("hb", "displaced"):
+        out = tmp_path / start
+        status = main(["bifurcation-diagram", str(path), "-o", str(out), "-q",
+                       "--start", start, *sets])
+        assert status == 0
+        with (out / "speeds.csv").open() as fh:
+            starts[start] = [r["start"] for r in csv.DictReader(fh)]
+    assert starts == {"hb": ["hb", "previous"], "displaced": ["displaced", "previous"]}
