@@ -71,6 +71,33 @@ def per_call(problem, lam0: float, n: int = 2000) -> float:
     return float(np.median(times))
 
 
+def both_changes(repeat: int) -> list[Row]:
+    """The pitching branch (w_by = 6 rad/s, adaptive N_f) as the code had it before both
+    changes (grow-only N_f rule, base terms recombined per call) and as it is now."""
+    from rotorsfd.harmonic.periodic import continue_periodic
+
+    rows = []
+    system, opts, _ = system_and_options("pitching w_by=6")
+    old = system.periodic_problem("speed", assembly="direct")
+    new = system.periodic_problem("speed")
+    for H in (3, 8):
+        funs = {
+            "before": lambda H=H: continue_periodic(old, 0.5 * W1, 1.6 * W1, H,
+                                                    **{**opts, "n_samples_rule": "grow"}),
+            "after": lambda H=H: continue_periodic(new, 0.5 * W1, 1.6 * W1, H, **opts),
+        }
+        funs["after"]()  # warm-up (compiled kernels)
+        res = interleaved(funs, repeat)
+        for key, method in (("before", "grow-only N_f + base terms per call (before)"),
+                            ("after", "adaptive N_f + polynomial base terms (after)")):
+            t, times, b = res[key]
+            rows.append(Row("linear", case=f"pitching w_by=6, H={H}, Omega~ 0.5-1.6: both "
+                            "changes", method=method, value=t, repeat=repeat,
+                            ratio=t / res["before"][0], ref="before",
+                            note=f"{b.n_points} points", extra={"times": times}))
+    return rows
+
+
 def run(quick: bool = False, repeat: int = 3) -> list[Row]:
     from rotorsfd.harmonic.periodic import continue_periodic
 
@@ -109,6 +136,8 @@ def run(quick: bool = False, repeat: int = 3) -> list[Row]:
             rows.append(Row("linear", case=label, method=method, value=t, repeat=repeat,
                             ratio=t / t_ref, ref="direct", note=note,
                             extra={"times": times, "points": b.n_points}))
+    if not quick:
+        rows += both_changes(repeat)
     # the linear part alone, per evaluation
     system, _, _ = system_and_options("pitching w_by=6")
     n = 200 if quick else 2000
