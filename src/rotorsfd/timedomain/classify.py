@@ -118,7 +118,8 @@ def classify_motion(poincare: np.ndarray, signal: np.ndarray | None = None,
                               "exponent may come from a weakly unstable torus or from a "
                               "neutral (undamped) direction of the model")
             return MotionClass("chaotic", ev)
-        ev["basis"] = "non-periodic with non-positive Lyapunov exponent"
+        ev["basis"] = ("non-periodic, largest Lyapunov exponent not above "
+                       f"{lyapunov_threshold:g} per period")
         return MotionClass("quasi-periodic", ev)
     if frac is not None:
         if frac >= two_frequency_min:
