@@ -80,13 +80,18 @@ def test_files(case) -> None:
     assert float(speeds[13]["speed_ratio"]) == pytest.approx(1.3)
 
 
+def _cli_sets(n: int) -> list[str]:
+    """--set arguments: the DIAGRAM settings, n speeds, a short up sweep."""
+    sets = [*DIAGRAM, f"analysis.bifurcation_diagram.speed_range.n={n}",
+            "analysis.bifurcation_diagram.settle_periods=20",
+            "analysis.bifurcation_diagram.direction=up"]
+    return [a for s in sets for a in ("--set", s)]
+
+
 def test_cli(case, tmp_path) -> None:
     path = case[0]
-    sets = [a for s in DIAGRAM for a in ("--set", s)]
-    sets += ["--set", "analysis.bifurcation_diagram.speed_range.n=3", "--set",
-             "analysis.bifurcation_diagram.settle_periods=20", "--set",
-             "analysis.bifurcation_diagram.direction=up"]
-    status = main(["bifurcation-diagram", str(path), "-o", str(tmp_path), "-q", *sets])
+    status = main(["bifurcation-diagram", str(path), "-o", str(tmp_path), "-q",
+                   *_cli_sets(3)])
     assert status == 0
     with (tmp_path / "speeds.csv").open() as fh:
         assert [r["direction"] for r in csv.DictReader(fh)] == ["up"] * 3
@@ -102,10 +107,7 @@ def test_sweep_order() -> None:
 
 def test_cli_start_choice(case, tmp_path) -> None:
     path = case[0]
-    sets = [a for s in DIAGRAM for a in ("--set", s)]
-    sets += ["--set", "analysis.bifurcation_diagram.speed_range.n=2", "--set",
-             "analysis.bifurcation_diagram.settle_periods=20", "--set",
-             "analysis.bifurcation_diagram.direction=up"]
+    sets = _cli_sets(2)
     starts = {}
     for start in ("hb", "displaced"):
         out = tmp_path / start
