@@ -79,3 +79,15 @@ def test_write_report(tmp_path):
 def test_cli_unknown_figure(tmp_path, capsys):
     assert main(["paper", "-o", str(tmp_path), "--figure", "99", "-q"]) == 2
     assert "no figure 99" in capsys.readouterr().err
+
+
+def test_missing_width_says_why_not_nan():
+    why = "no fold pair, stopped at Omega~ = 1.3121, eps = 0.995"
+    outcomes = {"fig19-u360": Outcome("fig19-u360", "ok", "", 1.0,
+                                      {"width0": None, "width10": 0.1, "width0_why": why,
+                                       "end_rate": None, "notes": []})}
+    rows = {r.quantity: r for r in comparison_rows(outcomes)}
+    r0 = rows["U = 360.04: unstable width at w_by = 0"]
+    assert r0.ours == f"none [{why}]" and r0.verdict == "differs"
+    r10 = rows["U = 360.04: unstable width at w_by = 10"]
+    assert r10.ours == "0.1" and "nan" not in r10.difference

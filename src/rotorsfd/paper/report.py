@@ -43,7 +43,7 @@ def _fmt(x: Any) -> str:
     if x is None:
         return "none"
     if isinstance(x, float):
-        return "nan" if math.isnan(x) else f"{x:.5g}"
+        return "none" if math.isnan(x) else f"{x:.5g}"
     return str(x)
 
 
@@ -143,7 +143,8 @@ def _value(claim: Claim, outcomes: Mapping[str, Outcome]) -> tuple[str, str, str
         return f"{v:.3f}", "", "ours only"
     v = n.get(key)
     if v is None:
-        extra = f" [{n['end']}]" if "end" in n else ""
+        why = n.get(f"{key}_why") or n.get("end")
+        extra = f" [{why}]" if why else ""
         return "none" + extra, "no such point", "differs" if claim.paper is not None else ""
     if isinstance(claim.paper, float) and isinstance(v, (int, float)):
         diff, verdict = _numeric(claim, float(v))

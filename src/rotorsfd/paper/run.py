@@ -276,13 +276,16 @@ def _width_sweep(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]
         elif r.success:
             widths.append(0.0)
             notes.append(f"{v:g}: no fold")
-        else:
-            widths.append(float("nan"))
+        else:                      # no fold pair before the branch ended: no width
+            widths.append(None)
             notes.append(f"{v:g}: {num['end']}")
-    w = np.array(widths)
-    zero = [v for v, x in zip(values, w, strict=True) if x == 0.0]
+    zero = [v for v, x in zip(values, widths, strict=True) if x == 0.0]
     n = {"width0": widths[0], "width10": widths[-1], "end_rate": zero[0] if zero else None,
          "notes": notes}
+    for key, i in (("width0", 0), ("width10", -1)):
+        if widths[i] is None:
+            n[f"{key}_why"] = "no fold pair, " + notes[i].split(": ", 1)[1]
+    w = np.array([np.nan if x is None else x for x in widths])   # the figure leaves a gap
     return n, {"rate": np.array(values), "width": w}
 
 
