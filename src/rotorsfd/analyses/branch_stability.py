@@ -19,6 +19,10 @@ to a relative parameter tolerance ``rtol`` (default 1e-6):
   A multiplier crossing +1 within ``fold_merge_rtol`` (1e-3) of a turning point is that
   fold: for a truncated HB orbit they differ by the truncation error (paper rotor under
   pitching, U = 144.02 g mm: 2.6e-4 at H = 3, < 1e-5 at H = 8); the gap is reported.
+  So is a crossing farther away when no multiplier crosses +1 across the nearest turning
+  point (and no other turn lies between): the isola of the C/R = 0.728 % case has, at
+  H = 16 and N = 400, its only +1 crossing at Omega~ 1.0904 and |mu| = 1.037 at the turn
+  1.0939; at H = 24, N = 1600 the crossing is in the turning interval.
 * period-doubling: a real multiplier through -1 (``det(Phi + I)`` changes sign).
 * secondary-hopf: a complex pair leaves the unit circle (``|mu|^2 - 1`` of the pair).
 
@@ -50,6 +54,7 @@ from rotorsfd.stability.bifurcations import (
     Bracket,
     BranchSample,
     critical_value,
+    crossing_signs,
     detect,
     find_bifurcations,
     locate,
@@ -78,7 +83,8 @@ class StabilityOptions:
     ``tol`` unstable when ``|mu|max > 1 + tol``; ``rtol`` relative parameter tolerance of
     located bifurcations (``locate=False``: linear interpolation between points);
     ``fold_merge_rtol``: a multiplier crossing +1 within this relative distance of a
-    turning point is that fold (the gap, HB truncation, is reported in ``messages``).
+    turning point is that fold (the gap, HB truncation, is reported in ``messages``); so
+    is one farther away from a turning point across which no multiplier crosses +1.
     """
 
     method: str = "newmark-cb"
@@ -284,24 +290,37 @@ def _pad(rows: list[NDArray]) -> tuple[NDArray[np.complex128], NDArray[np.int64]
     return out, counts
 
 
-def _merge_folds(brackets: list[Bracket], samples: list[BranchSample], rtol: float
+def _merge_folds(brackets: list[Bracket], samples: list[BranchSample], rtol: float,
+                 dead_band: float = STABILITY_TOL
                  ) -> tuple[list[Bracket], dict[int, Bracket]]:
     """One bracket per fold. A multiplier-only saddle-node bracket is the same fold as the
     nearest tangent (turning-point) bracket when it is next to it (within one interval:
-    the method's lag) or its parameter is within ``rtol`` (relative) of it: the Floquet
-    multipliers of a truncated HB orbit cross +1 a little away from the HB fold. Returns
-    the kept brackets and, by id of a kept tangent bracket, the merged multiplier one."""
+    the method's lag), its parameter is within ``rtol`` (relative) of it, or no real
+    multiplier crosses +1 across that turning point itself and no other turning point
+    lies between them: at a turning point of the exact orbit a multiplier is +1, so a
+    turn without a crossing and a crossing without a turn are one fold displaced by the
+    numerical error (HB truncation, Floquet discretisation; isola of the C/R 0.728 % case
+    at H = 16, N = 400: 3.2e-3 apart, one interval apart at H = 24, N = 1600). Returns the
+    kept brackets and, by id of a kept tangent bracket, the merged multiplier one."""
     index = {id(p): i for i, p in enumerate(samples)}
     tang = [b for b in brackets if b.kind == "saddle-node" and b.via == "tangent"]
+    turns = sorted(index[id(t.a)] for t in tang)
+
+    def crossless(t: Bracket) -> bool:
+        return (crossing_signs(t.a.multipliers, dead_band)["saddle-node"]
+                == crossing_signs(t.b.multipliers, dead_band)["saddle-node"])
+
     out, merged = [], {}
     for b in brackets:
         if b.kind == "saddle-node" and b.via == "multiplier" and tang:
             i = index[id(b.a)]
             t = min(tang, key=lambda x: abs(index[id(x.a)] - i))
+            it = index[id(t.a)]
             lam_b = 0.5 * (b.a.lam + b.b.lam)
             lam_t = 0.5 * (t.a.lam + t.b.lam)
-            if (abs(index[id(t.a)] - i) <= 1 or abs(lam_b - lam_t) <= rtol * abs(lam_t)) \
-                    and id(t) not in merged:
+            alone = not any(min(i, it) < j < max(i, it) for j in turns)
+            if (abs(it - i) <= 1 or abs(lam_b - lam_t) <= rtol * abs(lam_t)
+                    or (alone and crossless(t))) and id(t) not in merged:
                 merged[id(t)] = b
                 continue
         out.append(b)
@@ -348,7 +367,8 @@ def _floquet_crossing(fold: Bifurcation, bracket: Bracket, solve_at: Callable,
     if gap > 10 * o.rtol:
         messages.append(f"saddle-node at lam = {fold.lam:.9g} (turning point): a multiplier "
                         f"crosses +1 at lam = {c.lam:.9g}, {gap:.1e} (relative) away; the "
-                        "gap measures the HB truncation error: raise H to shrink it")
+                        "gap measures the HB truncation and Floquet discretisation error: "
+                        "raise H and the Floquet intervals to shrink it")
 
 
 def _hill_resolution(results: list[FloquetResult]) -> list[str]:
@@ -393,7 +413,8 @@ def branch_stability(branch: Branch, problem: PeriodicProblem,
     samples = [BranchSample(float(s[i]), float(branch.lam[i]), r.multipliers,
                             float(dlam[i]) if np.isfinite(dlam[i]) else None)
                for i, r in enumerate(results)]
-    brackets, merged = _merge_folds(detect(samples, o.tol), samples, o.fold_merge_rtol)
+    brackets, merged = _merge_folds(detect(samples, o.tol), samples, o.fold_merge_rtol,
+                                    o.tol)
     index = {id(p): i for i, p in enumerate(samples)}
 
     def solve_at(s_: float) -> tuple[float, NDArray, float]:
