@@ -279,14 +279,19 @@ class Trajectory:
     t_final: float
     max_eccentricity_run: float | None
     newton_iterations_max: int = 0
+    snapshot: tuple[np.ndarray, np.ndarray, float] | None = None
 
 
 def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_period: int,
                       periods: int, record_dofs: Sequence[int], record_periods: int,
                       poincare_periods: int, method_options: dict[str, Any] | None = None,
                       chunk_periods: int | None = None, progress: Any = None,
-                      clearance: float | None = None, t0: float = 0.0) -> Trajectory:
+                      clearance: float | None = None, t0: float = 0.0,
+                      snapshot_period: int | None = None) -> Trajectory:
     """Integrate ``periods`` rotor periods in chunks from ``(q0, v0)`` at ``t0``.
+
+    ``snapshot_period`` (0 < p < periods): a chunk ends after p periods and the full state
+    there is kept (``Trajectory.snapshot = (q, v, t)``, the start of the step check).
 
     ``progress(periods_done)`` is called after each chunk. Contact raises
     :class:`JournalContactError` (time, rotor period, eccentricity in the message); other
@@ -309,8 +314,12 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
     eps_max = 0.0
     newton_max = 0
     done = 0
+    snapshot = None
+    snap = snapshot_period if snapshot_period and 0 < snapshot_period < periods else None
     while done < periods:
         k = min(chunk, periods - done)
+        if snap is not None and done < snap:
+            k = min(k, snap - done)
         status, smp, info = run(ps, state, k * spp, record_dofs=rec_all, record_every=1,
                                 record_start=0, poincare_every=spp, poincare_start=0,
                                 record_initial=(done == 0))
@@ -341,13 +350,134 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
         parts["pq"].append(smp["pq"][keep, :rd.size])
         parts["pv"].append(smp["pv"][keep, :rd.size])
         done += k
+        if done == snap:
+            snapshot = (state.X[:ps.n_dof].copy(), state.X[ps.n_dof:2 * ps.n_dof].copy(),
+                        ps.t0 + state.step * dt)
         if progress is not None:
             progress(done)
     n = ps.n_dof
     cat = {k: np.concatenate(v) for k, v in parts.items()}
     return Trajectory(cat["t"], cat["q"], cat["v"], cat["pt"], cat["pq"], cat["pv"], rd,
                       state.X[:n].copy(), state.X[n:2 * n].copy(), ps.t0 + state.step * dt,
-                      eps_max if nl.size and clearance else None, newton_max)
+                      eps_max if nl.size and clearance else None, newton_max, snapshot)
+
+
+# ---- time-step check ----------------------------------------------------------------------
+
+STEP_CHECK_TOLERANCE = 1e-2
+"""Warn when halving the step moves the checked orbit by more than this (units of C, or of
+the orbit's max radius without an SFD)."""
+
+
+@dataclass(frozen=True)
+class StepCheck:
+    """The last ``periods`` of a run integrated again from the same state at twice the
+    steps per period (``steps_per_period = (base, fine)``), node ``node``.
+
+    Periodic (settled period-n) motion: the headline ``difference`` is the larger of the
+    final-period orbit difference (max over the period of the distance between the two
+    orbits at equal times) and the Poincare point difference (last ``n_poincare`` points).
+    Other motion (trajectories diverge): the orbit envelope, the larger change of the max
+    and min radius over the ``periods``. Lengths in ``unit``: C, or the max orbit radius
+    without an SFD. ``error``: the fine run failed (contact, Newton)."""
+
+    steps_per_period: tuple[int, int]
+    periods: int
+    node: int
+    compared: str
+    difference: float | None
+    orbit_difference: float | None
+    poincare_difference: float | None
+    envelope_difference: float | None
+    n_poincare: int
+    unit: str
+    tolerance: float = STEP_CHECK_TOLERANCE
+    error: str | None = None
+    elapsed: float = 0.0
+
+    @property
+    def coarse(self) -> bool:
+        """The base step looks too coarse (difference above the tolerance, or the fine run
+        failed)."""
+        return self.error is not None or (self.difference is not None
+                                          and self.difference > self.tolerance)
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"steps_per_period": list(self.steps_per_period), "periods": self.periods,
+                "node": self.node, "compared": self.compared,
+                "difference": self.difference, "unit": self.unit,
+                "orbit_difference": self.orbit_difference,
+                "poincare_difference": self.poincare_difference,
+                "poincare_points": self.n_poincare,
+                "envelope_difference": self.envelope_difference,
+                "tolerance": self.tolerance, "too_coarse": self.coarse,
+                "warning": self.warning(), "error": self.error, "elapsed_s": self.elapsed}
+
+    def line(self) -> str:
+        a, b = self.steps_per_period
+        head = f"step check (T/{a} vs T/{b}, last {self.periods} periods, node {self.node})"
+        if self.error is not None:
+            return f"{head}: the run at T/{b} failed: {self.error}"
+        return f"{head}: {self.compared} moves by {self.difference:.3g} {self.unit}"
+
+    def warning(self) -> str | None:
+        if not self.coarse:
+            return None
+        a, b = self.steps_per_period
+        if self.error is not None:
+            return (f"time step T/{a} may be too coarse here: the run at T/{b} from the same "
+                    "state failed; raise analysis.simulate.steps_per_period")
+        return (f"time step T/{a} may be too coarse here: halving it moves the orbit by "
+                f"{self.difference:.3g} {self.unit}; raise "
+                "analysis.simulate.steps_per_period")
+
+
+def step_check(inputs: TimeDomainInputs, start: tuple[np.ndarray, np.ndarray, float], *,
+               periods: int, steps_per_period: int, node: int, t: np.ndarray,
+               q: np.ndarray, poincare_q: np.ndarray, periodic: bool,
+               method_options: dict[str, Any] | None = None,
+               clearance: float | None = None) -> StepCheck:
+    """Integrate ``periods`` periods from ``start = (q, v, t)`` at ``2 steps_per_period``
+    and compare ``node`` with the base run's samples of it: ``t, q`` (every step of the
+    recorded periods, (n_t, 2) y, z, ending at the final time) and ``poincare_q`` (n, 2).
+    ``periodic``: compare orbits and Poincare points, else the orbit envelope."""
+    tic = time.perf_counter()
+    spp = int(steps_per_period)
+    fine = 2 * spp
+    rd = [dofs.dof_index(node, d) for d in DIRECTIONS]
+    r = np.hypot(q[:, 0], q[:, 1])
+    n_env = min(periods, (q.shape[0] - 1) // spp)
+    base_env = r[-(n_env * spp + 1):]
+    scale, unit = (clearance, "C") if clearance else (float(np.max(base_env)) or 1.0,
+                                                      "x max orbit radius")
+    n_pc = min(periods, poincare_q.shape[0])
+    what = (f"final-period orbit and last {n_pc} Poincare points" if periodic else
+            f"orbit envelope (max and min radius over {n_env} periods; the motion is not "
+            "periodic, its trajectories diverge)")
+    common = {"steps_per_period": (spp, fine), "periods": periods, "node": node,
+              "compared": what, "n_poincare": n_pc, "unit": unit}
+    try:
+        tr = integrate_periods(inputs, start[0], start[1], steps_per_period=fine,
+                               periods=periods, record_dofs=rd, record_periods=n_env,
+                               poincare_periods=n_pc, method_options=method_options,
+                               clearance=clearance, t0=start[2])
+    except (JournalContactError, ConvergenceError) as exc:
+        return StepCheck(**common, difference=None, orbit_difference=None,
+                         poincare_difference=None, envelope_difference=None,
+                         error=" ".join(str(exc).split()),
+                         elapsed=time.perf_counter() - tic)
+    fq = tr.q[::2]                                   # the base run's times
+    if not np.allclose(tr.t[::2][-(spp + 1):], t[-(spp + 1):], rtol=0.0,
+                       atol=1e-6 * inputs.period):
+        raise AssertionError("step check: the two runs' sample times differ")
+    orbit = float(np.max(np.hypot(*(fq[-(spp + 1):] - q[-(spp + 1):]).T))) / scale
+    pc = float(np.max(np.hypot(*(tr.poincare_q[-n_pc:] - poincare_q[-n_pc:]).T))) / scale
+    fr = np.hypot(fq[:, 0], fq[:, 1])[-(n_env * spp + 1):]
+    env = max(abs(float(np.max(fr) - np.max(base_env))),
+              abs(float(np.min(fr) - np.min(base_env)))) / scale
+    return StepCheck(**common, difference=max(orbit, pc) if periodic else env,
+                     orbit_difference=orbit, poincare_difference=pc, envelope_difference=env,
+                     elapsed=time.perf_counter() - tic)
 
 
 # ---- the result --------------------------------------------------------------------------
@@ -398,6 +528,7 @@ class SimulationResult:
     elapsed: float
     title: str = ""
     notes: list[str] = field(default_factory=list)
+    step_check: StepCheck | None = None
 
     FILES = ("timeseries.nc", "poincare.csv", "summary.json", "simulation.png", "orbit.png",
              "phase.png", "poincare.png", "spectrum.png")
@@ -506,6 +637,7 @@ class SimulationResult:
             "clearance_m": self.clearance, "sfd_node": self.sfd_node,
             "nodes": list(self.nodes), "settings": self.settings,
             "elapsed_s": self.elapsed, "t_final_s": self.t_final, "notes": self.notes,
+            "step_check": None if self.step_check is None else self.step_check.as_dict(),
             "title": self.title})
 
     def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
@@ -565,9 +697,14 @@ class SimulationResult:
                          f"periods), {self.max_eccentricity_run:.4f} (whole run)")
         lines.append(f"{self.settings['periods']} periods x {self.settings['steps_per_period']}"
                      f" steps ({self.settings['scheme']}) in {self.elapsed:.2f} s")
+        if self.step_check is not None:
+            lines.append(self.step_check.line())
         if ev.get("note"):
             lines.append(f"note: {ev['note']}")
         lines += [f"note: {n}" for n in self.notes]
+        warning = self.step_check.warning() if self.step_check is not None else None
+        if warning:
+            lines.append(f"warning: {warning}")
         return "\n".join(lines)
 
 
@@ -606,7 +743,8 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
                    hb_phase: float = 0.0, initial_state: str | Path | SavedState | None = None,
                    harmonics: int | None = None, q0: Any = None, v0: Any = None,
                    nodes: Sequence[int] | None = None, chunk_periods: int | None = None,
-                   progress: bool = True, title: str | None = None) -> SimulationResult:
+                   progress: bool = True, title: str | None = None,
+                   step_check_periods: int | None = None) -> SimulationResult:
     """Integrate the nonlinear rotor at one speed and classify the motion.
 
     From a Config: ``[analysis.simulate]`` and ``[reference]``, keyword arguments override
@@ -619,6 +757,10 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
     ``hb_phase`` (fraction of the period): start on the HB orbit shifted by that phase;
     ``initial_state``: the final state of a previous run (``timeseries.nc``, its
     directory, or a :class:`SavedState`), see the module docstring for its start time.
+    ``step_check_periods`` (default ``[analysis.simulate] step_check_periods``, 0: off):
+    the last that many periods are integrated again from the same state at half the step
+    (:func:`step_check`, ``result.step_check``; a warning in the summary when the orbit
+    moves by more than 1e-2 C).
     """
     from rotorsfd.io.schema import SimulateAnalysis
 
@@ -659,6 +801,10 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
     n_pc = poincare_periods or sim.poincare_periods
     n_rec = record_periods or n_pc
     n_ly = min(100, n_per) if lyapunov_periods is None else int(lyapunov_periods)
+    n_chk = sim.step_check_periods if step_check_periods is None else int(step_check_periods)
+    if n_chk < 0:
+        raise ConfigError(f"{FIELD}.step_check_periods", n_chk, "must be >= 0 (0: off)")
+    n_chk = min(n_chk, n_per)
     for label, value in (("poincare_periods", n_pc), ("record_periods", n_rec)):
         if not 1 <= value <= n_per:
             raise ConfigError(f"{FIELD}.{label}", value, f"must be in 1..periods = {n_per}")
@@ -707,7 +853,8 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
     settings = {"speed_rad_s": speed, "speed_ratio": speed / ref if ref else None,
                 "reference_speed_rad_s": ref, "scheme": scheme, **opts,
                 "steps_per_period": spp, "periods": n_per, "poincare_periods": n_pc,
-                "record_periods": n_rec, "lyapunov_periods": n_ly, "initial_state": start,
+                "record_periods": n_rec, "lyapunov_periods": n_ly,
+                "step_check_periods": n_chk, "initial_state": start,
                 "initial_displacement_m": disp, "start_time_s": t_start,
                 "time_varying_matrices":
                 inputs.time_varying is not None, "dt_s": T / spp}
@@ -724,7 +871,8 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
                                  record_dofs=rd, record_periods=max(n_rec, n_pc),
                                  poincare_periods=n_pc,
                                  method_options=opts, chunk_periods=chunk_periods,
-                                 progress=tick, clearance=clearance, t0=t_start)
+                                 progress=tick, clearance=clearance, t0=t_start,
+                                 snapshot_period=n_per - n_chk if n_chk else None)
     finally:
         bar.close()
     settings["elapsed_integration_s"] = time.perf_counter() - tic
@@ -751,6 +899,19 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
                       n_record=max(n_rec, n_pc) * spp)
     if motion is None:
         notes.append("fewer than 8 Poincare points: motion not classified")
+    check = None
+    if n_chk:
+        tic_chk = time.perf_counter()
+        jc = _first_column(out_nodes, system.sfd_node)
+        periodic = (motion is not None and motion.period is not None
+                    and bool(motion.evidence.get("settled", True)))
+        check = step_check(inputs, traj.snapshot or (q_init, v_init, t_start),
+                           periods=n_chk, steps_per_period=spp, node=out_nodes[jc],
+                           t=traj.t, q=q[:, jc], poincare_q=pq[:, jc], periodic=periodic,
+                           method_options=opts,
+                           clearance=clearance if out_nodes[jc] == system.sfd_node
+                           else None)
+        settings["elapsed_step_check_s"] = time.perf_counter() - tic_chk
     elapsed = time.perf_counter() - tic
     eps_rec = None
     if clearance is not None and system.sfd_node in out_nodes:
@@ -761,7 +922,7 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
     return SimulationResult(speed, ref, tuple(out_nodes), traj.t, q, v, traj.poincare_t, pq,
                             pv, motion, lyap, clearance, system.sfd_node, settings, eps_rec,
                             traj.max_eccentricity_run, traj.q_final, traj.v_final,
-                            traj.t_final, elapsed, name, notes)
+                            traj.t_final, elapsed, name, notes, check)
 
 
 def lyapunov_estimate(ly: LyapunovResult, period: float,

@@ -740,6 +740,10 @@ class SimulateAnalysis(Section):
                               le=10000000) = 100
     initial_displacement: quantity("length", "initial displacement of every node in y and "
                                    "z (paper: 1 um)") = 1e-6
+    step_check_periods: integer(
+        "time-step check: the last that many periods are integrated again from the same "
+        "state at twice steps_per_period and the journal orbit compared (a warning above "
+        "0.01 C); 0: off", ge=0, le=10000000) = 20
     nodes: list[NODE] = Field([], description="output nodes (default: SFD and disk nodes)")
 
     def fixed_speed(self, reference_speed: float) -> float | None:
