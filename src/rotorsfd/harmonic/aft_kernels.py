@@ -22,18 +22,11 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-from numba import cfunc, njit, types
+from numba import njit
 from numba.core.ccallback import CFunc
-from numba.core.registry import CPUDispatcher
 from numba.core.types.function_type import WrapperAddressProtocol
 
-#: ``int64(float64[::1] q, v, params, F, float64[:, ::1] dFdq, dFdv)`` (docs/INTERFACES.md)
-KERNEL_SIGNATURE = types.int64(
-    types.float64[::1], types.float64[::1], types.float64[::1], types.float64[::1],
-    types.float64[:, ::1], types.float64[:, ::1],
-)
-
-_KERNEL_TYPE = types.FunctionType(KERNEL_SIGNATURE)
+from rotorsfd.kernels import KERNEL_SIGNATURE, KERNEL_TYPE, as_cfunc
 
 
 class KernelRef(WrapperAddressProtocol):
@@ -41,7 +34,7 @@ class KernelRef(WrapperAddressProtocol):
     numba type attached: passing a bare ``cfunc`` makes every call re-derive the type
     (about 10 us per call); this costs about 3 us."""
 
-    _numba_type_ = _KERNEL_TYPE
+    _numba_type_ = KERNEL_TYPE
 
     def __init__(self, compiled: CFunc) -> None:
         self.compiled = compiled
@@ -63,16 +56,7 @@ def as_kernel_cfunc(kernel: Any) -> KernelRef:
     cached = _REFS.get(kernel)
     if cached is not None:
         return cached
-    if isinstance(kernel, CFunc):
-        compiled = kernel
-    else:
-        py_func = kernel.py_func if isinstance(kernel, CPUDispatcher) else kernel
-        if not callable(py_func):
-            raise TypeError(f"kernel must be an @njit function or a cfunc, got {kernel!r}")
-        try:
-            compiled = cfunc(KERNEL_SIGNATURE, cache=True)(py_func)
-        except Exception:  # source not cacheable (closure, interactive): compile in memory
-            compiled = cfunc(KERNEL_SIGNATURE)(py_func)
+    compiled = as_cfunc(kernel)
     _REFS[kernel] = ref = KernelRef(compiled)
     return ref
 

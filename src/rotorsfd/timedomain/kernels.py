@@ -12,40 +12,13 @@ The generic test kernels here (a cubic spring, no force) are also the Duffing ke
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
-from numba import cfunc, njit, types
-from numba.core.ccallback import CFunc
-from numba.core.registry import CPUDispatcher
+from numba import njit
 
-#: ``int64(float64[::1] q, v, params, F, float64[:, ::1] dFdq, dFdv)``
-KERNEL_SIGNATURE = types.int64(
-    types.float64[::1], types.float64[::1], types.float64[::1], types.float64[::1],
-    types.float64[:, ::1], types.float64[:, ::1],
-)
-KERNEL_TYPE = types.FunctionType(KERNEL_SIGNATURE)
+from rotorsfd.kernels import KERNEL_SIGNATURE, KERNEL_TYPE, as_cfunc
 
-_CFUNCS: dict[Any, CFunc] = {}
-
-
-def as_cfunc(kernel: Any) -> CFunc:
-    """Compiled first-class version of ``kernel`` (an ``@njit`` dispatcher, a plain
-    function with the kernel signature, or already a ``cfunc``); memoised per kernel."""
-    if isinstance(kernel, CFunc):
-        return kernel
-    cached = _CFUNCS.get(kernel)
-    if cached is not None:
-        return cached
-    py_func = kernel.py_func if isinstance(kernel, CPUDispatcher) else kernel
-    if not callable(py_func):
-        raise TypeError(f"kernel must be an @njit function or a cfunc, got {kernel!r}")
-    try:
-        compiled = cfunc(KERNEL_SIGNATURE, cache=True)(py_func)
-    except Exception:  # source not cacheable (closure, interactive): compile in memory
-        compiled = cfunc(KERNEL_SIGNATURE)(py_func)
-    _CFUNCS[kernel] = compiled
-    return compiled
+__all__ = ["KERNEL_SIGNATURE", "KERNEL_TYPE", "as_cfunc", "cubic_spring_kernel",
+           "null_kernel"]
 
 
 @njit(cache=True)
