@@ -447,6 +447,7 @@ def _bifurcation_diagram(args: argparse.Namespace, config: Any) -> int:
     _print_written(result, paths, args.quiet)
     return 0 if result.success else 1
 
+
 @command("stability-chart", "stability chart of the linear rotor (film off) under harmonic "
          "base rotation over two parameters ([analysis.stability_chart] x, y, speed): "
          "chart.nc (max |Floquet multiplier|, stable), chart.png", output=True, quiet=True,

@@ -134,6 +134,6 @@ def choose_n_samples(force: Callable[[FloatArray, FloatArray], FloatArray],
     H = (xs.shape[0] - 1) // 2
     N = n_min if n_min is not None else default_min_samples(H)
     N = max(int(2 ** np.ceil(np.log2(max(N, 2 * H + 1)))), 2)
-    while N < n_max and aliasing_error(force, xs, w, N) >= tol:
-        N *= 2
-    return min(N, n_max)
+    # "less than tol": an error above the largest float below tol fails
+    return smallest_n_samples(lambda n: aliasing_error(force, xs, w, n), N, n_max,
+                              float(np.nextafter(tol, -np.inf)))
