@@ -46,6 +46,7 @@ from rotorsfd.stability.floquet import (
     liouville_log_det,
     sort_multipliers,
 )
+from rotorsfd.stability.monodromy_kernels import generalized_alpha_loop, newmark_loop
 from rotorsfd.stability.reduction import craig_bampton
 
 JacobianInput = Callable[[float], ArrayLike] | ArrayLike | None
@@ -70,7 +71,7 @@ def sample_jacobian(jac: JacobianInput, period: float, n_intervals: int,
     if a.shape != (N + 1, m, m):
         raise ConfigError("jacobian samples", a.shape,
                           f"shape ({N + 1}, {m}, {m}) or ({N}, {m}, {m}) for N={N}")
-    return a
+    return np.ascontiguousarray(a)
 
 
 def _check_period(period: float, n_intervals: int) -> None:
@@ -107,37 +108,18 @@ def _prepare(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, n_interval
 
 def _trace_MinvD(M: NDArray, D: NDArray, nl: NDArray, Cn: NDArray) -> NDArray:
     """tr(M^-1 (D - P C_nl(t_j) P^T)) at every sample: the Liouville integrand."""
-    MinvP = np.linalg.solve(M, np.eye(M.shape[0])[:, nl])[nl] if nl.size else np.zeros((0, 0))
-    return np.trace(np.linalg.solve(M, D)) - np.einsum("ij,tji->t", MinvP, Cn)
+    Minv = np.linalg.inv(M)
+    tr0 = float(np.sum(Minv * D.T))
+    if not nl.size:
+        return np.full(Cn.shape[0], tr0)
+    MinvP = Minv[np.ix_(nl, nl)]  # tr(MinvP C_t) = sum_ij MinvP_ij C_t,ji
+    return tr0 - Cn.reshape(Cn.shape[0], -1) @ MinvP.T.ravel()
 
 
-def monodromy_newmark(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, *,
-                      nl_dofs: ArrayLike = (), dFdq: JacobianInput = None,
-                      dFdv: JacobianInput = None, n_intervals: int = 400,
-                      tol: float = STABILITY_TOL) -> FloquetResult:
-    """Floquet multipliers by average-acceleration Newmark (module docstring recursion).
-
-    Parameters
-    ----------
-    M, D, K : constant (n, n) linear matrices (D includes gyroscopic and base terms).
-    period : T of the orbit.
-    nl_dofs : the m DOFs where the nonlinear force acts.
-    dFdq, dFdv : ``dF_nl/dq``, ``dF_nl/dq'`` on the orbit (see ``JacobianInput``).
-    n_intervals : N (paper: 400).
-
-    Returns a ``FloquetResult`` with the (2n, 2n) monodromy for the state ``(q, q')``.
-    """
-    M, D, K, nl, N, h = _prepare(M, D, K, period, n_intervals, nl_dofs)
-    n, m = M.shape[0], nl.size
-    Kn = sample_jacobian(dFdq, period, N, m)
-    Cn = sample_jacobian(dFdv, period, N, m)
-
-    S0 = 4.0 / h**2 * M + 2.0 / h * D + K
-    S0inv = np.linalg.inv(S0)
-    AB = S0inv @ (4.0 / h**2 * M + 2.0 / h * D - K)
-    AE = S0inv @ (4.0 / h * M)
-    Z = S0inv[:, nl]
-    G = Z[nl, :]
+def _newmark_numpy(AB: NDArray, AE: NDArray, Z: NDArray, G: NDArray, nl: NDArray,
+                   Kn: NDArray, Cn: NDArray, h: float) -> NDArray:
+    """The Newmark recursion in numpy (the reference of ``newmark_loop``): ``[X; V]``."""
+    n, m, N = AB.shape[0], nl.size, Kn.shape[0] - 1
     X = np.hstack([np.eye(n), np.zeros((n, n))])
     V = np.hstack([np.zeros((n, n)), np.eye(n)])
     Im = np.eye(m)
@@ -151,7 +133,71 @@ def monodromy_newmark(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, *
             Y += Z @ (W @ np.linalg.solve(Im - G @ W, Y[nl]))
         V = 2.0 / h * (Y - X) - V
         X = Y
-    Phi = _finite(np.vstack([X, V]), "newmark", period)
+    return np.vstack([X, V])
+
+
+def _generalized_alpha_numpy(SM: NDArray, SD: NDArray, SK: NDArray, Z: NDArray,
+                             G: NDArray, nl: NDArray, Kn: NDArray, Cn: NDArray,
+                             A: NDArray, h: float, am: float, af: float, g: float,
+                             b: float) -> NDArray:
+    """The generalized-alpha recursion in numpy (the reference of
+    ``generalized_alpha_loop``): ``[X; V]``."""
+    n, m, N = SM.shape[0], nl.size, Kn.shape[0] - 1
+    X = np.hstack([np.eye(n), np.zeros((n, n))])
+    V = np.hstack([np.zeros((n, n)), np.eye(n)])
+    Im = np.eye(m)
+    for j in range(N):
+        Xp = X + h * V + h**2 * (0.5 - b) * A
+        Vp = V + h * (1 - g) * A
+        xs, vs = af * X + (1 - af) * Xp, af * V + (1 - af) * Vp
+        Y = -am * (SM @ A) - SD @ vs - SK @ xs
+        if m:
+            rP = (af * (Cn[j] @ V[nl] + Kn[j] @ X[nl])
+                  + (1 - af) * (Cn[j + 1] @ Vp[nl] + Kn[j + 1] @ Xp[nl]))
+            Y += Z @ rP
+            W = (1 - af) * (g * h * Cn[j + 1] + b * h**2 * Kn[j + 1])
+            Y += Z @ (W @ np.linalg.solve(Im - G @ W, Y[nl]))
+        A = Y
+        X = Xp + b * h**2 * A
+        V = Vp + g * h * A
+    return np.vstack([X, V])
+
+
+def monodromy_newmark(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, *,
+                      nl_dofs: ArrayLike = (), dFdq: JacobianInput = None,
+                      dFdv: JacobianInput = None, n_intervals: int = 400,
+                      tol: float = STABILITY_TOL, compiled: bool = True) -> FloquetResult:
+    """Floquet multipliers by average-acceleration Newmark (module docstring recursion).
+
+    Parameters
+    ----------
+    M, D, K : constant (n, n) linear matrices (D includes gyroscopic and base terms).
+    period : T of the orbit.
+    nl_dofs : the m DOFs where the nonlinear force acts.
+    dFdq, dFdv : ``dF_nl/dq``, ``dF_nl/dq'`` on the orbit (see ``JacobianInput``).
+    n_intervals : N (paper: 400).
+    compiled : the recursion in one compiled loop
+        (:func:`rotorsfd.stability.monodromy_kernels.newmark_loop`, the same arithmetic);
+        False: the numpy loop (the reference, ~50x slower on 8 DOF).
+
+    Returns a ``FloquetResult`` with the (2n, 2n) monodromy for the state ``(q, q')``.
+    """
+    M, D, K, nl, N, h = _prepare(M, D, K, period, n_intervals, nl_dofs)
+    n, m = M.shape[0], nl.size
+    Kn = sample_jacobian(dFdq, period, N, m)
+    Cn = sample_jacobian(dFdv, period, N, m)
+
+    S0 = 4.0 / h**2 * M + 2.0 / h * D + K
+    S0inv = np.linalg.inv(S0)
+    AB = S0inv @ (4.0 / h**2 * M + 2.0 / h * D - K)
+    AE = S0inv @ (4.0 / h * M)
+    Z = np.ascontiguousarray(S0inv[:, nl])
+    G = np.ascontiguousarray(Z[nl, :])
+    if compiled:
+        Phi = newmark_loop(AB, AE, Z, G, nl.astype(np.int64), Kn, Cn, float(h))
+    else:
+        Phi = _newmark_numpy(AB, AE, Z, G, nl, Kn, Cn, h)
+    Phi = _finite(Phi, "newmark", period)
     mu = sort_multipliers(np.linalg.eigvals(Phi))
     trace = _trace_MinvD(M, D, nl, Cn)
     return FloquetResult(mu, float(period), "newmark", liouville_log_det(trace, period),
@@ -161,8 +207,8 @@ def monodromy_newmark(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, *
 def monodromy_generalized_alpha(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float,
                                 *, nl_dofs: ArrayLike = (), dFdq: JacobianInput = None,
                                 dFdv: JacobianInput = None, n_intervals: int = 400,
-                                rho_inf: float = 0.6,
-                                tol: float = STABILITY_TOL) -> FloquetResult:
+                                rho_inf: float = 0.6, tol: float = STABILITY_TOL,
+                                compiled: bool = True) -> FloquetResult:
     """Floquet multipliers by generalized-alpha (Chung & Hulbert 1993), second order.
 
     ``alpha_m = (2 rho - 1)/(rho + 1)``, ``alpha_f = rho/(rho + 1)``,
@@ -181,7 +227,7 @@ def monodromy_generalized_alpha(M: ArrayLike, D: ArrayLike, K: ArrayLike, period
     default 0.6: on the paper rotor at N = 400 it brings the max |mu| of the full model
     to the SFD-coupled multiplier of the reference (6e-5 off) while the partially
     resolved modes (``omega h ~ 0.3..3``) drop below it; the modal error constant grows
-    by ~1.5 from rho_inf = 0.99 to 0.5 (tests).
+    by ~1.5 from rho_inf = 0.99 to 0.5 (tests). ``compiled``: as ``monodromy_newmark``.
     """
     if not 0.0 <= rho_inf < 1.0:
         raise ConfigError("rho_inf", rho_inf, "0 <= rho_inf < 1")
@@ -196,31 +242,19 @@ def monodromy_generalized_alpha(M: ArrayLike, D: ArrayLike, K: ArrayLike, period
     S0 = (1 - am) * M + (1 - af) * (g * h * D + b * h**2 * K)
     S0inv = np.linalg.inv(S0)
     SM, SD, SK = S0inv @ M, S0inv @ D, S0inv @ K
-    Z = S0inv[:, nl]
-    G = Z[nl, :]
-    Im = np.eye(m)
-    X = np.hstack([np.eye(n), np.zeros((n, n))])
-    V = np.hstack([np.zeros((n, n)), np.eye(n)])
+    Z = np.ascontiguousarray(S0inv[:, nl])
+    G = np.ascontiguousarray(Z[nl, :])
     Dt0, Kt0 = D.copy(), K.copy()
     if m:
         Dt0[np.ix_(nl, nl)] -= Cn[0]
         Kt0[np.ix_(nl, nl)] -= Kn[0]
-    A = -np.linalg.solve(M, Dt0 @ V + Kt0 @ X)
-    for j in range(N):
-        Xp = X + h * V + h**2 * (0.5 - b) * A
-        Vp = V + h * (1 - g) * A
-        xs, vs = af * X + (1 - af) * Xp, af * V + (1 - af) * Vp
-        Y = -am * (SM @ A) - SD @ vs - SK @ xs
-        if m:
-            rP = (af * (Cn[j] @ V[nl] + Kn[j] @ X[nl])
-                  + (1 - af) * (Cn[j + 1] @ Vp[nl] + Kn[j + 1] @ Xp[nl]))
-            Y += Z @ rP
-            W = (1 - af) * (g * h * Cn[j + 1] + b * h**2 * Kn[j + 1])
-            Y += Z @ (W @ np.linalg.solve(Im - G @ W, Y[nl]))
-        A = Y
-        X = Xp + b * h**2 * A
-        V = Vp + g * h * A
-    Phi = _finite(np.vstack([X, V]), "generalized-alpha", period)
+    A0 = -np.linalg.solve(M, np.hstack([Kt0, Dt0]))  # -M^-1 (D_0 V + K_0 X), X=[I 0], V=[0 I]
+    if compiled:
+        Phi = generalized_alpha_loop(SM, SD, SK, Z, G, nl.astype(np.int64), Kn, Cn, A0,
+                                     float(h), am, af, g, b)
+    else:
+        Phi = _generalized_alpha_numpy(SM, SD, SK, Z, G, nl, Kn, Cn, A0, h, am, af, g, b)
+    Phi = _finite(Phi, "generalized-alpha", period)
     mu = sort_multipliers(np.linalg.eigvals(Phi))
     trace = _trace_MinvD(M, D, nl, Cn)
     return FloquetResult(mu, float(period), "generalized-alpha",
@@ -275,8 +309,8 @@ def floquet_multipliers(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float,
                         dFdv: JacobianInput = None, n_intervals: int = 400,
                         reduction: str | None = "craig-bampton", n_modes: int | None = None,
                         omega_max: float | None = None, scheme: str = "newmark",
-                        rho_inf: float = 0.6,
-                        tol: float = STABILITY_TOL) -> FloquetResult:
+                        rho_inf: float = 0.6, tol: float = STABILITY_TOL,
+                        compiled: bool = True) -> FloquetResult:
     """Floquet multipliers by Newmark, on the full model or a Craig-Bampton reduced one.
 
     ``reduction=None`` is the paper's literal method (full model, N = 400).
@@ -289,13 +323,15 @@ def floquet_multipliers(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float,
     frequencies towards pi/h, where they can meet spurious parametric resonances) and
     that sit, undamped, at ``|mu| ~ 1`` in the exact model as well.
     ``scheme='generalized-alpha'`` (with ``rho_inf``) damps unresolved modes instead.
+    ``compiled=False`` runs the numpy reference loop (same multipliers to round-off).
     """
     if scheme == "newmark":
         def run(*a, **k):
-            return monodromy_newmark(*a, **k)
+            return monodromy_newmark(*a, compiled=compiled, **k)
     elif scheme == "generalized-alpha":
         def run(*a, **k):
-            return monodromy_generalized_alpha(*a, rho_inf=rho_inf, **k)
+            return monodromy_generalized_alpha(*a, rho_inf=rho_inf, compiled=compiled,
+                                               **k)
     else:
         raise ConfigError("scheme", scheme, "'newmark' or 'generalized-alpha'")
     if reduction is None:
