@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import sys
 import traceback
@@ -86,7 +87,9 @@ class UsageError(Exception):
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> None:  # type: ignore[override]
-        raise UsageError(f"{self.prog}: {message} (see '{self.prog} --help')")
+        sub = self.prog.removeprefix("rotorsfd").strip()
+        where = f"{sub}: " if sub else ""
+        raise UsageError(f"{where}{message} (see '{self.prog} --help')")
 
 
 def _add_common(p: argparse.ArgumentParser, spec: Command) -> None:
@@ -154,7 +157,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         args = parser.parse_args(argv)
     except UsageError as exc:
-        print(f"error: {_one_line(exc)}", file=sys.stderr)
+        print(f"{PREFIX}{_one_line(exc)}", file=sys.stderr)
         return 2
     except SystemExit as exc:  # --help, --version
         return int(exc.code or 0)
@@ -166,7 +169,12 @@ def main(argv: Sequence[str] | None = None) -> int:
             from rotorsfd import api
 
             config = api.load_config(args.config, args.overrides)
-        return int(spec.handler(args, config) or 0)
+        check_output(getattr(args, "output", None))
+        if spec.config and spec.output:
+            _print_warnings(config, Path(args.config).parent)
+        status = int(spec.handler(args, config) or 0)
+        sys.stdout.flush()  # a closed pipe fails here, not at the interpreter's exit
+        return status
     except ConfigError as exc:
         return _report(exc, 2, debug)
     except RotorsfdError as exc:
@@ -174,6 +182,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("rotorsfd: interrupted", file=sys.stderr)
         return 130
+    except BrokenPipeError:  # e.g. `rotorsfd config schema | head`: the reader is gone
+        _silence_stdout()
+        return 141
     except OSError as exc:  # e.g. an output folder that cannot be written
         return _report(exc, 1, debug)
     except Exception as exc:
@@ -181,11 +192,43 @@ def main(argv: Sequence[str] | None = None) -> int:
                        "report it; run with --debug for the traceback: ")
 
 
+PREFIX = "rotorsfd: error: "
+
+
 def _report(exc: BaseException, status: int, debug: bool, prefix: str = "") -> int:
     if debug:
         traceback.print_exc()
-    print(f"rotorsfd: error: {prefix}{_one_line(exc)}", file=sys.stderr)
+    print(f"{PREFIX}{prefix}{_one_line(exc)}", file=sys.stderr)
     return status
+
+
+def _silence_stdout() -> None:
+    """Point stdout at /dev/null so that the interpreter's final flush does not fail
+    again on a closed pipe (exit status 141, as for a process killed by SIGPIPE)."""
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):  # stdout is not a real file (tests capture it)
+        pass
+    finally:
+        os.close(devnull)
+
+
+def _print_warnings(config: Any, search_path: Path) -> None:
+    """The configuration's plausibility warnings on stderr, before the work starts."""
+    from rotorsfd.analyses.checks import config_warnings
+
+    for line in config_warnings(config, search_path):
+        print(f"rotorsfd: warning: {line}", file=sys.stderr)
+
+
+def check_output(folder: Path | None) -> None:
+    """ConfigError naming ``-o`` if results cannot be written in ``folder`` (checked after
+    the config, before any work)."""
+    from rotorsfd.io.atomic import folder_problem
+
+    if folder is not None and (problem := folder_problem(folder)) is not None:
+        raise ConfigError("-o", str(folder), problem)
 
 
 def progress(iterable: Iterable[Any], *, quiet: bool = False, total: int | None = None,
@@ -218,12 +261,15 @@ def _config_show(args: argparse.Namespace, config: Any) -> int:
 
 @command("config check", "validate a configuration and build its model")
 def _config_check(args: argparse.Namespace, config: Any) -> int:
+    from rotorsfd.analyses.checks import config_warnings
     from rotorsfd.io.config import derived_values
     from rotorsfd.model.build import build_model
 
     build_model(config, Path(args.config).parent)
     notes = "; ".join(f"{k}: {v}" for k, v in derived_values(config).items())
     print(f"{args.config}: ok ({notes})")
+    for line in config_warnings(config, Path(args.config).parent):
+        print(f"warning: {line}")
     return 0
 
 
@@ -315,7 +361,7 @@ def _response(args: argparse.Namespace, config: Any) -> int:
                               progress=not args.quiet, from_orbit=args.from_orbit)
     paths = result.write(args.output, multipliers_at=args.multipliers_at)
     if not result.success:
-        print(f"rotorsfd: error: {_one_line(result.message)}", file=sys.stderr)
+        print(f"{PREFIX}{_one_line(result.message)}", file=sys.stderr)
         return 1
     _print_written(result, paths, args.quiet)
     return 0
@@ -374,18 +420,36 @@ def _sweep(args: argparse.Namespace, config: Any) -> int:
 
 def _ratio(text: str) -> float:
     try:
-        return float(text)
+        value = float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"expected a finite number, got {text!r}")
+    return value
+
+
+def _positive_ratio(text: str) -> float:
+    value = _ratio(text)
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"must be > 0 (the rotor speed over the "
+                                         f"[reference] speed), got {text!r}")
+    return value
+
+
+def _positive_speed(text: str) -> float:
+    value = _speed(text)
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"must be > 0 rad/s, got {text!r}")
+    return value
 
 
 @command("simulate", "time integration at one speed ([analysis.simulate]): timeseries.nc, "
          "poincare.csv, summary.json (motion: period-n, quasi-periodic or chaotic, with the "
          "evidence), simulation.png and orbit/phase/poincare/spectrum.png; journal contact: "
          "one line, exit 1, nothing written", output=True, quiet=True,
-         arguments=[arg("--speed", type=_speed, metavar="SPEED",
+         arguments=[arg("--speed", type=_positive_speed, metavar="SPEED",
                         help="rotor speed, e.g. 850 or '8000 rpm' (rad/s if no unit)"),
-                    arg("--speed-ratio", type=_ratio, metavar="X",
+                    arg("--speed-ratio", type=_positive_ratio, metavar="X",
                         help="rotor speed / [reference] speed"),
                     arg("--from-hb", action="store_true",
                         help="start on the HB periodic solution at that speed (H from "
@@ -442,7 +506,7 @@ def _bifurcation_diagram(args: argparse.Namespace, config: Any) -> int:
                                          start_state=start, progress=not args.quiet)
     paths = result.write(args.output)
     for p in result.contacts:
-        print(f"rotorsfd: error: {p.direction} sweep: speed {p.speed:.6g} rad/s failed "
+        print(f"{PREFIX}{p.direction} sweep: speed {p.speed:.6g} rad/s failed "
               f"({p.contact}); the sweep went on", file=sys.stderr)
     _print_written(result, paths, args.quiet)
     return 0 if result.success else 1
@@ -466,6 +530,40 @@ def _stability_chart(args: argparse.Namespace, config: Any) -> int:
     return 0
 
 
+def _fold_range(config: Any, parameter: str, start: str, stop: str) -> tuple[float, float]:
+    """``--from`` and ``--to`` in SI, checked against the kind of ``--parameter``."""
+    from rotorsfd.analyses.response import PARAMETER_PATHS, system_parameter
+    from rotorsfd.io.schema import resolve_kind
+    from rotorsfd.io.units import UnitError, describe, to_si
+
+    try:
+        param = system_parameter(parameter)
+    except ConfigError as exc:
+        raise ConfigError("--parameter", parameter, exc.allowed) from None
+    if param == "speed":
+        raise ConfigError("--parameter", parameter, "must differ from the speed (the "
+                          "saddle-nodes are those of the speed response)")
+    path = parameter.strip()
+    if path not in PARAMETER_PATHS:
+        path = next(k for k, v in PARAMETER_PATHS.items() if v == param)
+    try:
+        kind = resolve_kind(config, path)
+    except KeyError as exc:
+        raise ConfigError("--parameter", parameter, exc.args[0]) from None
+    values = []
+    for option, text in (("--from", start), ("--to", stop)):
+        try:
+            values.append(to_si(text, kind))
+        except UnitError as exc:
+            text_exc = str(exc)
+            if not text_exc.startswith("expected"):
+                text_exc = f"expected {describe(kind)} for {path}; {text_exc}"
+            raise ConfigError(option, text, text_exc) from None
+    if values[0] == values[1]:
+        raise ConfigError("--to", stop, f"must differ from --from ({start!r})")
+    return values[0], values[1]
+
+
 @command("fold-curve", "two-parameter continuation of the saddle-nodes of the speed "
          "response ([analysis.response] speeds and H) in a second parameter: "
          "fold_curve.csv, fold_curve.json, fold_curve.png (Omega~ of the folds and the "
@@ -484,12 +582,13 @@ def _stability_chart(args: argparse.Namespace, config: Any) -> int:
 def _fold_curve(args: argparse.Namespace, config: Any) -> int:
     from rotorsfd import api
 
-    result = api.run_fold_curve(config, args.parameter, args.start, args.stop,
+    start, stop = _fold_range(config, args.parameter, args.start, args.stop)
+    result = api.run_fold_curve(config, args.parameter, start, stop,
                                 search_path=Path(args.config).parent,
                                 harmonics=args.harmonics)
     paths = result.write(args.output)
     if not result.success:
-        print(f"rotorsfd: error: fold curve stopped early: {_one_line(result.message)}",
+        print(f"{PREFIX}fold curve stopped early: {_one_line(result.message)}",
               file=sys.stderr)
         return 1
     _print_written(result, paths, args.quiet)

@@ -117,8 +117,14 @@ def test_bad_set(raw, override, field):
     # cross-field checks
     ("rotor.shaft[0].inner_radius=40 mm", "rotor.shaft[0].inner_radius", "outer_radius"),
     ("rotor.disks[0].outer_radius=20 mm", "rotor.disks[0].inner_radius", "outer_radius"),
-    ("sfd.radius=30 mm", "sfd.radius", "exactly two of clearance, clearance_ratio, radius"),
-    ("sfd.length=20 mm", "sfd.length", "exactly one of length, length_to_diameter"),
+    # the SFD geometry forms: the table is named, with what was given (not the last field)
+    ("sfd.radius=30 mm", "sfd", "got 'clearance, clearance_ratio and radius'; give exactly "
+     "two of clearance, clearance_ratio, radius"),
+    ("sfd.length=20 mm", "sfd", "got 'length and length_to_diameter'; give exactly one of "
+     "length, length_to_diameter"),
+    # booleans are TOML booleans: "yes", 1 and "true" are not
+    ("gravity.enabled='yes'", "gravity.enabled", "got 'yes'; expected true or false"),
+    ("gravity.enabled=1", "gravity.enabled", "got 1; expected true or false"),
     ("rotor.disks[0].mass=10", "rotor.disks[0].mass", "exactly one of"),
     ("base.pitching.law=harmonic", "base.pitching.frequency", "needs a frequency"),
     ("base.yawing.amplitude=1", "base.yawing.amplitude", "not used with law = 'off'"),
@@ -133,6 +139,31 @@ def test_bad_values_name_field(raw, override, field, words):
     assert info.value.field == field
     assert words in str(info.value)
     assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize(("drop", "override", "field", "words"), [
+    # L/D derived from the length: held to length_to_diameter's range
+    ("length_to_diameter", "sfd.length=3 furlongs", "sfd.length",
+     "got '3 furlongs'; gives L/D = L / (2R) = 11523.6 (R = 0.0261856 m); "
+     "length_to_diameter must be 0 < value <= 10"),
+    # C and R given: C/R derived, and C must stay below R
+    ("clearance_ratio", "sfd.radius=0.1 mm", "sfd.clearance",
+     "got '0.127 mm'; gives C = 0.000127 m >= R = 0.0001 m"),
+])
+def test_derived_sfd_values_in_range(raw, drop, override, field, words):
+    del raw["sfd"][drop]
+    with pytest.raises(ConfigError) as info:
+        config_from_dict(raw, [override])
+    assert info.value.field == field
+    assert words in str(info.value)
+
+
+def test_derived_sfd_values_at_the_bound_pass(raw):
+    del raw["sfd"]["length_to_diameter"]
+    radius = 0.127e-3 / 0.00485
+    config = config_from_dict(raw, [f"sfd.length={20 * radius!r}"])   # L/D = 10 exactly
+    assert config.sfd.resolved_length / (2 * config.sfd.resolved_radius) == \
+        pytest.approx(10.0)
 
 
 def test_missing_required(raw):

@@ -338,10 +338,10 @@ def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_par
     """
     param = system_parameter(second_parameter)
     if param == "speed":
-        raise ConfigError("fold_curve.parameter", second_parameter,
+        raise ConfigError("--parameter", second_parameter,
                           "the second parameter must differ from the speed")
     if range2[0] == range2[1]:
-        raise ConfigError("fold_curve.range", range2, "start and stop must differ")
+        raise ConfigError("--to", range2[1], "must differ from --from (the start value)")
     ref = float(reference_speed if reference_speed is not None else _first_critical(system))
     out_nodes = tuple(nodes) if nodes else _default_nodes(system)
     family = system.two_parameter_problem(param)
@@ -355,7 +355,7 @@ def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_par
             f"the speed branch at {param} = {range2[0]:g} stopped before any saddle-node: "
             f"{branch.message}")
     if not folds:
-        raise ConfigError("fold_curve.range", range2[0],
+        raise ConfigError("--from", range2[0],
                           f"the speed branch at {param} = {range2[0]:g} has no saddle-node "
                           f"in {speed_range[0]:.6g} .. {speed_range[1]:.6g} rad/s "
                           f"({branch.message}); start where the response is bistable")

@@ -98,3 +98,28 @@ def write_netcdf(dataset: Any, path: str | Path, **kwargs: Any) -> Path:
     with atomic_path(path) as tmp:
         dataset.to_netcdf(tmp, **kwargs)
     return Path(path)
+
+
+def folder_problem(path: str | Path) -> str | None:
+    """Why results cannot be written in the folder ``path`` (created if missing), or None.
+
+    Checked before any work: ``path`` must be a folder or not exist yet, and its nearest
+    existing ancestor must be a folder where a folder can be created (tried for real with
+    a temporary folder, removed at once, so read-only folders and file systems, ``/proc``
+    and permissions are all covered)."""
+    folder = Path(path).absolute()
+    if folder.exists() and not folder.is_dir():
+        return "is a file, not a folder; give a folder (created if missing)"
+    parent = folder
+    while not parent.exists() and parent != parent.parent:
+        parent = parent.parent
+    if not parent.is_dir():
+        return f"{parent} is a file, so no folder can be created in it"
+    try:
+        probe = tempfile.mkdtemp(prefix=".rotorsfd-write-check-", dir=parent)
+    except OSError as exc:
+        reason = exc.strerror or type(exc).__name__
+        where = "in it" if parent == folder else f"in {parent}"
+        return f"cannot write {where} ({reason}); give a folder you can write to"
+    os.rmdir(probe)
+    return None

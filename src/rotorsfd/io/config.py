@@ -283,6 +283,8 @@ def to_config_error(exc: ValidationError, data: Any) -> ConfigError:
     if kind == "rotorsfd" and "path" in ctx:
         loc += list(ctx["path"])
     found, value = _lookup(data, loc)
+    if kind == "rotorsfd" and "path" in ctx and not ctx["path"]:
+        found = False  # an error about the table as a whole: its value says what was given
     if not found:
         value = ctx.get("value", err.get("input", MISSING))
         value = MISSING if value is None else value

@@ -15,7 +15,14 @@ import math
 import re
 from typing import Annotated, Any, ClassVar, Literal
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, model_validator
+from pydantic import (
+    BaseModel,
+    BeforeValidator,
+    ConfigDict,
+    Field,
+    StrictBool,
+    model_validator,
+)
 from pydantic_core import PydanticCustomError
 
 from rotorsfd.io.units import KINDS, UnitError, describe, to_si
@@ -315,6 +322,17 @@ class RotorConfig(Section):
 # ---- squeeze film damper -----------------------------------------------------------------
 
 
+#: Ranges of the SFD ratios, also applied when a ratio is derived from the other fields.
+SFD_RATIO_BOUNDS: dict[str, dict[str, float]] = {
+    "clearance_ratio": {"gt": 0.0, "lt": 1.0},
+    "length_to_diameter": {"gt": 0.0, "le": 10.0},
+}
+
+
+def _and(names: list[str]) -> str:
+    return ", ".join(names[:-1]) + " and " + names[-1] if len(names) > 1 else "".join(names)
+
+
 class SFDConfig(Section):
     """Short-bearing squeeze film damper at a node, with an optional centring spring.
 
@@ -325,12 +343,13 @@ class SFDConfig(Section):
     node: NODE
     viscosity: quantity("viscosity", "oil dynamic viscosity mu", gt=0)
     clearance: quantity("length", "radial clearance C", gt=0, optional=True) = None
-    clearance_ratio: quantity("ratio", "clearance ratio C/R", gt=0, lt=1,
-                              optional=True) = None
+    clearance_ratio: quantity("ratio", "clearance ratio C/R", optional=True,
+                              **SFD_RATIO_BOUNDS["clearance_ratio"]) = None
     radius: quantity("length", "journal radius R", gt=0, optional=True) = None
     length: quantity("length", "land length L", gt=0, optional=True) = None
-    length_to_diameter: quantity("ratio", "land length to diameter L/D = L/(2R)", gt=0,
-                                 le=10, optional=True) = None
+    length_to_diameter: quantity("ratio", "land length to diameter L/D = L/(2R)",
+                                 optional=True,
+                                 **SFD_RATIO_BOUNDS["length_to_diameter"]) = None
     cavitation: Literal["pi", "none", "guembel"] = Field(
         "pi", description="film model: 'pi' (half-Sommerfeld, theta in [pi, 2pi]), "
                           "'none' (full 2pi film), 'guembel' (film where pressure > 0)")
@@ -342,18 +361,38 @@ class SFDConfig(Section):
     def _geometry(self):
         given = _given(self, ("clearance", "clearance_ratio", "radius"))
         if len(given) != 2:
-            name = given[-1] if given else "clearance"
-            raise fail(name, getattr(self, name),
-                       "give exactly two of clearance, clearance_ratio, radius "
-                       f"(given: {', '.join(given) or 'none'})")
+            # one of the three is given too many or too few: the field is the table
+            raise fail((), _and(given) or "none of them",
+                       "give exactly two of clearance, clearance_ratio, radius (the "
+                       "third is derived)")
         if (self.length is None) == (self.length_to_diameter is None):
-            name = "length" if self.length is not None else "length_to_diameter"
-            raise fail(name, getattr(self, name),
+            raise fail((), "length and length_to_diameter" if self.length is not None
+                       else "neither length nor length_to_diameter",
                        "give exactly one of length, length_to_diameter")
         if self.resolved_clearance >= self.resolved_radius:
-            raise fail("clearance", self.resolved_clearance,
-                       f"must be < radius = {self.resolved_radius:g} m")
+            raise fail("clearance", self.clearance,
+                       f"gives C = {self.resolved_clearance:.6g} m >= R = "
+                       f"{self.resolved_radius:.6g} m; the clearance must be smaller "
+                       "than the journal radius")
+        self._derived_in_range()
         return self
+
+    def _derived_in_range(self) -> None:
+        """A derived value (the third of C, C/R, R; L or L/D) within the range its own
+        field would have: ``length = "3 furlongs"`` must not pass with L/D = 11524."""
+        derived = {"clearance_ratio": self.resolved_clearance / self.resolved_radius,
+                   "length_to_diameter": self.resolved_length / (2.0 * self.resolved_radius)}
+        for name, value in derived.items():
+            if getattr(self, name) is not None:
+                continue
+            bounds = SFD_RATIO_BOUNDS[name]
+            if not _in_range(value, *(bounds.get(k) for k in ("gt", "ge", "lt", "le"))):
+                given = "length" if name == "length_to_diameter" else _given(
+                    self, ("clearance", "radius"))[-1]
+                symbol = "L/D = L / (2R)" if name == "length_to_diameter" else "C/R"
+                raise fail(given, getattr(self, given),
+                           f"gives {symbol} = {value:.6g} (R = {self.resolved_radius:.6g} m); "
+                           f"{name} must be {range_text('1', **bounds)}")
 
     @property
     def resolved_clearance(self) -> float:
@@ -512,7 +551,7 @@ class BaseConfig(Section):
 class GravityConfig(Section):
     """Gravity, applied as a base translational acceleration (it tilts with the base)."""
 
-    enabled: bool = Field(False, description="include gravity (the paper neglects it)")
+    enabled: StrictBool = Field(False, description="include gravity (the paper neglects it)")
     magnitude: quantity("acceleration", "gravitational acceleration g", ge=0) = 9.80665
     direction: list[float] = Field([0.0, 0.0, -1.0], min_length=3, max_length=3,
                                    description="direction (x, y, z) of g in the base frame "

@@ -104,9 +104,10 @@ class RotorSystem:
         ConfigError if the base motion varies in time.
         """
         if not self.base.is_constant:
-            raise ConfigError("base", repr(self.base),
-                              "this analysis needs constant base rates and accelerations "
-                              "(harmonic or callable laws: use the time-domain simulation)")
+            field, value = _time_varying(self.base)
+            raise ConfigError(field, value, "this analysis needs a base motion constant in "
+                              "time ('off' or 'constant' laws); for harmonic or callable "
+                              "laws use `rotorsfd simulate` or `rotorsfd stability-chart`")
         return self.base.state(0.0)
 
     # ---- LinearDynamics ----------------------------------------------------------------
@@ -380,3 +381,19 @@ class RotorSystem:
             return self.periodic_problem(second, speed)
 
         return TwoParameterProblem(first, across, ("speed", second))
+
+
+def _time_varying(base: BaseMotion) -> tuple[str, str]:
+    """(config field, its value) of the first base-motion setting that makes the base
+    state vary in time (see ``BaseMotion.is_constant``)."""
+    for name, law in zip(("rolling", "pitching", "yawing"), base.rotation, strict=True):
+        if not law.is_constant:
+            return f"base.{name}.law", law.kind
+    rotating = bool(np.any(base.rates(0.0) != 0.0))
+    for name, law in zip(("x", "y", "z"), base.translation, strict=True):
+        if law.kind == "uniform_acceleration":
+            if rotating and law.acceleration != 0.0:
+                return f"base.{name}.law", law.kind
+        elif not law.is_constant:
+            return f"base.{name}.law", law.kind
+    return "gravity.frame", "inertial"
