@@ -14,7 +14,8 @@ with ``(I - G W)`` (m x m) solved by Gaussian elimination with partial pivoting 
 LAPACK's ``gesv``) and the two rank-m terms applied as one product. The n x 2n product
 of the constant operator is one BLAS call (``np.dot`` into a buffer: measured faster
 than compiled loops from n = 8 up); the rank-m work is loops; nothing is allocated in
-the loop. Compiled once, cached on disk.
+the loop, and no array slices are assigned (they made the first compilation 3x longer).
+Compiled once, cached on disk.
 """
 
 from __future__ import annotations
@@ -105,8 +106,10 @@ def newmark_loop(AB: np.ndarray, AE: np.ndarray, Z: np.ndarray, G: np.ndarray,
     p = 2 * n
     N = Kn.shape[0] - 1
     ABE = np.empty((n, p))  # [AB AE]
-    ABE[:, :n] = AB
-    ABE[:, n:] = AE
+    for i in range(n):
+        for c in range(n):
+            ABE[i, c] = AB[i, c]
+            ABE[i, n + c] = AE[i, c]
     S = np.zeros((p, p))  # [X; V]
     for i in range(p):
         S[i, i] = 1.0
@@ -120,7 +123,7 @@ def newmark_loop(AB: np.ndarray, AE: np.ndarray, Z: np.ndarray, G: np.ndarray,
         np.dot(ABE, S, Y)  # AB X + AE V
         if m:
             # r = -(2/h C_{j+1} - K_j) X[nl] - (C_{j+1} - C_j) V[nl]
-            rP[:, :] = 0.0
+            rP.fill(0.0)
             for a in range(m):
                 for b in range(m):
                     fx = Kn[j, a, b] - c2 * Cn[j + 1, a, b]
@@ -152,14 +155,16 @@ def generalized_alpha_loop(SM: np.ndarray, SD: np.ndarray, SK: np.ndarray, Z: np
     p = 2 * n
     N = Kn.shape[0] - 1
     L = np.empty((n, 3 * n))  # [-a_m S_M, -S_D, -S_K]
-    L[:, :n] = -am * SM
-    L[:, n:2 * n] = -SD
-    L[:, 2 * n:] = -SK
     R = np.empty((3 * n, p))  # [A; v*; x*]
-    R[:n] = A0
     X = np.zeros((n, p))
     V = np.zeros((n, p))
     for i in range(n):
+        for c in range(n):
+            L[i, c] = -am * SM[i, c]
+            L[i, n + c] = -SD[i, c]
+            L[i, 2 * n + c] = -SK[i, c]
+        for c in range(p):
+            R[i, c] = A0[i, c]
         X[i, i] = 1.0
         V[i, n + i] = 1.0
     Xp = np.empty((n, p))
@@ -184,7 +189,7 @@ def generalized_alpha_loop(SM: np.ndarray, SD: np.ndarray, SK: np.ndarray, Z: np
         np.dot(L, R, Y)  # -a_m S_M A - S_D v* - S_K x*
         if m:
             # r = a_f (C_j V[nl] + K_j X[nl]) + (1 - a_f)(C_{j+1} Vp[nl] + K_{j+1} Xp[nl])
-            rP[:, :] = 0.0
+            rP.fill(0.0)
             for a in range(m):
                 for e in range(m):
                     k = nl[e]
@@ -206,6 +211,8 @@ def generalized_alpha_loop(SM: np.ndarray, SD: np.ndarray, SK: np.ndarray, Z: np
                 X[i, c] = Xp[i, c] + b * h * h * Y[i, c]
                 V[i, c] = Vp[i, c] + g * h * Y[i, c]
     out = np.empty((2 * n, p))
-    out[:n] = X
-    out[n:] = V
+    for i in range(n):
+        for c in range(p):
+            out[i, c] = X[i, c]
+            out[n + i, c] = V[i, c]
     return out
