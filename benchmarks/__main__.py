@@ -27,6 +27,8 @@ REGISTRY: dict[str, tuple[str, str]] = {
     "hb": ("HB continuation: condensed vs full", "bench_hb:run"),
     "stability": ("Floquet per point: CB Newmark vs full Newmark vs Hill",
                   "bench_stability:run_points"),
+    "monodromy": ("Floquet monodromy per point: compiled loop vs numpy loop",
+                  "bench_stability:run_monodromy"),
     "timedomain": ("2000 periods x 200 steps: ours vs scipy vs ROSS", "bench_timedomain:run"),
     "chart": ("stability chart: serial vs threads vs process pool vs Dask",
               "bench_stability:run_chart"),

@@ -78,6 +78,14 @@ def test_files(case) -> None:
         speeds = list(csv.DictReader(fh))
     assert len(speeds) == 26 and speeds[0]["direction"] == "up"
     assert float(speeds[13]["speed_ratio"]) == pytest.approx(1.3)
+    # the default step control ("auto"): every speed recorded at a step whose last
+    # halving moved the journal orbit by less than step_tolerance = 1e-3 C
+    assert diagram.settings["steps_per_period"] == "auto"
+    for row in speeds:
+        assert int(row["steps_per_period"]) in (400, 800, 1600, 3200)
+        assert 0.0 <= float(row["step_error"]) < 1e-3
+        assert row["step_converged"] in ("1", "True")
+    assert "time step (auto): T/" in diagram.summary()
 
 
 def _cli_sets(n: int) -> list[str]:

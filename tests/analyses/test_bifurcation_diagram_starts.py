@@ -20,12 +20,15 @@ import pytest
 from rotors import small_rotor_toml
 from rotorsfd import api
 from rotorsfd.analyses import bifurcation_diagram as bd
+from rotorsfd.analyses import step_control
 from rotorsfd.analyses.bifurcation_diagram import run_bifurcation_diagram
 from rotorsfd.errors import ConfigError, ConvergenceError, JournalContactError
 
 ROOT = Path(__file__).resolve().parents[2]
 SWEEP = "analysis.bifurcation_diagram."
-CLEARANCE = [SWEEP + "speed_range.start_ratio=1.0", SWEEP + "speed_range.stop_ratio=1.11",
+# these tests are about the starts: a fixed step T/200 (the step control has its own tests)
+FIXED = "analysis.simulate.steps_per_period=200"
+CLEARANCE = [FIXED, SWEEP + "speed_range.start_ratio=1.0", SWEEP + "speed_range.stop_ratio=1.11",
              SWEEP + "speed_range.n=3", SWEEP + "settle_periods=100",
              SWEEP + "record_periods=10", SWEEP + "direction=up"]
 C_SMALL = 0.127e-3
@@ -40,7 +43,7 @@ def clearance():
 def small(tmp_path_factory):
     path = small_rotor_toml(tmp_path_factory.mktemp("starts") / "small.toml",
                             unbalance="200 g*mm", reference="800 rad/s")
-    return api.load_config(path, [SWEEP + "speed_range.start_ratio=1.0",
+    return api.load_config(path, [FIXED, SWEEP + "speed_range.start_ratio=1.0",
                                   SWEEP + "speed_range.stop_ratio=1.3",
                                   SWEEP + "speed_range.n=3", SWEEP + "record_periods=20",
                                   SWEEP + "direction=up-down"])
@@ -101,18 +104,19 @@ def test_hb_start_gives_the_steady_state_of_a_long_displaced_run(small):
 def test_contact_in_the_middle_of_a_sweep(small, monkeypatch):
     """A failure at the middle speed of the up sweep: recorded, the next speed restarts
     from the HB orbit, the down sweep goes on from the up sweep's last state."""
-    real = bd.integrate_periods
+    real = step_control.integrate_periods
     middle = 1.15 * 800.0
     calls = []
 
     def once(inputs, *args, **kwargs):
-        if abs(inputs.speed - middle) < 1e-9 * middle:
+        # the speed's own run (settle + record periods), not its step check
+        if abs(inputs.speed - middle) < 1e-9 * middle and kwargs.get("periods") == 120:
             calls.append(inputs.speed)
             if len(calls) == 1:
                 raise JournalContactError(0.9991, 1e-4, 0.0, 0.0, 0.0, "t=0.01 s (test)")
         return real(inputs, *args, **kwargs)
 
-    monkeypatch.setattr(bd, "integrate_periods", once)
+    monkeypatch.setattr(step_control, "integrate_periods", once)
     r = run_bifurcation_diagram(small, progress=False, settle_periods=100)
     assert [(p.direction, p.start) for p in r.points] == [
         ("up", "hb"), ("up", "previous"), ("up", "hb"),

@@ -17,6 +17,12 @@ its phase at each speed. Coexisting attractors show as a difference of the up an
 sweeps (jumps and hysteresis). A speed that meets journal contact (or whose time stepping
 fails) is recorded as failed with the reason, and the sweep goes on at the next speed from
 a fresh start; the failures are listed and reported.
+
+The step is that of ``[analysis.simulate]``: ``steps_per_period = "auto"`` (default) runs
+each speed's settling periods at T/200, halves the step over the last
+``step_check_periods`` of them until one halving moves the journal orbit by less than
+``step_tolerance`` (:mod:`~rotorsfd.analyses.step_control`) and records
+``record_periods`` at the accepted step; a fixed step is checked by one halving.
 """
 
 from __future__ import annotations
@@ -37,11 +43,11 @@ from rotorsfd.analyses.simulate import (
     classify,
     displaced_state,
     hb_start,
-    integrate_periods,
     scheme_options,
     system_from_config,
     time_domain_inputs,
 )
+from rotorsfd.analyses.step_control import integrate_controlled
 from rotorsfd.errors import ConfigError, ConvergenceError, JournalContactError, RotorsfdError
 from rotorsfd.model import dofs
 from rotorsfd.model.system import RotorSystem
@@ -72,6 +78,9 @@ class SpeedPoint:
     contact: str | None = None
     settled: bool = True
     start: str = "previous"     #: the initial state: "previous", "hb" or "displaced"
+    steps_per_period: int | None = None     #: the step of the recorded periods
+    step_error: float | None = None         #: change of the last halving [C]
+    step_converged: bool | None = None      #: that change below step_tolerance
 
 
 @dataclass
@@ -127,8 +136,11 @@ class BifurcationDiagramResult:
         n_distinct_poincare (-1: unknown), max_eccentricity (-1: none), contact (0/1: the
         speed failed, journal contact or time stepping; diagram.json says why), settled (0:
         a period-n class whose Poincare points still drift), start`` (initial state:
-        ``previous`` speed's end state, ``hb`` orbit or ``displaced``). The motion is
-        classified without a Lyapunov exponent (Poincare points and spectral lines)."""
+        ``previous`` speed's end state, ``hb`` orbit or ``displaced``), ``steps_per_period``
+        of the recorded periods, ``step_error`` (change of the last halving of the step,
+        in C; -1: not checked) and ``step_converged`` (0/1: below step_tolerance). The
+        motion is classified without a Lyapunov exponent (Poincare points and spectral
+        lines)."""
         ref = self.reference_speed
         cols = {"direction": [p.direction for p in self.points],
                 "speed_rad_s": [p.speed for p in self.points],
@@ -140,7 +152,12 @@ class BifurcationDiagramResult:
                                      else p.max_eccentricity for p in self.points],
                 "contact": [p.contact is not None for p in self.points],
                 "settled": [p.settled for p in self.points],
-                "start": [p.start for p in self.points]}
+                "start": [p.start for p in self.points],
+                "steps_per_period": [-1 if p.steps_per_period is None else p.steps_per_period
+                                     for p in self.points],
+                "step_error": [-1.0 if p.step_error is None else p.step_error
+                               for p in self.points],
+                "step_converged": [bool(p.step_converged) for p in self.points]}
         if not ref:
             cols.pop("speed_ratio")
         return {k: np.asarray(v) for k, v in cols.items()}
@@ -187,6 +204,20 @@ class BifurcationDiagramResult:
                  f"{self.settings['settle_periods']} + {self.settings['record_periods']} "
                  f"periods each, {self.elapsed:.1f} s",
                  "motions: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items()))]
+        steps = sorted({p.steps_per_period for p in self.points if p.steps_per_period})
+        errors = [p.step_error for p in self.points if p.step_error is not None]
+        if steps:
+            text = (f"time step ({self.settings['steps_per_period']}): T/{steps[0]}"
+                    + (f" to T/{steps[-1]}" if len(steps) > 1 else ""))
+            if errors:
+                text += f"; largest change of the last halving {max(errors):.2g} C"
+            lines.append(text)
+        bad = [p for p in self.points if p.step_converged is False]
+        if bad:
+            lines.append(f"warning: at {len(bad)} speeds the step did not meet "
+                         f"step_tolerance = {self.settings['step_tolerance']:g} (speeds.csv "
+                         'step_converged = 0); set analysis.simulate.steps_per_period = '
+                         '"auto" or raise max_steps_per_period')
         starts: dict[str, int] = {}
         for p in self.points:
             starts[p.start] = starts.get(p.start, 0) + 1
@@ -272,6 +303,12 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
     settle = bd.settle_periods if settle_periods is None else settle_periods
     rec = record_periods or bd.record_periods
     spp = steps_per_period or sim.steps_per_period
+    n_chk = sim.step_check_periods
+    if spp == "auto" and (settle < 1 or n_chk < 1):
+        raise ConfigError(f"{FIELD}.settle_periods", settle, "must be >= 1 with "
+                          'analysis.simulate.steps_per_period = "auto" (the step is '
+                          "chosen on the settling periods; step_check_periods >= 1 too)")
+    j = out_nodes.index(system.sfd_node) if system.sfd_node in out_nodes else 0
     opts = scheme_options(scheme or sim.scheme, sim.alpha if alpha is None else alpha)
     disp = sim.initial_displacement if initial_displacement is None else initial_displacement
     rd = [dofs.dof_index(nd, d) for nd in out_nodes for d in DIRECTIONS]
@@ -280,6 +317,8 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
     settings = {"speed_start_rad_s": min(start, stop), "speed_stop_rad_s": max(start, stop),
                 "n_speeds": n, "direction": direction, "settle_periods": settle,
                 "record_periods": rec, "steps_per_period": spp, **opts,
+                "step_tolerance": sim.step_tolerance, "step_check_periods": n_chk,
+                "max_steps_per_period": sim.max_steps_per_period,
                 "initial_state": (f"HB (H={H}), displaced {disp:g} m where it fails"
                                   if start_state == "hb" else f"displaced {disp:g} m"),
                 "reference_speed_rad_s": ref}
@@ -314,11 +353,15 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
             inputs = time_domain_inputs(system, speed,
                                         horizon=(settle + rec + 1) * 2 * math.pi / speed)
             try:
-                tr = integrate_periods(inputs, state[0], state[1], steps_per_period=spp,
-                                       periods=settle + rec, record_dofs=rd,
-                                       record_periods=rec, poincare_periods=rec,
-                                       method_options=opts, chunk_periods=settle + rec,
-                                       clearance=clearance)
+                run_ = integrate_controlled(
+                    inputs, state[0], state[1], steps_per_period=spp, periods=settle + rec,
+                    record_dofs=rd, record_periods=rec, poincare_periods=rec,
+                    check_column=j, check_node=out_nodes[j], check_periods=n_chk,
+                    tolerance=sim.step_tolerance,
+                    max_steps_per_period=sim.max_steps_per_period, method_options=opts,
+                    chunk_periods=settle + rec, clearance=clearance,
+                    check_clearance=clearance if out_nodes[j] == system.sfd_node
+                    else None)
             except (JournalContactError, ConvergenceError) as exc:
                 msg = " ".join(str(exc).split())
                 empty = np.zeros((0, nn, 2))
@@ -330,10 +373,12 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
                 state, restart = None, True
                 continue
             start_of_run, origin, restart = origin, "previous", False
+            tr, ctl = run_.trajectory, run_.control
+            step = ctl.steps_per_period if ctl is not None else int(spp)
             state = (tr.q_final, tr.v_final)
-            j = out_nodes.index(system.sfd_node) if system.sfd_node in out_nodes else 0
             mc = classify(tr.poincare_q, tr.poincare_v, tr.q, tr.v,
-                          2 * math.pi / speed / spp, speed, first=2 * j, n_record=rec * spp)
+                          2 * math.pi / speed / step, speed, first=2 * j,
+                          n_record=rec * step)
             eps = None
             if clearance is not None and system.sfd_node in out_nodes:
                 eps = float(np.max(np.hypot(tr.q[:, 2 * j], tr.q[:, 2 * j + 1]))) / clearance
@@ -342,7 +387,9 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
                 tr.poincare_v.reshape(-1, nn, 2), mc.motion if mc else "unclassified",
                 mc.evidence.get("n_distinct_poincare") if mc else None, eps,
                 settled=bool(mc.evidence.get("settled", True)) if mc else True,
-                start=start_of_run))
+                start=start_of_run, steps_per_period=step,
+                step_error=None if ctl is None else ctl.error,
+                step_converged=None if ctl is None else ctl.converged))
     finally:
         bar.close()
     return BifurcationDiagramResult(points, out_nodes, ref, clearance, settings,

@@ -29,7 +29,6 @@ at another speed it starts at the time where the new rotor phase equals the save
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import sys
 import time
@@ -40,131 +39,43 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from rotorsfd.analyses.step_control import (
+    AUTO_START,
+    STEP_TOLERANCE,
+    StepCheck,
+    StepControl,
+    integrate_controlled,
+)
+from rotorsfd.analyses.td_integration import (
+    DIRECTIONS,
+    FIELD,
+    TimeDomainInputs,
+    Trajectory,
+    integrate_periods,
+    scheme_options,
+    time_domain_inputs,
+)
+from rotorsfd.analyses.td_lyapunov import lyapunov_pair, uncertainty_per_period
 from rotorsfd.errors import ConfigError, ConvergenceError, JournalContactError
 from rotorsfd.model import dofs
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.timedomain import (
-    Forcing,
-    HarmonicLoad,
     LyapunovResult,
     MotionClass,
-    TimeVaryingMatrices,
     amplitude_spectrum,
     classify_motion,
-    largest_lyapunov,
 )
-from rotorsfd.timedomain import newmark as nm
-from rotorsfd.timedomain.integrate import _MESSAGES, initial_state, prepare, run
+
+__all__ = ["DIRECTIONS", "FIELD", "STEP_TOLERANCE", "SavedState", "SimulationResult",
+           "StepCheck", "StepControl", "TimeDomainInputs", "Trajectory", "classify",
+           "displaced_state", "hb_start", "integrate_periods", "load_state",
+           "run_simulation", "scheme_options", "system_from_config", "time_domain_inputs"]
 
 if TYPE_CHECKING:
     import xarray as xr
     from matplotlib.figure import Figure
 
     from rotorsfd.io.schema import Config
-
-FIELD = "analysis.simulate"
-DIRECTIONS = ("y", "z")
-
-
-# ---- inputs of the integrator ------------------------------------------------------------
-
-
-@dataclass
-class TimeDomainInputs:
-    """Everything :func:`rotorsfd.timedomain.integrate` takes, for one rotor speed."""
-
-    M: np.ndarray
-    D: np.ndarray
-    K: np.ndarray
-    nl_dofs: np.ndarray
-    kernel: Any
-    params: np.ndarray | None
-    forcing: Forcing
-    time_varying: TimeVaryingMatrices | None
-    speed: float
-
-    @property
-    def period(self) -> float:
-        """Rotor period T = 2 pi / Omega [s]."""
-        return 2.0 * math.pi / self.speed
-
-
-def _fold_constant(pairs: Sequence[tuple[Any, np.ndarray]], probe: np.ndarray
-                   ) -> tuple[list[tuple[Any, np.ndarray]], np.ndarray | None]:
-    """Split ``(coefficient, array)`` pairs into time-varying ones and the sum of those
-    whose coefficient is constant on ``probe`` (that sum, or None)."""
-    varying: list[tuple[Any, np.ndarray]] = []
-    const = None
-    for c, X in pairs:
-        values = np.broadcast_to(np.asarray(c(probe), dtype=float), probe.shape)
-        if np.ptp(values) == 0.0:
-            term = float(values[0]) * np.asarray(X, dtype=float)
-            const = term if const is None else const + term
-        else:
-            varying.append((c, X))
-    return varying, const
-
-
-def time_domain_inputs(system: RotorSystem, speed: float, *,
-                       horizon: float | None = None) -> TimeDomainInputs:
-    """Integrator inputs of ``system`` at rotor speed ``speed`` [rad/s].
-
-    Constant base (``system.base.is_constant``): ``matrices(speed)``, the constant force
-    ``static_force(speed)`` and the unbalance harmonics at ``Omega``. Otherwise
-    ``M, C + Omega G, K`` plus the base terms as time-varying matrices and series loads;
-    ``horizon`` [s] (default 1000 rotor periods) is the interval on which a coefficient
-    must be constant to be folded into the constant matrices.
-    """
-    if not speed > 0.0:
-        raise ConfigError(f"{FIELD}.speed", speed, "the rotor speed must be > 0 rad/s")
-    r = system.rotor
-    nl = system.nl_dofs
-    kernel = system.sfd.numba_kernel if system.sfd is not None else None
-    params = system.sfd.kernel_params if system.sfd is not None else None
-    if system.base.is_constant:
-        M, D, K = system.matrices(speed)
-        Fc, Fs = system.unbalance_harmonics(speed)
-        harm = [HarmonicLoad(1.0, Fc, Fs)] if system.unbalances else []
-        forcing = Forcing(omega=speed, constant=system.static_force(speed), harmonics=harm)
-        return TimeDomainInputs(M, D.copy(), K.copy(), nl, kernel, params, forcing, None,
-                                float(speed))
-    from rotorsfd.model.base_terms import time_varying_terms
-    from rotorsfd.model.unbalance import unbalance_series
-
-    T = 2.0 * math.pi / speed
-    span = horizon if horizon is not None else 1000.0 * T
-    probe = np.concatenate([np.linspace(0.0, span, 257),
-                            span * (np.arange(1, 64) * math.sqrt(2.0) % 1.0)])
-    damping, stiffness, force = time_varying_terms(system.basis, system.base, speed)
-    damping, dC = _fold_constant(damping, probe)
-    stiffness, dK = _fold_constant(stiffness, probe)
-    force, f0 = _fold_constant(force, probe)
-    D = r.C + speed * r.G + (dC if dC is not None else 0.0)
-    K = r.K + (dK if dK is not None else 0.0)
-    series = list(force) + unbalance_series(system.unbalances, r, speed, system.base)
-    forcing = Forcing(omega=speed, constant=f0, series=series)
-    tv = TimeVaryingMatrices(damping=damping, stiffness=stiffness) \
-        if damping or stiffness else None
-    return TimeDomainInputs(r.M, np.asarray(D, float), np.asarray(K, float), nl, kernel,
-                            params, forcing, tv, float(speed))
-
-
-def scheme_options(scheme: str, alpha: float) -> dict[str, Any]:
-    """``integrate`` keywords of ``[analysis.simulate] scheme, alpha``: HHT ``alpha``
-    (either sign convention: |alpha| <= 1/3), generalized-alpha ``rho_inf = alpha``."""
-    if scheme == "newmark":
-        return {"method": "newmark"}
-    if scheme == "hht":
-        a = abs(float(alpha))
-        if a > 1.0 / 3.0:
-            raise ConfigError(f"{FIELD}.alpha", alpha, "HHT needs |alpha| <= 1/3")
-        return {"method": "hht", "alpha": a}
-    if scheme == "generalized-alpha":
-        if not 0.0 <= alpha <= 1.0:
-            raise ConfigError(f"{FIELD}.alpha", alpha, "generalized-alpha takes the "
-                              "spectral radius rho_inf = alpha in [0, 1]")
-        return {"method": "generalized-alpha", "rho_inf": float(alpha)}
-    raise ConfigError(f"{FIELD}.scheme", scheme, "newmark, hht or generalized-alpha")
 
 
 def displaced_state(n_dof: int, displacement: float) -> np.ndarray:
@@ -259,227 +170,6 @@ def load_state(path: str | Path) -> SavedState:
                           str(p))
 
 
-# ---- chunked integration ---------------------------------------------------------------------
-
-
-@dataclass
-class Trajectory:
-    """Samples of a chunked run: every step of the last ``record_periods`` and the
-    Poincare points of the last ``poincare_periods`` (columns = ``dofs``)."""
-
-    t: np.ndarray
-    q: np.ndarray
-    v: np.ndarray
-    poincare_t: np.ndarray
-    poincare_q: np.ndarray
-    poincare_v: np.ndarray
-    dofs: np.ndarray
-    q_final: np.ndarray
-    v_final: np.ndarray
-    t_final: float
-    max_eccentricity_run: float | None
-    newton_iterations_max: int = 0
-    snapshot: tuple[np.ndarray, np.ndarray, float] | None = None
-
-
-def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_period: int,
-                      periods: int, record_dofs: Sequence[int], record_periods: int,
-                      poincare_periods: int, method_options: dict[str, Any] | None = None,
-                      chunk_periods: int | None = None, progress: Any = None,
-                      clearance: float | None = None, t0: float = 0.0,
-                      snapshot_period: int | None = None) -> Trajectory:
-    """Integrate ``periods`` rotor periods in chunks from ``(q0, v0)`` at ``t0``.
-
-    ``snapshot_period`` (0 < p < periods): a chunk ends after p periods and the full state
-    there is kept (``Trajectory.snapshot = (q, v, t)``, the start of the step check).
-
-    ``progress(periods_done)`` is called after each chunk. Contact raises
-    :class:`JournalContactError` (time, rotor period, eccentricity in the message); other
-    failures :class:`ConvergenceError`.
-    """
-    spp = int(steps_per_period)
-    n_steps = spp * int(periods)
-    dt = inputs.period / spp
-    ps = prepare(inputs.M, inputs.D, inputs.K, inputs.nl_dofs, inputs.kernel, inputs.params,
-                 inputs.forcing, dt, n_steps, t0=t0, time_varying=inputs.time_varying,
-                 **(method_options or {}))
-    nl = ps.nl
-    rd = np.asarray(record_dofs, dtype=np.int64)
-    rec_all = np.concatenate([rd, nl]).astype(np.int64)
-    rec_start = (periods - record_periods) * spp
-    pc_start = (periods - poincare_periods + 1) * spp
-    state = initial_state(ps, q0, v0)
-    chunk = max(1, chunk_periods or math.ceil(periods / 100))
-    parts: dict[str, list[np.ndarray]] = {k: [] for k in ("t", "q", "v", "pt", "pq", "pv")}
-    eps_max = 0.0
-    newton_max = 0
-    done = 0
-    snapshot = None
-    snap = snapshot_period if snapshot_period and 0 < snapshot_period < periods else None
-    while done < periods:
-        k = min(chunk, periods - done)
-        if snap is not None and done < snap:
-            k = min(k, snap - done)
-        status, smp, info = run(ps, state, k * spp, record_dofs=rec_all, record_every=1,
-                                record_start=0, poincare_every=spp, poincare_start=0,
-                                record_initial=(done == 0))
-        newton_max = max(newton_max, int(info[nm.I_NEWTON_MAX]))
-        if nl.size and clearance and smp["q"].shape[0]:
-            qn = smp["q"][:, rd.size:rd.size + 2]
-            eps_max = max(eps_max, float(np.max(np.hypot(qn[:, 0], qn[:, 1]))) / clearance)
-        if status != nm.OK:
-            step = int(info[nm.I_STEP]) + 1
-            t = ps.t0 + step * dt
-            where = (f"t={t:.6g} s, rotor period {step / spp:.2f} of {periods} "
-                     f"(step {step})")
-            if status == nm.CONTACT:
-                y, z, vy, vz = (float(x) for x in smp["fail"][:4])  # q_nl (y, z), v_nl
-                eps = math.hypot(y, z) / clearance if clearance else math.nan
-                where += (": the step's Newton iterates reached the contact limit (state "
-                          "of the last iterate)")
-                err = JournalContactError(eps, y, z, vy, vz, where=where)
-                err.time, err.period = t, step / spp
-                raise err
-            raise ConvergenceError(f"time integration: {_MESSAGES.get(status)} at {where}")
-        keep = smp["t"] >= ps.t0 + (rec_start - 0.5) * dt
-        parts["t"].append(smp["t"][keep])
-        parts["q"].append(smp["q"][keep, :rd.size])
-        parts["v"].append(smp["v"][keep, :rd.size])
-        keep = smp["pt"] >= ps.t0 + (pc_start - 0.5) * dt
-        parts["pt"].append(smp["pt"][keep])
-        parts["pq"].append(smp["pq"][keep, :rd.size])
-        parts["pv"].append(smp["pv"][keep, :rd.size])
-        done += k
-        if done == snap:
-            snapshot = (state.X[:ps.n_dof].copy(), state.X[ps.n_dof:2 * ps.n_dof].copy(),
-                        ps.t0 + state.step * dt)
-        if progress is not None:
-            progress(done)
-    n = ps.n_dof
-    cat = {k: np.concatenate(v) for k, v in parts.items()}
-    return Trajectory(cat["t"], cat["q"], cat["v"], cat["pt"], cat["pq"], cat["pv"], rd,
-                      state.X[:n].copy(), state.X[n:2 * n].copy(), ps.t0 + state.step * dt,
-                      eps_max if nl.size and clearance else None, newton_max, snapshot)
-
-
-# ---- time-step check ----------------------------------------------------------------------
-
-STEP_CHECK_TOLERANCE = 1e-2
-"""Warn when halving the step moves the checked orbit by more than this (units of C, or of
-the orbit's max radius without an SFD)."""
-
-
-@dataclass(frozen=True)
-class StepCheck:
-    """The last ``periods`` of a run integrated again from the same state at twice the
-    steps per period (``steps_per_period = (base, fine)``), node ``node``.
-
-    Periodic (settled period-n) motion: the headline ``difference`` is the larger of the
-    final-period orbit difference (max over the period of the distance between the two
-    orbits at equal times) and the Poincare point difference (last ``n_poincare`` points).
-    Other motion (trajectories diverge): the orbit envelope, the larger change of the max
-    and min radius over the ``periods``. Lengths in ``unit``: C, or the max orbit radius
-    without an SFD. ``error``: the fine run failed (contact, Newton)."""
-
-    steps_per_period: tuple[int, int]
-    periods: int
-    node: int
-    compared: str
-    difference: float | None
-    orbit_difference: float | None
-    poincare_difference: float | None
-    envelope_difference: float | None
-    n_poincare: int
-    unit: str
-    tolerance: float = STEP_CHECK_TOLERANCE
-    error: str | None = None
-    elapsed: float = 0.0
-
-    @property
-    def coarse(self) -> bool:
-        """The base step looks too coarse (difference above the tolerance, or the fine run
-        failed)."""
-        return self.error is not None or (self.difference is not None
-                                          and self.difference > self.tolerance)
-
-    def as_dict(self) -> dict[str, Any]:
-        return {"steps_per_period": list(self.steps_per_period), "periods": self.periods,
-                "node": self.node, "compared": self.compared,
-                "difference": self.difference, "unit": self.unit,
-                "orbit_difference": self.orbit_difference,
-                "poincare_difference": self.poincare_difference,
-                "poincare_points": self.n_poincare,
-                "envelope_difference": self.envelope_difference,
-                "tolerance": self.tolerance, "too_coarse": self.coarse,
-                "warning": self.warning(), "error": self.error, "elapsed_s": self.elapsed}
-
-    def line(self) -> str:
-        a, b = self.steps_per_period
-        head = f"step check (T/{a} vs T/{b}, last {self.periods} periods, node {self.node})"
-        if self.error is not None:
-            return f"{head}: the run at T/{b} failed: {self.error}"
-        return f"{head}: {self.compared} moves by {self.difference:.3g} {self.unit}"
-
-    def warning(self) -> str | None:
-        if not self.coarse:
-            return None
-        a, b = self.steps_per_period
-        if self.error is not None:
-            return (f"time step T/{a} may be too coarse here: the run at T/{b} from the same "
-                    "state failed; raise analysis.simulate.steps_per_period")
-        return (f"time step T/{a} may be too coarse here: halving it moves the orbit by "
-                f"{self.difference:.3g} {self.unit}; raise "
-                "analysis.simulate.steps_per_period")
-
-
-def step_check(inputs: TimeDomainInputs, start: tuple[np.ndarray, np.ndarray, float], *,
-               periods: int, steps_per_period: int, node: int, t: np.ndarray,
-               q: np.ndarray, poincare_q: np.ndarray, periodic: bool,
-               method_options: dict[str, Any] | None = None,
-               clearance: float | None = None) -> StepCheck:
-    """Integrate ``periods`` periods from ``start = (q, v, t)`` at ``2 steps_per_period``
-    and compare ``node`` with the base run's samples of it: ``t, q`` (every step of the
-    recorded periods, (n_t, 2) y, z, ending at the final time) and ``poincare_q`` (n, 2).
-    ``periodic``: compare orbits and Poincare points, else the orbit envelope."""
-    tic = time.perf_counter()
-    spp = int(steps_per_period)
-    fine = 2 * spp
-    rd = [dofs.dof_index(node, d) for d in DIRECTIONS]
-    r = np.hypot(q[:, 0], q[:, 1])
-    n_env = min(periods, (q.shape[0] - 1) // spp)
-    base_env = r[-(n_env * spp + 1):]
-    scale, unit = (clearance, "C") if clearance else (float(np.max(base_env)) or 1.0,
-                                                      "x max orbit radius")
-    n_pc = min(periods, poincare_q.shape[0])
-    what = (f"final-period orbit and last {n_pc} Poincare points" if periodic else
-            f"orbit envelope (max and min radius over {n_env} periods; the motion is not "
-            "periodic, its trajectories diverge)")
-    common = {"steps_per_period": (spp, fine), "periods": periods, "node": node,
-              "compared": what, "n_poincare": n_pc, "unit": unit}
-    try:
-        tr = integrate_periods(inputs, start[0], start[1], steps_per_period=fine,
-                               periods=periods, record_dofs=rd, record_periods=n_env,
-                               poincare_periods=n_pc, method_options=method_options,
-                               clearance=clearance, t0=start[2])
-    except (JournalContactError, ConvergenceError) as exc:
-        return StepCheck(**common, difference=None, orbit_difference=None,
-                         poincare_difference=None, envelope_difference=None,
-                         error=" ".join(str(exc).split()),
-                         elapsed=time.perf_counter() - tic)
-    fq = tr.q[::2]                                   # the base run's times
-    if not np.allclose(tr.t[::2][-(spp + 1):], t[-(spp + 1):], rtol=0.0,
-                       atol=1e-6 * inputs.period):
-        raise AssertionError("step check: the two runs' sample times differ")
-    orbit = float(np.max(np.hypot(*(fq[-(spp + 1):] - q[-(spp + 1):]).T))) / scale
-    pc = float(np.max(np.hypot(*(tr.poincare_q[-n_pc:] - poincare_q[-n_pc:]).T))) / scale
-    fr = np.hypot(fq[:, 0], fq[:, 1])[-(n_env * spp + 1):]
-    env = max(abs(float(np.max(fr) - np.max(base_env))),
-              abs(float(np.min(fr) - np.min(base_env)))) / scale
-    return StepCheck(**common, difference=max(orbit, pc) if periodic else env,
-                     orbit_difference=orbit, poincare_difference=pc, envelope_difference=env,
-                     elapsed=time.perf_counter() - tic)
-
-
 # ---- the result --------------------------------------------------------------------------
 
 
@@ -528,7 +218,8 @@ class SimulationResult:
     elapsed: float
     title: str = ""
     notes: list[str] = field(default_factory=list)
-    step_check: StepCheck | None = None
+    step_check: StepControl | None = None
+    lyapunov_full: LyapunovResult | None = None
 
     FILES = ("timeseries.nc", "poincare.csv", "summary.json", "simulation.png", "orbit.png",
              "phase.png", "poincare.png", "spectrum.png")
@@ -629,9 +320,20 @@ class SimulationResult:
             "evidence": ev,
             "lyapunov": None if ly is None else {
                 "exponent_per_s": ly.exponent, "per_period": ly.per_period,
-                "half_spread_per_s": ly.half_spread, "d0": ly.d0,
-                "renorm_every_steps": ly.renorm_every, "periods": self.settings.get(
-                    "lyapunov_periods")},
+                "half_spread_per_s": ly.half_spread,
+                "uncertainty_per_period": uncertainty_per_period(ly, self.period),
+                "d0": ly.d0, "renorm_every_steps": ly.renorm_every,
+                "periods": self.settings.get("lyapunov_periods"),
+                "high_modes_excluded": self.lyapunov_full is not None
+                and self.lyapunov_full is not ly,
+                "modes_kept": self.settings.get("lyapunov_modes_kept"),
+                "omega_max_rad_s": self.settings.get("lyapunov_omega_max_rad_s")},
+            "lyapunov_whole_state": None if self.lyapunov_full is None else {
+                "exponent_per_s": self.lyapunov_full.exponent,
+                "per_period": self.lyapunov_full.per_period,
+                "half_spread_per_s": self.lyapunov_full.half_spread,
+                "uncertainty_per_period": uncertainty_per_period(self.lyapunov_full,
+                                                                 self.period)},
             "max_eccentricity": self.max_eccentricity,
             "max_eccentricity_whole_run": self.max_eccentricity_run,
             "clearance_m": self.clearance, "sfd_node": self.sfd_node,
@@ -690,13 +392,21 @@ class SimulationResult:
             lines.append(f"distinct Poincare points: {ev.get('n_distinct_poincare')} of "
                          f"{ev.get('n_poincare')}; spectral lines / Omega: {ratios}")
         if self.lyapunov is not None:
-            lines.append(f"largest Lyapunov exponent: {self.lyapunov.exponent:.4g} 1/s "
-                         f"({self.lyapunov.per_period:.4g} per period)")
+            ly, T = self.lyapunov, self.period
+            text = (f"largest Lyapunov exponent: {ly.per_period:.3g} +/- "
+                    f"{uncertainty_per_period(ly, T):.2g} per period ({ly.exponent:.4g} "
+                    f"+/- {ly.half_spread:.2g} 1/s)")
+            full = self.lyapunov_full
+            if full is not None and full is not ly:
+                text += (f", neutral high modes excluded; whole state: {full.per_period:.3g}"
+                         f" +/- {uncertainty_per_period(full, T):.2g} per period")
+            lines.append(text)
         if self.max_eccentricity is not None:
             lines.append(f"max eccentricity ratio: {self.max_eccentricity:.4f} (recorded "
                          f"periods), {self.max_eccentricity_run:.4f} (whole run)")
-        lines.append(f"{self.settings['periods']} periods x {self.settings['steps_per_period']}"
-                     f" steps ({self.settings['scheme']}) in {self.elapsed:.2f} s")
+        lines.append(f"{self.settings['periods']} periods, {self.settings['steps_per_period']}"
+                     f" steps per period ({self.settings['step_control']}, "
+                     f"{self.settings['scheme']}) in {self.elapsed:.2f} s")
         if self.step_check is not None:
             lines.append(self.step_check.line())
         if ev.get("note"):
@@ -744,7 +454,9 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
                    harmonics: int | None = None, q0: Any = None, v0: Any = None,
                    nodes: Sequence[int] | None = None, chunk_periods: int | None = None,
                    progress: bool = True, title: str | None = None,
-                   step_check_periods: int | None = None) -> SimulationResult:
+                   step_check_periods: int | None = None,
+                   step_tolerance: float | None = None,
+                   max_steps_per_period: int | None = None) -> SimulationResult:
     """Integrate the nonlinear rotor at one speed and classify the motion.
 
     From a Config: ``[analysis.simulate]`` and ``[reference]``, keyword arguments override
@@ -757,10 +469,13 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
     ``hb_phase`` (fraction of the period): start on the HB orbit shifted by that phase;
     ``initial_state``: the final state of a previous run (``timeseries.nc``, its
     directory, or a :class:`SavedState`), see the module docstring for its start time.
-    ``step_check_periods`` (default ``[analysis.simulate] step_check_periods``, 0: off):
-    the last that many periods are integrated again from the same state at half the step
-    (:func:`step_check`, ``result.step_check``; a warning in the summary when the orbit
-    moves by more than 1e-2 C).
+    ``steps_per_period`` (default ``[analysis.simulate]``): ``"auto"`` (the step halved
+    from T/200 until one halving changes the journal orbit by less than
+    ``step_tolerance`` [C], at most ``max_steps_per_period``; the transient at T/200, the
+    recorded periods at the accepted step: :mod:`~rotorsfd.analyses.step_control`) or an
+    integer, checked by one halving over the last ``step_check_periods`` (0: off).
+    ``result.step_check`` (a :class:`StepControl`) holds the halvings and the achieved
+    error; a step that fails the tolerance puts a warning in the summary.
     """
     from rotorsfd.io.schema import SimulateAnalysis
 
@@ -796,18 +511,42 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
         raise ConfigError(f"{FIELD}.speed", speed, "give the rotor speed (> 0): --speed, "
                           "--speed-ratio, or speed/speed_ratio in [analysis.simulate]")
     speed = float(speed)
-    spp = steps_per_period or sim.steps_per_period
+    spp_setting = steps_per_period if steps_per_period is not None \
+        else sim.steps_per_period
+    auto = spp_setting == "auto"
+    if not auto and not (isinstance(spp_setting, int | np.integer) and spp_setting >= 8):
+        raise ConfigError(f"{FIELD}.steps_per_period", spp_setting,
+                          '"auto" or an integer >= 8')
+    tol = sim.step_tolerance if step_tolerance is None else float(step_tolerance)
+    cap = sim.max_steps_per_period if max_steps_per_period is None \
+        else int(max_steps_per_period)
+    if not tol > 0.0:
+        raise ConfigError(f"{FIELD}.step_tolerance", tol, "must be > 0")
+    spp = AUTO_START if auto else int(spp_setting)
+    if auto and cap < 2 * spp:
+        raise ConfigError(f"{FIELD}.max_steps_per_period", cap,
+                          f"must be >= {2 * spp} for steps_per_period = \"auto\"")
     n_per = periods or sim.periods
     n_pc = poincare_periods or sim.poincare_periods
     n_rec = record_periods or n_pc
     n_ly = min(100, n_per) if lyapunov_periods is None else int(lyapunov_periods)
     n_chk = sim.step_check_periods if step_check_periods is None else int(step_check_periods)
-    if n_chk < 0:
-        raise ConfigError(f"{FIELD}.step_check_periods", n_chk, "must be >= 0 (0: off)")
-    n_chk = min(n_chk, n_per)
+    if n_chk < 0 or (auto and n_chk < 1):
+        raise ConfigError(f"{FIELD}.step_check_periods", n_chk,
+                          "must be >= 1 with steps_per_period = \"auto\"" if auto
+                          else "must be >= 0 (0: off)")
     for label, value in (("poincare_periods", n_pc), ("record_periods", n_rec)):
         if not 1 <= value <= n_per:
             raise ConfigError(f"{FIELD}.{label}", value, f"must be in 1..periods = {n_per}")
+    n_keep = max(n_rec, n_pc)
+    if auto:
+        if n_per <= n_keep:
+            raise ConfigError(f"{FIELD}.periods", n_per, "must exceed the recorded "
+                              f"periods ({n_keep}) with steps_per_period = \"auto\" "
+                              "(the step is chosen on the periods before them)")
+        n_chk = min(n_chk, n_per - n_keep)
+    else:
+        n_chk = min(n_chk, n_pc)           # the last n_chk periods of the recorded ones
     scheme = scheme or sim.scheme
     alpha = sim.alpha if alpha is None else alpha
     opts = scheme_options(scheme, alpha)
@@ -850,14 +589,16 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
                                 horizon=t_start + (n_per + n_ly + 1) * T)
     rd = [dofs.dof_index(nd, d) for nd in out_nodes for d in DIRECTIONS]
     clearance = system.sfd.clearance if system.sfd is not None else None
+    jc = _first_column(out_nodes, system.sfd_node)
     settings = {"speed_rad_s": speed, "speed_ratio": speed / ref if ref else None,
                 "reference_speed_rad_s": ref, "scheme": scheme, **opts,
+                "step_control": "auto" if auto else "fixed",
+                "step_tolerance": tol, "max_steps_per_period": cap if auto else None,
                 "steps_per_period": spp, "periods": n_per, "poincare_periods": n_pc,
                 "record_periods": n_rec, "lyapunov_periods": n_ly,
                 "step_check_periods": n_chk, "initial_state": start,
                 "initial_displacement_m": disp, "start_time_s": t_start,
-                "time_varying_matrices":
-                inputs.time_varying is not None, "dt_s": T / spp}
+                "time_varying_matrices": inputs.time_varying is not None}
     bar = _progress_bar(progress, n_per, "simulate")
     last = [0]
 
@@ -867,82 +608,57 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
 
     tic = time.perf_counter()
     try:
-        traj = integrate_periods(inputs, q_init, v_init, steps_per_period=spp, periods=n_per,
-                                 record_dofs=rd, record_periods=max(n_rec, n_pc),
-                                 poincare_periods=n_pc,
-                                 method_options=opts, chunk_periods=chunk_periods,
-                                 progress=tick, clearance=clearance, t0=t_start,
-                                 snapshot_period=n_per - n_chk if n_chk else None)
+        run_ = integrate_controlled(
+            inputs, q_init, v_init, steps_per_period="auto" if auto else spp, periods=n_per,
+            record_dofs=rd, record_periods=n_keep, poincare_periods=n_pc,
+            check_column=jc, check_node=out_nodes[jc], check_periods=n_chk, tolerance=tol,
+            max_steps_per_period=cap, method_options=opts, chunk_periods=chunk_periods,
+            clearance=clearance,
+            check_clearance=clearance if out_nodes[jc] == system.sfd_node else None,
+            t0=t_start, progress=tick)
     finally:
         bar.close()
+    traj, control, eps_run = run_.trajectory, run_.control, run_.max_eccentricity_run
+    spp = control.steps_per_period if control is not None else spp
+    settings["periods_run"] = run_.periods_run
+    settings["steps_per_period"] = spp
+    settings["dt_s"] = T / spp
     settings["elapsed_integration_s"] = time.perf_counter() - tic
+    if control is not None:
+        settings["elapsed_step_control_s"] = control.elapsed
     nn = len(out_nodes)
     q = traj.q.reshape(-1, nn, 2)
     v = traj.v.reshape(-1, nn, 2)
     pq = traj.poincare_q.reshape(-1, nn, 2)
     pv = traj.poincare_v.reshape(-1, nn, 2)
     notes: list[str] = []
-    lyap = None
+    lyap = lyap_full = None
     tic_ly = time.perf_counter()
     if n_ly > 0:
         try:
-            lyap = lyapunov_estimate(largest_lyapunov(
-                inputs.M, inputs.D, inputs.K, inputs.nl_dofs, inputs.kernel, inputs.params,
-                inputs.forcing, steps_per_period=spp, n_periods=n_ly, q0=traj.q_final,
-                v0=traj.v_final, t0=traj.t_final, time_varying=inputs.time_varying,
-                method="newmark"), T)
+            pair = lyapunov_pair(inputs, (traj.q_final, traj.v_final, traj.t_final),
+                                 steps_per_period=spp, periods=n_ly)
+            lyap, lyap_full = pair.reduced, pair.full
+            settings["lyapunov_modes_kept"] = pair.n_modes
+            settings["lyapunov_omega_max_rad_s"] = pair.omega_max
         except (JournalContactError, ConvergenceError) as exc:
             notes.append(f"no Lyapunov exponent: {' '.join(str(exc).split())}")
     settings["elapsed_lyapunov_s"] = time.perf_counter() - tic_ly
     motion = classify(traj.poincare_q, traj.poincare_v, traj.q, traj.v, T / spp, speed,
-                      lyap, first=2 * _first_column(out_nodes, system.sfd_node),
-                      n_record=max(n_rec, n_pc) * spp)
+                      lyap, first=2 * jc, n_record=n_keep * spp)
     if motion is None:
         notes.append("fewer than 8 Poincare points: motion not classified")
-    check = None
-    if n_chk:
-        tic_chk = time.perf_counter()
-        jc = _first_column(out_nodes, system.sfd_node)
-        periodic = (motion is not None and motion.period is not None
-                    and bool(motion.evidence.get("settled", True)))
-        check = step_check(inputs, traj.snapshot or (q_init, v_init, t_start),
-                           periods=n_chk, steps_per_period=spp, node=out_nodes[jc],
-                           t=traj.t, q=q[:, jc], poincare_q=pq[:, jc], periodic=periodic,
-                           method_options=opts,
-                           clearance=clearance if out_nodes[jc] == system.sfd_node
-                           else None)
-        settings["elapsed_step_check_s"] = time.perf_counter() - tic_chk
     elapsed = time.perf_counter() - tic
     eps_rec = None
     if clearance is not None and system.sfd_node in out_nodes:
         j = out_nodes.index(system.sfd_node)
         eps_rec = float(np.max(np.hypot(q[:, j, 0], q[:, j, 1]))) / clearance
     elif clearance is not None:
-        eps_rec = traj.max_eccentricity_run
+        eps_rec = eps_run
     return SimulationResult(speed, ref, tuple(out_nodes), traj.t, q, v, traj.poincare_t, pq,
                             pv, motion, lyap, clearance, system.sfd_node, settings, eps_rec,
-                            traj.max_eccentricity_run, traj.q_final, traj.v_final,
-                            traj.t_final, elapsed, name, notes, check)
-
-
-def lyapunov_estimate(ly: LyapunovResult, period: float,
-                      skip_fraction: float = 0.2) -> LyapunovResult:
-    """The exponent over the renormalisations after the first ``skip_fraction``: the first
-    intervals measure the alignment of the random initial perturbation (its high-mode
-    content grows by orders of magnitude in the weighted norm within one period), a
-    constant offset that decays only like 1/t in the running mean."""
-    n = ly.history.size
-    k = int(skip_fraction * n)
-    if k < 1 or n - k < 2:
-        return ly
-    t_start = ly.times[0] - (ly.times[1] - ly.times[0])
-    cum = ly.history * (ly.times - t_start)          # running sum of ln(d_j / d0)
-    lam = float((cum[-1] - cum[k - 1]) / (ly.times[-1] - ly.times[k - 1]))
-    mid = (k - 1 + n - 1) // 2
-    first = (cum[mid] - cum[k - 1]) / (ly.times[mid] - ly.times[k - 1])
-    second = (cum[-1] - cum[mid]) / (ly.times[-1] - ly.times[mid])
-    return dataclasses.replace(ly, exponent=lam, per_period=lam * period,
-                               half_spread=float(abs(second - first)))
+                            eps_run, traj.q_final, traj.v_final,
+                            traj.t_final, elapsed, name, notes, control, lyap_full)
 
 
 def _first_column(nodes: Sequence[int], sfd_node: int | None) -> int:
@@ -952,24 +668,43 @@ def _first_column(nodes: Sequence[int], sfd_node: int | None) -> int:
 def classify(pq: np.ndarray, pv: np.ndarray, q: np.ndarray, v: np.ndarray, dt: float,
              speed: float, lyapunov: LyapunovResult | None = None, *, first: int = 0,
              n_record: int | None = None) -> MotionClass | None:
-    """:func:`~rotorsfd.timedomain.classify_motion` on recorded columns ``(.., 2 n_nodes)``:
-    Poincare points ``[q, v]``, the spectrum of column ``first`` over ``n_record`` samples
-    (a whole number of periods); None with fewer than 8 Poincare points."""
+    """:func:`~rotorsfd.timedomain.classify_motion` on recorded columns ``(.., 2 n_nodes)``
+    (y, z of each node); the spectrum of column ``first`` over the last ``n_record``
+    samples (a whole number of periods); None with fewer than 8 Poincare points.
+
+    The section is the *displacements* of every recorded node, all in one scale (the
+    largest peak-to-peak of the recorded orbits): a point repeats when
+    ``max |P[k+n] - P[k]| <= 1e-3`` of that scale. Per-coordinate scales let a node with a
+    small orbit, and velocities, which carry a lightly damped high mode's free vibration
+    (``omega_h / Omega`` times its displacement; the rotor has no structural damping), call
+    a period-1 orbit quasi-periodic; the velocities' spread is reported
+    (``poincare_velocity_spread``, relative to the orbit's velocity range) but does not
+    decide."""
     if pq.shape[0] < 8:
         return None
     order = [first] + [i for i in range(q.shape[1]) if i != first]
-    P = np.hstack([pq[:, order], pv[:, order]])
     m = q.shape[0] if n_record is None else min(n_record, q.shape[0])
-    sig = np.hstack([q[:m, order], v[:m, order]])
-    mc = classify_motion(P, sig, dt, speed, lyapunov)
+    qs, vs = q[-m:][:, order], v[-m:][:, order]
+    scale = float(np.max(np.ptp(qs, axis=0))) or 1.0
+    mc = classify_motion(pq[:, order], qs, dt, speed, lyapunov, scale=scale)
+    v_scale = float(np.max(np.ptp(vs, axis=0))) or 1.0
+    ev = {**mc.evidence, "section": "displacements of the recorded nodes, one scale",
+          "section_scale_m": scale,
+          "poincare_spread": float(np.max(np.ptp(pq, axis=0))) / scale,
+          "poincare_velocity_spread": float(np.max(np.ptp(pv, axis=0))) / v_scale}
     n = mc.period
     if n is not None:
         # consecutive points within tolerance but drifting along a curve: not settled
-        settled = mc.evidence.get("n_distinct_poincare", n) <= n
-        ev = {**mc.evidence, "settled": settled}
+        settled = ev.get("n_distinct_poincare", n) <= n
+        ev["settled"] = settled
         if not settled:
             ev["note"] = (f"{ev['n_distinct_poincare']} distinct Poincare points for a "
                           f"period-{n} classification: the points still drift (a slow "
                           "transient); run more periods")
-        mc = MotionClass(mc.motion, ev)
-    return mc
+        elif n == 1 and ev["poincare_velocity_spread"] > 1e-3:
+            ev["note"] = (f"the velocities at the Poincare points spread by "
+                          f"{ev['poincare_velocity_spread']:.2g} of their range while the "
+                          f"displacements repeat within {ev['poincare_spread']:.2g}: the "
+                          "free vibration of a lightly damped high mode (not part of the "
+                          "classification)")
+    return MotionClass(mc.motion, ev)

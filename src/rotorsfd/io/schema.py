@@ -772,17 +772,28 @@ class SimulateAnalysis(Section):
         "newmark", description="time integration scheme (newmark: average acceleration)")
     alpha: quantity("ratio", "HHT alpha / generalized-alpha spectral radius parameter",
                     ge=-1 / 3, le=1) = 0.0
-    steps_per_period: integer("time steps per rotor period (paper: 200)", ge=8,
-                              le=1000000) = 200
+    steps_per_period: Literal["auto"] | Annotated[int, Field(ge=8, le=1000000)] = Field(
+        "auto", description="time steps per rotor period: \"auto\" halves the step from "
+        "T/200 until one halving moves the journal orbit by less than step_tolerance (the "
+        "transient at T/200, the recorded periods at the accepted step), or a fixed number "
+        "(paper: 200), checked by one halving; allowed: \"auto\" or an integer, 8 <= "
+        "value <= 1000000")
+    step_tolerance: quantity("ratio", "largest change of the journal orbit from one halving "
+                             "of the step, in SFD clearances (the orbit's max radius "
+                             "without an SFD); a fixed step above it draws a warning",
+                             gt=0, le=1) = 1e-3
+    max_steps_per_period: integer("the finest step of \"auto\" (a warning if the step has "
+                                  "not converged there)", ge=16, le=1000000) = 3200
     periods: integer("number of rotor periods (paper: 2000)", ge=1, le=10000000) = 2000
     poincare_periods: integer("last periods kept for Poincare sections (paper: 100)", ge=1,
                               le=10000000) = 100
     initial_displacement: quantity("length", "initial displacement of every node in y and "
                                    "z (paper: 1 um)") = 1e-6
     step_check_periods: integer(
-        "time-step check: the last that many periods are integrated again from the same "
-        "state at twice steps_per_period and the journal orbit compared (a warning above "
-        "0.01 C); 0: off", ge=0, le=10000000) = 20
+        "periods of the step check: they are integrated again from the same state at half "
+        "the step and the journal orbits compared (\"auto\": at each halving, the periods "
+        "before the recorded ones; a fixed step: its last periods); 0: off (fixed step "
+        "only)", ge=0, le=10000000) = 20
     nodes: list[NODE] = Field([], description="output nodes (default: SFD and disk nodes)")
 
     def fixed_speed(self, reference_speed: float) -> float | None:

@@ -275,9 +275,12 @@ def response_output(result: Any) -> PointOutput:
 
 @dataclass(frozen=True)
 class SimulateTask:
-    """A time integration at each grid point (``[analysis.simulate]``); summary: motion
-    class, speed, max SFD eccentricity, largest Lyapunov exponent, max r~ per output node;
-    arrays: the Poincare points (y, z) of the SFD node (or first output node)."""
+    """A time integration at each grid point (``[analysis.simulate]``, the same step
+    control: ``steps_per_period = "auto"`` by default); summary: motion class, speed, max
+    SFD eccentricity, largest Lyapunov exponent and its uncertainty, the accepted steps
+    per period, the change of the last halving (``step_error``, in C) and whether it met
+    ``step_tolerance`` (``step_converged``), max r~ per output node; arrays: the
+    Poincare points (y, z) of the SFD node (or first output node)."""
 
     search_path: str | None = None
 
@@ -302,7 +305,14 @@ def simulate_output(result: Any) -> PointOutput:
                                       else float(result.speed_ratio)),
         "max_eccentricity": finite_or_none(None if result.max_eccentricity is None
                                            else float(result.max_eccentricity)),
-        "lyapunov_per_s": None if ly is None else finite_or_none(float(ly.exponent))}
+        "lyapunov_per_s": None if ly is None else finite_or_none(float(ly.exponent)),
+        "lyapunov_uncertainty_per_s": None if ly is None
+        else finite_or_none(float(ly.half_spread)),
+        "steps_per_period": int(result.settings["steps_per_period"])}
+    ctl = result.step_check
+    if ctl is not None:
+        sc["step_error"] = finite_or_none(ctl.error)
+        sc["step_converged"] = bool(ctl.converged)
     for j, node in enumerate(result.nodes):
         r = np.sqrt(np.sum(np.asarray(result.q)[:, j, :2] ** 2, axis=-1)).max()
         sc[f"max_radius_{node}"] = float(r)

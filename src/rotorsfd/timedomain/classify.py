@@ -4,8 +4,10 @@ Decision, in this order:
 
 1. period-n: the normalised Poincare points repeat with period ``n <= n_max``
    (``|P[k+n] - P[k]| <= rtol`` times the orbit's spread).
-2. chaotic: a largest Lyapunov exponent above ``lyapunov_threshold`` per forcing period.
-3. quasi-periodic: not periodic and a Lyapunov exponent at or below the threshold.
+2. chaotic: a largest Lyapunov exponent above ``lyapunov_threshold`` per forcing period
+   by more than its uncertainty (a :class:`LyapunovResult`'s ``half_spread``).
+3. quasi-periodic: not periodic and a Lyapunov exponent at or below the threshold (within
+   its uncertainty).
    Without a Lyapunov exponent (weaker): the strong spectral lines are combinations
    ``p w + r w2`` of the forcing and one incommensurate frequency (``two_frequency_min``
    of their power); without a spectrum, the Poincare points on a smooth closed curve.
@@ -90,14 +92,18 @@ def classify_motion(poincare: np.ndarray, signal: np.ndarray | None = None,
         ev["incommensurate_ratios"] = [ln.ratio for ln in spec.incommensurate]
         ev["broadband_fraction"] = spec.broadband_fraction
     lam = None
+    err = 0.0
     if isinstance(lyapunov, LyapunovResult):
         lam = lyapunov.per_period
         ev["lyapunov_exponent"] = lyapunov.exponent
         ev["lyapunov_half_spread"] = lyapunov.half_spread
+        if lyapunov.exponent != 0.0 and math.isfinite(lyapunov.half_spread):
+            err = abs(lyapunov.half_spread * lam / lyapunov.exponent)
     elif lyapunov is not None:
         lam = float(lyapunov)
     if lam is not None:
         ev["lyapunov_per_period"] = lam
+        ev["lyapunov_uncertainty_per_period"] = err
     if n is not None:
         ev["basis"] = "poincare period"
         return MotionClass(f"period-{n}", ev)
@@ -111,7 +117,7 @@ def classify_motion(poincare: np.ndarray, signal: np.ndarray | None = None,
         ev["two_frequency_fraction"] = frac
         ev["second_frequency"] = w2
     if lam is not None and math.isfinite(lam):
-        if lam > lyapunov_threshold:
+        if lam - err > lyapunov_threshold:
             ev["basis"] = "positive Lyapunov exponent"
             if curve["passed"] and frac is not None and frac >= two_frequency_min:
                 ev["note"] = ("closed-curve section and two-frequency spectrum: the positive "
@@ -119,7 +125,7 @@ def classify_motion(poincare: np.ndarray, signal: np.ndarray | None = None,
                               "neutral (undamped) direction of the model")
             return MotionClass("chaotic", ev)
         ev["basis"] = ("non-periodic, largest Lyapunov exponent not above "
-                       f"{lyapunov_threshold:g} per period")
+                       f"{lyapunov_threshold:g} per period within its uncertainty")
         return MotionClass("quasi-periodic", ev)
     if frac is not None:
         if frac >= two_frequency_min:

@@ -265,6 +265,8 @@ _MESSAGES = {
                   "(reduce the step)",
     nm.NOT_FINITE: "the state became non-finite",
 }
+#: What a stepping status means, for messages (public name of ``_MESSAGES``).
+MESSAGES = _MESSAGES
 
 
 def run(ps: PreparedSystem, state: StepState, n_steps: int, *,

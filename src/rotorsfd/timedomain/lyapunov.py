@@ -11,6 +11,7 @@ and the perturbation rescaled to ``d0`` along its current direction::
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -26,6 +27,9 @@ from rotorsfd.timedomain.integrate import (
     prepare,
     run,
 )
+
+Projector = Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]
+"""``(dq, dv) -> (dq, dv)``: a linear map of perturbations (displacement, velocity)."""
 
 
 @dataclass(frozen=True)
@@ -52,13 +56,19 @@ def largest_lyapunov(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: 
                      seed: int = 0, t0: float = 0.0,
                      time_varying: TimeVaryingMatrices | None = None,
                      method: str = "newmark", alpha: float = 0.05, rho_inf: float = 0.9,
-                     newton_rtol: float = 1e-12) -> LyapunovResult:
+                     newton_rtol: float = 1e-12,
+                     project: Projector | None = None) -> LyapunovResult:
     """Largest Lyapunov exponent of the system of :func:`integrate` (same inputs).
 
     ``n_steps`` (or ``n_periods``) counts the measured steps after ``transient_steps``.
     ``renorm_every`` defaults to one forcing period (or 100 steps); ``d0`` (absolute, in
     the units of ``q``) to ``1e-7`` times the largest ``|q|`` or ``|v|/w`` at the end of
     the transient (``1e-10`` if the state is zero).
+
+    ``project(dq, dv) -> (dq, dv)``: applied to the perturbation at the start and before
+    each measurement, so that directions it removes (e.g. the neutral, undamped high
+    modes: :func:`modal_projector`) neither grow nor enter ``d``; the exponent is then the
+    largest one of the remaining subspace.
     """
     if steps_per_period is not None or n_periods is not None:
         if forcing is None or not forcing.omega > 0.0 or steps_per_period is None \
@@ -97,6 +107,9 @@ def largest_lyapunov(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: 
         d0 = 1e-7 * size if size > 0.0 else 1e-10
     rng = np.random.default_rng(seed)
     dirn = rng.standard_normal(2 * n)
+    if project is not None:
+        pq_, pv_ = project(dirn[:n], w * dirn[n:])
+        dirn = np.concatenate([pq_, pv_ / w])
     dirn /= math.sqrt(dirn[:n] @ dirn[:n] + dirn[n:] @ dirn[n:])
     pert = initial_state(ps, ref.X[:n] + d0 * dirn[:n], ref.X[n:2 * n] + d0 * w * dirn[n:],
                          step=ref.step)
@@ -110,6 +123,8 @@ def largest_lyapunov(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: 
         done += k
         dq = pert.X[:n] - ref.X[:n]
         dv = pert.X[n:2 * n] - ref.X[n:2 * n]
+        if project is not None:
+            dq, dv = project(dq, dv)
         d = math.sqrt(dq @ dq + (dv @ dv) / (w * w))
         if not (d > 0.0 and math.isfinite(d)):
             raise ConvergenceError(f"Lyapunov run: separation {d} at step {ref.step}")
@@ -132,3 +147,18 @@ def largest_lyapunov(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: 
         spread = math.nan
     per = lam * 2 * math.pi / omega if omega > 0 else math.nan
     return LyapunovResult(lam, per, hist, times_a, spread, float(d0), renorm_every)
+
+
+def modal_projector(M: np.ndarray, basis: np.ndarray) -> Projector:
+    """M-orthogonal projection of displacements and velocities onto ``span(basis)``
+    (n, k): ``P x = V (V^T M V)^-1 V^T M x``; with the Craig-Bampton basis of the low modes
+    it removes the high modes' components."""
+    V = np.asarray(basis, dtype=float)
+    MV = np.asarray(M, dtype=float) @ V
+    G = np.linalg.inv(V.T @ MV)
+    L = G @ MV.T                                   # (k, n): coordinates of M-projection
+
+    def project(dq: np.ndarray, dv: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return V @ (L @ dq), V @ (L @ dv)
+
+    return project
