@@ -34,6 +34,7 @@ from typing import Any
 
 from rotorsfd import __version__
 from rotorsfd.errors import ConfigError, RotorsfdError
+from rotorsfd.interrupt import Interrupted, StopRequest
 
 Handler = Callable[[argparse.Namespace, Any], "int | None"]
 
@@ -172,13 +173,16 @@ def main(argv: Sequence[str] | None = None) -> int:
         check_output(getattr(args, "output", None))
         if spec.config and spec.output:
             _print_warnings(config, Path(args.config).parent)
-        status = int(spec.handler(args, config) or 0)
+        status = _run_marked(spec, args, config)
         sys.stdout.flush()  # a closed pipe fails here, not at the interpreter's exit
         return status
     except ConfigError as exc:
         return _report(exc, 2, debug)
     except RotorsfdError as exc:
         return _report(exc, 1, debug)
+    except Interrupted as exc:
+        print(f"rotorsfd: interrupted: {exc.kept}", file=sys.stderr)
+        return 130
     except KeyboardInterrupt:
         print("rotorsfd: interrupted", file=sys.stderr)
         return 130
@@ -193,6 +197,30 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 PREFIX = "rotorsfd: error: "
+
+
+def _run_marked(spec: Command, args: argparse.Namespace, config: Any) -> int:
+    """Run the handler with ``INCOMPLETE.txt`` in its output folder while it runs (kept,
+    saying so, if the run is interrupted; left behind if it is killed)."""
+    if not spec.output:
+        return int(spec.handler(args, config) or 0)
+    from rotorsfd.io.marker import MARKER, IncompleteMarker
+
+    marker = IncompleteMarker.start(args.output, spec.name)
+    try:
+        status = int(spec.handler(args, config) or 0)
+    except Interrupted as exc:
+        marker.interrupted(exc.kept)
+        exc.kept += f"; {args.output / MARKER} marks the folder incomplete"
+        raise
+    except KeyboardInterrupt:
+        marker.interrupted()
+        raise Interrupted(f"{args.output / MARKER} marks the folder incomplete") from None
+    except BaseException:
+        marker.finished()
+        raise
+    marker.finished()
+    return status
 
 
 def _report(exc: BaseException, status: int, debug: bool, prefix: str = "") -> int:
@@ -357,14 +385,29 @@ def _fit_supports(args: argparse.Namespace, config: Any) -> int:
 def _response(args: argparse.Namespace, config: Any) -> int:
     from rotorsfd import api
 
-    result = api.run_response(config, search_path=Path(args.config).parent,
-                              progress=not args.quiet, from_orbit=args.from_orbit)
+    with StopRequest("the current point") as stop:
+        result = api.run_response(config, search_path=Path(args.config).parent,
+                                  progress=not args.quiet, from_orbit=args.from_orbit,
+                                  callback=stop)
     paths = result.write(args.output, multipliers_at=args.multipliers_at)
+    if stop.requested:
+        _print_written(result, paths, args.quiet)
+        raise Interrupted(f"the {result.branch.n_points} points computed before Ctrl-C "
+                          f"({_branch_end(result)}) are written to {args.output}")
     if not result.success:
         print(f"{PREFIX}{_one_line(result.message)}", file=sys.stderr)
         return 1
     _print_written(result, paths, args.quiet)
     return 0
+
+
+def _branch_end(result: Any) -> str:
+    """Where an interrupted response branch ends, in the parameter's terms."""
+    lam = result.branch.lam
+    if result.is_speed:
+        return (f"Omega~ = {lam[0] / result.reference_speed:.4g} .. "
+                f"{lam[-1] / result.reference_speed:.4g}")
+    return f"{result.parameter} = {lam[0]:.6g} .. {lam[-1]:.6g}"
 
 
 @command("static", "static deflection of the linear rotor under constant base motion "
@@ -408,9 +451,8 @@ def _sweep(args: argparse.Namespace, config: Any) -> int:
                            progress=not args.quiet, resume=args.resume,
                            search_path=Path(args.config).parent)
     except KeyboardInterrupt:
-        print(f"rotorsfd: partial results written to {args.output} (finished points "
-              "kept; continue with --resume)", file=sys.stderr)
-        raise
+        raise Interrupted(f"partial results written to {args.output} (finished points "
+                          "kept; continue with --resume)") from None
     if not args.quiet:
         print(result.summary())
         print(f"wrote {args.output / 'sweep.nc'}, {args.output / 'summary.csv'}")

@@ -97,15 +97,16 @@ def test_read_only_folder(tmp_path, monkeypatch, capsys):
     assert "(Permission denied)" in _line(capsys.readouterr().err)
 
 
-def test_good_output_folder_is_not_created_by_the_check(tmp_path, monkeypatch, capsys):
+def test_good_output_folder_check_leaves_nothing(tmp_path, monkeypatch, capsys):
     target = tmp_path / "a" / "b"
-    calls = []
+    seen = []
     spec = cli.COMMANDS["modal"]
     monkeypatch.setitem(cli.COMMANDS, "modal", dataclasses.replace(
-        spec, handler=lambda args, config: calls.append(args.output) or 0))
+        spec, handler=lambda args, config: seen.append(sorted(
+            p.name for p in tmp_path.rglob("*"))) or 0))
     assert cli.main(_argv("modal", str(target))) == 0
-    assert calls == [target]
-    assert list(tmp_path.iterdir()) == []          # no folder, no probe left behind
+    assert seen == [["INCOMPLETE.txt", "a", "b"]]  # no probe folder, only the run's marker
+    assert list(tmp_path.iterdir()) == []          # the run wrote nothing: folders removed
 
 
 @pytest.mark.parametrize(("argv", "line"), [

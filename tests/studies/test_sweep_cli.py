@@ -132,3 +132,43 @@ def test_scheduler_option_on_local_cluster(tmp_path):
                  "--quiet", *AXES), env=_env(), capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr
     assert _bytes(tmp_path / "dask") == _bytes(tmp_path / "serial")
+
+
+def _group(pgid: int) -> list[str]:
+    """Live processes of the process group ``pgid`` (zombies excluded: init reaps them)."""
+    ps = subprocess.run(["ps", "-ww", "-o", "pid=,stat=,args=", "-g", str(pgid)],
+                        capture_output=True, text=True)
+    return [line for line in ps.stdout.splitlines() if line.split()[1][0] != "Z"]
+
+
+def test_sigkill_of_the_cli_leaves_no_process(tmp_path):
+    """Only the `rotorsfd sweep` process is killed: its workers, the forkserver and the
+    resource tracker exit by themselves, quietly; the folder is marked incomplete."""
+    cfg = sweep_toml(tmp_path / "rotor.toml")
+    out = tmp_path / "out"
+    proc = subprocess.Popen(
+        _cli(str(cfg), "-o", str(out), "--task", "synthetic:delay=0.4", "--workers", "2",
+             "--quiet", *AXES), env=_env(), start_new_session=True,
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while not list((out / "points").glob("0*.json")) and time.monotonic() < deadline:
+        assert proc.poll() is None, proc.communicate()
+        time.sleep(0.02)
+    before = _group(proc.pid)
+    assert any("forkserver" in line for line in before), before
+    assert sum("forkserver" in line for line in before) >= 3, before   # server + 2 workers
+    assert any("resource_tracker" in line for line in before), before
+    os.kill(proc.pid, signal.SIGKILL)                      # the CLI only, not its group
+    proc.wait()
+    deadline = time.monotonic() + 20
+    while _group(proc.pid) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert _group(proc.pid) == []
+    _, err = proc.communicate(timeout=10)
+    assert "leaked" not in err and "Traceback" not in err, err
+    assert "and has not finished" in (out / "INCOMPLETE.txt").read_text()
+    run = subprocess.run(_cli(str(cfg), "-o", str(out), "--task", "synthetic", "--workers",
+                              "2", "--resume", "--quiet", *AXES),
+                         env=_env(), capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    assert not (out / "INCOMPLETE.txt").exists()

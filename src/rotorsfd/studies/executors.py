@@ -11,7 +11,9 @@ One interface (a subset of :mod:`concurrent.futures`) so the sweep has one code 
   ``as_completed`` reaches it (``workers=1``), with one BLAS thread.
 - :class:`ProcessExecutor`: :class:`concurrent.futures.ProcessPoolExecutor` (forkserver),
   sized to the CPUs this process may use (``os.sched_getaffinity``); workers use
-  single-threaded BLAS and ignore SIGINT (the parent stops them).
+  single-threaded BLAS, ignore SIGINT (the parent stops them) and exit when the parent
+  process dies (even by SIGKILL: no orphaned workers, and then the forkserver and the
+  resource tracker, which live as long as the workers, exit too).
 - :class:`DaskExecutor`: ``dask.distributed.Client(scheduler)``; ``submit`` /
   ``as_completed`` of distributed; single-threaded BLAS in each call (threadpoolctl).
 """
@@ -22,7 +24,11 @@ import concurrent.futures as cf
 import contextlib
 import multiprocessing
 import os
+import select
 import signal
+import sys
+import threading
+import time
 from collections.abc import Callable, Iterable, Iterator
 from typing import Any, Protocol
 
@@ -122,11 +128,44 @@ class SerialExecutor(_Base):
             yield fut
 
 
-def _init_worker() -> None:
+def _exit_when_gone(pid: int) -> None:
+    """Block until process ``pid`` has exited, then end this process at once."""
+    try:
+        fd = os.pidfd_open(pid)          # Linux >= 5.3: readable when the process exits
+    except ProcessLookupError:
+        os._exit(1)
+    except (AttributeError, OSError):    # elsewhere: poll
+        while True:
+            time.sleep(0.5)
+            try:
+                os.kill(pid, 0)
+            except ProcessLookupError:
+                os._exit(1)
+            except PermissionError:
+                pass
+    select.select([fd], [], [])
+    os._exit(1)
+
+
+def _init_worker(parent: int) -> None:
+    threading.Thread(target=_exit_when_gone, args=(parent,), daemon=True,
+                     name="rotorsfd-parent-watch").start()
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     for name in BLAS_THREAD_VARIABLES:
         os.environ[name] = "1"
     _one_blas_thread()  # also if numpy was loaded before (threadpoolctl: process-wide)
+
+
+#: -W option handed to the resource tracker (it takes this process's warning options)
+TRACKER_WARNINGS = "ignore::UserWarning:multiprocessing.resource_tracker"
+
+
+def _quiet_resource_tracker() -> None:
+    """No "leaked semaphore objects" warning from multiprocessing's resource tracker when
+    the sweep is killed: the tracker then cleans them up, which is its job, and the
+    warning tells the user nothing to do. Effective if the tracker is not running yet."""
+    if TRACKER_WARNINGS not in sys.warnoptions:
+        sys.warnoptions.append(TRACKER_WARNINGS)
 
 
 class ProcessExecutor(_Base):
@@ -136,9 +175,11 @@ class ProcessExecutor(_Base):
         self.workers = max(1, workers or available_cpus())
         self.description = f"process pool, {self.workers} workers"
         single_threaded_blas()
+        _quiet_resource_tracker()
         method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() \
             else "spawn"
         self._pool = cf.ProcessPoolExecutor(self.workers, initializer=_init_worker,
+                                            initargs=(os.getpid(),),
                                             mp_context=multiprocessing.get_context(method))
 
     def submit(self, fn: Callable[..., Any], /, *args: Any) -> cf.Future[Any]:
