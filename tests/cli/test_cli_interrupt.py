@@ -108,3 +108,21 @@ def test_ctrl_c_on_response_writes_the_points_so_far(tmp_path):
     marker = (out / MARKER).read_text()
     assert f"The {n} points computed before Ctrl-C" in marker
     assert b"wrote " in out_text
+
+
+def test_rerun_after_a_kill_removes_half_written_files(tmp_path, monkeypatch):
+    """SIGKILL while writing leaves the marker and a temporary file; the next run in the
+    folder removes the temporary file and, once it has finished, the marker."""
+    out = tmp_path / "out"
+    (out / "points").mkdir(parents=True)
+    (out / MARKER).write_text("rotorsfd modal started writing this folder ...\n")
+    stale = [out / ".branch.nc.k2j3h4.tmp.nc", out / "points" / ".000001.json.ab12.tmp.json"]
+    for p in stale:
+        p.write_bytes(b"")
+    (out / "campbell.csv").write_text("kept\n")
+    seen = []
+    _with_handler(monkeypatch, lambda args, config: seen.append(
+        sorted(p.name for p in out.rglob("*"))) or 0)
+    assert cli.main(["modal", str(PAPER), "-o", str(out), "-q"]) == 0
+    assert seen == [[MARKER, "campbell.csv", "points"]]
+    assert sorted(p.name for p in out.rglob("*")) == ["campbell.csv", "points"]

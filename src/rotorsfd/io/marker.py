@@ -22,6 +22,19 @@ def _now() -> str:
     return time.strftime("%Y-%m-%d %H:%M:%S %Z")
 
 
+#: temporary files of the atomic writers: ``.<name>.<random>.tmp<suffix>``
+TEMPORARY = ".*.*.tmp*"
+
+
+def remove_stale_temporaries(folder: Path) -> list[Path]:
+    """Delete the atomic writers' temporary files under ``folder`` (those of a killed run:
+    call it only when no other run writes there); return them."""
+    stale = [p for p in folder.rglob(TEMPORARY) if p.is_file()]
+    for p in stale:
+        p.unlink(missing_ok=True)
+    return stale
+
+
 @dataclass
 class IncompleteMarker:
     """The marker of one run in ``folder`` (see the module docstring)."""
@@ -37,8 +50,12 @@ class IncompleteMarker:
 
     @classmethod
     def start(cls, folder: str | Path, command: str) -> IncompleteMarker:
-        """Create ``folder`` if needed and write the marker of a run that has started."""
+        """Create ``folder`` if needed and write the marker of a run that has started.
+        If a previous run's marker is there (it was killed), its half-written temporary
+        files are removed first (:func:`remove_stale_temporaries`)."""
         folder = Path(folder)
+        if (folder / MARKER).is_file():
+            remove_stale_temporaries(folder)
         created = None
         for candidate in (folder, *folder.parents):
             if candidate.exists():
