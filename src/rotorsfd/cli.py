@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import os
 import sys
 import traceback
@@ -32,7 +31,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from rotorsfd import __version__
+from rotorsfd import __version__, cli_args
 from rotorsfd.errors import ConfigError, RotorsfdError
 from rotorsfd.interrupt import Interrupted, StopRequest
 
@@ -339,21 +338,12 @@ def _modal(args: argparse.Namespace, config: Any) -> int:
     return 0
 
 
-def _speed(text: str) -> float:
-    from rotorsfd.io.units import UnitError, to_si
-
-    try:
-        return to_si(text, "angular_velocity")
-    except UnitError as exc:
-        raise argparse.ArgumentTypeError(str(exc)) from None
-
-
 @command("fit-supports", "fit support stiffnesses (dotted paths) so that the lowest "
          "critical speeds meet targets; prints the values and the --set lines (the "
          "paper gives no support stiffnesses)", quiet=True,
          arguments=[arg("--field", action="append", required=True, metavar="PATH",
                         help="a stiffness field, e.g. sfd.centring_stiffness (repeatable)"),
-                    arg("--target", action="append", required=True, type=_speed,
+                    arg("--target", action="append", required=True, type=cli_args.speed,
                         metavar="SPEED", help="target critical speed, e.g. 811.3 or "
                         "'7747 rpm' (repeatable, in the order of the modes)"),
                     arg("-o", "--output", type=Path, metavar="DIR",
@@ -373,11 +363,11 @@ def _fit_supports(args: argparse.Namespace, config: Any) -> int:
 @command("response", "periodic response by harmonic balance and arc-length continuation "
          "([analysis.response]): branch.nc, branch.csv, response plots; exit 1 if the "
          "branch stops early (the points so far are written)", output=True, quiet=True,
-         arguments=[arg("--multipliers-at", type=float, default=None, metavar="X",
+         arguments=[arg("--multipliers-at", type=cli_args.ratio, default=None, metavar="X",
                         help="multipliers.png at the point nearest this speed ratio "
                              "Omega/Omega_ref (the parameter in SI for a non-speed branch); "
                              "default: the point of largest |mu|max"),
-                    arg("--from-orbit", type=Path, metavar="DIR_OR_NC",
+                    arg("--from-orbit", type=cli_args.existing_path, metavar="DIR_OR_NC",
                         help="start the branch on the last period of a time-domain orbit "
                              "(rotorsfd simulate output), Newton-corrected at its speed, "
                              "and continue it both ways over the speed range, stopping "
@@ -434,7 +424,7 @@ def _static(args: argparse.Namespace, config: Any) -> int:
                     arg("--task", metavar="NAME[:K=V,...]",
                         help="task kind: response, simulate, stability-chart, or "
                              "synthetic (tests) (default: analysis.sweep.task)"),
-                    arg("--workers", type=int, metavar="N",
+                    arg("--workers", type=cli_args.integer(1), metavar="N",
                         help="local worker processes (default: the available CPUs)"),
                     arg("--scheduler", metavar="tcp://HOST:PORT",
                         help="run on this Dask distributed scheduler"),
@@ -460,52 +450,27 @@ def _sweep(args: argparse.Namespace, config: Any) -> int:
 
 
 
-def _ratio(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
-    if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"expected a finite number, got {text!r}")
-    return value
-
-
-def _positive_ratio(text: str) -> float:
-    value = _ratio(text)
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"must be > 0 (the rotor speed over the "
-                                         f"[reference] speed), got {text!r}")
-    return value
-
-
-def _positive_speed(text: str) -> float:
-    value = _speed(text)
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"must be > 0 rad/s, got {text!r}")
-    return value
-
-
 @command("simulate", "time integration at one speed ([analysis.simulate]): timeseries.nc, "
          "poincare.csv, summary.json (motion: period-n, quasi-periodic or chaotic, with the "
          "evidence), simulation.png and orbit/phase/poincare/spectrum.png; journal contact: "
          "one line, exit 1, nothing written", output=True, quiet=True,
-         arguments=[arg("--speed", type=_positive_speed, metavar="SPEED",
+         arguments=[arg("--speed", type=cli_args.positive_speed, metavar="SPEED",
                         help="rotor speed, e.g. 850 or '8000 rpm' (rad/s if no unit)"),
-                    arg("--speed-ratio", type=_positive_ratio, metavar="X",
+                    arg("--speed-ratio", type=cli_args.positive_ratio, metavar="X",
                         help="rotor speed / [reference] speed"),
                     arg("--from-hb", action="store_true",
                         help="start on the HB periodic solution at that speed (H from "
                              "[analysis.response]) instead of the displaced state"),
-                    arg("--hb-phase", type=_ratio, default=0.0, metavar="P",
+                    arg("--hb-phase", type=cli_args.ratio, default=0.0, metavar="P",
                         help="with --from-hb: start on the HB orbit a fraction P of the "
                              "period later (e.g. 0.5; off the orbit at t = 0 unless it is "
                              "symmetric: a way to find a coexisting attractor)"),
-                    arg("--initial-state", type=Path, metavar="DIR_OR_NC",
+                    arg("--initial-state", type=cli_args.existing_path, metavar="DIR_OR_NC",
                         help="start from the final state of a previous run (its output "
                              "directory or timeseries.nc); same speed: continues it"),
-                    arg("--record-periods", type=int, metavar="N",
+                    arg("--record-periods", type=cli_args.integer(1), metavar="N",
                         help="last periods kept in timeseries.nc (default: poincare_periods)"),
-                    arg("--lyapunov-periods", type=int, metavar="N",
+                    arg("--lyapunov-periods", type=cli_args.integer(0), metavar="N",
                         help="periods of the Lyapunov run (default: min(100, periods); "
                              "0: none)")])
 def _simulate(args: argparse.Namespace, config: Any) -> int:
@@ -557,7 +522,7 @@ def _bifurcation_diagram(args: argparse.Namespace, config: Any) -> int:
 @command("stability-chart", "stability chart of the linear rotor (film off) under harmonic "
          "base rotation over two parameters ([analysis.stability_chart] x, y, speed): "
          "chart.nc (max |Floquet multiplier|, stable), chart.png", output=True, quiet=True,
-         arguments=[arg("--workers", type=int, default=1, metavar="N",
+         arguments=[arg("--workers", type=cli_args.integer(1), default=1, metavar="N",
                         help="threads over the grid rows (default: 1)")])
 def _stability_chart(args: argparse.Namespace, config: Any) -> int:
     from rotorsfd import api
@@ -620,7 +585,7 @@ def _fold_range(config: Any, parameter: str, start: str, stop: str) -> tuple[flo
                              "there must have a saddle-node"),
                     arg("--to", dest="stop", required=True, metavar="VALUE",
                         help="end value, e.g. '10 rad/s'"),
-                    arg("--harmonics", type=int, metavar="H", help="override H")])
+                    arg("--harmonics", type=cli_args.integer(1), metavar="H", help="override H")])
 def _fold_curve(args: argparse.Namespace, config: Any) -> int:
     from rotorsfd import api
 
@@ -645,7 +610,7 @@ def _fold_curve(args: argparse.Namespace, config: Any) -> int:
                         help="only this figure of the paper (repeatable), e.g. --figure 7"),
                     arg("--quick", action="store_true",
                         help="Figure 7 only (fixed base, Table 1): under a minute"),
-                    arg("--workers", type=int, metavar="N",
+                    arg("--workers", type=cli_args.integer(1), metavar="N",
                         help="worker processes (default: the CPUs, at most 2)")])
 def _paper(args: argparse.Namespace, config: Any) -> int:
     from rotorsfd import api
@@ -654,7 +619,9 @@ def _paper(args: argparse.Namespace, config: Any) -> int:
         result = api.run_paper(args.output, args.figure, quick=args.quick,
                                workers=args.workers, progress=not args.quiet)
     except KeyError as exc:
-        raise ConfigError("--figure", args.figure, exc.args[0]) from None
+        bad = [f for f in args.figure if f"no figure {f} " in f"{exc.args[0]} "]
+        raise ConfigError("--figure", bad[0] if bad else ", ".join(args.figure),
+                          exc.args[0]) from None
     if not args.quiet:
         print(result.summary())
         print(f"wrote {result.paths['report.md']}, {result.paths['report.html']}")

@@ -152,6 +152,39 @@ def test_simulate_speed_options_named(tmp_path, capsys, argv, line):
     assert _line(capsys.readouterr().err) == line
 
 
+@pytest.mark.parametrize(("argv", "words"), [
+    (["fold-curve", str(FOLDS), "--from", "0", "--to", "1", "--harmonics", "0"],
+     "fold-curve: argument --harmonics: must be >= 1, got '0'"),     # was silently ignored
+    (["simulate", str(PAPER), "--speed-ratio", "1", "--lyapunov-periods", "-5"],
+     "simulate: argument --lyapunov-periods: must be >= 0, got '-5'"),    # was accepted
+    (["simulate", str(PAPER), "--speed-ratio", "1", "--record-periods", "0"],
+     "simulate: argument --record-periods: must be >= 1, got '0'"),
+    (["simulate", str(PAPER), "--speed-ratio", "1", "--initial-state", "/no/such"],
+     "simulate: argument --initial-state: no such file or folder: '/no/such'"),
+    (["response", str(PAPER), "--from-orbit", "/no/such"],     # was found after the start
+     "response: argument --from-orbit: no such file or folder: '/no/such'"),
+    (["response", str(PAPER), "--multipliers-at", "nan"],
+     "response: argument --multipliers-at: expected a finite number, got 'nan'"),
+    (["sweep", str(PAPER), "--workers", "0"], "sweep: argument --workers: must be >= 1"),
+    (["stability-chart", str(PAPER), "--workers", "x"],
+     "stability-chart: argument --workers: expected an integer, got 'x'"),
+])
+def test_option_values_checked_before_work(tmp_path, monkeypatch, capsys, argv, words):
+    _no_work(monkeypatch)
+    assert cli.main([*argv, "-o", str(tmp_path / "out")]) == 2
+    line = _line(capsys.readouterr().err)
+    assert line.startswith("rotorsfd: error: ") and words in line
+    assert not (tmp_path / "out").exists()
+
+
+def test_unknown_paper_figure_named_alone(tmp_path, capsys):
+    argv = ["paper", "--figure", "7", "--figure", "abc", "-o", str(tmp_path / "out")]
+    assert cli.main(argv) == 2
+    assert _line(capsys.readouterr().err).startswith(
+        "rotorsfd: error: --figure: got 'abc'; no figure abc (known: ")
+    assert not (tmp_path / "out").exists()
+
+
 @pytest.mark.parametrize("argv", [["simulate", str(PAPER), "-o", "x", "--bogus"],
                                   ["config", "show"], ["nope"]])
 def test_one_error_prefix(capsys, argv):
