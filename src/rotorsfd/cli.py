@@ -1,9 +1,10 @@
 """Command-line interface: parse, call :mod:`rotorsfd.api`, print. No physics here.
 
-Exit status: 0 success; 2 bad input (config, ``--set``, arguments: one line naming the
-field); 1 any other rotorsfd error (numerical failure) or a file that cannot be written
-(one line); 130 interrupted.
-``--debug`` adds the traceback.
+Exit status: 0 success; 2 bad input (config, ``--set``, arguments, an output folder that
+cannot be written: one line naming the field, before any work); 1 any other rotorsfd error
+(numerical failure) or a file that cannot be written (one line); 130 interrupted (the
+output folder keeps ``INCOMPLETE.txt``); 141 stdout closed early (``| head``), silently.
+``--debug`` adds the traceback. Every error line starts with ``rotorsfd: error: ``.
 
 Adding a command: register a function with :func:`command`; the registry builds the
 parser, loads the config (``CONFIG`` and ``--set`` when ``config=True``), adds ``-o DIR``
