@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import contextlib
 import io
+import math
 import os
 import re
 import shlex
@@ -83,7 +84,55 @@ def test_readme_python_study_runs_and_finds_the_folds():
     lines = out.getvalue().splitlines()
     assert len(lines) == 4
     # w_by = 0: Table 1's pair (our values 1.0593 / 1.0527); from w_by = 4.41 rad/s (the
-    # cusp) on, no saddle-node: 6 rad/s prints an empty list.
+    # cusp at this H = 3; 4.379 converged in H) on, no saddle-node: 6 rad/s prints [].
     folds0 = [float(v) for v in re.findall(r"\d\.\d+", lines[0].split("Omega~")[1])]
     assert sorted(folds0) == pytest.approx([1.0527, 1.0593], abs=2e-4)
     assert lines[3].endswith("[]")
+
+
+def _coexisting_commands() -> list[str]:
+    """The README's "Coexisting motions" commands, in order."""
+    part = README.split("**Coexisting motions.**", 1)[1].split("### ", 1)[0]
+    (block,) = re.findall(r"```bash\n(.*?)```", part, flags=re.DOTALL)
+    return [line for line in block.splitlines() if line.startswith("rotorsfd ")]
+
+
+#: The isola's period-1 orbit at Omega~ = 1.075: journal at the Poincare point [C] at
+#: T/1600 (measured, docs/paper.md); the main branch's is (0.295, -0.817).
+ISOLA_POINT = (-0.2242, -0.9022)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("steps", [800, 1600])
+def test_readme_coexisting_recipe_reaches_the_isola_at_converged_steps(tmp_path, steps):
+    """The README's recipe finds the second orbit (at T/200), then integrates from there at
+    a converged step (the file's T/800, and T/1600): it stays on the isola (300 periods
+    instead of the file's 2000 here; the start is already close to it)."""
+    import json
+
+    from rotorsfd.cli import main
+
+    find, _isola, second, _walk = _coexisting_commands()
+    assert "--hb-phase 0.5" in find and "steps_per_period=200" in find
+    assert "--initial-state out/find" in second and "steps_per_period" not in second
+    with contextlib.redirect_stdout(io.StringIO()):
+        cwd = Path.cwd()
+        try:
+            os.chdir(ROOT)
+            argv = shlex.split(find.replace("out/", f"{tmp_path}/"))[1:]
+            assert main([*argv, "-q"]) == 0
+            argv = shlex.split(second.replace("out/", f"{tmp_path}/"))[1:]
+            argv += ["--set", "analysis.simulate.periods=300", "--set",
+                     f"analysis.simulate.steps_per_period={steps}", "-q"]
+            assert main(argv) == 0
+        finally:
+            os.chdir(cwd)
+    summary = json.loads((tmp_path / "second" / "summary.json").read_text())
+    assert summary["motion"] == "period-1"
+    head, *rows = (tmp_path / "second" / "poincare.csv").read_text().splitlines()
+    sfd = [dict(zip(head.split(","), r.split(","), strict=True)) for r in rows]
+    last = [r for r in sfd if r["node"] == "1"][-1]            # the journal (SFD node 1)
+    C = summary["clearance_m"]
+    y, z = float(last["y"]) / C, float(last["z"]) / C
+    # T/800 is 2e-3 C from T/1600 here; the main branch is 0.5 C away
+    assert math.hypot(y - ISOLA_POINT[0], z - ISOLA_POINT[1]) < 4e-3

@@ -91,3 +91,49 @@ def test_missing_width_says_why_not_nan():
     assert r0.ours == f"none [{why}]" and r0.verdict == "differs"
     r10 = rows["U = 360.04: unstable width at w_by = 10"]
     assert r10.ours == "0.1" and "nan" not in r10.difference
+
+
+def test_cusp_above_the_paper_rate_differs():
+    """The paper has no fold pair from 4 rad/s on (U = 144.02 g mm): a cusp above 4 rad/s
+    means our model is still bistable there, which is a difference, not a grid effect."""
+    def rows(end, width4):
+        o = Outcome("fig19-u144", "ok", "", 1.0,
+                    {"end_rate": end, "width0": 0.0067, "width10": 0.0, "width4": width4})
+        return {r.quantity: r for r in comparison_rows({"fig19-u144": o})}
+
+    r = rows(4.379, 7e-4)
+    end = r["U = 144.02: no unstable range from w_by [rad/s]"]
+    assert (end.ours, end.difference, end.verdict) == ("4.3790", "+0.379 rad/s", "differs")
+    w4 = r["U = 144.02: unstable width at w_by = 4"]
+    assert (w4.ours, w4.verdict) == ("0.0007", "differs")
+    r = rows(3.2, 0.0)
+    assert r["U = 144.02: no unstable range from w_by [rad/s]"].verdict == "agrees"
+    assert r["U = 144.02: unstable width at w_by = 4"].verdict == "agrees"
+
+
+def test_time_domain_rows_name_the_step_and_the_eccentricities():
+    numbers = {"motion": "period-1", "steps_per_period": 800, "poincare_y": 0.29491,
+               "poincare_z": -0.81721, "eps_poincare": 0.86880, "eps_max": 0.98834,
+               "step_check": 0.0022}
+    iso = {"find_motion": "period-1", "second_motion": "period-1",
+           "motion_1.062": "period-3", "motion_1.07_T200": "quasi-periodic",
+           "lyapunov_1.07_T200": -0.0038, "second_steps_per_period": 800,
+           "second_poincare_y": -0.2262, "second_poincare_z": -0.9022,
+           "second_eps_poincare": 0.9301, "second_eps_max": 0.9930, "bifurcations": []}
+    outcomes = {"fig23-s1.075": Outcome("fig23-s1.075", "ok", "", 1.0, numbers),
+                "fig23-isola": Outcome("fig23-isola", "ok", "", 1.0, iso)}
+    rows = {(r.section, r.quantity): r for r in comparison_rows(outcomes)}
+    r = rows[("Figure 23 (T/800)", "Omega~ = 1.075")]
+    assert (r.paper, r.ours, r.verdict) == ("quasi-periodic", "period-1", "differs")
+    r = rows[("Figure 23 (T/800)", "Omega~ = 1.075: journal at the Poincare point "
+              "(main branch)")]
+    assert r.ours == ("(+0.2949, -0.8172) C at T/800; eps there 0.8688, max over the orbit "
+                      "0.9883; halving the step moves the orbit 0.0022 C")
+    r = rows[("Figure 23 (T/800)", "the second attractor: journal at the Poincare point")]
+    assert r.ours.startswith("(-0.2262, -0.9022) C at T/800; eps there 0.9301")
+    assert rows[("Figure 23 (T/800)", "isola: Omega~ = 1.062 (from the previous state)")
+                ].ours == "period-3"
+    r = rows[("Figure 23 (T/200)", "isola: Omega~ = 1.07 (from the previous state)")]
+    assert (r.ours, r.verdict) == ("quasi-periodic (Lyapunov -0.0038/period)", "agrees")
+    assert rows[("Figure 23 (T/800)", "Omega~ = 1.075 started on the isola's HB orbit")
+                ].ours == "period-1"

@@ -6,7 +6,8 @@ overrides that select the variant, the analysis to run (``kind``) and its option
 figure's variants are the ``[analysis.sweep]`` axes of its config, so ``rotorsfd sweep
 FILE`` runs the whole figure and a case's overrides name one of the axes' values (a test
 checks it; the diagnosis ``damp-*`` and sensitivity ``sens-*`` cases add values the paper
-does not have). A :class:`FigureSpec` groups the cases drawn in one of the paper's
+does not have, and the ``fig23-t200-*`` cases the paper's time step beside the
+converged one of the file). A :class:`FigureSpec` groups the cases drawn in one of the paper's
 figures. A :class:`Claim` is a number (or a motion type) the paper reports, with the key
 of our value in a case's numbers, so the report can put them side by side.
 """
@@ -68,6 +69,13 @@ class Claim:
 #: Modal damping ratio of the diagnosis cases (the paper states no structural damping).
 DIAGNOSIS_DAMPING = 0.002
 
+#: Figure 23's speeds (its config's sweep axis); the config's step is T/800 (converged),
+#: the ``fig23-t200-*`` cases rerun them at the paper's T/200.
+FIG23_SPEEDS = (1.025, 1.04, 1.05, 1.075, 1.10)
+
+#: H of the Figure 19 fold curves: the cusps are converged in H there (see the cases).
+FIG19_H = 16
+
 U72, U144, U252, U360 = "72.008 g*mm", "144.02 g*mm", "252 g*mm", "360.04 g*mm"
 
 
@@ -122,10 +130,21 @@ def _cases() -> list[Case]:
             out.append(Case(f"fig17-{tag}-w{w}", FIG17, "response",
                             (_u(u), _rate("pitching", w))))
     out += [
+        # the fold curves at H = 16, where the cusp no longer moves with H (U = 144.02:
+        # H = 8 / 12 / 16 give 4.37895 / 4.37904 / 4.37903 rad/s; U = 252: 7.7267 /
+        # 7.7655 / 7.7744, H = 20 7.7751); the paper's H in the "-paper-h" cases
         Case("fig19-u144", FIG19, "fold-curve", (_u(U144),),
-             options={"range": [0.0, 10.0], "harmonics": 3}),
+             options={"range": [0.0, 10.0], "harmonics": FIG19_H, "widths_at": [4]},
+             note=f"H = {FIG19_H} (converged in H)"),
         Case("fig19-u252", FIG19, "fold-curve", (_u(U252),),
-             options={"range": [0.0, 10.0]}),
+             options={"range": [0.0, 10.0], "harmonics": FIG19_H, "widths_at": [7]},
+             note=f"H = {FIG19_H} (converged in H)"),
+        Case("fig19-u144-paper-h", FIG19, "fold-curve", (_u(U144),),
+             options={"range": [0.0, 10.0], "harmonics": 3, "widths_at": [4]},
+             note="H = 3, Table 1's H (not converged near the cusp)"),
+        Case("fig19-u252-paper-h", FIG19, "fold-curve", (_u(U252),),
+             options={"range": [0.0, 10.0], "widths_at": [7]},
+             note="H = 8, the paper's (this file's) H"),
         Case("fig19-u360", FIG19, "width-sweep", (_u(U360),),
              options={"values": [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10]},
              quick=(), note="one speed branch per rate (no fold pair to continue)"),
@@ -147,15 +166,20 @@ def _cases() -> list[Case]:
              options={"values": [0, 2, 4, 6, 8, 10]},
              note="diagnosis: Figure 19 for U = 360.04 g mm with 0.2 % modal damping"),
     ]
-    for s in (1.025, 1.04, 1.05, 1.075, 1.10):
-        out.append(Case(f"fig23-s{s:g}", FIG23, "simulate",
-                        (f"analysis.simulate.speed_ratio={s:g}",),
-                        quick=("analysis.simulate.periods=300",)))
+    # Figure 23 at a converged step (the file's T/800) and at the paper's T/200
+    for s in FIG23_SPEEDS:
+        for extra, tag in (((), "fig23"),
+                           (("analysis.simulate.steps_per_period=200",), "fig23-t200")):
+            out.append(Case(f"{tag}-s{s:g}", FIG23, "simulate",
+                            (f"analysis.simulate.speed_ratio={s:g}", *extra),
+                            quick=("analysis.simulate.periods=300",)))
     out.append(Case("fig23-isola", FIG23, "isola", ("analysis.simulate.speed_ratio=1.075",),
-                    options={"harmonics": 16, "hb_phase": 0.5,
-                             "speeds": [1.07, 1.065, 1.06], "lyapunov_periods": 200},
-                    note="diagnosis: the second attractor at 1.075 (HB orbit shifted by "
-                         "T/2), its isola, and the time domain down the isola"))
+                    options={"harmonics": 16, "hb_phase": 0.5, "find_steps": 200,
+                             "speeds": [1.07, 1.067, 1.065, 1.062],
+                             "paper_speeds": [1.07, 1.065, 1.06], "lyapunov_periods": 200},
+                    note="diagnosis: a second attractor at 1.075 (found at T/200 from the "
+                         "HB orbit shifted by T/2), its isola, the time domain on the "
+                         "isola's orbit at T/800 and down the isola at T/800 and T/200"))
     return out
 
 
@@ -190,16 +214,18 @@ FIGURES: dict[str, FigureSpec] = {f.number: f for f in (
                tuple(f"fig17-{u}-w{w}" for u in ("u252", "u360") for w in (0, 6, 7, 9)),
                "deflection", {"nodes": [8]}),
     FigureSpec("19", "Unstable speed range against pitching rate",
-               ("fig19-u144", "fig19-u252", "fig19-u360", "damp-fig19-u360"), "width"),
+               ("fig19-u144", "fig19-u252", "fig19-u360", "damp-fig19-u360",
+                "fig19-u144-paper-h", "fig19-u252-paper-h"), "width"),
     FigureSpec("20", "SFD-node harmonics, pitching w_by = 9 rad/s, U = 252 / 360.04 g mm",
                ("fig17-u252-w9", "fig17-u360-w9"), "harmonics", {"nodes": [1]}),
     FigureSpec("21", "C/R = 0.485 / 0.61 %, U = 252 g mm, w_by = 10 rad/s",
                ("fig21-cr0.485", "fig21-cr0.61"), "directions"),
     FigureSpec("22", "C/R = 0.728 %, U = 252 g mm, w_by = 10 rad/s", ("fig21-cr0.728",),
                "directions"),
-    FigureSpec("23", "Time domain, C/R = 0.728 %, U = 252 g mm, w_by = 10 rad/s",
-               tuple(f"fig23-s{s:g}" for s in (1.025, 1.04, 1.05, 1.075, 1.10)),
-               "timedomain"),
+    FigureSpec("23", "Time domain at T/800, C/R = 0.728 %, U = 252 g mm, w_by = 10 rad/s",
+               tuple(f"fig23-s{s:g}" for s in FIG23_SPEEDS), "timedomain"),
+    FigureSpec("23t", "Time domain at the paper's step T/200 (not converged near contact)",
+               tuple(f"fig23-t200-s{s:g}" for s in FIG23_SPEEDS), "timedomain"),
     FigureSpec("23b", "Diagnosis: the isola of the C/R = 0.728 % case (H = 16) beside "
                "the main branch, and the time domain on it", ("fig23-isola", "fig21-cr0.728"),
                "isola"),
@@ -267,11 +293,19 @@ CLAIMS: tuple[Claim, ...] = (
     Claim("Figure 19", "U = 144.02: unstable width at w_by = 0", "small", "fig19-u144",
           "width0"),
     Claim("Figure 19", "U = 144.02: no unstable range from w_by [rad/s]", 4.0, "fig19-u144",
-          "end_rate"),
+          "end_rate", "cusp of our fold curve, H = 16"),
+    Claim("Figure 19", "U = 144.02: unstable width at w_by = 4", "none", "fig19-u144",
+          "width4", "ours: still bistable at 4 rad/s"),
+    Claim("Figure 19", "U = 144.02, H = 3: cusp of the fold curve [rad/s]", None,
+          "fig19-u144-paper-h", "end_rate", "Table 1's H; 0.03 rad/s above the converged"),
     Claim("Figure 19", "U = 252: unstable width at w_by = 0", 0.041, "fig19-u252", "width0",
           band=0.05),
     Claim("Figure 19", "U = 252: no unstable range from w_by [rad/s]", 7.0, "fig19-u252",
-          "end_rate"),
+          "end_rate", "cusp of our fold curve, H = 16"),
+    Claim("Figure 19", "U = 252: unstable width at w_by = 7", "none", "fig19-u252",
+          "width7", "ours: still bistable at 7 rad/s"),
+    Claim("Figure 19", "U = 252, H = 8: cusp of the fold curve [rad/s]", None,
+          "fig19-u252-paper-h", "end_rate", "the paper's H; 0.05 rad/s below the converged"),
     Claim("Figure 19", "U = 360.04: unstable width at w_by = 0", 0.195, "fig19-u360",
           "width0", band=0.05),
     Claim("Figure 19", "U = 360.04: unstable width at w_by = 10", 0.119, "fig19-u360",
@@ -288,29 +322,50 @@ CLAIMS: tuple[Claim, ...] = (
     Claim("Table 3", "E: Omega~ (|mu| 1.0669)", 1.1760, "fig21-cr0.728", "tab3:E"),
     Claim("Table 3", "F: Omega~ (|mu| 1.0818)", 1.1669, "fig21-cr0.728", "tab3:F"),
     Claim("Table 3", "all bifurcations of our branch", None, "fig21-cr0.728", "bifurcations"),
-    Claim("Figure 23", "Omega~ = 1.025", "period-1", "fig23-s1.025", "motion"),
-    Claim("Figure 23", "Omega~ = 1.04 (inside our HB period-doubling range)", None,
-          "fig23-s1.04", "motion"),
-    Claim("Figure 23", "Omega~ = 1.05", "chaotic (possibly)", "fig23-s1.05", "motion"),
-    Claim("Figure 23", "Omega~ = 1.075", "quasi-periodic", "fig23-s1.075", "motion"),
-    Claim("Figure 23", "Omega~ = 1.10", "period-1", "fig23-s1.1", "motion"),
-    Claim("Figure 23", "Omega~ = 1.075 from the HB orbit shifted by T/2 (second attractor)",
-          "quasi-periodic", "fig23-isola", "motion_second",
-          "a second stable period-1 orbit: the isola (rows below)"),
-    Claim("Figure 23", "isola: Omega~ = 1.07 (from the 1.075 state)", "quasi-periodic",
-          "fig23-isola", "motion_1.07", "paper: 1.075 quasi-periodic"),
-    Claim("Figure 23", "isola: Omega~ = 1.065 (from the 1.07 state)", None, "fig23-isola",
-          "motion_1.065"),
-    Claim("Figure 23", "isola: Omega~ = 1.06 (from the 1.065 state)", "chaotic (possibly)",
-          "fig23-isola", "motion_1.06", "paper: 1.05 possibly chaotic"),
+    *(Claim(f"Figure 23 ({step})", f"Omega~ = {s:g}{extra}", paper, f"{tag}-s{s:g}", "motion",
+            note)
+      for step, tag, note in (
+          ("T/800", "fig23", "converged step, from the paper's 1 um start"),
+          ("T/200", "fig23-t200", "the paper's step, not converged near contact"))
+      for s, paper, extra in (
+          (1.025, "period-1", ""),
+          (1.04, None, " (inside our HB period-doubling range)"),
+          (1.05, "chaotic (possibly)", ""), (1.075, "quasi-periodic", ""),
+          (1.10, "period-1", ""))),
+    Claim("Figure 23 (T/800)", "Omega~ = 1.075: journal at the Poincare point (main branch)",
+          None, "fig23-s1.075", "poincare"),
+    Claim("Figure 23 (T/200)", "Omega~ = 1.075: journal at the Poincare point (main branch)",
+          None, "fig23-t200-s1.075", "poincare"),
+    Claim("Figure 23 (T/200)", "Omega~ = 1.075 from the HB orbit shifted by T/2",
+          "quasi-periodic", "fig23-isola", "motion_find",
+          "at T/200 this start lands on a second period-1 orbit: the isola (rows below); "
+          "at T/400-T/1600 on the main branch"),
+    Claim("Figure 23 (T/200)", "that second orbit: journal at the Poincare point", None,
+          "fig23-isola", "poincare_find_"),
+    Claim("Figure 23 (T/800)", "Omega~ = 1.075 started on the isola's HB orbit",
+          "quasi-periodic", "fig23-isola", "motion_second", "the second attractor"),
+    Claim("Figure 23 (T/800)", "the second attractor: journal at the Poincare point", None,
+          "fig23-isola", "poincare_second_"),
+    *(Claim(f"Figure 23 ({step})", f"isola: Omega~ = {s:g} (from the previous state)", paper,
+            "fig23-isola", f"motion_{s:g}{tag}", note)
+      for step, tag, speeds in (
+          ("T/800", "", ((1.07, "quasi-periodic", "paper: 1.075 quasi-periodic"),
+                         (1.067, None, ""), (1.065, None, ""), (1.062, None, ""))),
+          ("T/200", "_T200", ((1.07, "quasi-periodic", "paper: 1.075 quasi-periodic"),
+                              (1.065, None, ""),
+                              (1.06, "chaotic (possibly)", "paper: 1.05 possibly chaotic"))))
+      for s, paper, note in speeds),
     Claim("Table 3", "A (saddle-node 1.0369) vs the lower fold of our isola", 1.0369,
           "fig23-isola", "iso_fold_lo", band=5e-3),
     Claim("Table 3", "B (secondary Hopf 1.0982, 0.5344 +/- 0.8634i) vs our isola's "
           "secondary Hopf", 1.0982, "fig23-isola", "iso_sh", band=5e-3),
     Claim("Table 3", "isola: upper fold Omega~", None, "fig23-isola", "iso_fold_hi"),
-    Claim("Table 3", "isola: HB orbit (H = 16) vs the time-domain orbit at 1.075, max "
+    Claim("Table 3", "isola: HB orbit (H = 16) vs the T/800 time-domain orbit at 1.075, "
+          "max over the period [C]", None, "fig23-isola", "second_hb_difference",
+          "the H = 16 truncation: at T/1600 0.022 C, 0.005 C at the Poincare point"),
+    Claim("Table 3", "isola: HB orbit (H = 16) vs the T/200 orbit it was fitted to, max "
           "over the period [C]", None, "fig23-isola", "iso_orbit_difference",
-          "H truncation and the T/200 Newmark step near eps 0.99"),
+          "mostly the T/200 step error"),
     Claim("Table 3", "isola: all bifurcations (closed loop)", None, "fig23-isola",
           "bifurcations"),
     Claim("Figure 24", "C/R = 0.728 %, U = 144.02: bifurcations", "none", "fig24-u144",

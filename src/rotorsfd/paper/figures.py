@@ -113,7 +113,8 @@ def _width(spec: FigureSpec, res: list[Outcome]) -> Figure:
     ax = fig.add_subplot()
     for o in res:
         d = o.data
-        label = o.name.replace("damp-fig19-", "0.2 % damping, ").replace("fig19-", "")
+        label = (o.name.replace("damp-fig19-", "0.2 % damping, ").replace("fig19-", "")
+                 .replace("-paper-h", ", paper's H"))
         if np.all(np.isnan(d["width"])):
             label += ": journal contact, no fold"
         ax.plot(d["rate"], d["width"], "-o" if len(d["rate"]) < 30 else "-", ms=3,
@@ -158,7 +159,9 @@ def _timedomain(spec: FigureSpec, res: list[Outcome]) -> Figure:
         ax.plot(d["y"], d["z"], lw=0.5)
         ax.plot(d["py"], d["pz"], "r.", ms=3)
         ax.set_aspect("equal")
-        ax.set_title(f"Omega~ = {d['speed_ratio']:.3f}: orbit ({d['motion']})", fontsize=9)
+        step = f", T/{d['steps']}" if "steps" in d else ""
+        ax.set_title(f"Omega~ = {d['speed_ratio']:.3f}{step}: orbit ({d['motion']})",
+                     fontsize=9)
         ax.set_xlabel("y / C")
         ax.set_ylabel("z / C")
         ax = fig.add_subplot(len(res), 3, 3 * i + 2)
@@ -177,12 +180,16 @@ def _timedomain(spec: FigureSpec, res: list[Outcome]) -> Figure:
 
 
 def _isola(spec: FigureSpec, res: list[Outcome]) -> Figure:
-    """Main branch and isola (journal deflection, node 1), then the Poincare sections of
-    the time-domain runs on the isola (y, y' / (C Omega))."""
+    """Main branch and isola (disk deflection), then the Poincare sections of the
+    time-domain runs on the isola (y, y' / (C Omega)): top row at the converged step
+    (from the isola's HB orbit at 1.075, then down the isola), bottom row at the paper's
+    T/200 (from the start that found the isola)."""
     iso = next((o for o in res if "runs" in o.data), None)
-    runs = ([iso.data["second"], *iso.data["runs"]] if iso else [])
-    fig = Figure(figsize=(5.5 + 3.2 * len(runs), 4.2), layout="constrained")
-    ax = fig.add_subplot(1, 1 + len(runs), 1)
+    rows = ([[iso.data["second"], *iso.data["runs"]],
+             [iso.data["find"], *iso.data.get("runs_t200", [])]] if iso else [[], []])
+    cols = 1 + max(len(r) for r in rows)
+    fig = Figure(figsize=(5.5 + 3.0 * (cols - 1), 7.6), layout="constrained")
+    ax = fig.add_subplot(2, cols, 1)
     for o in res:
         d = o.data
         x, y = d["speed_ratio"], d["defl_8"]
@@ -195,15 +202,18 @@ def _isola(spec: FigureSpec, res: list[Outcome]) -> Figure:
     ax.set_ylabel(r"$\tilde r$ at node 8 (disk)")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
-    for k, d in enumerate(runs):
-        ax = fig.add_subplot(1, 1 + len(runs), k + 2)
-        ax.plot(d["py"], d["pvy"], "k.", ms=3)
-        if d["motion"] == "period-1":      # one point: show it on the phase plane's scale
-            ax.set_xlim(*_span(d["y"]))
-            ax.set_ylim(*_span(d["vy"]))
-        ax.set_xlabel("y / C")
-        ax.set_ylabel(r"$\dot y / (C \Omega)$")
-        ax.set_title(f"Omega~ = {d['speed_ratio']:.3f}: {d['motion']}", fontsize=9)
+    for i, runs in enumerate(rows):
+        for k, d in enumerate(runs):
+            ax = fig.add_subplot(2, cols, i * cols + k + 2)
+            ax.plot(d["py"], d["pvy"], "k.", ms=3)
+            if d["motion"] == "period-1":      # one point: show it on the phase plane's scale
+                ax.set_xlim(*_span(d["y"]))
+                ax.set_ylim(*_span(d["vy"]))
+            ax.set_xlabel("y / C")
+            ax.set_ylabel(r"$\dot y / (C \Omega)$")
+            step = f"T/{d['steps']}" if "steps" in d else ""
+            ax.set_title(f"{step}, Omega~ = {d['speed_ratio']:.3f}: {d['motion']}",
+                         fontsize=8)
     return fig
 
 

@@ -73,7 +73,8 @@ def response_numbers(result: Any, orbits: Sequence[float] = ()) -> tuple[dict, d
     table = result.table()
     s = np.asarray(table["speed_ratio"], float)
     C = result.clearance
-    rows = [{k: (v if k == "type" else float(v)) for k, v in b.items()}
+    rows = [{k: (float(v) if isinstance(v, (int, float, np.number))
+                 and not isinstance(v, bool) else v) for k, v in b.items()}
             for b in (result.bifurcations or [])]
     sn = sorted((b for b in rows if b["type"] == "saddle-node"), key=lambda b: b["speed_ratio"])
     n: dict[str, Any] = {"bifurcations": [(b["type"], b["speed_ratio"], b["max_multiplier"],
@@ -156,18 +157,23 @@ def _simulate(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
                        lyapunov_periods=0)
     if out is not None:
         r.write(out)
-    c = r.column(r.plot_node)
-    scale = r.clearance or 1.0
-    keep = 20 * int(r.settings["steps_per_period"])
     ev = r.motion.evidence if r.motion is not None else {}
     n = {"motion": r.motion_name, "n_distinct_poincare": ev.get("n_distinct_poincare"),
-         "max_eccentricity": r.max_eccentricity}
-    data = {"y": r.q[-keep:, c, 0] / scale, "z": r.q[-keep:, c, 1] / scale,
-            "vy": r.v[-keep:, c, 0] / (scale * r.speed),
-            "py": r.poincare_q[:, c, 0] / scale, "pz": r.poincare_q[:, c, 1] / scale,
-            "pvy": r.poincare_v[:, c, 0] / (scale * r.speed),
-            "speed_ratio": r.speed_ratio, "motion": r.motion_name}
-    return n, data
+         "max_eccentricity": r.max_eccentricity, **_td_numbers(r)}
+    return n, _td_data(r)
+
+
+def _td_numbers(r: Any, prefix: str = "") -> dict[str, Any]:
+    """Step, journal Poincare point (last, in C), the eccentricity there and the orbit's
+    maximum, and the step check of a SimulationResult (keys ``prefix + ...``)."""
+    j = r.column(r.sfd_node if r.sfd_node in r.nodes else r.plot_node)
+    scale = r.clearance or 1.0
+    y, z = (float(r.poincare_q[-1, j, k] / scale) for k in (0, 1))
+    chk = r.step_check.as_dict() if r.step_check is not None else {}
+    return {prefix + k: v for k, v in {
+        "steps_per_period": int(r.settings["steps_per_period"]), "poincare_y": y,
+        "poincare_z": z, "eps_poincare": float(np.hypot(y, z)),
+        "eps_max": r.max_eccentricity, "step_check": chk.get("difference")}.items()}
 
 
 def _td_data(r: Any, keep_periods: int = 20) -> dict[str, Any]:
@@ -179,31 +185,38 @@ def _td_data(r: Any, keep_periods: int = 20) -> dict[str, Any]:
             "vy": r.v[-keep:, c, 0] / (scale * r.speed),
             "py": r.poincare_q[:, c, 0] / scale, "pz": r.poincare_q[:, c, 1] / scale,
             "pvy": r.poincare_v[:, c, 0] / (scale * r.speed),
-            "speed_ratio": r.speed_ratio, "motion": r.motion_name}
+            "speed_ratio": r.speed_ratio, "motion": r.motion_name,
+            "steps": int(r.settings["steps_per_period"])}
 
 
 def _isola(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
     """A coexisting attractor and its isola (Figure 23 / Table 3 diagnosis):
-    (a) time domain from the HB orbit shifted by ``hb_phase`` of the period; (b) the
-    branch through that orbit (``harmonics``), continued until it closes, with its
-    bifurcations; (c) time domain at ``speeds``, each from the previous run's final
-    state, with the Lyapunov exponent."""
+    (a) the time domain at ``find_steps`` steps per period (the paper's T/200) from the HB
+    orbit shifted by ``hb_phase`` of the period, which at that step lands near a second
+    attractor; (b) the branch through that orbit (``harmonics``; HB-corrected, so it
+    does not depend on the step of (a)), continued until it closes, with its
+    bifurcations; (c) the time domain at the config's step started on the isola's HB
+    orbit at the case's speed: the second attractor at a converged step, and how far the
+    HB orbit is from it; (d) the time domain at ``speeds``, each from the previous run's
+    final state, at the config's step; (e) the same at ``find_steps`` from (a) at
+    ``paper_speeds`` (what the paper's step shows); (d) and (e) with the Lyapunov
+    exponent (``lyapunov_periods``)."""
+    from rotorsfd.analyses.simulate import SavedState, hb_state
     from rotorsfd.api import run_response, run_simulation
+    from rotorsfd.harmonic.periodic import solve_periodic
     from rotorsfd.io.config import with_values
+    from rotorsfd.model import dofs
 
     o = case.options
     H = int(o.get("harmonics", 16))
     n_ly = int(o.get("lyapunov_periods", 200))
+    coarse = int(o.get("find_steps", 200))
     cfg = with_values(config, {"analysis.response.harmonics": H})
     a = run_simulation(cfg, progress=False, from_hb=True, hb_phase=float(o["hb_phase"]),
-                       lyapunov_periods=0)
+                       steps_per_period=coarse, lyapunov_periods=0)
     if out is not None:
-        a.write(out / "a-second-attractor", plots=False)
-    j = a.column(a.sfd_node)
-    n: dict[str, Any] = {
-        "second_motion": a.motion_name, "second_eps": a.max_eccentricity,
-        "second_y": float(a.poincare_q[-1, j, 0] / a.clearance),
-        "second_z": float(a.poincare_q[-1, j, 1] / a.clearance)}
+        a.write(out / "a-find", plots=False)
+    n: dict[str, Any] = {"find_motion": a.motion_name, **_td_numbers(a, "find_")}
     iso = run_response(cfg, from_orbit=a, progress=False)
     if out is not None:
         iso.write(out / "b-isola", plots=False)
@@ -226,21 +239,45 @@ def _isola(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
     if iso.stable is not None:
         st = lam[iso.stable]
         n["iso_stable"] = [float(st.min()), float(st.max())] if st.size else None
-    runs = []
-    state: Any = a
-    from rotorsfd.analyses.simulate import SavedState
-
-    for s_ in o.get("speeds", ()):
-        saved = SavedState(state.q_final, state.v_final, state.t_final, state.speed)
-        r = run_simulation(config, speed_ratio=float(s_), progress=False,
-                           initial_state=saved, lyapunov_periods=n_ly)
-        if out is not None:
-            r.write(out / f"c-{s_:g}", plots=False)
-        n[f"motion_{s_:g}"] = r.motion_name
-        n[f"lyapunov_{s_:g}"] = r.lyapunov.per_period if r.lyapunov else None
-        runs.append(_td_data(r))
-        state = r
-    data.update(second=_td_data(a), runs=runs)
+    # (c) on the isola's HB orbit at the case's speed (nearest stable point, re-solved)
+    speed = a.speed
+    pick = np.flatnonzero(iso.stable) if iso.stable is not None and iso.stable.any() \
+        else np.arange(lam.size)
+    k = int(pick[np.argmin(np.abs(iso.branch.lam[pick] - speed))])
+    X = solve_periodic(iso.system.periodic_problem(), speed, H, iso.branch.X[k]).X
+    q0, v0 = hb_state(X, speed)
+    b = run_simulation(cfg, progress=False, q0=q0, v0=v0, lyapunov_periods=0)
+    if out is not None:
+        b.write(out / "c-second-attractor", plots=False)
+    n.update({"second_motion": b.motion_name, **_td_numbers(b, "second_")})
+    j = b.column(b.sfd_node)
+    w = np.exp(1j * np.outer(b.t[-int(b.settings["steps_per_period"]):] * speed,
+                             np.arange(X.shape[0])))
+    hb = np.stack([(w @ X[:, dofs.dof_index(b.sfd_node, d)]).real for d in ("y", "z")], -1)
+    n["second_hb_difference"] = float(np.max(np.hypot(*(
+        hb - b.q[-hb.shape[0]:, j, :]).T)) / b.clearance)
+    runs, t200 = [], []
+    for seq, start, steps, speeds, ly in (
+            (runs, b, None, o.get("speeds", ()), n_ly),
+            (t200, a, coarse, o.get("paper_speeds", ()), n_ly)):
+        state: Any = start
+        for s_ in speeds:
+            saved = SavedState(state.q_final, state.v_final, state.t_final, state.speed)
+            r = run_simulation(config, speed_ratio=float(s_), progress=False,
+                               initial_state=saved, steps_per_period=steps,
+                               lyapunov_periods=ly)
+            tag = f"{s_:g}" if steps is None else f"{s_:g}_T{steps}"
+            if out is not None:
+                r.write(out / f"d-{tag}", plots=False)
+            n[f"motion_{tag}"] = r.motion_name
+            n[f"n_distinct_{tag}"] = (r.motion.evidence.get("n_distinct_poincare")
+                                      if r.motion is not None else None)
+            if ly:
+                n[f"lyapunov_{tag}"] = r.lyapunov.per_period if r.lyapunov else None
+            n.update(_td_numbers(r, f"td_{tag}_"))
+            seq.append(_td_data(r))
+            state = r
+    data.update(second=_td_data(b), find=_td_data(a), runs=runs, runs_t200=t200)
     return n, data
 
 
@@ -258,6 +295,8 @@ def _fold_curve(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
          "width10": float(f.unstable_width([hi])[0]),
          "start_folds": [x / f.reference_speed for x in f.start_folds],
          "success": f.success, "message": f.message}
+    for rate in case.options.get("widths_at", ()):   # widths at the paper's named rates
+        n[f"width{rate:g}"] = float(f.unstable_width([rate])[0])
     return n, {"rate": grid, "width": w}
 
 
