@@ -30,6 +30,8 @@ REGISTRY: dict[str, tuple[str, str]] = {
     "monodromy": ("Floquet monodromy per point: compiled loop vs numpy loop",
                   "bench_stability:run_monodromy"),
     "timedomain": ("2000 periods x 200 steps: ours vs scipy vs ROSS", "bench_timedomain:run"),
+    "step-control": ('simulate on paper cases: steps_per_period = "auto" vs the fixed T/200',
+                     "bench_timedomain:step_rows"),
     "chart": ("stability chart: serial vs threads vs process pool vs Dask",
               "bench_stability:run_chart"),
     "coldstart": ("cold start: CLI and first calls of the compiled kernels",

@@ -27,7 +27,15 @@ Omega~ = 0.8 (a stable period-1 point), every node displaced 1 um at t = 0, as
    they should agree).
    Skipped with a message when ROSS does not import.
 
-``--quick``: 20 periods, ``n_short`` = 1, scipy at rtol 1e-3 only (not matched), no ROSS.
+5. Step control (``step_rows``): ``run_simulation`` on paper cases with the automatic
+   step (``steps_per_period = "auto"``, step_tolerance 1e-3 C) beside the fixed T/200 with
+   its one-halving check (the default ``step_check_periods = 20``), both as the paper
+   cases run (2000 periods, 100 Poincare periods, no Lyapunov run), interleaved; the
+   target is at most 3x. Cases: Figure 23 (C/R = 0.728 %) at Omega~ 1.025 and 1.075, and
+   the paper rotor at U = 144.02 g mm, Omega~ 1.055 (inside the jump region).
+
+``--quick``: 20 periods, ``n_short`` = 1, scipy at rtol 1e-3 only (not matched), no ROSS;
+the step-control pair over 300 periods, one case.
 Run: ``python -m benchmarks --only timedomain``.
 """
 
@@ -165,6 +173,52 @@ def run(quick: bool = False, repeat: int = 3) -> list[Row]:
                         extra={"rtol": rtol, "error": err, "short_periods": n_short,
                                "short_wall_s": wall}))
     rows += ross_rows(system, inp, quick, repeat)
+    return rows
+
+
+# ---- step control: "auto" beside the fixed T/200 ------------------------------------------
+
+STEP_CASES = (("fig23 (C/R 0.728 %), Omega~ 1.025", "paper/fig23_time_domain.toml", 1.025, ()),
+              ("fig23 (C/R 0.728 %), Omega~ 1.075", "paper/fig23_time_domain.toml", 1.075, ()),
+              ("paper rotor, U = 144.02 g mm, Omega~ 1.055", "paper_rotor.toml", 1.055,
+               ("unbalance[0].magnitude=144.02 g*mm",)))
+
+
+def step_rows(quick: bool = False, repeat: int = 2) -> list[Row]:
+    """Wall time of ``run_simulation`` with ``"auto"`` over the fixed T/200 (item 5)."""
+    from benchmarks.common import ROOT, interleaved
+    from rotorsfd import api
+    from rotorsfd.analyses.simulate import run_simulation
+
+    rows: list[Row] = []
+    periods = 300 if quick else 2000
+    for label, path, ratio, extra in STEP_CASES[:1] if quick else STEP_CASES:
+        cfg = {k: api.load_config(ROOT / "examples" / path, [
+            *extra, f"analysis.simulate.steps_per_period={v}",
+            f"analysis.simulate.periods={periods}"]) for k, v in (("fixed", 200),
+                                                                  ("auto", '"auto"'))}
+        for c in cfg.values():  # compile / load the caches once
+            run_simulation(c, speed_ratio=ratio, periods=40, poincare_periods=10,
+                           lyapunov_periods=0, progress=False)
+        res = interleaved({k: (lambda c=c, x=ratio: run_simulation(
+            c, speed_ratio=x, lyapunov_periods=0, progress=False))
+            for k, c in cfg.items()}, repeat)
+        t_fix, _, r_fix = res["fixed"]
+        t_auto, _, r_auto = res["auto"]
+        case = f"{label}, {periods} periods (simulate, no Lyapunov)"
+        fx, au = r_fix.step_check, r_auto.step_check
+        rows.append(Row("timedomain", case, "fixed T/200 + one-halving check", t_fix,
+                        ratio=1.0, ref="fixed", repeat=repeat,
+                        note=(f"{r_fix.motion_name}; halving moves the orbit "
+                              f"{fx.error:.2g} C"),
+                        extra={"step_error": fx.error, "motion": r_fix.motion_name}))
+        ladder = ", ".join(f"{c.difference:.2g}" for c in au.checks)
+        rows.append(Row("timedomain", case, 'auto step (tolerance 1e-3 C)', t_auto,
+                        ratio=t_auto / t_fix, ref="fixed", repeat=repeat,
+                        note=(f"{r_auto.motion_name}; accepted T/{au.steps_per_period}, "
+                              f"change per halving {ladder} C"),
+                        extra={"steps_per_period": au.steps_per_period,
+                               "step_error": au.error, "motion": r_auto.motion_name}))
     return rows
 
 

@@ -144,3 +144,30 @@ def test_lyapunov_exponent_of_a_damped_focus_is_minus_half_damping(k1: float, k3
                           cubic_spring_kernel, [k1, k3], fo, steps_per_period=SPP,
                           n_periods=200, q0=1.0, transient_steps=100 * SPP)
     assert ly.exponent == pytest.approx(-c / 2, rel=2e-2)
+
+
+def test_spiral_into_a_point_is_period_1_not_period_3() -> None:
+    """Poincare points spiralling into a fixed point, ``P_k = P* + a rho^k e^{i k theta}``
+    with theta = 2 pi 0.32 (near 1/3) and rho = 0.99 (a slowly damped complex multiplier):
+    over 100 points ``|P[k+3] - P[k]| = a rho^k |rho^3 e^{3 i theta} - 1|`` passes the
+    period-3 test at rtol 1e-3, but the differences shrink by rho per period: period-1,
+    converging, with the shrink factor measured."""
+    k = np.arange(100)
+    theta, rho, a = 2 * np.pi * 0.32, 0.99, 2e-3
+    z = a * rho ** k * np.exp(1j * theta * k)
+    P = np.column_stack([0.5 + z.real, -0.3 + z.imag])
+    mc = classify_motion(P, scale=1.0)
+    assert mc.motion == "period-1"
+    conv = mc.evidence["converging"]
+    assert conv["from_period"] == 3 and conv["to_period"] == 1
+    assert conv["shrink_per_period"] == pytest.approx(rho, abs=0.01)
+    assert "spiralling" in mc.evidence["note"]
+
+
+def test_true_period_3_cycle_is_not_converging() -> None:
+    """Three fixed points 0.05 apart with 1e-6 noise: period-3, no convergence flag."""
+    rng = np.random.default_rng(1)
+    cycle = np.array([[0.04, -0.90], [0.01, -0.91], [0.009, -0.95]])
+    P = np.tile(cycle, (34, 1))[:100] + 1e-6 * rng.normal(size=(100, 2))
+    mc = classify_motion(P, scale=1.0)
+    assert mc.motion == "period-3" and "converging" not in mc.evidence

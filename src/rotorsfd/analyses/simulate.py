@@ -695,9 +695,11 @@ def classify(pq: np.ndarray, pv: np.ndarray, q: np.ndarray, v: np.ndarray, dt: f
     n = mc.period
     if n is not None:
         # consecutive points within tolerance but drifting along a curve: not settled
-        settled = ev.get("n_distinct_poincare", n) <= n
+        settled = ev.get("n_distinct_poincare", n) <= n and "converging" not in ev
         ev["settled"] = settled
-        if not settled:
+        if "converging" in ev:
+            pass                                  # classify_motion's note says why
+        elif not settled:
             ev["note"] = (f"{ev['n_distinct_poincare']} distinct Poincare points for a "
                           f"period-{n} classification: the points still drift (a slow "
                           "transient); run more periods")

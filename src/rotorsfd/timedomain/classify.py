@@ -3,7 +3,10 @@
 Decision, in this order:
 
 1. period-n: the normalised Poincare points repeat with period ``n <= n_max``
-   (``|P[k+n] - P[k]| <= rtol`` times the orbit's spread).
+   (``|P[k+n] - P[k]| <= rtol`` times the orbit's spread); when their differences over a
+   divisor m of n shrink steadily through the window (a period-m orbit approached along a
+   slowly damped spiral, :func:`~rotorsfd.timedomain.poincare.converging_period`), the
+   class is period-m, not settled (``evidence["converging"]``).
 2. chaotic: a largest Lyapunov exponent above ``lyapunov_threshold`` per forcing period
    by more than its uncertainty (a :class:`LyapunovResult`'s ``half_spread``).
 3. quasi-periodic: not periodic and a Lyapunov exponent at or below the threshold (within
@@ -28,6 +31,7 @@ import numpy as np
 from rotorsfd.timedomain.lyapunov import LyapunovResult
 from rotorsfd.timedomain.poincare import (
     closed_curve_test,
+    converging_period,
     correlation_dimension,
     distinct_points,
     normalise,
@@ -106,6 +110,17 @@ def classify_motion(poincare: np.ndarray, signal: np.ndarray | None = None,
         ev["lyapunov_uncertainty_per_period"] = err
     if n is not None:
         ev["basis"] = "poincare period"
+        conv = converging_period(P, n, rtol=rtol)
+        if conv is not None:
+            m, rate = conv
+            ev.update(poincare_period=m, converging={"from_period": n, "to_period": m,
+                                                     "shrink_per_period": rate},
+                      basis="poincare points converging",
+                      note=(f"the Poincare points look period-{n} but their differences "
+                            f"shrink by {rate:.3g} per period: a transient spiralling into "
+                            f"a period-{m} orbit (a slowly damped complex multiplier); "
+                            "run more periods"))
+            return MotionClass(f"period-{m}", ev)
         return MotionClass(f"period-{n}", ev)
 
     curve = closed_curve_test(P)

@@ -101,3 +101,27 @@ def correlation_dimension(P: np.ndarray, quantiles: tuple[float, float] = (0.02,
     if ok.sum() < 3 or np.ptp(np.log(r[ok])) == 0.0:
         return 0.0
     return float(np.polyfit(np.log(r[ok]), np.log(C[ok]), 1)[0])
+
+
+def converging_period(P: np.ndarray, n: int, rtol: float = 1e-3,
+                      decay: float = 0.7) -> tuple[int, float] | None:
+    """A divisor ``m < n`` of a period-n section that the points are still *converging*
+    to, with the shrink factor per period: the differences ``d_k = max |P[k+m] - P[k]|``
+    (normalised points; the largest in the first and in the last quarter of the window)
+    fall by more than ``decay`` and start above ``rtol``. A period-1 orbit whose slowest
+    multiplier is complex, ``|mu| ~ 1`` at an angle near ``2 pi / n``, spirals in and passes
+    the period-n
+    test (``d`` over n periods is ``|mu^n - 1|`` times the spiral's size); a true
+    period-n orbit keeps ``d`` constant. None: no such divisor."""
+    P = np.asarray(P, dtype=float)
+    N = P.shape[0]
+    for m in range(1, n):
+        if n % m or N < 4 * m + 8:
+            continue
+        d = np.max(np.abs(P[m:] - P[:-m]), axis=1)
+        q = max(2, d.size // 4)
+        first, last = float(np.max(d[:q])), float(np.max(d[-q:]))
+        if first > rtol and last < decay * first:
+            per = (last / first) ** (1.0 / (d.size - q)) if last > 0.0 else 0.0
+            return m, float(per)
+    return None
