@@ -6,16 +6,16 @@ arithmetic (the Woodbury form of the rank-m time dependence, module docstring of
 ``monodromy``) in one compiled function: the constant operators (``S_0^-1`` products,
 ``Z = S_0^-1 P``, ``G = P^T Z``) are formed once by the caller, the loop forms per step
 
-    Newmark:  Y = [AB AE] [X; V] + Z r_j + Z W_{j+1} (I - G W_{j+1})^-1 P^T Y,
-              V <- 2/h (Y - X) - V,  X <- Y
-    gen-alpha: Y = -a_m S_M A - S_D v* - S_K x* + Z r_j + Z W (I - G W)^-1 P^T Y, ...
+    Newmark:   Y = [AB AE] [X; V] + Z r_j,  Y <- Y + Z W_{j+1} (I - G W_{j+1})^-1 P^T Y,
+               V <- 2/h (Y - X) - V,  X <- Y
+    gen-alpha: Y = -a_m S_M A - S_D v* - S_K x* + Z r_j,  the same Woodbury term, A <- Y
 
 with ``(I - G W)`` (m x m) solved by Gaussian elimination with partial pivoting (as
 LAPACK's ``gesv``) and the two rank-m terms applied as one product. The n x 2n product
 of the constant operator is one BLAS call (``np.dot`` into a buffer: measured faster
 than compiled loops from n = 8 up); the rank-m work is loops; nothing is allocated in
 the loop, and no array slices are assigned (they made the first compilation 3x longer).
-Compiled once, cached on disk.
+Compiled once, cached on disk; the loops release the GIL (threaded sweeps run in parallel).
 """
 
 from __future__ import annotations
@@ -96,7 +96,7 @@ def _rank_m_update(Y: np.ndarray, Z: np.ndarray, G: np.ndarray, W: np.ndarray,
     _gemm_acc(Z, rP, Y)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def newmark_loop(AB: np.ndarray, AE: np.ndarray, Z: np.ndarray, G: np.ndarray,
                  nl: np.ndarray, Kn: np.ndarray, Cn: np.ndarray, h: float) -> np.ndarray:
     """Monodromy ``[X; V]`` (2n, 2n) of average-acceleration Newmark over N = len(Kn) - 1
@@ -143,7 +143,7 @@ def newmark_loop(AB: np.ndarray, AE: np.ndarray, Z: np.ndarray, G: np.ndarray,
     return S
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def generalized_alpha_loop(SM: np.ndarray, SD: np.ndarray, SK: np.ndarray, Z: np.ndarray,
                            G: np.ndarray, nl: np.ndarray, Kn: np.ndarray, Cn: np.ndarray,
                            A0: np.ndarray, h: float, am: float, af: float, g: float,
