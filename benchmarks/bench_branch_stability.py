@@ -108,7 +108,7 @@ def run(quick: bool = False, repeat: int = 3) -> list[Row]:
                                 extra={"per_point_s": st.elapsed_points / n,
                                        "locate_s": st.elapsed - st.elapsed_points,
                                        "n_points": n, "n_bases": st.n_bases}))
-            if "H=3" in case and "paper" in case:
+            if "H=3" in case and "paper" in case and not quick:
                 t_resp, _, resp = median_time(lambda c=config: _response(c), repeat)
                 rows.append(Row("branch-stability", case,
                                 "run_response: branch + stability (rotorsfd response)",
