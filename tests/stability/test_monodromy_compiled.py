@@ -187,6 +187,24 @@ def test_lti_without_nonlinear_dofs_is_cayley():
     _assert_same(g, monodromy_generalized_alpha(M, D, K, T, n_intervals=N, compiled=False))
 
 
+def test_fortran_ordered_and_integer_inputs():
+    """Fortran-ordered matrices, a list of nl DOFs and Jacobian samples in F order give
+    the C-ordered result bit for bit, and no second compiled specialisation."""
+    from rotorsfd.stability.monodromy_kernels import generalized_alpha_loop, newmark_loop
+
+    s = ltp3()
+    t = np.arange(201) * s["T"] / 200
+    Jq = np.array([s["dFdq"](x) for x in t])
+    for f in SCHEMES.values():
+        a = f(s["M"], s["D"], s["K"], s["T"], nl_dofs=np.array(s["nl"]), dFdq=Jq,
+              n_intervals=200)
+        b = f(*(np.asfortranarray(x) for x in (s["M"], s["D"], s["K"])), s["T"],
+              nl_dofs=list(s["nl"]), dFdq=np.asfortranarray(Jq), n_intervals=200)
+        assert np.array_equal(a.monodromy, b.monodromy)
+    assert len(newmark_loop.signatures) == 1
+    assert len(generalized_alpha_loop.signatures) == 1
+
+
 def test_compiled_rejects_non_finite_like_numpy():
     """NaN in the Jacobian samples: both paths raise the same ConvergenceError."""
     from rotorsfd.errors import ConvergenceError

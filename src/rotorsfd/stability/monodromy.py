@@ -194,7 +194,8 @@ def monodromy_newmark(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, *
     Z = np.ascontiguousarray(S0inv[:, nl])
     G = np.ascontiguousarray(Z[nl, :])
     if compiled:
-        Phi = newmark_loop(AB, AE, Z, G, nl.astype(np.int64), Kn, Cn, float(h))
+        c = np.ascontiguousarray  # one compiled specialisation (C layout) for every input
+        Phi = newmark_loop(c(AB), c(AE), Z, G, nl.astype(np.int64), Kn, Cn, float(h))
     else:
         Phi = _newmark_numpy(AB, AE, Z, G, nl, Kn, Cn, h)
     Phi = _finite(Phi, "newmark", period)
@@ -250,8 +251,9 @@ def monodromy_generalized_alpha(M: ArrayLike, D: ArrayLike, K: ArrayLike, period
         Kt0[np.ix_(nl, nl)] -= Kn[0]
     A0 = -np.linalg.solve(M, np.hstack([Kt0, Dt0]))  # -M^-1 (D_0 V + K_0 X), X=[I 0], V=[0 I]
     if compiled:
-        Phi = generalized_alpha_loop(SM, SD, SK, Z, G, nl.astype(np.int64), Kn, Cn, A0,
-                                     float(h), am, af, g, b)
+        c = np.ascontiguousarray  # one compiled specialisation (C layout) for every input
+        Phi = generalized_alpha_loop(c(SM), c(SD), c(SK), Z, G, nl.astype(np.int64), Kn, Cn,
+                                     c(A0), float(h), am, af, g, b)
     else:
         Phi = _generalized_alpha_numpy(SM, SD, SK, Z, G, nl, Kn, Cn, A0, h, am, af, g, b)
     Phi = _finite(Phi, "generalized-alpha", period)
