@@ -78,7 +78,7 @@ def test_coarse_fixed_step_warns_with_the_error_and_what_to_set(configs) -> None
     assert res.summary_dict()["step_check"]["warning"] == res.step_check.warning()
 
 
-def test_auto_step_converges_to_the_tolerance(configs) -> None:
+def test_auto_step_converges_to_the_tolerance(configs, tmp_path) -> None:
     """U = 100 g mm at 1.05, "auto" from T/200 with step_tolerance = 1e-4 C: the change
     per halving falls ~4x per halving, the last one below 1e-4 C, the one before above
     it; the recorded orbit is that of the accepted step and lies within the tolerance of
@@ -109,6 +109,17 @@ def test_auto_step_converges_to_the_tolerance(configs) -> None:
     assert d["estimated_error"] == pytest.approx(diffs[-1] / 3, rel=1e-12)
     assert len(d["halvings"]) == len(diffs)
     assert f"time step (auto): T/{spp}" in res.summary()
+    # timeseries.nc keeps at most 400 samples a period (every k-th step), both ends
+    import xarray as xr
+
+    res.write(tmp_path, plots=False)
+    with xr.open_dataset(tmp_path / "timeseries.nc") as ds:
+        n = int(ds.attrs["samples_per_period"])
+        assert ds.attrs["steps_per_period"] == spp and n == min(spp, 400)
+        assert ds.sizes["time"] == 20 * n + 1
+        np.testing.assert_allclose(np.diff(ds["time"].values), res.period / n, rtol=1e-9)
+        np.testing.assert_allclose(ds["displacement"].values[-1], res.q[-1], rtol=0,
+                                   atol=1e-15)
 
 
 def test_auto_step_at_its_cap_warns(configs) -> None:

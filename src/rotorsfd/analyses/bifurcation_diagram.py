@@ -39,7 +39,6 @@ import numpy as np
 
 from rotorsfd.analyses.simulate import (
     DIRECTIONS,
-    _plain,
     classify,
     displaced_state,
     hb_start,
@@ -47,6 +46,7 @@ from rotorsfd.analyses.simulate import (
     system_from_config,
     time_domain_inputs,
 )
+from rotorsfd.analyses.simulation_result import plain
 from rotorsfd.analyses.step_control import integrate_controlled
 from rotorsfd.errors import ConfigError, ConvergenceError, JournalContactError, RotorsfdError
 from rotorsfd.model import dofs
@@ -171,7 +171,7 @@ class BifurcationDiagramResult:
         out = Path(directory)
         paths = {"diagram.csv": write_table(out / "diagram.csv", self.table()),
                  "speeds.csv": write_table(out / "speeds.csv", self.speeds_table()),
-                 "diagram.json": atomic.write_json(out / "diagram.json", _plain({
+                 "diagram.json": atomic.write_json(out / "diagram.json", plain({
                      "settings": self.settings, "nodes": list(self.nodes),
                      "clearance_m": self.clearance, "elapsed_s": self.elapsed,
                      "contacts": [{"direction": p.direction, "speed_rad_s": p.speed,
