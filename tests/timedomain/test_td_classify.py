@@ -171,3 +171,17 @@ def test_true_period_3_cycle_is_not_converging() -> None:
     P = np.tile(cycle, (34, 1))[:100] + 1e-6 * rng.normal(size=(100, 2))
     mc = classify_motion(P, scale=1.0)
     assert mc.motion == "period-3" and "converging" not in mc.evidence
+
+
+def test_torus_near_a_1_7_resonance_is_not_period_7() -> None:
+    """Points on a circle turning by 2 pi (1/7 + 1e-5) per period: after 7 periods they
+    come back within 1e-3 (of the normalised section) but move on steadily, 100 points
+    spreading over 7 arcs: not periodic; with a zero Lyapunov exponent, quasi-periodic."""
+    k = np.arange(100)
+    ang = 2 * np.pi * (1 / 7 + 1e-5) * k
+    P = np.column_stack([np.cos(ang), np.sin(ang)])
+    assert poincare_period(P / 2.0) == 7
+    mc = classify_motion(P, lyapunov=0.0)
+    assert mc.motion == "quasi-periodic"
+    assert mc.evidence["near_period"] == 7 and mc.evidence["poincare_period"] is None
+    assert "drift on steadily" in mc.evidence["note"]

@@ -6,7 +6,10 @@ Decision, in this order:
    (``|P[k+n] - P[k]| <= rtol`` times the orbit's spread); when their differences over a
    divisor m of n shrink steadily through the window (a period-m orbit approached along a
    slowly damped spiral, :func:`~rotorsfd.timedomain.poincare.converging_period`), the
-   class is period-m, not settled (``evidence["converging"]``).
+   class is period-m, not settled (``evidence["converging"]``); when they come back
+   within rtol after n periods but drift on steadily through the window (more distinct
+   points than n, the drift not shrinking: a torus with rotation number near 1/n,
+   :func:`~rotorsfd.timedomain.poincare.steady_drift`), the motion is not periodic.
 2. chaotic: a largest Lyapunov exponent above ``lyapunov_threshold`` per forcing period
    by more than its uncertainty (a :class:`LyapunovResult`'s ``half_spread``).
 3. quasi-periodic: not periodic and a Lyapunov exponent at or below the threshold (within
@@ -36,6 +39,7 @@ from rotorsfd.timedomain.poincare import (
     distinct_points,
     normalise,
     poincare_period,
+    steady_drift,
 )
 from rotorsfd.timedomain.spectrum import spectral_lines, two_frequency_fraction
 
@@ -121,7 +125,16 @@ def classify_motion(poincare: np.ndarray, signal: np.ndarray | None = None,
                             f"a period-{m} orbit (a slowly damped complex multiplier); "
                             "run more periods"))
             return MotionClass(f"period-{m}", ev)
-        return MotionClass(f"period-{n}", ev)
+        drift = steady_drift(P, n, ev["n_distinct_poincare"])
+        if drift is None:
+            return MotionClass(f"period-{n}", ev)
+        # the points come back within rtol after n periods but move on steadily: a torus
+        # whose rotation number is near 1/n (the non-periodic tests decide)
+        ev.update(poincare_period=None, near_period=n, drift_per_cycle=drift,
+                  note=(f"the Poincare points come back within {rtol:g} after {n} "
+                        f"periods but drift on steadily ({drift:.2g} per {n} periods, not "
+                        f"shrinking; {ev['n_distinct_poincare']} distinct points): not "
+                        "periodic"))
 
     curve = closed_curve_test(P)
     ev["closed_curve"] = curve

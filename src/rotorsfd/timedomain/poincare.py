@@ -125,3 +125,21 @@ def converging_period(P: np.ndarray, n: int, rtol: float = 1e-3,
             per = (last / first) ** (1.0 / (d.size - q)) if last > 0.0 else 0.0
             return m, float(per)
     return None
+
+
+def steady_drift(P: np.ndarray, n: int, n_distinct: int, decay: float = 0.7
+                 ) -> float | None:
+    """``max |P[k+n] - P[k]|`` of a section that passes the period-n test but has more
+    than n distinct points while that difference does not shrink through the window
+    (largest in the last quarter at least ``decay`` times that in the first): the points
+    move on steadily (a torus near a 1/n resonance), not settling. None otherwise (settled,
+    or settling: a transient into the period-n orbit)."""
+    P = np.asarray(P, dtype=float)
+    if n_distinct <= n or P.shape[0] < 4 * n + 8:
+        return None
+    d = np.max(np.abs(P[n:] - P[:-n]), axis=1)
+    q = max(2, d.size // 4)
+    first, last = float(np.max(d[:q])), float(np.max(d[-q:]))
+    if last > 0.0 and last >= decay * first:
+        return float(np.max(d))
+    return None
