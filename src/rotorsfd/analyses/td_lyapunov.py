@@ -30,8 +30,8 @@ import numpy as np
 from rotorsfd.analyses.td_integration import TimeDomainInputs
 from rotorsfd.errors import ConfigError
 from rotorsfd.stability.reduction import craig_bampton
-from rotorsfd.timedomain import LyapunovResult, largest_lyapunov
-from rotorsfd.timedomain.lyapunov import Projector, modal_projector
+from rotorsfd.timedomain import LyapunovResult
+from rotorsfd.timedomain.lyapunov import Projector, lyapunov_exponents, modal_projector
 
 #: Kept fixed-interface modes: ``omega <= HIGH_MODE_LIMIT / T`` (Floquet's 400 / 4).
 HIGH_MODE_LIMIT = 100.0
@@ -89,23 +89,21 @@ def high_mode_projector(inputs: TimeDomainInputs) -> tuple[Projector, float, int
 def lyapunov_pair(inputs: TimeDomainInputs, state: tuple[np.ndarray, np.ndarray, float], *,
                   steps_per_period: int, periods: int) -> LyapunovPair:
     """Both exponents from ``state = (q, v, t)`` over ``periods`` periods (module
-    docstring). Contact or Newton failures propagate."""
+    docstring), the two perturbations around one reference trajectory (three
+    trajectories in all). Contact or Newton failures propagate."""
     q0, v0, t0 = state
     T = inputs.period
-
-    def one(project: Projector | None) -> LyapunovResult:
-        ly = largest_lyapunov(inputs.M, inputs.D, inputs.K, inputs.nl_dofs, inputs.kernel,
-                              inputs.params, inputs.forcing,
-                              steps_per_period=steps_per_period, n_periods=periods, q0=q0,
-                              v0=v0, t0=t0, time_varying=inputs.time_varying,
-                              method="newmark", project=project)
-        return lyapunov_estimate(ly, T)
-
-    full = one(None)
     proj = high_mode_projector(inputs)
+    projectors = (None,) if proj is None else (None, proj[0])
+    found = lyapunov_exponents(inputs.M, inputs.D, inputs.K, inputs.nl_dofs, inputs.kernel,
+                               inputs.params, inputs.forcing,
+                               steps_per_period=steps_per_period, n_periods=periods, q0=q0,
+                               v0=v0, t0=t0, time_varying=inputs.time_varying,
+                               method="newmark", projectors=projectors)
+    full = lyapunov_estimate(found[0], T)
     if proj is None:
         return LyapunovPair(full, full, None, None)
-    return LyapunovPair(one(proj[0]), full, proj[1], proj[2])
+    return LyapunovPair(lyapunov_estimate(found[1], T), full, proj[1], proj[2])
 
 
 def uncertainty_per_period(ly: LyapunovResult, period: float) -> float:

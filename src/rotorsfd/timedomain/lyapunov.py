@@ -70,6 +70,30 @@ def largest_lyapunov(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: 
     modes: :func:`modal_projector`) neither grow nor enter ``d``; the exponent is then the
     largest one of the remaining subspace.
     """
+    return lyapunov_exponents(M, D, K, nl_dofs, kernel, params, forcing, dt, n_steps, q0,
+                              v0, steps_per_period=steps_per_period, n_periods=n_periods,
+                              transient_steps=transient_steps, renorm_every=renorm_every,
+                              d0=d0, velocity_scale=velocity_scale, seed=seed, t0=t0,
+                              time_varying=time_varying, method=method, alpha=alpha,
+                              rho_inf=rho_inf, newton_rtol=newton_rtol,
+                              projectors=(project,))[0]
+
+
+def lyapunov_exponents(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: Any,
+                       forcing: Forcing | None, dt: float | None = None,
+                       n_steps: int | None = None, q0: Any = 0.0, v0: Any = 0.0, *,
+                       steps_per_period: int | None = None, n_periods: float | None = None,
+                       transient_steps: int = 0, renorm_every: int | None = None,
+                       d0: float | None = None, velocity_scale: float | None = None,
+                       seed: int = 0, t0: float = 0.0,
+                       time_varying: TimeVaryingMatrices | None = None,
+                       method: str = "newmark", alpha: float = 0.05, rho_inf: float = 0.9,
+                       newton_rtol: float = 1e-12,
+                       projectors: tuple[Projector | None, ...] = (None,),
+                       ) -> list[LyapunovResult]:
+    """:func:`largest_lyapunov` for one perturbation per entry of ``projectors`` (None:
+    the whole state), all around one reference trajectory (each perturbation costs one
+    trajectory, the reference is shared); the same random start direction, projected."""
     if steps_per_period is not None or n_periods is not None:
         if forcing is None or not forcing.omega > 0.0 or steps_per_period is None \
                 or n_periods is None:
@@ -106,47 +130,56 @@ def largest_lyapunov(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: 
         size = max(float(np.max(np.abs(ref.X[:n]))), float(np.max(np.abs(ref.X[n:2 * n]))) / w)
         d0 = 1e-7 * size if size > 0.0 else 1e-10
     rng = np.random.default_rng(seed)
-    dirn = rng.standard_normal(2 * n)
-    if project is not None:
-        pq_, pv_ = project(dirn[:n], w * dirn[n:])
-        dirn = np.concatenate([pq_, pv_ / w])
-    dirn /= math.sqrt(dirn[:n] @ dirn[:n] + dirn[n:] @ dirn[n:])
-    pert = initial_state(ps, ref.X[:n] + d0 * dirn[:n], ref.X[n:2 * n] + d0 * w * dirn[n:],
-                         step=ref.step)
+    dirn0 = rng.standard_normal(2 * n)
+    perts = []
+    for project in projectors:
+        dirn = dirn0.copy()
+        if project is not None:
+            pq_, pv_ = project(dirn[:n], w * dirn[n:])
+            dirn = np.concatenate([pq_, pv_ / w])
+        dirn /= math.sqrt(dirn[:n] @ dirn[:n] + dirn[n:] @ dirn[n:])
+        perts.append(initial_state(ps, ref.X[:n] + d0 * dirn[:n],
+                                   ref.X[n:2 * n] + d0 * w * dirn[n:], step=ref.step))
     t_start = ps.t0 + ref.step * dt
-    logs, times = [], []
+    logs: list[list[float]] = [[] for _ in projectors]
+    times = []
     done = 0
     while done < n_steps:
         k = min(renorm_every, n_steps - done)
         advance(ref, k)
-        advance(pert, k)
         done += k
-        dq = pert.X[:n] - ref.X[:n]
-        dv = pert.X[n:2 * n] - ref.X[n:2 * n]
-        if project is not None:
-            dq, dv = project(dq, dv)
-        d = math.sqrt(dq @ dq + (dv @ dv) / (w * w))
-        if not (d > 0.0 and math.isfinite(d)):
-            raise ConvergenceError(f"Lyapunov run: separation {d} at step {ref.step}")
-        logs.append(math.log(d / d0))
         times.append(ps.t0 + ref.step * dt)
-        s = d0 / d
-        pert = initial_state(ps, ref.X[:n] + s * dq, ref.X[n:2 * n] + s * dv,
-                             step=ref.step)
-    logs_a = np.array(logs)
+        for i, project in enumerate(projectors):
+            pert = perts[i]
+            advance(pert, k)
+            dq = pert.X[:n] - ref.X[:n]
+            dv = pert.X[n:2 * n] - ref.X[n:2 * n]
+            if project is not None:
+                dq, dv = project(dq, dv)
+            d = math.sqrt(dq @ dq + (dv @ dv) / (w * w))
+            if not (d > 0.0 and math.isfinite(d)):
+                raise ConvergenceError(f"Lyapunov run: separation {d} at step {ref.step}")
+            logs[i].append(math.log(d / d0))
+            s = d0 / d
+            perts[i] = initial_state(ps, ref.X[:n] + s * dq, ref.X[n:2 * n] + s * dv,
+                                     step=ref.step)
     times_a = np.array(times)
-    hist = np.cumsum(logs_a) / (times_a - t_start)
-    lam = float(hist[-1])
-    half = len(logs_a) // 2
-    if half >= 1:
-        t_mid = times_a[half - 1]
-        first = logs_a[:half].sum() / (t_mid - t_start)
-        second = logs_a[half:].sum() / (times_a[-1] - t_mid)
-        spread = float(abs(second - first))
-    else:
-        spread = math.nan
-    per = lam * 2 * math.pi / omega if omega > 0 else math.nan
-    return LyapunovResult(lam, per, hist, times_a, spread, float(d0), renorm_every)
+    out = []
+    for lg in logs:
+        logs_a = np.array(lg)
+        hist = np.cumsum(logs_a) / (times_a - t_start)
+        lam = float(hist[-1])
+        half = len(logs_a) // 2
+        if half >= 1:
+            t_mid = times_a[half - 1]
+            first = logs_a[:half].sum() / (t_mid - t_start)
+            second = logs_a[half:].sum() / (times_a[-1] - t_mid)
+            spread = float(abs(second - first))
+        else:
+            spread = math.nan
+        per = lam * 2 * math.pi / omega if omega > 0 else math.nan
+        out.append(LyapunovResult(lam, per, hist, times_a, spread, float(d0), renorm_every))
+    return out
 
 
 def modal_projector(M: np.ndarray, basis: np.ndarray) -> Projector:
