@@ -45,7 +45,17 @@ def test_readme_has_the_tutorial_blocks():
 
 
 @pytest.mark.parametrize("line", _command_lines())
-def test_readme_command_parses(line):
+def test_readme_command_parses(line, tmp_path, monkeypatch):
+    # the CLI checks at parse time that the paths a command reads exist (--from-orbit,
+    # --initial-state): in the README those are folders an earlier command wrote with
+    # -o, so make every -o folder, as running the commands in order does
+    (tmp_path / "examples").symlink_to(ROOT / "examples")
+    for other in _command_lines():
+        args = shlex.split(other)
+        for flag in ("-o", "--output"):
+            if flag in args:
+                (tmp_path / args[args.index(flag) + 1]).mkdir(parents=True, exist_ok=True)
+    monkeypatch.chdir(tmp_path)
     argv = shlex.split(line)[1:]
     parser = build_parser()
     with contextlib.redirect_stderr(io.StringIO()) as err:
