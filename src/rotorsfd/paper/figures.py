@@ -117,8 +117,8 @@ def _width(spec: FigureSpec, res: list[Outcome]) -> Figure:
                  .replace("-paper-h", ", paper's H"))
         if np.all(np.isnan(d["width"])):
             label += ": journal contact, no fold"
-        ax.plot(d["rate"], d["width"], "-o" if len(d["rate"]) < 30 else "-", ms=3,
-                label=label)
+        style = "-o" if len(d["rate"]) < 30 else ":" if "paper-h" in o.name else "-"
+        ax.plot(d["rate"], d["width"], style, ms=3, label=label)
     paper = {"U = 252 (paper)": ([0, 7], [0.041, 0.0]),
              "U = 360.04 (paper)": ([0, 10], [0.195, 0.119])}
     for name, (x, y) in paper.items():
