@@ -339,7 +339,7 @@ CLAIMS: tuple[Claim, ...] = (
     Claim("Figure 23 (T/200)", "Omega~ = 1.075 from the HB orbit shifted by T/2",
           "quasi-periodic", "fig23-isola", "motion_find",
           "at T/200 this start lands on a second period-1 orbit: the isola (rows below); "
-          "at T/400-T/1600 on the main branch"),
+          "at T/800 and T/1600 on the main branch"),
     Claim("Figure 23 (T/200)", "that second orbit: journal at the Poincare point", None,
           "fig23-isola", "poincare_find_"),
     Claim("Figure 23 (T/800)", "Omega~ = 1.075 started on the isola's HB orbit",
