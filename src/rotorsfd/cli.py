@@ -368,7 +368,7 @@ def _fit_supports(args: argparse.Namespace, config: Any) -> int:
                         help="multipliers.png at the point nearest this speed ratio "
                              "Omega/Omega_ref (the parameter in SI for a non-speed branch); "
                              "default: the point of largest |mu|max"),
-                    arg("--from-orbit", type=cli_args.existing_path, metavar="DIR_OR_NC",
+                    arg("--from-orbit", type=Path, metavar="DIR_OR_NC",
                         help="start the branch on the last period of a time-domain orbit "
                              "(rotorsfd simulate output), Newton-corrected at its speed, "
                              "and continue it both ways over the speed range, stopping "
@@ -376,6 +376,7 @@ def _fit_supports(args: argparse.Namespace, config: Any) -> int:
 def _response(args: argparse.Namespace, config: Any) -> int:
     from rotorsfd import api
 
+    cli_args.check_exists("--from-orbit", args.from_orbit)
     with StopRequest("the current point") as stop:
         result = api.run_response(config, search_path=Path(args.config).parent,
                                   progress=not args.quiet, from_orbit=args.from_orbit,
@@ -466,7 +467,7 @@ def _sweep(args: argparse.Namespace, config: Any) -> int:
                         help="with --from-hb: start on the HB orbit a fraction P of the "
                              "period later (e.g. 0.5; off the orbit at t = 0 unless it is "
                              "symmetric: a way to find a coexisting attractor)"),
-                    arg("--initial-state", type=cli_args.existing_path, metavar="DIR_OR_NC",
+                    arg("--initial-state", type=Path, metavar="DIR_OR_NC",
                         help="start from the final state of a previous run (its output "
                              "directory or timeseries.nc); same speed: continues it"),
                     arg("--record-periods", type=cli_args.integer(1), metavar="N",
@@ -482,6 +483,7 @@ def _simulate(args: argparse.Namespace, config: Any) -> int:
                           "give --speed or --speed-ratio, not both")
     if args.hb_phase and not args.from_hb:
         raise ConfigError("--hb-phase", args.hb_phase, "needs --from-hb")
+    cli_args.check_exists("--initial-state", args.initial_state)
     result = api.run_simulation(config, args.speed, speed_ratio=args.speed_ratio,
                                 search_path=Path(args.config).parent,
                                 from_hb=args.from_hb, hb_phase=args.hb_phase,

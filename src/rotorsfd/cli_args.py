@@ -45,13 +45,15 @@ def integer(low: int) -> Callable[[str], int]:
     return parse
 
 
-def existing_path(text: str) -> Path:
-    """An argparse type: a file or folder that exists."""
-    path = Path(text)
-    if not path.exists():
-        raise argparse.ArgumentTypeError(f"no such file or folder: {text!r} (give a "
-                                         "simulate output folder or its timeseries.nc)")
-    return path
+def check_exists(option: str, path: Path | None) -> None:
+    """ConfigError naming ``option`` if ``path`` (a simulate output folder or its
+    timeseries.nc) is given and does not exist; called by a command before its work (not
+    an argparse type: a command line that only parses needs no files)."""
+    from rotorsfd.errors import ConfigError
+
+    if path is not None and not path.exists():
+        raise ConfigError(option, str(path), "no such file or folder (give a simulate "
+                          "output folder or its timeseries.nc)")
 
 
 def positive_ratio(text: str) -> float:

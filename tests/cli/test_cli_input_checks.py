@@ -159,10 +159,6 @@ def test_simulate_speed_options_named(tmp_path, capsys, argv, line):
      "simulate: argument --lyapunov-periods: must be >= 0, got '-5'"),    # was accepted
     (["simulate", str(PAPER), "--speed-ratio", "1", "--record-periods", "0"],
      "simulate: argument --record-periods: must be >= 1, got '0'"),
-    (["simulate", str(PAPER), "--speed-ratio", "1", "--initial-state", "/no/such"],
-     "simulate: argument --initial-state: no such file or folder: '/no/such'"),
-    (["response", str(PAPER), "--from-orbit", "/no/such"],     # was found after the start
-     "response: argument --from-orbit: no such file or folder: '/no/such'"),
     (["response", str(PAPER), "--multipliers-at", "nan"],
      "response: argument --multipliers-at: expected a finite number, got 'nan'"),
     (["sweep", str(PAPER), "--workers", "0"], "sweep: argument --workers: must be >= 1"),
@@ -174,6 +170,24 @@ def test_option_values_checked_before_work(tmp_path, monkeypatch, capsys, argv, 
     assert cli.main([*argv, "-o", str(tmp_path / "out")]) == 2
     line = _line(capsys.readouterr().err)
     assert line.startswith("rotorsfd: error: ") and words in line
+    assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize(("argv", "line"), [
+    (["simulate", str(PAPER), "--speed-ratio", "1", "--initial-state", "/no/such"],
+     "rotorsfd: error: --initial-state: got '/no/such'; no such file or folder (give a "
+     "simulate output folder or its timeseries.nc)"),
+    (["response", str(PAPER), "--from-orbit", "/no/such"],     # was found after the start
+     "rotorsfd: error: --from-orbit: got '/no/such'; no such file or folder (give a "
+     "simulate output folder or its timeseries.nc)"),
+])
+def test_missing_input_files_named_before_work(tmp_path, monkeypatch, capsys, argv, line):
+    from rotorsfd import api
+
+    for name in ("run_response", "run_simulation"):
+        monkeypatch.setattr(api, name, lambda *a, **k: pytest.fail("work started"))
+    assert cli.main([*argv, "-o", str(tmp_path / "out")]) == 2
+    assert _line(capsys.readouterr().err) == line
     assert not (tmp_path / "out").exists()
 
 
