@@ -383,7 +383,10 @@ def _response(args: argparse.Namespace, config: Any) -> int:
                                   callback=stop)
     paths = result.write(args.output, multipliers_at=args.multipliers_at)
     if stop.requested:
-        _print_written(result, paths, args.quiet)
+        if not args.quiet:  # the branch's own last line would say "stopped by the callback"
+            print("\n".join(line for line in result.summary().splitlines()
+                            if "stopped by the callback" not in line))
+            print("wrote " + ", ".join(str(p) for p in paths.values()))
         raise Interrupted(f"the {result.branch.n_points} points computed before Ctrl-C "
                           f"({_branch_end(result)}) are written to {args.output}")
     if not result.success:

@@ -107,7 +107,8 @@ def test_ctrl_c_on_response_writes_the_points_so_far(tmp_path):
     assert (out / "branch.nc").is_file()
     marker = (out / MARKER).read_text()
     assert f"The {n} points computed before Ctrl-C" in marker
-    assert b"wrote " in out_text
+    assert b"wrote " in out_text and f"{n} points".encode() in out_text
+    assert b"callback" not in out_text               # solver wording: not for the user
 
 
 def test_rerun_after_a_kill_removes_half_written_files(tmp_path, monkeypatch):
