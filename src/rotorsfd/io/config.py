@@ -132,9 +132,38 @@ def config_from_dict(raw: Mapping[str, Any], overrides: Iterable[str] = (),
 def validate(data: Mapping[str, Any]) -> Config:
     """``Config.model_validate`` with the first error turned into one ConfigError."""
     try:
-        return Config.model_validate(data)
+        config = Config.model_validate(data)
     except ValidationError as exc:
         raise to_config_error(exc, data) from None
+    _strict_booleans(Config, data, ())
+    return config
+
+
+def _strict_booleans(model: type[BaseModel], data: Any, where: tuple[Any, ...]) -> None:
+    """ConfigError for a true/false field given anything but a TOML boolean: pydantic
+    takes ``"yes"``, ``"off"``, ``1`` and ``"false"`` (a string, hence truthy to a reader)
+    as booleans; a config must say ``true`` or ``false``."""
+    if not isinstance(data, Mapping):
+        return
+    for key, value in data.items():
+        info = model.model_fields.get(key) if isinstance(key, str) else None
+        if info is None:
+            continue
+        annotation = unwrap(info.annotation)
+        path = (*where, key)
+        if annotation is bool and not isinstance(value, bool):
+            desc = _description(list(path))
+            raise ConfigError(_join(path), value, "expected true or false"
+                              + (f": {desc}" if desc else ""))
+        if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+            _strict_booleans(annotation, value, path)
+        elif typing.get_origin(annotation) in (list, dict):
+            item = unwrap(typing.get_args(annotation)[-1])
+            if isinstance(item, type) and issubclass(item, BaseModel):
+                items = value.items() if isinstance(value, Mapping) else \
+                    enumerate(value) if isinstance(value, list) else ()
+                for k, v in items:
+                    _strict_booleans(item, v, (*path, k))
 
 
 def with_values(config: Config, values: Mapping[str, Any]) -> Config:
