@@ -257,17 +257,19 @@ class CondensedHB:
                           np.zeros((self.H + 1, m), dtype=complex))
         return self._work
 
-    def residual(self, xs: FloatArray, lam: float, jac: bool = True
+    def residual(self, xs: FloatArray, lam: float, jac: bool = True, dlam: bool = True
                  ) -> tuple[FloatArray, FloatArray | None, FloatArray | None]:
         """Receptance-form residual R (2H+1, m); with jac also dR/dxs (nu, nu), dR/dlam
-        (the AFT and the assembly in compiled loops, :mod:`rotorsfd.harmonic.aft_kernels`)."""
+        (the AFT and the assembly in compiled loops, :mod:`rotorsfd.harmonic.aft_kernels`).
+        ``dlam=False`` skips the lam-derivatives (dR/dlam is then None)."""
         p, H, nu = self.problem, self.H, self.n_unknowns
         xs = np.ascontiguousarray(xs, dtype=float).reshape(2 * H + 1, p.m)
         w = p.frequency(lam)
-        dw = p.dfrequency(lam) if jac else 0.0
-        cd = self.condense(lam, deriv=jac)
+        with_dlam = jac and dlam
+        dw = p.dfrequency(lam) if with_dlam else 0.0
+        cd = self.condense(lam, deriv=with_dlam)
         q, dq, v, f, dfq, dfv, dG, dGdw, zH, zP = self._work_arrays()
-        dHt, dPt = (cd.dHt, cd.dPt) if jac else (zH, zP)
+        dHt, dPt = (cd.dHt, cd.dPt) if with_dlam else (zH, zP)
         G = np.empty_like(xs)
         R = np.empty_like(xs)
         J = np.empty((nu, nu)) if jac else np.empty((0, 0))
@@ -289,7 +291,7 @@ class CondensedHB:
         self._last = (lam, xs.copy(), G)
         if not jac:
             return R, None, None
-        return R, J, dR.reshape(nu)
+        return R, J, dR.reshape(nu) if with_dlam else None
 
     def force_coefficients(self, xs: FloatArray, lam: float, N: int) -> FloatArray:
         """Nonlinear-force coefficients G (2H+1, m) at (xs, lam) with N samples: those of

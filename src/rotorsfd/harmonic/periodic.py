@@ -37,6 +37,7 @@ from rotorsfd.harmonic.fourier import (
 )
 from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.harmonic.residual import FullHB, nonlinear_coefficients
+from rotorsfd.harmonic.truncation import convert_tangent, pad_coefficients, truncation_error
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -122,6 +123,13 @@ class HBSystem:
             return self.hb.aliasing(xs, lam)
         return aliasing_error(self.problem.nl_force, xs, self.problem.frequency(lam), self.N,
                               self.hb.last_G(xs, lam))
+
+    def nl_tangent(self, t: FloatArray) -> FloatArray:
+        """The tangent's components on the nonlinear DOFs and lam (the condensed layout)."""
+        if self.condensed:
+            return t
+        x = t[:-1].reshape(2 * self.H + 1, self.problem.n_dof)[:, self.problem.nl_dofs]
+        return np.append(x.ravel(), t[-1])
 
     # sampling error in the units of the convergence test (the "adaptive" N_f rule) ----------
     def force_coefficients(self, z: FloatArray, N: int) -> FloatArray:
@@ -280,6 +288,9 @@ N_SAMPLES_RULES = ("adaptive", "grow")
 #: The adaptive rule halves N_f only when the halved count's sampling error is below this
 #: fraction of ``alias_tol`` (doubling is at ``alias_tol``): the band is the hysteresis.
 COARSEN_FRACTION = 0.1
+#: Default ``harmonics_tol`` of :func:`continue_periodic`: the truncation-error estimate
+#: (solution change in the Newton test's length scales, e.g. SFD clearances) allowed.
+TRUNCATION_TOL = 1e-3
 
 
 @_one_blas_thread
@@ -291,8 +302,10 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
                       lam_scale: float | None = None, limit_max: float = 1.0,
                       alias_tol: float | None = None, n_samples_max: int = 2048,
                       n_samples_rule: str = "adaptive",
-                      store_jacobians: bool | None = None, callback: EventHook | None = None
-                      ) -> Branch:
+                      store_jacobians: bool | None = None, callback: EventHook | None = None,
+                      harmonics_tol: float | None = TRUNCATION_TOL,
+                      adaptive_harmonics: bool = False, H_min: int = 1, H_max: int = 32,
+                      start_tangent: FloatArray | None = None) -> Branch:
     """Branch of periodic solutions from lam_start towards lam_end (pseudo arc-length).
 
     Steps ``ds, ds_min, ds_max`` are arc lengths in the scaled unknowns (module docstring).
@@ -323,6 +336,25 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
     ``callback(point: BranchPoint)`` is called at every converged point (the first too);
     returning True stops the continuation there (success, message says so).
     ``store_jacobians`` (default: only when condensed) keeps ``Branch.jacobians``.
+
+    Harmonics: at every converged point the truncation error is estimated
+    (:func:`~rotorsfd.harmonic.truncation.truncation_error`, the change of the solution if
+    about 1.5 H harmonics were kept, in the length scales of the Newton test: for an SFD,
+    clearances) and stored in ``Branch.info["truncation_error"]`` (``harmonics_tol=None``
+    skips it). With ``adaptive_harmonics`` H starts at ``H`` and follows the branch: above
+    ``harmonics_tol`` it is raised (to where the estimate's dropped content falls below
+    half the tolerance, at most ``H_max``) and the point re-solved; where the content of
+    the top harmonics plus the estimate is below ``COARSEN_FRACTION * harmonics_tol`` it
+    is lowered (not below ``H_min``). ``Branch.info["harmonics"]`` holds H per point,
+    ``Branch.H`` the largest (``X`` is zero-padded to it; ``jacobians`` is then None). A
+    fixed H whose estimate exceeds ``harmonics_tol`` adds a warning to the message.
+
+    ``start_tangent`` (scaled unknowns of the layout of X0, e.g. a tangent of another
+    branch at X0): the first point is solved on the plane through ``(X0, lam_start)``
+    normal to it instead of at fixed lam (well conditioned near a fold, where a fixed-lam
+    Newton from a perturbed start may fail or jump to another solution), and the branch
+    follows its direction (``lam_end`` then only bounds the range, as far behind the start
+    as ahead of it).
     Never raises on a failed step: returns the points so far with ``success = False`` and a
     message saying where (lam) and why; this includes the re-solve of a point after N_f
     changed ("re-solve at N_f=... failed at lam=..."). Raises ConvergenceError only if the
@@ -337,18 +369,40 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
         alias_tol = tol if n_samples_rule == "adaptive" else 1e-6
     n_floor = min(default_min_samples(H), n_samples_max)
     scale = lam_scale or (abs(lam_end - lam_start) or max(abs(lam_start), 1.0))
-    first = solve_periodic.__wrapped__(problem, lam_start, H, X0, n_samples=n_samples,
-                                       condensed=condensed, tol=tol, limit_max=limit_max)
+    width = problem.m if condensed else problem.n_dof     # unknowns per harmonic
+    if start_tangent is None:
+        first = solve_periodic.__wrapped__(problem, lam_start, H, X0, n_samples=n_samples,
+                                           condensed=condensed, tol=tol,
+                                           limit_max=limit_max)
+        X_start, N, t_prev, plane = first.X, first.n_samples, None, False
+    else:
+        X_start = _initial_guess(problem, H, lam_start, X0)
+        xs = to_real(X_start)[:, problem.nl_dofs]
+        N = n_samples or choose_n_samples(problem.nl_force, xs, problem.frequency(lam_start))
+        t0 = np.asarray(start_tangent, dtype=float)
+        h0 = ((t0.size - 1) // width - 1) // 2
+        t_prev, plane = convert_tangent(t0, h0, H, width), True
     if store_jacobians is None:
         store_jacobians = condensed
-    keys = ("lam", "X", "w", "t", "it", "ds", "J", "al", "N", "z", "sys")
+    keys = ("lam", "X", "w", "t", "it", "ds", "J", "al", "N", "z", "sys", "H", "te")
     out: dict[str, list] = {k: [] for k in keys}
     state: dict = {"refine": False, "coarsen": False, "skip": False, "s": 0.0}
     opts = ArcLengthOptions(ds=ds, ds_min=ds_min, ds_max=ds_max, tol=tol, max_iter=max_iter,
                             max_points=max_points, max_angle=float(np.radians(max_angle_deg)))
-    X_start, lam0, N, t_prev = first.X, lam_start, first.n_samples, None
-    system, res0 = _start_point(problem, H, lam0, X_start, N, condensed, scale, limit_max,
-                                tol, max_iter, t_prev)
+    lam0 = lam_start
+    try:
+        system, res0 = _start_point(problem, H, lam0, X_start, N, condensed, scale,
+                                    limit_max, tol, max_iter, t_prev, plane)
+    except ConvergenceError:
+        if not plane:
+            raise
+        raise ConvergenceError(f"{problem.name}: no periodic solution near lam="
+                               f"{lam_start:.8g} (H={H}, N_f={N}) on the plane normal to "
+                               "the start tangent") from None
+    lam_first = lam_start
+    if plane:   # the range reaches as far behind the start as ahead of it
+        lam_first = system.from_z(res0.z)[1]
+        lam_first -= lam_end - lam_first
     failed: str | None = None
     while True:
 
@@ -372,12 +426,27 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
                     state.update(refine=True, X=system.coefficients(z), lam=lam, t=t,
                                  step=step, N=None)
                     return True
+            te, H_down = np.nan, system.H
+            if harmonics_tol is not None:
+                est = truncation_error(problem, system.hb.nl_part(x), lam,
+                                       tangent=system.nl_tangent(t), lam_scale=scale)
+                te = est.error
+                if adaptive_harmonics and te > harmonics_tol and system.H < H_max:
+                    H_up = min(H_max, max(system.H + 1,
+                                          est.harmonics_needed(0.5 * harmonics_tol)))
+                    state.update(refine=True, X=system.coefficients(z), lam=lam, t=t,
+                                 step=step, N=max(system.N, default_min_samples(H_up)),
+                                 H=H_up)
+                    return True
+                if adaptive_harmonics and system.H > H_min:
+                    H_down = _coarser_harmonics(system, x, te, H_min,
+                                                COARSEN_FRACTION * harmonics_tol)
             X = system.coefficients(z)
             J = system.physical_jacobian(z, Jz) if store_jacobians or callback else None
             w = problem.frequency(lam)
             step = step or state.pop("step", 0.0)
             state["s"] += step
-            vals = (lam, X, w, t, it, step, J, al, system.N, z, system)
+            vals = (lam, X, w, t, it, step, J, al, system.N, z, system, system.H, te)
             for key, val in zip(out, vals, strict=True):
                 out[key].append(val)
             stop = False
@@ -385,20 +454,26 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
                 point = BranchPoint(len(out["lam"]) - 1, lam, X, x, t, J, it, w, state["s"],
                                     float(t[-1]) * scale)
                 stop = bool(callback(point))
+            N_down = system.N
             if adaptive and not stop and system.N > n_floor:
                 N_down = system.coarser_n_samples(z, n_floor, COARSEN_FRACTION * alias_tol)
-                if N_down < system.N:
-                    state.update(coarsen=True, X=X, lam=lam, t=t, N=N_down)
-                    return True
+            if not stop and (N_down < system.N or H_down < system.H):
+                if H_down < system.H:
+                    N_down = max(min(N_down, system.N), min(default_min_samples(H_down),
+                                                            n_samples_max))
+                state.update(coarsen=True, X=X, lam=lam, t=t, N=N_down, H=H_down)
+                return True
             return stop
 
         opts.max_points = max_points - len(out["lam"]) + (1 if state["skip"] else 0)
         status = arclength(system, res0.z, res0.J, lam_end / scale, on_point, opts,
                            lam_physical=lambda lh: lh * scale, t_prev=t_prev,
-                           lam_start=lam_start / scale)
+                           lam_start=lam_first / scale)
         state["skip"] = False
+        H_next = state.pop("H", system.H)
         if state["refine"]:
-            # sampling error too large: more samples, re-solve this point, go on
+            # sampling or truncation error too large: more samples or harmonics, re-solve
+            # this point, go on
             state["refine"] = False
             X_start, lam0, t_prev, N = state["X"], state["lam"], state["t"], state["N"]
             if N is None:   # the "grow" rule
@@ -416,33 +491,90 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
         else:
             break
         opts.ds = status.ds
-        why = "raised for the sampling error" if N > system.N else "lowered"
+        if H_next != system.H:
+            why = f"H {'raised for the truncation error' if H_next > system.H else 'lowered'}"
+            why += f" from {system.H} to {H_next}"
+        else:
+            why = ("N_f raised for the sampling error" if N > system.N else "N_f lowered")
+            why += f" from {system.N}"
+        t_prev = convert_tangent(t_prev, system.H, H_next, width)
         try:
-            system, res0 = _start_point(problem, H, lam0, X_start, N, condensed, scale,
+            system, res0 = _start_point(problem, H_next, lam0, X_start, N, condensed, scale,
                                         limit_max, tol, max_iter, t_prev)
         except ConvergenceError as exc:
             # keep the promise: a failed step ends the branch, it does not raise
-            failed = (f"re-solve at N_f={N} failed at lam={lam0:.8g} (N_f {why} from "
-                      f"{system.N}; the branch ends at the last point with N_f="
-                      f"{system.N}): {' '.join(str(exc).split())}")
+            at = f"N_f={N}" if H_next == system.H else f"H={H_next}, N_f={N}"
+            failed = (f"re-solve at {at} failed at lam={lam0:.8g} ({why}; the branch ends "
+                      f"at the last point with N_f={system.N}"
+                      + ("" if H_next == system.H else f", H={system.H}")
+                      + f"): {' '.join(str(exc).split())}")
             break
     al = np.array(out["al"])
     msg = status.message if failed is None else failed
     if al.size and al.max() > alias_tol:
         msg += (f"; warning: aliasing up to {al.max():.2g} (N_f={system.N}); "
                 "consider a larger n_samples")
+    Hs = np.array(out["H"], dtype=np.int64)
+    te = np.array(out["te"], dtype=float)
+    H_top = int(Hs.max()) if Hs.size else H
+    msg += _truncation_warning(te, Hs, np.array(out["lam"]), harmonics_tol,
+                               adaptive_harmonics, H_max)
     s_all = np.cumsum(out["ds"]) if out["ds"] else np.zeros(0)
+    m = width
+    uniform = bool(Hs.size == 0 or np.all(Hs == H_top))
     return Branch(
-        lam=np.array(out["lam"]), X=np.array(out["X"]), frequency=np.array(out["w"]),
-        tangents=np.array(out["t"]), iterations=np.array(out["it"], dtype=np.int64),
+        lam=np.array(out["lam"]), X=np.array([pad_coefficients(X, H_top) for X in out["X"]]),
+        frequency=np.array(out["w"]),
+        tangents=np.array([convert_tangent(t, h, H_top, m) for t, h in zip(out["t"], Hs,
+                                                                           strict=True)]),
+        iterations=np.array(out["it"], dtype=np.int64),
         ds=np.array(out["ds"]), s=s_all,
-        jacobians=np.array(out["J"]) if store_jacobians else None, aliasing=al,
-        success=status.success and failed is None, message=msg, H=H, n_samples=system.N,
-        nl_dofs=problem.nl_dofs.copy(), condensed=condensed, lam_scale=scale,
+        jacobians=np.array(out["J"]) if store_jacobians and uniform else None, aliasing=al,
+        success=status.success and failed is None, message=msg, H=H_top,
+        n_samples=system.N, nl_dofs=problem.nl_dofs.copy(), condensed=condensed,
+        lam_scale=scale,
         info={"n_samples": np.array(out["N"], dtype=np.int64),
               "n_samples_rule": n_samples_rule,
-              "alias_tol": alias_tol},
+              "alias_tol": alias_tol, "harmonics": Hs, "truncation_error": te,
+              "harmonics_tol": harmonics_tol, "adaptive_harmonics": adaptive_harmonics},
         resolver=_Resolver(problem, out["z"], out["t"], s_all, out["sys"], tol, scale))
+
+
+
+def _coarser_harmonics(system: HBSystem, x: FloatArray, error: float, H_min: int,
+                       target: float) -> int:
+    """The smallest H' in [H_min, H] for which the content of the harmonics above H' (in
+    the length scales c, first order: what truncating them drops) plus the current
+    estimate ``error`` is <= target."""
+    xs = system.hb.nl_part(x)
+    c = system.problem.dof_scale[system.problem.nl_dofs]
+    sc = xs / c[None, :]
+    per = np.sqrt((sc[1::2] ** 2 + sc[2::2] ** 2).sum(axis=1))          # k = 1..H
+    tail = np.sqrt(np.cumsum(per[::-1] ** 2)[::-1])                      # tail[k-1] = |k..H|
+    H = system.H
+    for h in range(H_min, H):
+        if tail[h] + error <= target:
+            return h
+    return H
+
+
+def _truncation_warning(te: FloatArray, Hs: NDArray[np.int64], lam: FloatArray,
+                        tol: float | None, adaptive: bool, H_max: int) -> str:
+    """'; warning: ...' where the truncation estimate exceeds tol ('' if nowhere)."""
+    if tol is None or not te.size:
+        return ""
+    bad = np.nan_to_num(te, nan=0.0) > tol
+    if not bad.any():
+        return ""
+    i = int(np.argmax(np.where(bad, te, -np.inf)))
+    where = (f"at {int(bad.sum())} of {te.size} points, up to {te[i]:.2g} at "
+             f"lam={lam[i]:.8g} (H={int(Hs[i])})")
+    if adaptive:
+        return (f"; warning: HB truncation error above {tol:g} {where} with H at its "
+                f"maximum {H_max}: raise harmonics_max")
+    return (f"; warning: HB truncation error above {tol:g} {where}: the response, its "
+            "folds and bifurcations are not converged in H; raise H or use "
+            "harmonics = 'auto'")
 
 
 class _Resolver:
@@ -460,6 +592,12 @@ class _Resolver:
         i = int(np.clip(np.searchsorted(self.s, s, side="right") - 1, 0, len(self.s) - 1))
         system = self.systems[min(i + 1, len(self.s) - 1)]
         z_i, t_i = self.zs[i], self.ts[i]
+        H_i = self.systems[i].H
+        if H_i != system.H:    # H changed between the two points: z_i in system's layout
+            m = self.problem.m if system.condensed else self.problem.n_dof
+            z_i = convert_tangent(z_i, H_i, system.H, m)
+            t_i = convert_tangent(t_i, H_i, system.H, m)
+            t_i = t_i / max(float(np.linalg.norm(t_i)), np.finfo(float).tiny)
         W = system.weights
         d = float(s - self.s[i])
         res = newton_extended(system, z_i + d * t_i, W * t_i, float((W * t_i) @ z_i) + d,
@@ -482,13 +620,14 @@ FOLD_TANGENT = 0.1
 
 def _start_point(problem: PeriodicProblem, H: int, lam: float, X: ComplexArray, N: int,
                  condensed: bool, scale: float, limit_max: float, tol: float, max_iter: int,
-                 t: FloatArray | None = None) -> tuple[HBSystem, NewtonResult]:
+                 t: FloatArray | None = None, plane: bool = False
+                 ) -> tuple[HBSystem, NewtonResult]:
     """Continuation system with N samples and the point at lam solved in it (at fixed lam,
-    or on the plane through it normal to the tangent t near a fold)."""
+    or on the plane through it normal to the tangent t near a fold or with ``plane``)."""
     system, z0 = _setup(problem, H, lam, X, N, condensed, scale, limit_max)
     a = np.zeros(system.n + 1)
     a[-1] = 1.0
-    if t is not None and abs(t[-1]) < FOLD_TANGENT:
+    if t is not None and (plane or abs(t[-1]) < FOLD_TANGENT):
         a = system.weights * t
     res = newton_extended(system, z0, a, float(a @ z0), tol, max(max_iter, 20))
     if not res.converged:
