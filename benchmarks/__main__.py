@@ -45,6 +45,8 @@ REGISTRY: dict[str, tuple[str, str]] = {
            "bench_nf:run"),
     "linear": ("linear part of the HB problem on a moving base: assembled once vs per call",
                "bench_linear:run"),
+    "convergence": ("rotorsfd response: convergence defaults (auto H, Floquet step control, "
+                    "checked bifurcations) vs fixed H = 3, M = 400", "bench_convergence:run"),
 }
 
 

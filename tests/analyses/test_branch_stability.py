@@ -144,12 +144,14 @@ def test_rotor_saddle_node_pair_and_methods_agree(rotor_case):
         assert (bif.lam >= ends.max()) if r.branch.dlam_ds[i] > 0 else (bif.lam <= ends.min())
     problem = r.system.periodic_problem("speed")
     hill = FloquetEvaluator(problem, StabilityOptions(method="hill"))
-    nm = FloquetEvaluator(problem)
+    # the response ran with the step control (interval_tolerance 1e-4): the same
+    # options give its multipliers to that tolerance, whatever M each point settled on
+    nm = FloquetEvaluator(problem, StabilityOptions(interval_tol=1e-4))
     for i in near_bifurcation_points(r.branch, st):
         a, h = nm(r.branch.lam[i], r.branch.X[i]), hill(r.branch.lam[i], r.branch.X[i])
         assert abs(a.max_abs - h.max_abs) < 1e-3
         assert min(abs(a.critical - h.critical), abs(a.critical - np.conj(h.critical))) < 2e-3
-        assert abs(a.max_abs - st.max_multiplier[i]) < 1e-14
+        assert abs(a.max_abs - st.max_multiplier[i]) < 3e-4
         if abs(h.max_abs - 1) > 1e-3:
             assert a.stable == h.stable == st.stable[i]
     assert st.n_bases == 1                              # M, K do not change with speed

@@ -37,7 +37,9 @@ def test_columns_documented_order(written):
     for n in (1, 3):
         for d in ("y", "z"):
             expected += [f"static_{n}_{d}"] + [f"amp_{n}_{d}_h{k}" for k in (1, 2, 3)]
-    expected += ["defl_1", "defl_3", "stable", "max_multiplier"]  # stability on by default
+    expected += ["defl_1", "defl_3", "harmonics", "truncation_error",
+                 "stable", "max_multiplier", "floquet_intervals",
+                 "multiplier_error"]  # stability (step-controlled) on by default
     assert header == expected
     assert sorted(paths) == ["bifurcations.csv", "branch.csv", "branch.nc",
                              "multipliers.png", "response_deflection.png",

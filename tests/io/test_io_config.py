@@ -48,7 +48,8 @@ def test_paper_example_values(paper):
 def test_defaults_filled_in(raw):
     del raw["analysis"]
     cfg = config_from_dict(raw)
-    assert cfg.analysis.response.harmonics == 3
+    assert cfg.analysis.response.harmonics == "auto"
+    assert cfg.analysis.response.start_harmonics == 3
     assert cfg.analysis.stability.intervals == 400
     assert cfg.sfd.cavitation == "pi"
 
@@ -104,7 +105,7 @@ def test_bad_set(raw, override, field):
     # out of range
     ("sfd.viscosity=-1", "sfd.viscosity", "> 0"),
     ("sfd.clearance_ratio=150 %", "sfd.clearance_ratio", "< 1"),
-    ("analysis.response.harmonics=0", "analysis.response.harmonics", ">= 1"),
+    ("analysis.response.harmonics=0", "analysis.response.harmonics", "1 <= H <= 64"),
     # unknown key (with a suggestion)
     ("rotor.shaft[0].lenght=0.5", "rotor.shaft[0].lenght", "did you mean 'length'"),
     ("sfd.clearence=1e-4", "sfd.clearence", "unknown key"),

@@ -287,7 +287,7 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
         lo, hi = bd.speed_range.bounds(ref)
         start = lo if start is None else start
         stop = hi if stop is None else stop
-        H = harmonics or config.analysis.response.harmonics
+        H = harmonics or config.analysis.response.start_harmonics
         name = config.title if title is None else title
         out_nodes = tuple(nodes) if nodes else tuple(config.output_nodes("simulate"))
     if from_hb:

@@ -65,6 +65,10 @@ from rotorsfd.stability.monodromy import floquet_multipliers
 from rotorsfd.stability.orbit import orbit_floquet, orbit_samples
 from rotorsfd.stability.reduction import ReducedModel
 
+#: At a turning point of the exact orbit a multiplier is exactly +1; a located one farther
+#: from +1 than this says the orbit or the monodromy is not converged there.
+FOLD_MULTIPLIER_TOL = 1e-3
+
 METHODS = ("newmark-cb", "newmark", "generalized-alpha", "generalized-alpha-cb", "hill",
            "hill-koopman")
 _REDUCED = ("newmark-cb", "generalized-alpha-cb", "hill", "hill-koopman")
@@ -80,6 +84,12 @@ class StabilityOptions:
     rotor near journal contact, a period doubling came out as spurious saddle-nodes);
     ``n_modes`` / ``omega_max`` the kept
     fixed-interface modes (default ``omega_max = n_intervals / (4 T)`` at each point);
+    ``interval_tol`` (Newmark methods): step control of the monodromy, see
+    :class:`FloquetEvaluator` (None: ``n_intervals`` fixed); ``min_intervals`` /
+    ``max_intervals`` its bounds;
+    ``check``: re-locate every bifurcation at more harmonics and intervals
+    (:mod:`rotorsfd.analyses.bifurcation_check`, run by the response analysis), confirmed
+    within ``check_rtol`` (relative);
     ``tol`` unstable when ``|mu|max > 1 + tol``; ``rtol`` relative parameter tolerance of
     located bifurcations (``locate=False``: linear interpolation between points);
     ``fold_merge_rtol``: a multiplier crossing +1 within this relative distance of a
@@ -97,11 +107,19 @@ class StabilityOptions:
     rtol: float = 1e-6
     locate: bool = True
     fold_merge_rtol: float = 1e-3
+    interval_tol: float | None = None
+    max_intervals: int = 12800
+    min_intervals: int = 100
+    check: bool = False
+    check_rtol: float = 1e-3
 
     def __post_init__(self) -> None:
         if self.method not in METHODS:
             raise ConfigError("analysis.stability.method", self.method,
                               f"one of {', '.join(METHODS)}")
+        if self.interval_tol is not None and not self.interval_tol > 0:
+            raise ConfigError("analysis.stability.interval_tolerance", self.interval_tol,
+                              "must be > 0")
 
 
 class _Basis:
@@ -150,10 +168,37 @@ class _Basis:
                             self.omegas[:k])
 
 
+#: Multipliers compared by the step control: the largest ones (the critical multipliers
+#: of every crossing type lie among them wherever a bifurcation is near).
+N_COMPARED = 4
+
+
+def multiplier_change(a: NDArray, b: NDArray, k: int = N_COMPARED) -> float:
+    """Largest change of the moduli of the k largest-modulus multipliers between two
+    computations of one spectrum (sorted by modulus): what decides stability and locates
+    the crossings. Phases are not compared: an undamped structural mode has ``|mu| = 1``
+    at any step (the trapezoidal rule conserves its energy) while its phase error grows
+    with the step, irrelevant to stability."""
+    a, b = np.sort(np.abs(np.asarray(a, complex)))[::-1], np.sort(np.abs(np.asarray(
+        b, complex)))[::-1]
+    j = min(k, a.size, b.size)
+    return float(np.max(np.abs(a[:j] - b[:j]))) if j else 0.0
+
+
 class FloquetEvaluator:
     """Multipliers of HB solutions of one problem, reusing the reduction basis while M
     and K stay the same. ``evaluator(lam, X) -> FloquetResult``; ``n_bases`` counts the
-    bases computed."""
+    bases computed.
+
+    Step control (``options.interval_tol``, Newmark methods): the monodromy is computed
+    at M and M/2 intervals; the scheme is second order, so the error of the M result is
+    about ``|mu(M) - mu(M/2)| / 3`` (:func:`multiplier_change` over the largest
+    multipliers). Above the tolerance M is doubled (M/2 becomes the old M) until it is met
+    or ``max_intervals`` is reached; the M that met it starts the next point, halved when
+    the estimate is below 1/16 of the tolerance (the halved M then meets it too). The
+    result's ``info`` holds ``n_intervals`` and ``multiplier_error``. The Craig-Bampton
+    basis stays the one of ``options.n_intervals`` (modes with ``omega <= M_0 / (4 T)``):
+    the control refines the step on one reduced model."""
 
     def __init__(self, problem: PeriodicProblem, options: StabilityOptions | None = None
                  ) -> None:
@@ -162,21 +207,49 @@ class FloquetEvaluator:
         self.nl = np.asarray(problem.nl_dofs, dtype=np.intp)
         self._basis: _Basis | None = None
         self.n_bases = 0
+        self.n_intervals = int(self.options.n_intervals)
 
-    def reduced(self, lam: float, period: float) -> ReducedModel:
+    @property
+    def step_controlled(self) -> bool:
+        o = self.options
+        return o.interval_tol is not None and not o.method.startswith("hill")
+
+    def reduced(self, lam: float, period: float, n_intervals: int | None = None
+                ) -> ReducedModel:
         """Craig-Bampton model at lam (modes with ``omega <= n_intervals / (4 T)`` unless
         ``n_modes``/``omega_max`` are given)."""
         o = self.options
+        n_intervals = o.n_intervals if n_intervals is None else n_intervals
         M, D, K = self.problem.matrices(lam)
         if self._basis is None or not self._basis.matches(M, K):
             self._basis = _Basis(np.asarray(M, float), np.asarray(K, float), self.nl)
             self.n_bases += 1
         om = o.omega_max
         if o.n_modes is None and om is None:
-            om = 0.25 * o.n_intervals / period
+            om = 0.25 * n_intervals / period
         return self._basis.reduce(np.asarray(D, float), o.n_modes, om)
 
     def __call__(self, lam: float, X: NDArray) -> FloquetResult:
+        if not self.step_controlled:
+            res = self.at(lam, X, self.options.n_intervals)
+            res.info.setdefault("n_intervals", self.options.n_intervals)
+            return res
+        o = self.options
+        tol, M = float(o.interval_tol), self.n_intervals
+        res = self.at(lam, X, M)
+        coarse = self.at(lam, X, max(M // 2, 1))
+        err = multiplier_change(res.multipliers, coarse.multipliers) / 3.0
+        while err > tol and 2 * M <= o.max_intervals:
+            M *= 2
+            coarse, res = res, self.at(lam, X, M)
+            err = multiplier_change(res.multipliers, coarse.multipliers) / 3.0
+        self.n_intervals = M // 2 if (err < tol / 16 and M // 2 >= o.min_intervals) else M
+        res.info.update(n_intervals=M, multiplier_error=err)
+        return res
+
+    def at(self, lam: float, X: NDArray, n_intervals: int) -> FloquetResult:
+        """Multipliers at (lam, X) with ``n_intervals`` Newmark intervals (the options'
+        method; Hill ignores it)."""
         o, p = self.options, self.problem
         w = float(p.frequency(lam))
         T = 2 * np.pi / w
@@ -185,8 +258,8 @@ class FloquetEvaluator:
         if o.method not in _REDUCED:
             M, D, K = p.matrices(lam)
             return orbit_floquet(M, D, K, Xnl, w, self.nl, p.nl_jacobian, method=o.method,
-                                 n_intervals=o.n_intervals, rho_inf=o.rho_inf, tol=o.tol)
-        red = self.reduced(lam, T)
+                                 n_intervals=n_intervals, rho_inf=o.rho_inf, tol=o.tol)
+        red = self.reduced(lam, T)    # the basis of the options' M, whatever the step
         if o.method.startswith("hill"):
             H = o.n_harmonics if o.n_harmonics is not None else max(8, X.shape[0] - 1)
             L = 2 * H
@@ -199,10 +272,10 @@ class FloquetEvaluator:
                                method="koopman" if o.method == "hill-koopman"
                                else "symmetric", tol=o.tol)
         else:
-            q, v = orbit_samples(Xnl, w, o.n_intervals)
+            q, v = orbit_samples(Xnl, w, n_intervals)
             Jq, Jv = p.nl_jacobian(q, v)
             res = floquet_multipliers(red.M, red.D, red.K, T, nl_dofs=red.nl_dofs, dFdq=Jq,
-                                      dFdv=Jv, n_intervals=o.n_intervals, reduction=None,
+                                      dFdv=Jv, n_intervals=n_intervals, reduction=None,
                                       scheme=o.method.removesuffix("-cb"),
                                       rho_inf=o.rho_inf, tol=o.tol)
             res.method += "-cb"
@@ -247,6 +320,9 @@ class BranchStability:
     elapsed_points: float = 0.0
     n_bases: int = 0
     messages: list[str] = field(default_factory=list)
+    n_intervals: NDArray[np.int64] | None = None
+    multiplier_error: NDArray[np.float64] | None = None
+    checks: list[Any] = field(default_factory=list)
 
     @property
     def n_points(self) -> int:
@@ -254,20 +330,53 @@ class BranchStability:
 
     def rows(self, reference_speed: float = 1.0,
              speed: Callable[[float], float] | None = None) -> list[dict[str, Any]]:
-        """Bifurcation rows: ``type``, ``speed_rad_s`` (``speed(lam)``, default lam),
-        ``speed_ratio``, ``parameter`` (lam), ``max_multiplier``, ``multiplier_re``,
-        ``multiplier_im`` (reported multiplier, module docstring), ``located_re``,
-        ``located_im`` (at the located point), ``point`` (index of that computed point)."""
+        """Bifurcation rows (the columns of ``bifurcations.csv``, module docstring):
+        ``type`` (:func:`reported_kind`), ``speed_rad_s`` (``speed(lam)``, default lam),
+        ``speed_ratio``, ``parameter`` (lam); the critical multiplier at the located point
+        (``located_multiplier_re/_im/_abs``: +1, -1 or on the unit circle up to the
+        method's error); at the nearest computed point on the unstable side
+        (``nearest_point``, its critical multiplier ``nearest_multiplier_re/_im/_abs``,
+        the paper's Tables 1 and 3 value) and that point's largest modulus
+        ``nearest_max_multiplier``; the check (``status``: confirmed, unconfirmed or not
+        checked; ``check_parameter``, ``check_speed_ratio``, ``check_shift``: "" when the
+        bifurcation vanished; ``check_harmonics``, ``check_intervals``). The keys
+        ``max_multiplier``, ``multiplier_re``, ``multiplier_im`` (= nearest_multiplier_*),
+        ``located_re``, ``located_im`` and ``point`` are kept for scripts."""
         out = []
-        for b in self.bifurcations:
+        checks = self.checks if len(self.checks) == len(self.bifurcations) else \
+            [None] * len(self.bifurcations)
+        for b, chk in zip(self.bifurcations, checks, strict=True):
             sp = float(speed(b.lam)) if speed is not None else float(b.lam)
             rep = complex(b.info.get("reported", b.critical))
-            out.append({"type": b.kind, "speed_rad_s": sp, "speed_ratio":
-                        sp / reference_speed, "parameter": float(b.lam),
-                        "max_multiplier": abs(rep), "multiplier_re": rep.real,
-                        "multiplier_im": abs(rep.imag) if b.kind == "secondary-hopf"
-                        else rep.imag, "located_re": b.critical.real,
-                        "located_im": b.critical.imag, "point": int(b.info.get("point", -1))})
+            j = int(b.info.get("point", -1))
+            rep_im = abs(rep.imag) if b.kind == "secondary-hopf" else rep.imag
+            crit = located_critical(b)
+            loc_im = abs(crit.imag) if b.kind == "secondary-hopf" else crit.imag
+            row: dict[str, Any] = {
+                "type": reported_kind(b), "speed_rad_s": sp, "speed_ratio":
+                sp / reference_speed, "parameter": float(b.lam),
+                "located_multiplier_re": float(crit.real),
+                "located_multiplier_im": float(loc_im),
+                "located_multiplier_abs": float(abs(crit)),
+                "nearest_point": j, "nearest_multiplier_re": rep.real,
+                "nearest_multiplier_im": rep_im, "nearest_multiplier_abs": abs(rep),
+                "nearest_max_multiplier": float(self.max_multiplier[j])
+                if 0 <= j < self.n_points else abs(rep),
+                "max_multiplier": abs(rep), "multiplier_re": rep.real,
+                "multiplier_im": rep_im, "located_re": crit.real,
+                "located_im": crit.imag, "point": j}
+            if chk is None:
+                row.update(status="not checked", check_parameter="", check_speed_ratio="",
+                           check_shift="", check_harmonics=0, check_intervals=0)
+            else:
+                cs = (float(speed(chk.lam)) if speed is not None else chk.lam) \
+                    if chk.lam is not None else None
+                row.update(status=chk.status,
+                           check_parameter="" if chk.lam is None else chk.lam,
+                           check_speed_ratio="" if cs is None else cs / reference_speed,
+                           check_shift="" if chk.shift is None else chk.shift,
+                           check_harmonics=chk.H, check_intervals=chk.n_intervals)
+            out.append(row)
         return out
 
     def summary(self) -> str:
@@ -276,10 +385,40 @@ class BranchStability:
                  f"{self.n_points} points unstable, {self.elapsed:.2f} s"]
         for b in self.bifurcations:
             rep = complex(b.info.get("reported", b.critical))
-            lines.append(f"{b.kind} at lam = {b.lam:.9g}: |mu| = {abs(rep):.5f} "
-                         f"({rep.real:.5f}{rep.imag:+.5f}i) at the nearest unstable point")
+            crit = located_critical(b)
+            lines.append(f"{reported_kind(b)} at lam = {b.lam:.9g}: critical multiplier "
+                         f"{crit.real:.5f}{crit.imag:+.5f}i at the located "
+                         f"point, {rep.real:.5f}{rep.imag:+.5f}i (|mu| {abs(rep):.5f}) at "
+                         "the nearest computed point on the unstable side")
         lines.extend(self.messages)
+        lines.extend(c.message for c in self.checks)
         return "\n".join(lines)
+
+
+def located_critical(b: Bifurcation) -> complex:
+    """The critical multiplier at the located point: ``b.critical``, or where it has none
+    of its crossing type (a turning point of a truncated orbit whose multipliers near +1
+    are a complex pair), the multiplier nearest +1 (saddle-node), -1 (period doubling) or
+    the unit circle (secondary Hopf)."""
+    c = complex(b.critical)
+    if np.isfinite(c.real) and np.isfinite(c.imag):
+        return c
+    mu = np.asarray(b.multipliers, dtype=complex)
+    if not mu.size:
+        return complex(0.0)
+    target = {"saddle-node": np.abs(mu - 1.0), "period-doubling": np.abs(mu + 1.0)}.get(
+        b.kind, np.abs(np.abs(mu) - 1.0))
+    return complex(mu[int(np.argmin(target))])
+
+
+def reported_kind(b: Bifurcation) -> str:
+    """The type a located bifurcation is reported as: ``branch-point`` for a real
+    multiplier through +1 where the branch does not turn (located by the multiplier, not
+    merged with a turning point: a symmetry-breaking or transcritical branch point, or a
+    truncation artefact), else its crossing type."""
+    if b.kind == "saddle-node" and b.via == "multiplier" and not b.info.get("merged"):
+        return "branch-point"
+    return str(b.kind)
 
 
 def _pad(rows: list[NDArray]) -> tuple[NDArray[np.complex128], NDArray[np.int64]]:
@@ -437,9 +576,21 @@ def branch_stability(branch: Branch, problem: PeriodicProblem,
             est = [x for x in find_bifurcations([br.a, br.b], None, dead_band=o.tol)
                    if x.kind == br.kind]
             b = est[0] if est else Bifurcation(br.kind, br.b.s, br.b.lam, br.b.multipliers,
-                                               critical_value(br.kind, br.b.multipliers)[1])
-        if id(br) in merged and can_locate:
-            _floquet_crossing(b, merged[id(br)], solve_at, o, messages)
+                                               critical_value(br.kind, br.b.multipliers)[1],
+                                               br.via)
+        if id(br) in merged:
+            b.info["merged"] = True
+            if can_locate:
+                _floquet_crossing(b, merged[id(br)], solve_at, o, messages)
+        if (b.via == "tangent" and b.kind == "saddle-node" and can_locate
+                and not abs(b.critical - 1.0) <= FOLD_MULTIPLIER_TOL):
+            messages.append(f"saddle-node at lam = {b.lam:.9g} (turning point): the "
+                            f"multiplier nearest +1 there is {located_critical(b):.5f}, "
+                            "not +1: "
+                            "the orbit's truncation (H) or the Floquet step does not "
+                            "resolve the exchange of stability at this fold, so the "
+                            "stability flags next to it are unreliable; raise H (or use "
+                            "harmonics = 'auto') and the intervals")
         if b.via != "tangent" and abs(abs(b.critical) - 1.0) > 0.05:
             messages.append(f"{b.kind} at lam = {b.lam:.9g}: the multiplier at the located "
                             f"point is {b.critical:.4f}, far from the unit circle (a pair "
@@ -462,4 +613,8 @@ def branch_stability(branch: Branch, problem: PeriodicProblem,
         liouville_error=np.where(np.isfinite(le), le, 0.0), bifurcations=bifs,
         method=results[0].method if results else o.method, tol=o.tol,
         elapsed=time.perf_counter() - t0, elapsed_points=t_points, n_bases=ev.n_bases,
-        messages=messages)
+        messages=messages,
+        n_intervals=np.array([r.info.get("n_intervals", o.n_intervals) for r in results],
+                             dtype=np.int64),
+        multiplier_error=np.array([r.info["multiplier_error"] for r in results], float)
+        if results and all("multiplier_error" in r.info for r in results) else None)

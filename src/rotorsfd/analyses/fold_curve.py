@@ -24,6 +24,7 @@ at each output node.
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -52,6 +53,7 @@ from rotorsfd.continuation.folds import (
 from rotorsfd.errors import ConfigError, ConvergenceError
 from rotorsfd.harmonic.fourier import smallest_n_samples
 from rotorsfd.harmonic.periodic import continue_periodic
+from rotorsfd.harmonic.truncation import pad_harmonics
 from rotorsfd.io import atomic
 from rotorsfd.model import dofs
 from rotorsfd.model.system import RotorSystem
@@ -313,7 +315,7 @@ def _needed_n_samples(hb: TwoParameterHB, curves: list[FoldBranch], target: floa
 
 
 def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_parameter: str,
-               range2: tuple[float, float], H: int = 3, *,
+               range2: tuple[float, float], H: int | None = 3, *,
                reference_speed: float | None = None, n_samples: int | None = None,
                nodes: Sequence[int] | None = None, options: FoldOptions | None = None,
                branch_options: dict[str, Any] | None = None,
@@ -333,6 +335,9 @@ def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_par
     continuation's Newton tolerance ``options.tol``) at some point of the curves, N_f
     becomes the smallest power of two (up to ``n_samples_max``) that meets it at every
     point and the curves are traced again.
+    ``H=None``: the speed branch chooses H along itself (``adaptive_harmonics``, the
+    truncation tolerance of ``branch_options`` or the default) and the curves use the
+    largest H it needed at the points around its saddle-nodes.
     ConfigError if the speed branch at ``range2[0]`` has no saddle-node; ConvergenceError
     if it stops (e.g. journal contact) before any.
     """
@@ -346,9 +351,19 @@ def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_par
     out_nodes = tuple(nodes) if nodes else _default_nodes(system)
     family = system.two_parameter_problem(param)
     t0 = time.perf_counter()
-    branch = continue_periodic(family.first(range2[0]), speed_range[0], speed_range[1], H,
-                               n_samples=n_samples, **(branch_options or {}))
+    bopts = dict(branch_options or {})
+    if H is None:
+        bopts["adaptive_harmonics"] = True
+    branch = continue_periodic(family.first(range2[0]), speed_range[0], speed_range[1],
+                               3 if H is None else H, n_samples=n_samples, **bopts)
     folds = [locate_branch_fold(branch, int(i)) for i in branch.folds()]
+    if H is None:   # the largest H the branch needed around its saddle-nodes
+        Hb = branch.info["harmonics"]
+        H = int(max([Hb[min(int(i) + k, len(Hb) - 1)] for i in branch.folds()
+                     for k in (0, 1)], default=3))
+        m = family.first(range2[0]).m
+        folds = [dataclasses.replace(p, xs=pad_harmonics(np.reshape(p.xs, (-1, m)),
+                                                          H).ravel()) for p in folds]
     t1 = time.perf_counter()
     if not folds and not branch.success:
         raise ConvergenceError(
@@ -419,5 +434,6 @@ def run_fold_curve(config: Config, parameter: str, start: Any, stop: Any, *,
     if path not in PARAMETER_PATHS:
         path = next(k for k, v in PARAMETER_PATHS.items() if v == param)
     v0, v1 = parameter_values(config, path, [start, stop])
-    return fold_curve(system, (lo, hi), param, (v0, v1), harmonics or r.harmonics,
+    H = harmonics or (None if r.adaptive_harmonics else r.start_harmonics)
+    return fold_curve(system, (lo, hi), param, (v0, v1), H,
                       reference_speed=ref, nodes=tuple(r.nodes) or None, options=options)

@@ -38,6 +38,7 @@ from numpy.typing import NDArray
 from rotorsfd.continuation.branch import Branch, BranchPoint
 from rotorsfd.errors import ConfigError
 from rotorsfd.harmonic.periodic import continue_periodic
+from rotorsfd.harmonic.truncation import point_info_columns
 from rotorsfd.model import dofs
 from rotorsfd.model.system import RotorSystem
 
@@ -224,11 +225,24 @@ class ResponseResult:
                     cols[f"amp_{n}_{d}_h{k}"] = self.amplitude(n, d, k)
         for n in self.nodes:
             cols[f"defl_{n}"] = self.deflection(n)
+        cols.update(point_info_columns(self.branch))
         if self.stable is not None:
             cols["stable"] = np.asarray(self.stable, dtype=bool)
         if self.max_multiplier is not None:
             cols["max_multiplier"] = np.asarray(self.max_multiplier, dtype=float)
+        cols.update(self.floquet_columns())
         return cols
+
+    def floquet_columns(self) -> dict[str, NDArray[Any]]:
+        """``floquet_intervals`` (the Newmark M of every point) and ``multiplier_error``
+        (the step control's estimate of the largest multipliers' error), when known."""
+        n = self.branch.n_points
+        out: dict[str, NDArray[Any]] = {}
+        for key, dtype in (("floquet_intervals", np.int64), ("multiplier_error", float)):
+            v = self.info.get(key)
+            if v is not None and np.shape(v) == (n,) and np.all(np.isfinite(v)):
+                out[key] = np.asarray(v, dtype=dtype)
+        return out
 
     def with_stability(self, stable: Sequence[bool], max_multiplier: Sequence[float],
                        multipliers: Any = None,
@@ -267,6 +281,11 @@ class ResponseResult:
             speeds=self.speeds, reference_speed=self.reference_speed, stable=self.stable,
             max_multiplier=self.max_multiplier, multipliers=self.multipliers,
             bifurcations=self.bifurcations, attrs=attrs)
+        long = {"floquet_intervals": "Newmark intervals per period of the monodromy",
+                "multiplier_error": "estimated error of the largest Floquet multipliers' "
+                                    "moduli (|mu(M) - mu(M/2)| / 3)"}
+        for key, values in self.floquet_columns().items():
+            ds[key] = ("point", values, {"long_name": long[key], "units": "1"})
         if "n_multipliers" in self.info and self.multipliers is not None:
             ds["multiplier_count"] = ("point", np.asarray(self.info["n_multipliers"],
                                                           np.int32),
@@ -281,13 +300,14 @@ class ResponseResult:
         for a speed branch, else the parameter in SI; default the point of largest
         ``|mu|max``) atomically."""
         from rotorsfd.io import atomic
-        from rotorsfd.io.branch_files import BIFURCATION_COLUMNS, write_netcdf, write_table
+        from rotorsfd.io.branch_files import bifurcation_columns, write_netcdf, write_table
 
         out = Path(directory)
         paths = {"branch.nc": write_netcdf(self.to_dataset(), out / "branch.nc"),
                  "branch.csv": write_table(out / "branch.csv", self.table())}
         if self.bifurcations is not None:
-            cols = {c: [row[c] for row in self.bifurcations] for c in BIFURCATION_COLUMNS}
+            cols = {c: [row[c] for row in self.bifurcations]
+                    for c in bifurcation_columns(self.bifurcations)}
             paths["bifurcations.csv"] = write_table(out / "bifurcations.csv", cols)
         if plots:
             for name, fig in self.plot().items():
@@ -375,13 +395,53 @@ class ResponseResult:
                                 H=self.branch.H, clearance=self.clearance,
                                 bifurcations=self.bifurcations, title=self.title)
 
+    def _bifurcation_line(self, row: Mapping[str, Any]) -> str:
+        """One summary line: type, where, the critical multiplier at the located point and
+        at the nearest computed point, and the check."""
+        where = (f"Omega~ = {row['speed_ratio']:.6f}" if self.is_speed
+                 else f"{self.parameter} = {row['parameter']:.6g}")
+        text = f"{row['type']} at {where}"
+        if "located_multiplier_re" in row:
+            im = row["located_multiplier_im"]
+            text += (f": critical multiplier {row['located_multiplier_re']:+.5f}"
+                     + (f"{im:+.5f}i" if abs(im) > 0 else "") + " at the located point, "
+                     f"|mu| = {row['nearest_multiplier_abs']:.5f} at the nearest point")
+        else:
+            text += f": |mu| = {row['max_multiplier']:.5f} at the nearest point"
+        status = row.get("status")
+        if status == "confirmed":
+            text += (f"; confirmed at H = {row['check_harmonics']}, M = "
+                     f"{row['check_intervals']} (moves {row['check_shift']:.1e})")
+        elif status == "unconfirmed":
+            moved = row.get("check_shift")
+            text += (f"; UNCONFIRMED at H = {row['check_harmonics']}, M = "
+                     f"{row['check_intervals']}: " + ("it vanishes (a truncation artefact)"
+                                                      if moved == "" else
+                                                      f"it moves {moved:.1e} (relative)"))
+        return text
+
+    def harmonics_text(self) -> str:
+        """``"H=3"``, or ``"H=1..15 (auto)"``, with the largest truncation estimate."""
+        b = self.branch
+        Hs = b.info.get("harmonics")
+        if Hs is None or not np.size(Hs):
+            return f"H={b.H}"
+        lo, hi = int(np.min(Hs)), int(np.max(Hs))
+        text = f"H={lo}" if lo == hi else f"H={lo}..{hi}"
+        if b.info.get("adaptive_harmonics"):
+            text += " (auto)"
+        te = np.asarray(b.info.get("truncation_error", []), dtype=float)
+        if te.size and np.all(np.isfinite(te)):
+            text += f", truncation error <= {te.max():.1e} C"
+        return text
+
     def summary(self) -> str:
         """A few lines: the branch, the peak deflection per node, the outcome."""
         b = self.branch
         lo, hi = float(b.lam.min()), float(b.lam.max())
         unit = self.parameter_units
         lines = [f"{b.n_points} points, {self.parameter} from {lo:.6g} to {hi:.6g} {unit}, "
-                 f"H={b.H}, N_f={b.n_samples}, {len(b.folds())} folds, "
+                 f"{self.harmonics_text()}, N_f={b.n_samples}, {len(b.folds())} folds, "
                  f"{self.elapsed:.2f} s"]
         x = self.speeds / self.reference_speed if self.is_speed else b.lam
         x_name = "Omega~" if self.is_speed else self.parameter
@@ -398,9 +458,7 @@ class ResponseResult:
         if self.stable is not None:
             lines.append(f"unstable points: {int(np.sum(~self.stable))} of {b.n_points}")
         for row in self.bifurcations or ():
-            where = (f"Omega~ = {row['speed_ratio']:.6f}" if self.is_speed
-                     else f"{self.parameter} = {row['parameter']:.6g}")
-            lines.append(f"{row['type']} at {where}: |mu|max = {row['max_multiplier']:.5f}")
+            lines.append(self._bifurcation_line(row))
         lines.append(("ok: " if self.success else "FAILED: ") + self.message)
         return "\n".join(lines)
 
@@ -414,7 +472,9 @@ def _options(r: ResponseAnalysis) -> dict[str, Any]:
             "ds": r.step_initial, "ds_min": r.step_min, "ds_max": r.step_max,
             "max_iter": r.max_iterations, "max_points": r.max_points,
             "max_angle_deg": math.degrees(r.max_tangent_angle),
-            "limit_max": r.max_eccentricity}
+            "limit_max": r.max_eccentricity, "harmonics_tol": r.harmonics_tolerance,
+            "adaptive_harmonics": r.adaptive_harmonics, "H_min": r.harmonics_min,
+            "H_max": r.harmonics_max}
 
 
 def _default_nodes(system: RotorSystem) -> tuple[int, ...]:
@@ -600,7 +660,10 @@ def _stability_options(config: Config | None, given: StabilityOptions | bool | N
     if given is None and not st.enabled:
         return None
     return StabilityOptions(method=st.method, n_intervals=st.intervals, n_modes=st.n_modes,
-                            tol=st.tolerance, rtol=st.locate_tolerance)
+                            tol=st.tolerance, rtol=st.locate_tolerance,
+                            interval_tol=st.interval_tolerance if st.adaptive_intervals
+                            else None, max_intervals=st.max_intervals,
+                            check=st.check_bifurcations, check_rtol=st.check_tolerance)
 
 
 def _with_branch_stability(result: ResponseResult, problem: Any,
@@ -608,7 +671,8 @@ def _with_branch_stability(result: ResponseResult, problem: Any,
     """The result with the multipliers of every point and the located bifurcations."""
     from tqdm import tqdm
 
-    from rotorsfd.analyses.branch_stability import branch_stability
+    from rotorsfd.analyses.branch_stability import FloquetEvaluator, branch_stability
+    from rotorsfd.analyses.fold_points import with_fold_points
 
     n = result.branch.n_points
     bar = tqdm(total=n, desc="stability", disable=not progress, file=sys.stderr,
@@ -619,12 +683,24 @@ def _with_branch_stability(result: ResponseResult, problem: Any,
 
     try:
         st = branch_stability(result.branch, problem, options, progress=step)
+        if options.check and st.bifurcations:
+            from rotorsfd.analyses.bifurcation_check import CheckOptions, check_bifurcations
+
+            bar.set_description_str("checking bifurcations", refresh=True)
+            st.checks = check_bifurcations(result.branch, problem, st, options,
+                                           CheckOptions(rtol=options.check_rtol))
+        branch, st, added = with_fold_points(result.branch, st,
+                                             FloquetEvaluator(problem, options))
+        st.messages.extend(added)
     finally:
         bar.close()
+    result = dataclasses.replace(result, branch=branch)
     out = result.with_stability(st.stable, st.max_multiplier, st.multipliers,
                                 st.rows(result.reference_speed, problem.frequency))
     out.info.update(stability=st, n_multipliers=st.n_multipliers,
-                    stability_elapsed=st.elapsed)
+                    stability_elapsed=st.elapsed, floquet_intervals=st.n_intervals)
+    if st.multiplier_error is not None:
+        out.info["multiplier_error"] = st.multiplier_error
     return out
 
 
@@ -660,5 +736,8 @@ def _from_config(config: Config, search_path: Path | None, parameter: str | None
     if lo == hi:
         raise ConfigError(f"{FIELD}.speed_range", (lo, hi), "start and stop must differ")
     out_nodes = tuple(nodes or r.nodes) or _default_nodes(system)
-    return (system, path, float(ref), harmonics or r.harmonics, _options(r),
+    opts = _options(r)
+    if harmonics:       # a given H is fixed
+        opts["adaptive_harmonics"] = False
+    return (system, path, float(ref), harmonics or r.start_harmonics, opts,
             (float(lo), float(hi), speed), out_nodes)

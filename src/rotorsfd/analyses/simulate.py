@@ -276,7 +276,7 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
             from rotorsfd.api import reference_speed as config_reference_speed
 
             ref = config_reference_speed(config, system)
-        H = harmonics or config.analysis.response.harmonics
+        H = harmonics or config.analysis.response.start_harmonics
         h_samples = config.analysis.response.n_samples
         name = config.title if title is None else title
         out_nodes = tuple(nodes) if nodes else tuple(config.output_nodes("simulate"))

@@ -28,14 +28,32 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from rotorsfd.continuation.branch import Branch
+from rotorsfd.harmonic.truncation import POINT_INFO_LONG_NAMES, point_info_columns
 from rotorsfd.io import atomic
 from rotorsfd.model.dofs import DIRECTIONS
 
 FloatArray = NDArray[np.float64]
 
-#: Columns of ``bifurcations.csv`` (issue 6).
-BIFURCATION_COLUMNS: tuple[str, ...] = ("type", "speed_rad_s", "speed_ratio", "parameter",
-                                        "max_multiplier", "multiplier_re", "multiplier_im")
+#: Columns of ``bifurcations.csv``
+#: (:meth:`rotorsfd.analyses.branch_stability.BranchStability.rows` says what each is).
+BIFURCATION_COLUMNS: tuple[str, ...] = (
+    "type", "speed_rad_s", "speed_ratio", "parameter", "located_multiplier_re",
+    "located_multiplier_im", "located_multiplier_abs", "nearest_point",
+    "nearest_multiplier_re", "nearest_multiplier_im", "nearest_multiplier_abs",
+    "nearest_max_multiplier", "status", "check_parameter", "check_speed_ratio",
+    "check_shift", "check_harmonics", "check_intervals")
+#: The columns of rows made before the checks (a stability hook, ``with_stability``).
+LEGACY_BIFURCATION_COLUMNS: tuple[str, ...] = ("type", "speed_rad_s", "speed_ratio",
+                                               "parameter", "max_multiplier",
+                                               "multiplier_re", "multiplier_im")
+
+
+def bifurcation_columns(rows: Sequence[Mapping[str, Any]]) -> tuple[str, ...]:
+    """The columns the bifurcation rows have: :data:`BIFURCATION_COLUMNS`, or the legacy
+    ones for rows without the located multiplier."""
+    if rows and all(all(c in r for c in BIFURCATION_COLUMNS) for r in rows):
+        return BIFURCATION_COLUMNS
+    return LEGACY_BIFURCATION_COLUMNS
 
 
 def dof_labels(n_dof: int) -> tuple[NDArray[np.int64], NDArray[np.str_]]:
@@ -76,7 +94,11 @@ def branch_dataset(branch: Branch, *, parameter: str, parameter_units: str,
         "aliasing": ("point", np.asarray(branch.aliasing, float)),
     }
     if "n_samples" in branch.info:
-        data["n_samples"] = ("point", np.asarray(branch.info["n_samples"], np.int32))
+        data["n_samples"] = ("point", np.asarray(branch.info["n_samples"], np.int32),
+                             {"long_name": "AFT time samples N_f"})
+    for name, values in point_info_columns(branch).items():
+        data[name] = ("point", values, {"long_name": POINT_INFO_LONG_NAMES[name],
+                                        "units": "1"})
     if branch.tangents.size:
         data["tangent"] = (("point", "unknown"), np.asarray(branch.tangents, float),
                            {"long_name": "unit tangent in scaled unknowns (last: parameter)"})
@@ -90,11 +112,12 @@ def branch_dataset(branch: Branch, *, parameter: str, parameter_units: str,
         mu = np.asarray(multipliers, dtype=complex).reshape(n, -1)
         data["multiplier_real"] = (("point", "multiplier"), mu.real)
         data["multiplier_imag"] = (("point", "multiplier"), mu.imag)
-    for name in BIFURCATION_COLUMNS:
+    for name in bifurcation_columns(bifurcations or []):
         if bifurcations:
             values = [row[name] for row in bifurcations]
+            text = any(isinstance(v, str) for v in values)
             data[f"bifurcation_{name}"] = ("bifurcation", np.asarray(
-                values, dtype=str if name == "type" else float))
+                [str(v) for v in values] if text else values, dtype=str if text else float))
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update({
         "title": "rotorsfd periodic response branch",

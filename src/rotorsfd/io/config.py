@@ -306,7 +306,11 @@ _TYPES = {
 def to_config_error(exc: ValidationError, data: Any) -> ConfigError:
     """The first pydantic error as one ConfigError: dotted field, value, what is allowed."""
     err = exc.errors()[0]
-    loc = list(err["loc"])
+    # a union field (e.g. harmonics: int | 'auto') tags its members' errors with the
+    # member type ('int', "literal['auto']"): not a part of the field's path
+    loc = [p for i, p in enumerate(err["loc"]) if not (
+        i == len(err["loc"]) - 1 and i > 0 and isinstance(p, str)
+        and (p in ("int", "float", "str", "bool") or p.startswith("literal[")))]
     ctx = err.get("ctx") or {}
     kind = err["type"]
     if kind == "rotorsfd" and "path" in ctx:

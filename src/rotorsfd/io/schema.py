@@ -21,6 +21,7 @@ from pydantic import (
     ConfigDict,
     Field,
     StrictBool,
+    field_validator,
     model_validator,
 )
 from pydantic_core import PydanticCustomError
@@ -677,7 +678,17 @@ class ModalAnalysis(Section):
 class ResponseAnalysis(Section):
     """Periodic response by harmonic balance (HB-AFT) with arc-length continuation."""
 
-    harmonics: integer("number of harmonics H", ge=1, le=64) = 3
+    harmonics: Annotated[Literal["auto"] | int, Field(
+        description="number of harmonics H, or 'auto': H follows the branch so that the "
+                    "truncation error estimate stays below harmonics_tolerance; allowed: "
+                    '"auto" or an integer 1 <= value <= 64')] = "auto"
+    harmonics_tolerance: quantity(
+        "ratio", "largest HB truncation error estimate (the change of the solution if "
+        "about 1.5 H harmonics were kept, 2-norm over the SFD coefficients, in "
+        "clearances); with a fixed H a warning says where it is exceeded", gt=0,
+        lt=1) = 1e-3
+    harmonics_min: integer("smallest H with harmonics = 'auto'", ge=1, le=64) = 1
+    harmonics_max: integer("largest H with harmonics = 'auto'", ge=1, le=64) = 32
     n_samples: integer("time samples per period N_f of the AFT (default: chosen free of "
                        "aliasing)", ge=3, le=65536, optional=True) = None
     parameter: _path_field("continuation parameter") = "speed"
@@ -706,9 +717,39 @@ class ResponseAnalysis(Section):
     directions: list[Literal["y", "z"]] = Field(["y", "z"], min_length=1,
                                                 description="output directions")
 
+    @field_validator("harmonics", mode="before")
+    @classmethod
+    def _harmonics(cls, value: Any) -> Any:
+        allowed = "must be 'auto' or an integer 1 <= H <= 64"
+        if isinstance(value, str):
+            text = value.strip().strip("'\"")
+            if text == "auto":
+                return "auto"
+            try:
+                value = int(text)
+            except ValueError:
+                raise fail((), value, allowed) from None
+        if isinstance(value, bool) or not isinstance(value, int | float) \
+                or value != int(value) or not 1 <= value <= 64:
+            raise fail((), value, allowed)
+        return int(value)
+
     def fixed_speed(self, reference_speed: float) -> float:
         """The fixed speed [rad/s] when the parameter is not 'speed'."""
         return self.speed if self.speed is not None else self.speed_ratio * reference_speed
+
+    @property
+    def adaptive_harmonics(self) -> bool:
+        """True when H follows the branch (``harmonics = 'auto'``)."""
+        return self.harmonics == "auto"
+
+    @property
+    def start_harmonics(self) -> int:
+        """H of the first point: the given H, or 3 (within [harmonics_min, harmonics_max])
+        with 'auto'."""
+        if self.harmonics != "auto":
+            return int(self.harmonics)
+        return min(max(3, self.harmonics_min), self.harmonics_max)
 
     @model_validator(mode="after")
     def _parameter(self):
@@ -724,6 +765,9 @@ class ResponseAnalysis(Section):
             if self.parameter_range is None:
                 raise fail("parameter_range", None,
                            f"parameter = {self.parameter!r} needs parameter_range")
+        if self.harmonics_min > self.harmonics_max:
+            raise fail("harmonics_min", self.harmonics_min,
+                       f"must be <= harmonics_max = {self.harmonics_max}")
         if not self.step_min <= self.step_initial <= self.step_max:
             raise fail("step_initial", self.step_initial,
                        f"must lie in [step_min, step_max] = [{self.step_min:g}, "
@@ -740,8 +784,23 @@ class StabilityAnalysis(Section):
         "newmark-cb", description="Newmark monodromy on the Craig-Bampton reduced model "
         "(newmark-cb, default), on the full model (newmark: the paper's literal method; its "
         "undamped structural modes sit at |mu| = 1), generalized-alpha, or Hill's method")
-    intervals: integer("Newmark intervals per period M (paper: 400)", ge=10,
+    intervals: integer("Newmark intervals per period M (paper: 400); with "
+                       "adaptive_intervals the M of the first point", ge=10,
                        le=100000) = 400
+    adaptive_intervals: bool = Field(
+        True, description="step control of the Newmark monodromy: M doubled until the "
+        "largest multipliers' error estimate (from M and M/2) is <= interval_tolerance; "
+        "false: M = intervals throughout")
+    interval_tolerance: quantity("ratio", "largest error estimate of the largest Floquet "
+                                 "multipliers with adaptive_intervals", gt=0, lt=1) = 1e-4
+    max_intervals: integer("largest M with adaptive_intervals", ge=10,
+                           le=1000000) = 12800
+    check_bifurcations: bool = Field(
+        True, description="re-locate every bifurcation on a piece of the branch computed "
+        "with about 1.5 H harmonics and twice the Floquet intervals; one that vanishes or "
+        "moves by more than check_tolerance is reported as unconfirmed")
+    check_tolerance: quantity("ratio", "relative shift of the parameter allowed when a "
+                              "bifurcation is re-located", gt=0, lt=1) = 1e-3
     tolerance: quantity("ratio", "unstable when |mu|max > 1 + tolerance (rotorsfd."
                         "stability.STABILITY_TOL)", ge=0, lt=1) = 1e-5
     locate_tolerance: quantity("ratio", "relative parameter tolerance of located "

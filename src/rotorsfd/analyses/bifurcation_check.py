@@ -1,0 +1,175 @@
+"""Every located bifurcation checked before it is reported.
+
+A bifurcation located on an HB branch with H harmonics and M Floquet intervals per period
+may be an artefact of either truncation: a fold pair of a truncated orbit that the
+converged orbit does not have, a multiplier that crosses +1 only because the monodromy
+is under-resolved. Each one is re-located on a short piece of the branch recomputed with
+``H_c`` harmonics (default :func:`~rotorsfd.harmonic.truncation.check_harmonics`: about
+1.5 H) and ``factor x M`` intervals (the converged M of the step control where it ran):
+
+1. the piece starts ``window`` computed points before the bracket of the bifurcation
+   (its HB solution padded with zeros and Newton-corrected at H_c) and follows the
+   branch in the same direction for the arc length of the bracket plus ``window`` points
+   after it, past turning points;
+2. its stability and bifurcations are computed as for the whole branch
+   (:func:`~rotorsfd.analyses.branch_stability.branch_stability`);
+3. the bifurcation of the same type nearest in the parameter is the re-located one. The
+   original is *confirmed* when it exists and moved by at most ``rtol`` (relative);
+   otherwise *unconfirmed* (vanished, or moved beyond rtol: the difference is reported).
+
+A ``branch-point`` (a multiplier through +1 without a turn of the branch) is matched by
+a branch point or a saddle-node of the check: if the converged branch turns there, the
+original was a fold displaced by the truncation.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+import numpy as np
+
+from rotorsfd.analyses.branch_stability import (
+    BranchStability,
+    StabilityOptions,
+    branch_stability,
+    reported_kind,
+)
+from rotorsfd.continuation.branch import Branch, BranchPoint
+from rotorsfd.errors import ConvergenceError
+from rotorsfd.harmonic.periodic import continue_periodic
+from rotorsfd.harmonic.problem import PeriodicProblem
+from rotorsfd.harmonic.truncation import check_harmonics
+from rotorsfd.stability.bifurcations import Bifurcation
+
+
+@dataclass(frozen=True)
+class CheckOptions:
+    """How bifurcations are checked (module docstring). ``harmonics``: H_c (None: about
+    1.5 H at the bifurcation); ``interval_factor``: M multiplied by it; ``rtol``: relative
+    parameter shift allowed; ``window``: computed points either side of the bracket."""
+
+    harmonics: int | None = None
+    interval_factor: int = 2
+    rtol: float = 1e-3
+    window: int = 3
+
+
+@dataclass(frozen=True)
+class BifurcationCheck:
+    """The outcome of one check: ``confirmed``; ``lam`` the re-located parameter (None if
+    the bifurcation vanished), ``shift`` ``|lam - lam_0| / |lam_0|`` (None likewise), the
+    ``H`` and ``n_intervals`` of the check, and a one-line ``message``."""
+
+    confirmed: bool
+    lam: float | None
+    shift: float | None
+    H: int
+    n_intervals: int
+    message: str
+
+    @property
+    def status(self) -> str:
+        return "confirmed" if self.confirmed else "unconfirmed"
+
+
+#: Step limiter of the check's continuation (the nonlinear element's validity measure, e.g.
+#: the SFD eccentricity ratio): short of contact, where the force is unbounded.
+LIMIT_MAX = 0.99
+
+
+def _matches(kind: str, other: str) -> bool:
+    if kind == "branch-point":
+        return other in ("branch-point", "saddle-node")
+    return other == kind
+
+
+def _local_branch(branch: Branch, problem: PeriodicProblem, ia: int, ib: int, H_c: int,
+                  window: int) -> Branch:
+    """The piece of ``branch`` around points ia..ib recomputed with H_c harmonics."""
+    n = branch.n_points
+    j0, j1 = max(0, ia - window), min(n - 1, ib + window)
+    # start where the branch is single-valued: back until lam leaves the span of the
+    # bracket's neighbourhood by its width (a fixed-lam start inside a fold pair's range
+    # may converge to another of the coexisting solutions, or not at all)
+    near = branch.lam[max(0, ia - 1): min(n, ib + 2)]
+    lo, hi = float(near.min()), float(near.max())
+    margin = max(hi - lo, 1e-6 * abs(hi))
+    while j0 > 0 and lo - margin <= branch.lam[j0] <= hi + margin:
+        j0 -= 1
+    while j1 < n - 1 and lo - margin <= branch.lam[j1] <= hi + margin:
+        j1 += 1
+    s = branch.s if branch.s.size == n else np.arange(n, dtype=float)
+    length = 1.5 * float(s[j1] - s[j0])
+    direction = np.sign(branch.dlam_ds[j0]) or np.sign(branch.lam[j1] - branch.lam[j0]) or 1
+    span = float(np.ptp(branch.lam)) or abs(float(branch.lam[j0])) or 1.0
+    lam0 = float(branch.lam[j0])
+
+    def stop(point: BranchPoint) -> bool:
+        return point.s >= length
+
+    # steps of half the smallest step of the window, and a tight angle cap: a narrower
+    # fold pair than the original one is not stepped over
+    steps = branch.ds[j0 + 1: j1 + 1]
+    steps = steps[steps > 0]
+    ds = float(np.clip(0.5 * steps.min(), 1e-6, 0.02)) if steps.size else 0.005
+    return continue_periodic(problem, lam0, lam0 + direction * 10.0 * span, H_c,
+                             branch.X[j0], lam_scale=branch.lam_scale, ds=ds, ds_min=1e-8,
+                             ds_max=ds, max_angle_deg=5.0,
+                             max_points=int(4 * length / ds) + 50, harmonics_tol=None,
+                             limit_max=LIMIT_MAX, callback=stop,
+                             start_tangent=branch.tangents[j0])
+
+
+def check_bifurcations(branch: Branch, problem: PeriodicProblem, stability: BranchStability,
+                       options: StabilityOptions, check: CheckOptions | None = None
+                       ) -> list[BifurcationCheck]:
+    """One :class:`BifurcationCheck` per located bifurcation of ``stability`` (a
+    :func:`~rotorsfd.analyses.branch_stability.branch_stability` of ``branch``), in its
+    order (module docstring)."""
+    c = check or CheckOptions()
+    Hs = branch.info.get("harmonics")
+    out = []
+    for b in stability.bifurcations:
+        ia, ib = b.info.get("bracket", (0, branch.n_points - 1))
+        H_b = int(max(Hs[ia], Hs[ib])) if Hs is not None and len(Hs) == branch.n_points \
+            else int(branch.H)
+        H_c = c.harmonics or check_harmonics(H_b)
+        M_b = int(max(stability.n_intervals[ia], stability.n_intervals[ib])) \
+            if stability.n_intervals is not None else options.n_intervals
+        M_c = c.interval_factor * M_b
+        opts = dataclasses.replace(options, n_intervals=M_c,
+                                   max_intervals=max(options.max_intervals, M_c),
+                                   n_harmonics=None if options.n_harmonics is None
+                                   else max(options.n_harmonics, H_c))
+        out.append(_check_one(branch, problem, b, ia, ib, H_c, M_c, opts, c))
+    return out
+
+
+def _check_one(branch: Branch, problem: PeriodicProblem, b: Bifurcation, ia: int, ib: int,
+               H_c: int, M_c: int, opts: StabilityOptions, c: CheckOptions
+               ) -> BifurcationCheck:
+    kind = reported_kind(b)
+    where = f"{kind} at lam = {b.lam:.9g}"
+    try:
+        local = _local_branch(branch, problem, ia, ib, H_c, c.window)
+        if local.n_points < 2:
+            raise ConvergenceError(f"the piece of branch has {local.n_points} point")
+        st = branch_stability(local, problem, opts)
+    except (ConvergenceError, ArithmeticError, ValueError) as exc:
+        return BifurcationCheck(False, None, None, H_c, M_c,
+                                f"{where}: not checked at H = {H_c}, M = {M_c} (the check "
+                                f"failed: {' '.join(str(exc).split())})")
+    found = [x for x in st.bifurcations if _matches(kind, reported_kind(x))]
+    if not found:
+        return BifurcationCheck(False, None, None, H_c, M_c,
+                                f"{where} unconfirmed: it vanishes at H = {H_c}, M = {M_c} "
+                                "(a truncation artefact: raise H or use harmonics = 'auto')")
+    x = min(found, key=lambda y: abs(y.lam - b.lam))
+    shift = abs(x.lam - b.lam) / max(abs(b.lam), np.finfo(float).tiny)
+    ok = shift <= c.rtol
+    text = (f"{where} {'confirmed' if ok else 'unconfirmed'}: at H = {H_c}, M = {M_c} it is "
+            f"at lam = {x.lam:.9g} ({shift:.1e} relative)")
+    if not ok:
+        text += f", more than {c.rtol:g}: not converged, raise H and the intervals"
+    return BifurcationCheck(ok, float(x.lam), float(shift), H_c, M_c, text)
