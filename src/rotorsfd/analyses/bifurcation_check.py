@@ -73,6 +73,8 @@ class BifurcationCheck:
         return "confirmed" if self.confirmed else "unconfirmed"
 
 
+#: Points of a check's piece of branch (its step is at least its length over this).
+MAX_POINTS = 200
 #: Step limiter of the check's continuation (the nonlinear element's validity measure, e.g.
 #: the SFD eccentricity ratio): short of contact, where the force is unbounded.
 LIMIT_MAX = 0.99
@@ -113,10 +115,11 @@ def _local_branch(branch: Branch, problem: PeriodicProblem, ia: int, ib: int, H_
     steps = branch.ds[j0 + 1: j1 + 1]
     steps = steps[steps > 0]
     ds = float(np.clip(0.5 * steps.min(), 1e-6, 0.02)) if steps.size else 0.005
+    ds = max(ds, length / MAX_POINTS)       # bounded work, even where the branch crawled
     return continue_periodic(problem, lam0, lam0 + direction * 10.0 * span, H_c,
                              branch.X[j0], lam_scale=branch.lam_scale, ds=ds, ds_min=1e-8,
                              ds_max=ds, max_angle_deg=5.0,
-                             max_points=int(4 * length / ds) + 50, harmonics_tol=None,
+                             max_points=2 * MAX_POINTS, harmonics_tol=None,
                              limit_max=LIMIT_MAX, callback=stop,
                              start_tangent=branch.tangents[j0])
 
@@ -137,7 +140,7 @@ def check_bifurcations(branch: Branch, problem: PeriodicProblem, stability: Bran
         H_c = c.harmonics or check_harmonics(H_b)
         M_b = int(max(stability.n_intervals[ia], stability.n_intervals[ib])) \
             if stability.n_intervals is not None else options.n_intervals
-        M_c = c.interval_factor * M_b
+        M_c = min(c.interval_factor * M_b, max(options.max_intervals, options.n_intervals))
         opts = dataclasses.replace(options, n_intervals=M_c,
                                    max_intervals=max(options.max_intervals, M_c),
                                    n_harmonics=None if options.n_harmonics is None
