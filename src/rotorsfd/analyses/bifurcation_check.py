@@ -11,7 +11,9 @@ is under-resolved. Each one is re-located on a short piece of the branch recompu
    (its HB solution padded with zeros and Newton-corrected at H_c) and follows the
    branch in the same direction for the arc length of the bracket plus ``window`` points
    after it, past turning points;
-2. its stability and bifurcations are computed as for the whole branch
+2. a turning point (saddle-node) is located on it by the HB equations alone (the
+   multipliers are computed once, at the re-located fold, where one must be +1); any
+   other bifurcation from the stability of the piece, computed as for the whole branch
    (:func:`~rotorsfd.analyses.branch_stability.branch_stability`);
 3. the bifurcation of the same type nearest in the parameter is the re-located one. The
    original is *confirmed* when it exists and moved by at most ``rtol`` (relative);
@@ -30,12 +32,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from rotorsfd.analyses.branch_stability import (
+    FOLD_MULTIPLIER_TOL,
     BranchStability,
+    FloquetEvaluator,
     StabilityOptions,
     branch_stability,
     reported_kind,
 )
 from rotorsfd.continuation.branch import Branch, BranchPoint
+from rotorsfd.continuation.folds import locate_branch_fold
 from rotorsfd.errors import ConvergenceError
 from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.harmonic.problem import PeriodicProblem
@@ -74,7 +79,7 @@ class BifurcationCheck:
 
 
 #: Points of a check's piece of branch (its step is at least its length over this).
-MAX_POINTS = 200
+MAX_POINTS = 60
 #: Step limiter of the check's continuation (the nonlinear element's validity measure, e.g.
 #: the SFD eccentricity ratio): short of contact, where the force is unbounded.
 LIMIT_MAX = 0.99
@@ -154,25 +159,40 @@ def _check_one(branch: Branch, problem: PeriodicProblem, b: Bifurcation, ia: int
                ) -> BifurcationCheck:
     kind = reported_kind(b)
     where = f"{kind} at lam = {b.lam:.9g}"
+    turning = kind == "saddle-node" and b.via == "tangent"
     try:
         local = _local_branch(branch, problem, ia, ib, H_c, c.window)
         if local.n_points < 2:
             raise ConvergenceError(f"the piece of branch has {local.n_points} point")
-        st = branch_stability(local, problem, opts)
+        if turning:   # a turning point is located on the HB equations alone
+            found = [locate_branch_fold(local, int(i)) for i in local.folds()]
+            lams = [p.lam for p in found]
+        else:
+            st = branch_stability(local, problem, opts)
+            lams = [x.lam for x in st.bifurcations if _matches(kind, reported_kind(x))]
     except (ConvergenceError, ArithmeticError, ValueError) as exc:
         return BifurcationCheck(False, None, None, H_c, M_c,
                                 f"{where}: not checked at H = {H_c}, M = {M_c} (the check "
                                 f"failed: {' '.join(str(exc).split())})")
-    found = [x for x in st.bifurcations if _matches(kind, reported_kind(x))]
-    if not found:
+    if not lams:
         return BifurcationCheck(False, None, None, H_c, M_c,
                                 f"{where} unconfirmed: it vanishes at H = {H_c}, M = {M_c} "
                                 "(a truncation artefact: raise H or use harmonics = 'auto')")
-    x = min(found, key=lambda y: abs(y.lam - b.lam))
-    shift = abs(x.lam - b.lam) / max(abs(b.lam), np.finfo(float).tiny)
+    k = int(np.argmin([abs(x - b.lam) for x in lams]))
+    lam_c = float(lams[k])
+    shift = abs(lam_c - b.lam) / max(abs(b.lam), np.finfo(float).tiny)
     ok = shift <= c.rtol
     text = (f"{where} {'confirmed' if ok else 'unconfirmed'}: at H = {H_c}, M = {M_c} it is "
-            f"at lam = {x.lam:.9g} ({shift:.1e} relative)")
+            f"at lam = {lam_c:.9g} ({shift:.1e} relative)")
     if not ok:
         text += f", more than {c.rtol:g}: not converged, raise H and the intervals"
-    return BifurcationCheck(ok, float(x.lam), float(shift), H_c, M_c, text)
+    if turning:   # the exchange of stability there: one multiplier at +1
+        try:
+            mu = FloquetEvaluator(problem, opts)(lam_c, found[k].X).multipliers
+            d = float(np.min(np.abs(mu - 1.0))) if mu.size else np.inf
+            text += f"; the multiplier nearest +1 there is {d:.1e} from it"
+            if d > FOLD_MULTIPLIER_TOL:
+                text += " (the stability next to this fold is not resolved)"
+        except (ConvergenceError, ArithmeticError, ValueError):
+            pass
+    return BifurcationCheck(ok, lam_c, float(shift), H_c, M_c, text)
