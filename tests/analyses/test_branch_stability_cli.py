@@ -29,7 +29,9 @@ def test_response_writes_stability_and_bifurcations(tmp_path, capsys):
     hi, lo = (float(r["speed_ratio"]) for r in rows)
     assert lo < hi and np.all((x[stable == 0] >= lo) & (x[stable == 0] <= hi))
     for r in rows:
-        assert float(r["max_multiplier"]) > 1 and float(r["multiplier_re"]) > 1
+        assert float(r["nearest_multiplier_abs"]) > 1 and float(r["nearest_multiplier_re"]) > 1
+        assert abs(float(r["located_multiplier_re"]) - 1) < 1e-3    # +1 at a fold
+        assert r["status"] == "confirmed"
         assert float(r["speed_rad_s"]) == float(r["parameter"])
         assert abs(float(r["speed_ratio"]) * 800.0 - float(r["speed_rad_s"])) < 1e-9
     ds = read_branch(out / "branch.nc")
