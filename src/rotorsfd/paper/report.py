@@ -222,7 +222,10 @@ original data the zone positions cannot be compared number by number.
 
 **|mu|max at a bifurcation.** A multiplier crosses +1 exactly at a fold, so the value in
 Table 1 is the largest multiplier at a computed point near it: it depends on the
-continuation step (ours: nearest computed unstable point), as the paper's does. The rows
+continuation step (ours: the modulus of the critical multiplier at the nearest computed
+point on the unstable side, `nearest_multiplier_abs` in bifurcations.csv; the multiplier
+at the located fold itself, `located_multiplier_re`, is +1 up to the Floquet error), as
+the paper's does. The rows
 marked "close" are within 0.02.
 
 **Harmonics and aliasing.** H = 3 for U <= 144.02 g mm, H = 8 for U = 252 and 360.04 g mm
