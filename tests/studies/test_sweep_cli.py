@@ -76,7 +76,7 @@ def test_ctrl_c_leaves_valid_partial_result(tmp_path):
     cfg = sweep_toml(tmp_path / "rotor.toml")
     out = tmp_path / "out"
     proc = subprocess.Popen(
-        _cli(str(cfg), "-o", str(out), "--task", "synthetic:delay=0.4", "--workers", "2",
+        _cli(str(cfg), "-o", str(out), "--task", "synthetic:delay=1.0", "--workers", "2",
              "--quiet", *AXES), env=_env(), start_new_session=True,
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 60
@@ -147,7 +147,7 @@ def test_sigkill_of_the_cli_leaves_no_process(tmp_path):
     cfg = sweep_toml(tmp_path / "rotor.toml")
     out = tmp_path / "out"
     proc = subprocess.Popen(
-        _cli(str(cfg), "-o", str(out), "--task", "synthetic:delay=0.4", "--workers", "2",
+        _cli(str(cfg), "-o", str(out), "--task", "synthetic:delay=1.0", "--workers", "2",
              "--quiet", *AXES), env=_env(), start_new_session=True,
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 120
