@@ -37,7 +37,13 @@ from rotorsfd.harmonic.fourier import (
 )
 from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.harmonic.residual import FullHB, nonlinear_coefficients
-from rotorsfd.harmonic.truncation import convert_tangent, pad_coefficients, truncation_error
+from rotorsfd.harmonic.truncation import (
+    convert_tangent,
+    harmonic_norms,
+    pad_coefficients,
+    tail_norms,
+    truncation_error,
+)
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -379,9 +385,7 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
         X_start = _initial_guess(problem, H, lam_start, X0)
         xs = to_real(X_start)[:, problem.nl_dofs]
         N = n_samples or choose_n_samples(problem.nl_force, xs, problem.frequency(lam_start))
-        t0 = np.asarray(start_tangent, dtype=float)
-        h0 = ((t0.size - 1) // width - 1) // 2
-        t_prev, plane = convert_tangent(t0, h0, H, width), True
+        t_prev, plane = convert_tangent(start_tangent, H, width), True
     if store_jacobians is None:
         store_jacobians = condensed
     keys = ("lam", "X", "w", "t", "it", "ds", "J", "al", "N", "z", "sys", "H", "te")
@@ -497,7 +501,7 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
         else:
             why = ("N_f raised for the sampling error" if N > system.N else "N_f lowered")
             why += f" from {system.N}"
-        t_prev = convert_tangent(t_prev, system.H, H_next, width)
+        t_prev = convert_tangent(t_prev, H_next, width)
         try:
             system, res0 = _start_point(problem, H_next, lam0, X_start, N, condensed, scale,
                                         limit_max, tol, max_iter, t_prev)
@@ -520,13 +524,11 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
     msg += _truncation_warning(te, Hs, np.array(out["lam"]), harmonics_tol,
                                adaptive_harmonics, H_max)
     s_all = np.cumsum(out["ds"]) if out["ds"] else np.zeros(0)
-    m = width
     uniform = bool(Hs.size == 0 or np.all(Hs == H_top))
     return Branch(
         lam=np.array(out["lam"]), X=np.array([pad_coefficients(X, H_top) for X in out["X"]]),
         frequency=np.array(out["w"]),
-        tangents=np.array([convert_tangent(t, h, H_top, m) for t, h in zip(out["t"], Hs,
-                                                                           strict=True)]),
+        tangents=np.array([convert_tangent(t, H_top, width) for t in out["t"]]),
         iterations=np.array(out["it"], dtype=np.int64),
         ds=np.array(out["ds"]), s=s_all,
         jacobians=np.array(out["J"]) if store_jacobians and uniform else None, aliasing=al,
@@ -546,16 +548,12 @@ def _coarser_harmonics(system: HBSystem, x: FloatArray, error: float, H_min: int
     """The smallest H' in [H_min, H] for which the content of the harmonics above H' (in
     the length scales c, first order: what truncating them drops) plus the current
     estimate ``error`` is <= target."""
-    xs = system.hb.nl_part(x)
     c = system.problem.dof_scale[system.problem.nl_dofs]
-    sc = xs / c[None, :]
-    per = np.sqrt((sc[1::2] ** 2 + sc[2::2] ** 2).sum(axis=1))          # k = 1..H
-    tail = np.sqrt(np.cumsum(per[::-1] ** 2)[::-1])                      # tail[k-1] = |k..H|
-    H = system.H
-    for h in range(H_min, H):
-        if tail[h] + error <= target:
+    tail = tail_norms(harmonic_norms(system.hb.nl_part(x) / c[None, :]))  # tail[k] = |k..H|
+    for h in range(H_min, system.H):
+        if tail[h + 1] + error <= target:
             return h
-    return H
+    return system.H
 
 
 def _truncation_warning(te: FloatArray, Hs: NDArray[np.int64], lam: FloatArray,
@@ -592,11 +590,10 @@ class _Resolver:
         i = int(np.clip(np.searchsorted(self.s, s, side="right") - 1, 0, len(self.s) - 1))
         system = self.systems[min(i + 1, len(self.s) - 1)]
         z_i, t_i = self.zs[i], self.ts[i]
-        H_i = self.systems[i].H
-        if H_i != system.H:    # H changed between the two points: z_i in system's layout
-            m = self.problem.m if system.condensed else self.problem.n_dof
-            z_i = convert_tangent(z_i, H_i, system.H, m)
-            t_i = convert_tangent(t_i, H_i, system.H, m)
+        if self.systems[i].H != system.H:   # H changed between the two points: z_i, t_i
+            m = system.n // (2 * system.H + 1)  # in the layout of the system used
+            z_i = convert_tangent(z_i, system.H, m)
+            t_i = convert_tangent(t_i, system.H, m)
             t_i = t_i / max(float(np.linalg.norm(t_i)), np.finfo(float).tiny)
         W = system.weights
         d = float(s - self.s[i])

@@ -14,10 +14,11 @@ retained harmonics. From an H solution accurate to the truncation error e, the s
 accurate to O(e^2) (Newton), so ``|delta / c|`` (the 2-norm over all coefficients of the
 nonlinear DOFs in their length scales c, the units of the Newton test; for an SFD, in
 clearances) estimates the change of the solution from H to H_e. The default
-``H_e = 2H`` (at least H + 2) sees the next harmonics of any polynomial-like force.
+``H_e = ceil(1.5 H)``, at least H + 2 (:func:`check_harmonics`), sees the next odd
+harmonics, which an odd force such as the SFD's excites first.
 
 The estimate costs one condensation at H_e harmonics, one AFT with its Jacobian and one
-dense solve of ``m (2 H_e + 1)`` unknowns: about one Newton iteration at 2H.
+dense solve of ``m (2 H_e + 1)`` unknowns: about one Newton iteration at 1.5 H.
 """
 
 from __future__ import annotations
@@ -56,11 +57,26 @@ class TruncationEstimate:
     def harmonics_needed(self, tol: float) -> int:
         """Smallest H' in (H, H_check] whose dropped content ``|per_harmonic[H'+1:]|`` is
         <= tol (H_check when none): where to raise H to."""
-        tail = np.sqrt(np.cumsum(self.per_harmonic[::-1] ** 2)[::-1])   # tail[k] = |k..|
+        tail = tail_norms(self.per_harmonic)
         for h in range(self.H + 1, self.H_check):
             if tail[h + 1] <= tol:
                 return h
         return self.H_check
+
+
+def harmonic_norms(x: FloatArray) -> FloatArray:
+    """2-norm of each harmonic k = 0..H of real-layout coefficients (2H+1, m):
+    ``|x_0|``, then ``sqrt(|Re X_k|^2 + |Im X_k|^2)``."""
+    x = np.asarray(x, dtype=float)
+    per = np.empty((x.shape[0] + 1) // 2)
+    per[0] = np.linalg.norm(x[0])
+    per[1:] = np.sqrt((x[1::2] ** 2 + x[2::2] ** 2).sum(axis=1))
+    return per
+
+
+def tail_norms(per: FloatArray) -> FloatArray:
+    """``tail[k]`` = 2-norm of the harmonics k..H from :func:`harmonic_norms`."""
+    return np.sqrt(np.cumsum(np.asarray(per)[::-1] ** 2)[::-1])
 
 
 def check_harmonics(H: int) -> int:
@@ -89,14 +105,16 @@ def pad_coefficients(X: ComplexArray, H: int) -> ComplexArray:
     return out
 
 
-def convert_tangent(t: FloatArray | None, H_old: int, H_new: int, m: int
-                    ) -> FloatArray | None:
-    """A vector ``(x (2H_old+1)m, lam)`` of scaled unknowns (a tangent or a point) in the
-    layout of H_new harmonics: the x part zero-padded or truncated, lam kept."""
-    if t is None or H_old == H_new:
+def convert_tangent(t: FloatArray | None, H_new: int, m: int) -> FloatArray | None:
+    """A vector ``(x ((2H+1) m,), lam)`` of scaled unknowns (a tangent or a point; H from
+    its length, m unknowns per harmonic) in the layout of H_new harmonics: the x part
+    zero-padded or truncated, lam kept."""
+    if t is None:
         return t
     t = np.asarray(t, dtype=float)
-    x = pad_harmonics(t[:-1].reshape(2 * H_old + 1, m), H_new).ravel()
+    if t.size == (2 * H_new + 1) * m + 1:
+        return t
+    x = pad_harmonics(t[:-1].reshape(-1, m), H_new).ravel()
     return np.append(x, t[-1])
 
 
@@ -149,9 +167,7 @@ def truncation_error(problem: PeriodicProblem, xs: FloatArray, lam: float, *,
         sol = np.linalg.solve(A, np.append(rhs, 0.0))
         du, dlam = sol[:nu], float(sol[nu])
     scaled = du.reshape(2 * He + 1, m)
-    per = np.empty(He + 1)
-    per[0] = np.linalg.norm(scaled[0])
-    per[1:] = np.sqrt((scaled[1::2] ** 2 + scaled[2::2] ** 2).sum(axis=1))
+    per = harmonic_norms(scaled)
     return TruncationEstimate(H, He, float(np.hypot(np.linalg.norm(scaled), dlam)), per,
                               scaled * c.reshape(2 * He + 1, m), dlam * lam_scale)
 
