@@ -96,9 +96,8 @@ def _local_branch(branch: Branch, problem: PeriodicProblem, ia: int, ib: int, H_
     """The piece of ``branch`` around points ia..ib recomputed with H_c harmonics."""
     n = branch.n_points
     j0, j1 = max(0, ia - window), min(n - 1, ib + window)
-    # start where the branch is single-valued: back until lam leaves the span of the
-    # bracket's neighbourhood by its width (a fixed-lam start inside a fold pair's range
-    # may converge to another of the coexisting solutions, or not at all)
+    # start and end outside the bracket's neighbourhood, by its width in lam, so the
+    # piece holds the bifurcation even where the higher H moves it
     near = branch.lam[max(0, ia - 1): min(n, ib + 2)]
     lo, hi = float(near.min()), float(near.max())
     margin = max(hi - lo, 1e-6 * abs(hi))

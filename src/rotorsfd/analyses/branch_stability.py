@@ -214,19 +214,17 @@ class FloquetEvaluator:
         o = self.options
         return o.interval_tol is not None and not o.method.startswith("hill")
 
-    def reduced(self, lam: float, period: float, n_intervals: int | None = None
-                ) -> ReducedModel:
-        """Craig-Bampton model at lam (modes with ``omega <= n_intervals / (4 T)`` unless
-        ``n_modes``/``omega_max`` are given)."""
+    def reduced(self, lam: float, period: float) -> ReducedModel:
+        """Craig-Bampton model at lam (modes with ``omega <= n_intervals / (4 T)`` of the
+        options' M unless ``n_modes``/``omega_max`` are given)."""
         o = self.options
-        n_intervals = o.n_intervals if n_intervals is None else n_intervals
         M, D, K = self.problem.matrices(lam)
         if self._basis is None or not self._basis.matches(M, K):
             self._basis = _Basis(np.asarray(M, float), np.asarray(K, float), self.nl)
             self.n_bases += 1
         om = o.omega_max
         if o.n_modes is None and om is None:
-            om = 0.25 * n_intervals / period
+            om = 0.25 * o.n_intervals / period
         return self._basis.reduce(np.asarray(D, float), o.n_modes, om)
 
     def __call__(self, lam: float, X: NDArray) -> FloquetResult:
