@@ -234,15 +234,54 @@ class FloquetEvaluator:
             return res
         o = self.options
         tol, M = float(o.interval_tol), self.n_intervals
-        res = self.at(lam, X, M)
-        coarse = self.at(lam, X, max(M // 2, 1))
+        if o.method in _REDUCED:   # one reduced model and one sampling for M and M/2
+            run = self._stepper(lam, X)
+            res, coarse = run(M), run(max(M // 2, 1))
+        else:
+            res, coarse = self.at(lam, X, M), self.at(lam, X, max(M // 2, 1))
+            run = None
         err = multiplier_change(res.multipliers, coarse.multipliers) / 3.0
         while err > tol and 2 * M <= o.max_intervals:
             M *= 2
-            coarse, res = res, self.at(lam, X, M)
+            coarse, res = res, (run(M) if run is not None else self.at(lam, X, M))
             err = multiplier_change(res.multipliers, coarse.multipliers) / 3.0
         self.n_intervals = M // 2 if (err < tol / 16 and M // 2 >= o.min_intervals) else M
         res.info.update(n_intervals=M, multiplier_error=err)
+        return res
+
+    def _stepper(self, lam: float, X: NDArray) -> Callable[[int], FloquetResult]:
+        """``run(n)``: the multipliers at (lam, X) with n intervals (a reduced Newmark
+        method), the reduced model built once; the orbit's Jacobian samples at n are
+        reused for n/2 (every other one: the same ``t_j``)."""
+        p = self.problem
+        w = float(p.frequency(lam))
+        T = 2 * np.pi / w
+        X = np.asarray(X, dtype=complex)
+        Xnl = X[:, self.nl] if X.shape[1] == p.n_dof else X
+        red = self.reduced(lam, T)
+        cache: dict[int, tuple[NDArray, NDArray]] = {}
+
+        def run(n: int) -> FloquetResult:
+            if n not in cache:
+                if 2 * n in cache:
+                    Jq, Jv = cache[2 * n]
+                    cache[n] = (Jq[::2], Jv[::2])
+                else:
+                    cache[n] = p.nl_jacobian(*orbit_samples(Xnl, w, n))
+            Jq, Jv = cache[n]
+            return self._reduced_newmark(red, T, Jq, Jv, n, p.n_dof)
+
+        return run
+
+    def _reduced_newmark(self, red: ReducedModel, T: float, Jq: NDArray, Jv: NDArray,
+                         n_intervals: int, n_dof: int) -> FloquetResult:
+        o = self.options
+        res = floquet_multipliers(red.M, red.D, red.K, T, nl_dofs=red.nl_dofs, dFdq=Jq,
+                                  dFdv=Jv, n_intervals=n_intervals, reduction=None,
+                                  scheme=o.method.removesuffix("-cb"),
+                                  rho_inf=o.rho_inf, tol=o.tol)
+        res.method += "-cb"
+        res.info.update(n_dof_full=n_dof, n_modes=red.omegas.size)
         return res
 
     def at(self, lam: float, X: NDArray, n_intervals: int) -> FloquetResult:
@@ -258,25 +297,18 @@ class FloquetEvaluator:
             return orbit_floquet(M, D, K, Xnl, w, self.nl, p.nl_jacobian, method=o.method,
                                  n_intervals=n_intervals, rho_inf=o.rho_inf, tol=o.tol)
         red = self.reduced(lam, T)    # the basis of the options' M, whatever the step
-        if o.method.startswith("hill"):
-            H = o.n_harmonics if o.n_harmonics is not None else max(8, X.shape[0] - 1)
-            L = 2 * H
-            q, v = orbit_samples(Xnl, w, 4 * (2 * L + 1), endpoint=False)
-            Jq, Jv = p.nl_jacobian(q, v)
-            res = hill_floquet(red.M, red.D, red.K, w, nl_dofs=red.nl_dofs,
-                               dFdq_hat=fourier_coefficients(Jq, L),
-                               dFdv_hat=fourier_coefficients(Jv, L),
-                               n_harmonics=H,
-                               method="koopman" if o.method == "hill-koopman"
-                               else "symmetric", tol=o.tol)
-        else:
-            q, v = orbit_samples(Xnl, w, n_intervals)
-            Jq, Jv = p.nl_jacobian(q, v)
-            res = floquet_multipliers(red.M, red.D, red.K, T, nl_dofs=red.nl_dofs, dFdq=Jq,
-                                      dFdv=Jv, n_intervals=n_intervals, reduction=None,
-                                      scheme=o.method.removesuffix("-cb"),
-                                      rho_inf=o.rho_inf, tol=o.tol)
-            res.method += "-cb"
+        if not o.method.startswith("hill"):
+            Jq, Jv = p.nl_jacobian(*orbit_samples(Xnl, w, n_intervals))
+            return self._reduced_newmark(red, T, Jq, Jv, n_intervals, p.n_dof)
+        H = o.n_harmonics if o.n_harmonics is not None else max(8, X.shape[0] - 1)
+        L = 2 * H
+        q, v = orbit_samples(Xnl, w, 4 * (2 * L + 1), endpoint=False)
+        Jq, Jv = p.nl_jacobian(q, v)
+        res = hill_floquet(red.M, red.D, red.K, w, nl_dofs=red.nl_dofs,
+                           dFdq_hat=fourier_coefficients(Jq, L),
+                           dFdv_hat=fourier_coefficients(Jv, L), n_harmonics=H,
+                           method="koopman" if o.method == "hill-koopman" else "symmetric",
+                           tol=o.tol)
         res.info.update(n_dof_full=p.n_dof, n_modes=red.omegas.size)
         return res
 

@@ -9,6 +9,7 @@ orbit and its Jacobians and calls the chosen Floquet method.
 from __future__ import annotations
 
 from collections.abc import Callable
+from functools import lru_cache
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -22,15 +23,24 @@ from rotorsfd.stability.reduction import craig_bampton
 NLJacobian = Callable[[NDArray, NDArray], tuple[NDArray, NDArray]]
 
 
+@lru_cache(maxsize=8)
+def _phases(n_intervals: int, n_harmonics: int, endpoint: bool) -> NDArray:
+    """``e^{i k w t_j} = e^{2 pi i (j k mod N) / N}`` (j = 0..N or 0..N-1, k = 0..H-1):
+    independent of w, so one table serves every point of a branch (read-only)."""
+    N = int(n_intervals)
+    jk = np.outer(np.arange(N + 1 if endpoint else N), np.arange(n_harmonics)) % N
+    E = np.exp((2j * np.pi / N) * jk)
+    E.flags.writeable = False
+    return E
+
+
 def orbit_samples(X: ArrayLike, omega: float, n_intervals: int, *,
                   endpoint: bool = True) -> tuple[NDArray, NDArray]:
     """``q(t_j)``, ``q'(t_j)`` at ``t_j = j T / N`` (j = 0..N, or 0..N-1 without endpoint):
     ``q = Re sum X_k e^{i k w t}``, ``q' = Re sum i k w X_k e^{i k w t}``."""
     X = np.asarray(X, dtype=complex)
     k = np.arange(X.shape[0])
-    N = int(n_intervals)
-    t = np.arange(N + 1 if endpoint else N) * (2 * np.pi / omega) / N
-    E = np.exp(1j * omega * np.outer(t, k))
+    E = _phases(int(n_intervals), X.shape[0], bool(endpoint))
     return (E @ X).real, (E @ (1j * omega * k[:, None] * X)).real
 
 

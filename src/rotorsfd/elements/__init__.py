@@ -1,0 +1,13 @@
+"""Nonlinear elements: the local forces of the rotor (squeeze film dampers, rubs, ...).
+
+:class:`NonlinearElement` is the interface, :class:`ElementSet` the composite the solvers
+see, :data:`KINDS` the registered kinds (each module below registers its config model on
+import; a new kind is one module and one line here).
+"""
+
+from rotorsfd.elements import sfd  # noqa: F401  (registers "sfd")
+from rotorsfd.elements.base import NonlinearElement
+from rotorsfd.elements.composite import ElementSet
+from rotorsfd.elements.registry import KINDS, register
+
+__all__ = ["KINDS", "ElementSet", "NonlinearElement", "register"]

@@ -1,0 +1,245 @@
+"""The squeeze film damper element: the short-bearing film at a node, in a housing that may
+be offset.
+
+The film acts on the lateral DOFs ``(y, z)`` of its node, measured from the housing centre
+``o = (offset_y, offset_z)`` (an eccentric housing, or a centring spring preloaded off
+centre; zero by default)::
+
+    F = F_film(q - o, q'),   dF/dq = dF_film/dq (q - o, q'),   eps = |q - o| / C
+
+with ``F_film`` the short-bearing force of :class:`rotorsfd.model.sfd.SFD` (pi, 2 pi or
+Guembel film; derivation in ``docs/sfd.md``). The centring spring is linear and becomes a
+support of the rotor (:meth:`SFDConfig.linear_supports`). Static offset: the eccentric
+SFD of Zhao, Linnett and McLean (J. Vib. Acoust. 116, 1994) is the classic case.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Literal
+
+import numpy as np
+from numba import njit
+from pydantic import Field, model_validator
+
+from rotorsfd.elements.base import FloatArray, NonlinearElement
+from rotorsfd.elements.registry import register
+from rotorsfd.errors import JournalContactError
+from rotorsfd.io.fields import (
+    NODE,
+    Section,
+    and_list,
+    fail,
+    given_fields,
+    in_range,
+    quantity,
+    range_text,
+)
+from rotorsfd.model.dofs import dof_index
+from rotorsfd.model.sfd import SFD
+from rotorsfd.model.sfd_kernels import N_PARAMS, P_CLEARANCE, sfd_sample
+from rotorsfd.model.supports import LinearSupport
+
+__all__ = ["SFD_RATIO_BOUNDS", "SFDConfig", "SFDElement"]
+
+#: Parameter vector of :func:`sfd_element_kernel`: the film's, then the housing offset.
+P_OFFSET_Y, P_OFFSET_Z = N_PARAMS, N_PARAMS + 1
+
+
+@njit(cache=True)
+def sfd_element_kernel(q: np.ndarray, v: np.ndarray, params: np.ndarray, F: np.ndarray,
+                       dFdq: np.ndarray, dFdv: np.ndarray) -> int:
+    """The film of one sample relative to the housing centre: ``F_film(q - o, v)``."""
+    return sfd_sample(q[0] - params[P_OFFSET_Y], q[1] - params[P_OFFSET_Z], v[0], v[1],
+                      params, F, dFdq, dFdv)
+
+
+class SFDElement(NonlinearElement):
+    """Short-bearing squeeze film at ``node`` (DOFs y, z) in a housing centred at
+    ``offset`` [m]; validity measure: the eccentricity ratio ``eps = |q - o| / C``."""
+
+    kind = "sfd"
+    limit_label = "eps"
+
+    def __init__(self, name: str, node: int, film: SFD,
+                 offset: tuple[float, float] = (0.0, 0.0)) -> None:
+        super().__init__(name, [dof_index(node, "y"), dof_index(node, "z")],
+                         film.clearance, nodes=(node,))
+        self.node = int(node)
+        self.film = film
+        self.offset = np.array([float(offset[0]), float(offset[1])])
+        self._params = np.concatenate([film.kernel_params, self.offset])
+
+    @property
+    def clearance(self) -> float:
+        """Radial clearance C [m]."""
+        return self.film.clearance
+
+    def force_and_jacobian(self, q: FloatArray, v: FloatArray
+                           ) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Film force and exact Jacobians at ``q - o`` (module doc)."""
+        q = np.asarray(q, dtype=np.float64)
+        v = np.asarray(v, dtype=np.float64)
+        return self.film.force_and_jacobian(q[..., 0] - self.offset[0],
+                                            q[..., 1] - self.offset[1], v[..., 0], v[..., 1])
+
+    def force(self, q: FloatArray, v: FloatArray) -> FloatArray:
+        q = np.asarray(q, dtype=np.float64)
+        return self.film.nl_force(q - self.offset, v)
+
+    @property
+    def kernel(self):
+        return sfd_element_kernel
+
+    @property
+    def kernel_params(self) -> FloatArray:
+        """``[mu, R, L, C, eps_max, film code, o_y, o_z]``."""
+        return self._params.copy()
+
+    def eccentricity(self, q: FloatArray) -> FloatArray:
+        """``eps = |q - o| / C`` of samples ``q (..., 2)``."""
+        q = np.asarray(q, dtype=float)
+        return np.hypot(q[..., 0] - self.offset[0], q[..., 1] - self.offset[1]) \
+            / self._params[P_CLEARANCE]
+
+    def limit(self, q: FloatArray) -> float:
+        """The largest eccentricity ratio of the samples."""
+        return float(np.max(self.eccentricity(q), initial=0.0))
+
+    def diagnostics(self, q: FloatArray, v: FloatArray) -> dict[str, float]:
+        """``eps_max``: the largest eccentricity ratio over the orbit."""
+        return {"eps_max": self.limit(q)}
+
+    def contact_error(self, q: FloatArray, v: FloatArray, where: str = "") -> Exception:
+        y, z = float(q[0] - self.offset[0]), float(q[1] - self.offset[1])
+        return JournalContactError(math.hypot(y, z) / self.clearance, y, z, float(v[0]),
+                                   float(v[1]), where=f"SFD {self.name!r}" + (
+                                       f", {where}" if where else ""))
+
+    def describe(self) -> str:
+        return (f"SFD {self.name!r} at node {self.node} ({self.film.cavitation} film, "
+                f"C = {self.clearance:.4g} m)")
+
+
+#: Ranges of the SFD ratios, also applied when a ratio is derived from the other fields.
+SFD_RATIO_BOUNDS: dict[str, dict[str, float]] = {
+    "clearance_ratio": {"gt": 0.0, "lt": 1.0},
+    "length_to_diameter": {"gt": 0.0, "le": 10.0},
+}
+
+
+class SFDConfig(Section):
+    """Short-bearing squeeze film damper at a node, with an optional centring spring and an
+    optional static offset of the housing.
+
+    Geometry: give the clearance C with C/R (radius derived, as in the paper, which varies
+    C/R at fixed C) or with R, or R with C/R; and L or L/D.
+    """
+
+    kind: Literal["sfd"] = Field("sfd", description="element kind: 'sfd' (squeeze film "
+                                 "damper)")
+    node: NODE
+    viscosity: quantity("viscosity", "oil dynamic viscosity mu", gt=0)
+    clearance: quantity("length", "radial clearance C", gt=0, optional=True) = None
+    clearance_ratio: quantity("ratio", "clearance ratio C/R", optional=True,
+                              **SFD_RATIO_BOUNDS["clearance_ratio"]) = None
+    radius: quantity("length", "journal radius R", gt=0, optional=True) = None
+    length: quantity("length", "land length L", gt=0, optional=True) = None
+    length_to_diameter: quantity("ratio", "land length to diameter L/D = L/(2R)",
+                                 optional=True,
+                                 **SFD_RATIO_BOUNDS["length_to_diameter"]) = None
+    cavitation: Literal["pi", "none", "guembel"] = Field(
+        "pi", description="film model: 'pi' (half-Sommerfeld, theta in [pi, 2pi]), "
+                          "'none' (full 2pi film), 'guembel' (film where pressure > 0)")
+    centring_stiffness: quantity("stiffness", "centring spring stiffness (isotropic, in "
+                                 "parallel with the film)", ge=0) = 0.0
+    centring_damping: quantity("damping", "centring spring damping (isotropic)", ge=0) = 0.0
+    offset_y: quantity("length", "static offset of the housing centre from the centring "
+                       "spring's neutral position, y") = 0.0
+    offset_z: quantity("length", "static offset of the housing centre, z") = 0.0
+
+    @model_validator(mode="after")
+    def _geometry(self):
+        given = given_fields(self, ("clearance", "clearance_ratio", "radius"))
+        if len(given) != 2:
+            # one of the three is given too many or too few: the field is the table
+            raise fail((), and_list(given) or "none of them",
+                       "give exactly two of clearance, clearance_ratio, radius (the "
+                       "third is derived)")
+        if (self.length is None) == (self.length_to_diameter is None):
+            raise fail((), "length and length_to_diameter" if self.length is not None
+                       else "neither length nor length_to_diameter",
+                       "give exactly one of length, length_to_diameter")
+        if self.resolved_clearance >= self.resolved_radius:
+            raise fail("clearance", self.clearance,
+                       f"gives C = {self.resolved_clearance:.6g} m >= R = "
+                       f"{self.resolved_radius:.6g} m; the clearance must be smaller "
+                       "than the journal radius")
+        self._derivedin_range()
+        return self
+
+    def _derivedin_range(self) -> None:
+        """A derived value (the third of C, C/R, R; L or L/D) within the range its own
+        field would have: ``length = "3 furlongs"`` must not pass with L/D = 11524."""
+        derived = {"clearance_ratio": self.resolved_clearance / self.resolved_radius,
+                   "length_to_diameter": self.resolved_length / (2.0 * self.resolved_radius)}
+        for name, value in derived.items():
+            if getattr(self, name) is not None:
+                continue
+            bounds = SFD_RATIO_BOUNDS[name]
+            if not in_range(value, *(bounds.get(k) for k in ("gt", "ge", "lt", "le"))):
+                given = "length" if name == "length_to_diameter" else given_fields(
+                    self, ("clearance", "radius"))[-1]
+                symbol = "L/D = L / (2R)" if name == "length_to_diameter" else "C/R"
+                raise fail(given, getattr(self, given),
+                           f"gives {symbol} = {value:.6g} (R = {self.resolved_radius:.6g} m); "
+                           f"{name} must be {range_text('1', **bounds)}")
+
+    @property
+    def resolved_clearance(self) -> float:
+        """C [m]."""
+        if self.clearance is not None:
+            return self.clearance
+        return self.clearance_ratio * self.radius
+
+    @property
+    def resolved_radius(self) -> float:
+        """R [m], given or C / (C/R)."""
+        if self.radius is not None:
+            return self.radius
+        return self.clearance / self.clearance_ratio
+
+    @property
+    def resolved_length(self) -> float:
+        """L [m], given or (L/D) * 2R."""
+        if self.length is not None:
+            return self.length
+        return self.length_to_diameter * 2.0 * self.resolved_radius
+
+    @property
+    def nodes(self) -> tuple[int, ...]:
+        """The rotor nodes the element sits at."""
+        return (self.node,)
+
+    def derived_text(self) -> str:
+        """The derived geometry, for ``config show`` and ``config check``."""
+        c, r, length = self.resolved_clearance, self.resolved_radius, self.resolved_length
+        return (f"C = {c:.6g} m, R = {r:.6g} m, L = {length:.6g} m, C/R = {c / r:.6g}, "
+                f"L/D = {length / (2 * r):.6g}")
+
+    def linear_supports(self) -> list[LinearSupport]:
+        """The centring spring: an isotropic linear support at the SFD node (none if it has
+        neither stiffness nor damping)."""
+        if self.centring_stiffness > 0 or self.centring_damping > 0:
+            return [LinearSupport.isotropic(self.node, self.centring_stiffness,
+                                            self.centring_damping)]
+        return []
+
+    def build(self, name: str) -> SFDElement:
+        """The element of this table, named ``name``."""
+        film = SFD(self.viscosity, self.resolved_radius, self.resolved_length,
+                   self.resolved_clearance, cavitation=self.cavitation)
+        return SFDElement(name, self.node, film, (self.offset_y, self.offset_z))
+
+
+register(SFDConfig)
