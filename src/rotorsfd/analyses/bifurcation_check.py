@@ -10,7 +10,8 @@ is under-resolved. Each one is re-located on a short piece of the branch recompu
 1. the piece starts ``window`` computed points before the bracket of the bifurcation
    (its HB solution padded with zeros and Newton-corrected at H_c) and follows the
    branch in the same direction for the arc length of the bracket plus ``window`` points
-   after it, past turning points;
+   after it, past turning points; bifurcations whose windows overlap (a fold pair) are
+   checked on one piece spanning both windows, computed once;
 2. a turning point (saddle-node) is located on it by the HB equations alone (the
    multipliers are computed once, at the re-located fold, where one must be +1); any
    other bifurcation from the stability of the piece, computed as for the whole branch
@@ -91,13 +92,13 @@ def _matches(kind: str, other: str) -> bool:
     return other == kind
 
 
-def _local_branch(branch: Branch, problem: PeriodicProblem, ia: int, ib: int, H_c: int,
-                  window: int) -> Branch:
-    """The piece of ``branch`` around points ia..ib recomputed with H_c harmonics."""
+def _window(branch: Branch, ia: int, ib: int, window: int) -> tuple[int, int]:
+    """The computed points (j0, j1) a check's piece of branch spans around the bracket
+    ia..ib: ``window`` points either side, widened to start and end outside the
+    bracket's neighbourhood by its width in lam, so the piece holds the bifurcation even
+    where the higher H moves it."""
     n = branch.n_points
     j0, j1 = max(0, ia - window), min(n - 1, ib + window)
-    # start and end outside the bracket's neighbourhood, by its width in lam, so the
-    # piece holds the bifurcation even where the higher H moves it
     near = branch.lam[max(0, ia - 1): min(n, ib + 2)]
     lo, hi = float(near.min()), float(near.max())
     margin = max(hi - lo, 1e-6 * abs(hi))
@@ -105,6 +106,14 @@ def _local_branch(branch: Branch, problem: PeriodicProblem, ia: int, ib: int, H_
         j0 -= 1
     while j1 < n - 1 and lo - margin <= branch.lam[j1] <= hi + margin:
         j1 += 1
+    return j0, j1
+
+
+def _local_branch(branch: Branch, problem: PeriodicProblem, j0: int, j1: int, H_c: int
+                  ) -> Branch:
+    """The piece of ``branch`` from its point j0 past its point j1 recomputed with H_c
+    harmonics."""
+    n = branch.n_points
     s = branch.s if branch.s.size == n else np.arange(n, dtype=float)
     length = 1.5 * float(s[j1] - s[j0])
     direction = np.sign(branch.dlam_ds[j0]) or np.sign(branch.lam[j1] - branch.lam[j0]) or 1
@@ -128,6 +137,45 @@ def _local_branch(branch: Branch, problem: PeriodicProblem, ia: int, ib: int, H_
                              start_tangent=branch.tangents[j0])
 
 
+class _Piece:
+    """One recomputed piece of branch shared by the checks whose windows overlap (a fold
+    pair is checked on one piece): the piece, its located turning points and its
+    stability, each computed once, when first asked for (or the error that stopped it)."""
+
+    def __init__(self, branch: Branch, problem: PeriodicProblem, j0: int, j1: int,
+                 H_c: int) -> None:
+        self.branch, self.problem, self.j0, self.j1, self.H_c = branch, problem, j0, j1, H_c
+        self._local: Branch | Exception | None = None
+        self._folds: list[BranchPoint] | None = None
+        self._stability: dict[StabilityOptions, BranchStability] = {}
+
+    def local(self) -> Branch:
+        if self._local is None:
+            try:
+                local = _local_branch(self.branch, self.problem, self.j0, self.j1, self.H_c)
+                if local.n_points < 2:
+                    raise ConvergenceError(f"the piece of branch has {local.n_points} point")
+                self._local = local
+            except (ConvergenceError, ArithmeticError, ValueError) as exc:
+                self._local = exc
+        if isinstance(self._local, Exception):
+            raise self._local
+        return self._local
+
+    def folds(self) -> list[BranchPoint]:
+        """The turning points of the piece, located on the HB equations alone."""
+        if self._folds is None:
+            local = self.local()
+            self._folds = [locate_branch_fold(local, int(i)) for i in local.folds()]
+        return self._folds
+
+    def stability(self, options: StabilityOptions) -> BranchStability:
+        """The stability of the piece with these options."""
+        if options not in self._stability:
+            self._stability[options] = branch_stability(self.local(), self.problem, options)
+        return self._stability[options]
+
+
 def check_bifurcations(branch: Branch, problem: PeriodicProblem, stability: BranchStability,
                        options: StabilityOptions, check: CheckOptions | None = None
                        ) -> list[BifurcationCheck]:
@@ -137,6 +185,7 @@ def check_bifurcations(branch: Branch, problem: PeriodicProblem, stability: Bran
     c = check or CheckOptions()
     Hs = branch.info.get("harmonics")
     out = []
+    pieces: list[_Piece] = []
     for b in stability.bifurcations:
         ia, ib = b.info.get("bracket", (0, branch.n_points - 1))
         H_b = int(max(Hs[ia], Hs[ib])) if Hs is not None and len(Hs) == branch.n_points \
@@ -149,26 +198,31 @@ def check_bifurcations(branch: Branch, problem: PeriodicProblem, stability: Bran
                                    max_intervals=max(options.max_intervals, M_c),
                                    n_harmonics=None if options.n_harmonics is None
                                    else max(options.n_harmonics, H_c))
-        out.append(_check_one(branch, problem, b, ia, ib, H_c, M_c, opts, c))
-    return out
+        j0, j1 = _window(branch, ia, ib, c.window)
+        piece = next((p for p in pieces if p.H_c == H_c and p.j0 <= j1 and j0 <= p.j1),
+                     None)
+        if piece is None:
+            piece = _Piece(branch, problem, j0, j1, H_c)
+            pieces.append(piece)
+        else:   # overlapping windows: one piece spanning both (computed below, once)
+            piece.j0, piece.j1 = min(piece.j0, j0), max(piece.j1, j1)
+        out.append((b, piece, opts))
+    return [_check_one(b, piece, opts, c) for b, piece, opts in out]
 
 
-def _check_one(branch: Branch, problem: PeriodicProblem, b: Bifurcation, ia: int, ib: int,
-               H_c: int, M_c: int, opts: StabilityOptions, c: CheckOptions
+def _check_one(b: Bifurcation, piece: _Piece, opts: StabilityOptions, c: CheckOptions
                ) -> BifurcationCheck:
+    H_c, M_c = piece.H_c, opts.n_intervals
     kind = reported_kind(b)
     where = f"{kind} at lam = {b.lam:.9g}"
     turning = kind == "saddle-node" and b.via == "tangent"
     try:
-        local = _local_branch(branch, problem, ia, ib, H_c, c.window)
-        if local.n_points < 2:
-            raise ConvergenceError(f"the piece of branch has {local.n_points} point")
         if turning:   # a turning point is located on the HB equations alone
-            found = [locate_branch_fold(local, int(i)) for i in local.folds()]
+            found = piece.folds()
             lams = [p.lam for p in found]
         else:
-            st = branch_stability(local, problem, opts)
-            lams = [x.lam for x in st.bifurcations if _matches(kind, reported_kind(x))]
+            lams = [x.lam for x in piece.stability(opts).bifurcations
+                    if _matches(kind, reported_kind(x))]
     except (ConvergenceError, ArithmeticError, ValueError) as exc:
         return BifurcationCheck(False, None, None, H_c, M_c,
                                 f"{where}: not checked at H = {H_c}, M = {M_c} (the check "
@@ -187,7 +241,8 @@ def _check_one(branch: Branch, problem: PeriodicProblem, b: Bifurcation, ia: int
         text += f", more than {c.rtol:g}: not converged, raise H and the intervals"
     if turning:   # the exchange of stability there: one multiplier at +1
         try:
-            mu = FloquetEvaluator(problem, opts)(lam_c, found[k].X).multipliers
+            mu = FloquetEvaluator(piece.problem, opts)(
+                lam_c, found[k].X).multipliers
             d = float(np.min(np.abs(mu - 1.0))) if mu.size else np.inf
             text += f"; the multiplier nearest +1 there is {d:.1e} from it"
             if d > FOLD_MULTIPLIER_TOL:
