@@ -34,7 +34,7 @@ def test_deflection_figure_has_style_and_marker_key():
              {"type": "saddle-node", "speed_ratio": 1.0, "point": 20}]
     figs = response_figures(table, x_name="speed_ratio", x_label="x", nodes=[1],
                             directions=["y", "z"], H=1, clearance=1.0, bifurcations=folds)
-    ax = figs["response_deflection.png"].axes[0]
-    labels = {t.get_text() for legend in ax.findobj(lambda a: a.__class__.__name__ == "Legend")
+    fig = figs["response_deflection.png"]
+    labels = {t.get_text() for legend in fig.findobj(lambda a: a.__class__.__name__ == "Legend")
               for t in legend.get_texts()}
     assert {"stable", "unstable", "saddle-node", "node 1"} <= labels

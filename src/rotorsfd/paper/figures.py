@@ -3,21 +3,45 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.ticker import MaxNLocator
 
-from rotorsfd.paper.cases import FigureSpec
+from rotorsfd.paper.cases import CASES, FigureSpec
 from rotorsfd.paper.run import Outcome
-from rotorsfd.plots.response import mark_bifurcations, styled_line
+from rotorsfd.plots.chart import chart_axes
+from rotorsfd.plots.labels import settings, wrap
+from rotorsfd.plots.response import key_handles, mark_bifurcations, outside_legend, styled_line
+from rotorsfd.plots.timedomain import section_limits
 
 YMAX = 6.0        # deflection axes clipped here (r~ near journal contact can reach 500)
-XLABEL = r"$\tilde\Omega = \Omega / 811.3$ rad/s"
+XLABEL = r"$\tilde\Omega = \Omega / \Omega_{ref}$ ($\Omega_{ref}$ = 811.3 rad/s)"
 
 
-def _label(name: str) -> str:
-    return name.split("-", 1)[1] if "-" in name else name
+def case_label(name: str, spec: FigureSpec | None = None) -> str:
+    """A case in the reader's terms: the settings that tell it from the other cases of
+    ``spec`` ("U = 72.008 g mm", "$\\omega_{by}$ = 2 rad/s"), not its id."""
+    case = CASES.get(name)
+    if case is None:
+        return name
+    others = [CASES[c].overrides for c in (spec.cases if spec else ()) if c in CASES]
+    common = set.intersection(*map(set, others)) if len(others) > 1 else set()
+    words = settings(case.overrides, common)
+    if not words:                       # e.g. the diagnosis case of a figure's file
+        stem = Path(case.config).stem.split("_")[0].removeprefix("fig").lstrip("0")
+        words = f"Figure {stem} case" if stem.isdigit() else name
+    return words
+
+
+def _key(res: list[Outcome]) -> list[Any]:
+    """The style and marker key of all the branches drawn."""
+    stable = np.concatenate([np.asarray(o.data.get("stable", []), bool) for o in res]
+                            or [np.ones(0, bool)])
+    bifs = [b for o in res for b in o.data.get("bifurcations") or ()]
+    return key_handles(stable if stable.size else None, bifs)
 
 
 def _ok(outcomes: Mapping[str, Outcome], spec: FigureSpec) -> list[Outcome]:
@@ -26,13 +50,16 @@ def _ok(outcomes: Mapping[str, Outcome], spec: FigureSpec) -> list[Outcome]:
 
 def _deflection(spec: FigureSpec, res: list[Outcome]) -> Figure:
     nodes = spec.options.get("nodes", [1, 8])
-    fig = Figure(figsize=(5.5 * len(nodes), 4.2), layout="constrained")
+    fig = Figure(figsize=(5.0 * len(nodes) + 2.2, 4.4), layout="constrained")
+    axes = []
     for k, node in enumerate(nodes):
         ax = fig.add_subplot(1, len(nodes), k + 1)
-        for o in res:
+        axes.append(ax)
+        for i, o in enumerate(res):
             d = o.data
             x, y = d["speed_ratio"], d[f"defl_{node}"]
-            styled_line(ax, x, y, d.get("stable"), label=_label(o.name), lw=1.3)
+            styled_line(ax, x, y, d.get("stable"), label=case_label(o.name, spec), lw=1.3,
+                        color=f"C{i % 10}")
             if d["bifurcations"]:
                 mark_bifurcations(ax, x, y, d["bifurcations"], "speed_ratio")
         top = max(float(np.max(o.data[f"defl_{node}"])) for o in res)
@@ -42,29 +69,33 @@ def _deflection(spec: FigureSpec, res: list[Outcome]) -> Figure:
         ax.set_ylabel(rf"$\tilde r$ at node {node}")
         ax.set_title(f"node {node} ({'SFD' if node == 1 else 'disk'})", fontsize=9)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
+    outside_legend(fig, axes, _key(res))
     return fig
 
 
 def _harmonics(spec: FigureSpec, res: list[Outcome]) -> Figure:
     nodes = spec.options.get("nodes", [1, 8])
     panels = [(o, n) for o in res for n in nodes]
-    fig = Figure(figsize=(5.2 * len(panels), 4.2), layout="constrained")
+    fig = Figure(figsize=(4.8 * len(panels) + 1.6, 4.4), layout="constrained")
+    axes = []
     for k, (o, node) in enumerate(panels):
         ax = fig.add_subplot(1, len(panels), k + 1)
+        axes.append(ax)
         d = o.data
         x, st = d["speed_ratio"], d.get("stable")
         styled_line(ax, x, np.abs(d[f"static_{node}_y"]) / _clearance(d, node),
-                    st, label="|X0|", color="k", lw=1.2)
+                    st, label=r"$|X_0|/C$ (static)", color="k", lw=1.2)
         for h in range(1, d["H"] + 1):
             y = d[f"amp_{node}_y_h{h}"] / _clearance(d, node)
             if h <= 3 or np.max(y) > 1e-3:
-                styled_line(ax, x, y, st, label=f"{h}X", lw=1.1)
+                styled_line(ax, x, y, st, label=f"{h}X", lw=1.1, color=f"C{(h - 1) % 10}")
         ax.set_xlabel(XLABEL)
-        ax.set_ylabel("harmonic amplitude (y) / C")
-        ax.set_title(f"{_label(o.name)}, node {node}", fontsize=9)
+        ax.set_ylabel(r"harmonic amplitude $|X_k|/C$ (y)")
+        what = case_label(o.name, spec) if len(res) > 1 else ""
+        where = f"node {node} ({'SFD' if node == 1 else 'disk'})"
+        ax.set_title(f"{what}, {where}" if what else where, fontsize=9)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
+    outside_legend(fig, axes, _key(res))
     return fig
 
 
@@ -74,80 +105,90 @@ def _clearance(d: Mapping[str, Any], node: int) -> float:
 
 
 def _orbits(ax: Any, o: Outcome) -> None:
+    """Journal orbits at a few speeds inside the clearance circle; the legend right of
+    the circle (never over an orbit)."""
     t = np.linspace(0, 2 * np.pi, 200)
-    ax.plot(np.cos(t), np.sin(t), "r-", lw=0.8)
+    ax.plot(np.cos(t), np.sin(t), "r-", lw=0.8, label="clearance")
     for s, y, z in o.data["orbits"]:
-        ax.plot(y, z, lw=1.1, label=f"{s:.2f}")
+        ax.plot(y, z, lw=1.1, label=rf"$\tilde\Omega$ = {s:.2f}")
         ax.plot([y.mean()], [z.mean()], "k.", ms=3)
     ax.set_aspect("equal")
     ax.set_xlabel("y / C")
     ax.set_ylabel("z / C")
-    ax.set_title(f"{_label(o.name)}: SFD orbits", fontsize=9)
-    ax.legend(fontsize=7, title=r"$\tilde\Omega$", title_fontsize=7)
+    ax.set_title(f"{case_label(o.name)}: SFD orbits (dot: orbit centre)", fontsize=9)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
 
 
 def _orbit_fig(spec: FigureSpec, res: list[Outcome]) -> Figure:
-    fig = Figure(figsize=(5, 5), layout="constrained")
+    fig = Figure(figsize=(6.4, 5), layout="constrained")
     _orbits(fig.add_subplot(), res[0])
     return fig
 
 
 def _yawing(spec: FigureSpec, res: list[Outcome]) -> Figure:
-    fig = Figure(figsize=(11, 4.4), layout="constrained")
+    fig = Figure(figsize=(12, 4.6), layout="constrained")
     ax = fig.add_subplot(1, 2, 1)
-    for o in res:
+    for i, o in enumerate(res):
         d = o.data
         styled_line(ax, d["speed_ratio"], d["defl_1"], d.get("stable"),
-                    label=_label(o.name), lw=1.3)
+                    label=case_label(o.name, spec), lw=1.3, color=f"C{i % 10}")
     ax.set_xlabel(XLABEL)
     ax.set_ylabel(r"$\tilde r$ at the SFD node")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
+    handles, labels = ax.get_legend_handles_labels()
+    key = _key(res)
+    ax.legend(handles + key, labels + [h.get_label() for h in key], fontsize=7,
+              loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
     six = [o for o in res if o.name.endswith("w6")] or res[:1]
     _orbits(fig.add_subplot(1, 2, 2), six[0])
     return fig
 
 
 def _width(spec: FigureSpec, res: list[Outcome]) -> Figure:
-    fig = Figure(figsize=(6, 4.2), layout="constrained")
+    fig = Figure(figsize=(10, 4.6), layout="constrained")
     ax = fig.add_subplot()
     for o in res:
         d = o.data
-        label = (o.name.replace("damp-fig19-", "0.2 % damping, ").replace("fig19-", "")
-                 .replace("-paper-h", ", paper's H"))
+        case = CASES.get(o.name)
+        h = case.note.split(" (")[0].split(",")[0] if case else ""
+        label = case_label(o.name) + (f", {h}" if h.startswith("H = ") else "")
         if np.all(np.isnan(d["width"])):
             label += ": journal contact, no fold"
         style = "-o" if len(d["rate"]) < 30 else ":" if "paper-h" in o.name else "-"
         ax.plot(d["rate"], d["width"], style, ms=3, label=label)
-    paper = {"U = 252 (paper)": ([0, 7], [0.041, 0.0]),
-             "U = 360.04 (paper)": ([0, 10], [0.195, 0.119])}
+    paper = {"U = 252 g mm (paper)": ([0, 7], [0.041, 0.0]),
+             "U = 360.04 g mm (paper)": ([0, 10], [0.195, 0.119])}
     for name, (x, y) in paper.items():
         ax.plot(x, y, "x--", color="gray", label=name)
     ax.set_xlabel(r"pitching rate $\omega_{by}$ [rad/s]")
     ax.set_ylabel(r"unstable range in $\tilde\Omega$")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
     return fig
 
 
 def _directions(spec: FigureSpec, res: list[Outcome]) -> Figure:
-    fig = Figure(figsize=(11, 4.4), layout="constrained")
+    fig = Figure(figsize=(12.5, 4.6), layout="constrained")
+    axes = []
     for k, d_name in enumerate(("y", "z")):
         ax = fig.add_subplot(1, 2, k + 1)
+        axes.append(ax)
         for i, o in enumerate(res):
             d = o.data
             for side in ("max", "min"):
                 y = d[f"{side}_1_{d_name}"]
+                label = case_label(o.name, spec) if len(res) > 1 else "max and min"
                 styled_line(ax, d["speed_ratio"], y, d.get("stable"), color=f"C{i}",
-                            label=_label(o.name) if side == "max" else None, lw=1.2)
+                            label=label if side == "max" else None, lw=1.2)
                 if d["bifurcations"]:
                     mark_bifurcations(ax, d["speed_ratio"], y, d["bifurcations"],
                                       "speed_ratio")
         ax.set_xlabel(XLABEL)
-        ax.set_ylabel(f"{d_name} / C at the SFD node (max and min over a period)")
-        ax.set_title("horizontal (y)" if d_name == "y" else "vertical (z)", fontsize=9)
+        ax.set_ylabel(f"{d_name} / C at the SFD node")
+        ax.set_title(("horizontal (y)" if d_name == "y" else "vertical (z)")
+                     + ": max and min over a period", fontsize=9)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
+    outside_legend(fig, axes, _key(res))
     return fig
 
 
@@ -158,10 +199,10 @@ def _timedomain(spec: FigureSpec, res: list[Outcome]) -> Figure:
         ax = fig.add_subplot(len(res), 3, 3 * i + 1)
         ax.plot(d["y"], d["z"], lw=0.5)
         ax.plot(d["py"], d["pz"], "r.", ms=3)
-        ax.set_aspect("equal")
+        ax.set_aspect("equal", adjustable="datalim")
         step = f", T/{d['steps']}" if "steps" in d else ""
-        ax.set_title(f"Omega~ = {d['speed_ratio']:.3f}{step}: orbit ({d['motion']})",
-                     fontsize=9)
+        ax.set_title(rf"$\tilde\Omega$ = {d['speed_ratio']:.3f}{step}: orbit "
+                     f"({d['motion']})", fontsize=9)
         ax.set_xlabel("y / C")
         ax.set_ylabel("z / C")
         ax = fig.add_subplot(len(res), 3, 3 * i + 2)
@@ -170,13 +211,24 @@ def _timedomain(spec: FigureSpec, res: list[Outcome]) -> Figure:
         ax.set_ylabel(r"$\dot y / (C \Omega)$")
         ax.set_title("phase", fontsize=9)
         ax = fig.add_subplot(len(res), 3, 3 * i + 3)
-        ax.plot(d["py"], d["pvy"], "k.", ms=3)
-        ax.set_xlim(*_span(d["y"]))       # the phase plane's scale: one point looks
-        ax.set_ylim(*_span(d["vy"]))      # like one point
-        ax.set_xlabel("y / C")
-        ax.set_ylabel(r"$\dot y / (C \Omega)$")
-        ax.set_title("Poincare section", fontsize=9)
+        _section(ax, d)
     return fig
+
+
+def _section(ax: Any, d: Mapping[str, Any], fontsize: float = 9) -> None:
+    """Poincare points (y, y' / (C Omega)) on their own scale (a torus 0.05 C across fills
+    the panel; a period-1 point keeps 2 % of the phase plane around it), over the phase
+    orbit in grey."""
+    ax.plot(d["y"], d["vy"], "-", lw=0.4, color="0.8")
+    ax.plot(d["py"], d["pvy"], "k.", ms=3)
+    ax.set_xlim(*section_limits(d["py"], d["y"]))
+    ax.set_ylim(*section_limits(d["pvy"], d["vy"]))
+    ax.ticklabel_format(useOffset=False)
+    ax.xaxis.set_major_locator(MaxNLocator(4))
+    ax.set_xlabel("y / C")
+    ax.set_ylabel(r"$\dot y / (C \Omega)$")
+    ax.set_title(f"Poincare section ({len(np.atleast_1d(d['py']))} periods)",
+                 fontsize=fontsize)
 
 
 def _isola(spec: FigureSpec, res: list[Outcome]) -> Figure:
@@ -188,51 +240,40 @@ def _isola(spec: FigureSpec, res: list[Outcome]) -> Figure:
     rows = ([[iso.data["second"], *iso.data["runs"]],
              [iso.data["find"], *iso.data.get("runs_t200", [])]] if iso else [[], []])
     cols = 1 + max(len(r) for r in rows)
-    fig = Figure(figsize=(5.5 + 3.0 * (cols - 1), 7.6), layout="constrained")
+    fig = Figure(figsize=(6.5 + 3.0 * (cols - 1), 7.8), layout="constrained")
     ax = fig.add_subplot(2, cols, 1)
-    for o in res:
+    for i, o in enumerate(res):
         d = o.data
         x, y = d["speed_ratio"], d["defl_8"]
-        styled_line(ax, x, y, d.get("stable"), lw=1.3,
-                    label="isola (from the orbit)" if o is iso else f"main ({_label(o.name)})")
+        styled_line(ax, x, y, d.get("stable"), lw=1.3, color=f"C{i % 10}",
+                    label="isola (from its HB orbit)" if o is iso else "main branch")
         if d["bifurcations"]:
             mark_bifurcations(ax, x, y, d["bifurcations"], "speed_ratio")
     ax.set_xlim(1.0, 1.12)
     ax.set_xlabel(XLABEL)
     ax.set_ylabel(r"$\tilde r$ at node 8 (disk)")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
+    handles, labels = ax.get_legend_handles_labels()
+    key = _key(res)
+    fig.legend(handles + key, labels + [h.get_label() for h in key], fontsize=7,
+               loc="outside lower left", ncol=3)
     for i, runs in enumerate(rows):
         for k, d in enumerate(runs):
             ax = fig.add_subplot(2, cols, i * cols + k + 2)
-            ax.plot(d["py"], d["pvy"], "k.", ms=3)
-            if d["motion"] == "period-1":      # one point: show it on the phase plane's scale
-                ax.set_xlim(*_span(d["y"]))
-                ax.set_ylim(*_span(d["vy"]))
-            ax.set_xlabel("y / C")
-            ax.set_ylabel(r"$\dot y / (C \Omega)$")
-            step = f"T/{d['steps']}" if "steps" in d else ""
-            ax.set_title(f"{step}, Omega~ = {d['speed_ratio']:.3f}: {d['motion']}",
+            _section(ax, d, fontsize=8)
+            step = f"T/{d['steps']}, " if "steps" in d else ""
+            ax.set_title(rf"{step}$\tilde\Omega$ = {d['speed_ratio']:.3f}: {d['motion']}",
                          fontsize=8)
     return fig
 
 
-def _span(x: Any) -> tuple[float, float]:
-    lo, hi = float(np.min(x)), float(np.max(x))
-    pad = 0.05 * (hi - lo) or 1e-3
-    return lo - pad, hi + pad
-
-
 def _chart(spec: FigureSpec, res: list[Outcome]) -> Figure:
-    fig = Figure(figsize=(6.5, 4.8), layout="constrained")
+    fig = Figure(figsize=(7.4, 5.4), layout="constrained")
     ax = fig.add_subplot()
     d = res[0].data
-    unstable = np.asarray(d["max_abs"]) > 1 + 1e-5
-    ax.pcolormesh(d["x"], d["y"], unstable.T.astype(float), cmap="Blues", vmin=0, vmax=1.3,
-                  shading="nearest")
-    ax.set_xlabel(d["x_label"])
-    ax.set_ylabel(d["y_label"])
-    ax.set_title("unstable (blue), Omega = 250 rad/s", fontsize=9)
+    chart_axes(ax, d["x"], d["y"], d["max_abs"], x_label=d["x_label"],
+               y_label=d["y_label"], tol=float(d.get("tol", 1e-5)),
+               speed=d.get("speed", 250.0))
     return fig
 
 
@@ -247,5 +288,5 @@ def draw(spec: FigureSpec, outcomes: Mapping[str, Outcome]) -> Figure | None:
     if not res:
         return None
     fig = PLOTS[spec.plot](spec, res)
-    fig.suptitle(f"Figure {spec.number}: {spec.title}", fontsize=10)
+    fig.suptitle(wrap(f"Figure {spec.number}: {spec.title}", 110), fontsize=10)
     return fig

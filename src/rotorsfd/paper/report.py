@@ -9,7 +9,7 @@ writes ``report.md`` and a self-contained ``report.html`` (figures as base64 PNG
 from __future__ import annotations
 
 import base64
-import html
+import fnmatch
 import math
 import re
 from collections.abc import Mapping, Sequence
@@ -22,6 +22,7 @@ import numpy as np
 from rotorsfd.io import atomic
 from rotorsfd.paper.cases import CLAIMS, Claim
 from rotorsfd.paper.run import Outcome
+from rotorsfd.plots.chart import describe, unstable_regions
 
 SHORT = {"saddle-node": "SN", "secondary-hopf": "SH", "period-doubling": "PD"}
 
@@ -95,6 +96,11 @@ def _value(claim: Claim, outcomes: Mapping[str, Outcome]) -> tuple[str, str, str
         if isinstance(claim.paper, float):
             if not peaks:
                 return ours, "no peak", "differs"
+            if "second peak" in claim.quantity:       # the second peak, not the nearest
+                if len(peaks) < 2:
+                    end = "" if n.get("success", True) else f"; {n['end']}"
+                    return ours + end, "no second peak", "differs"
+                peaks = peaks[1:2]
             best = min(peaks, key=lambda p: abs(p - claim.paper))
             if abs(best - claim.paper) > 0.05:
                 end = "" if n.get("success", True) else f"; {n['end']}"
@@ -206,35 +212,88 @@ def comparison_rows(outcomes: Mapping[str, Outcome],
 
 # ---- explanations -----------------------------------------------------------------------------
 
-EXPLANATIONS = """\
-**Support stiffnesses (not in the paper).** The SFD centring spring (10.325 MN/m) and the
+#: Our choices, each with the cases it concerns (fnmatch patterns; () for every report).
+CHOICES: dict[str, tuple[tuple[str, ...], str]] = {
+    "Support stiffnesses (not in the paper)": ((), """\
+The SFD centring spring (10.325 MN/m) and the
 right support (9.551 MN/m) are fitted so that the first two forward critical speeds of the
 linear rotor (film off) are the paper's 811.3 and 2784.6 rad/s (met to 1e-10). Two targets
 fix two stiffnesses, so the choice is unique for this model; the sensitivity rows rerun the
-U = 144.02 g mm fold pair with each stiffness changed by +/-5 %.
-
-**Figure 6 rotor (not in the paper).** The Duchemin rotor is taken as the Lalanne-Ferraris
+U = 144.02 g mm fold pair with each stiffness changed by +/-5 %."""),
+    "Figure 6 rotor (not in the paper)": (("fig6",), """\
+The Duchemin rotor is taken as the Lalanne-Ferraris
 single-disk rotor (0.4 m shaft, 0.02 m diameter, disk 0.15/0.01 m radius x 0.03 m at L/3,
-pinned ends as 1e9 N/m bearings, no damping); see examples/fig6_duchemin_pitching.toml.
-The chart shows three main unstable zones starting at the base-frame frequencies of the
-first mode pair at Omega = 250 rad/s (254, 278, 302 rad/s) as the paper's. Without the
-original data the zone positions cannot be compared number by number.
-
-**|mu|max at a bifurcation.** A multiplier crosses +1 exactly at a fold, so the value in
+pinned ends as 1e9 N/m bearings, no damping); see `examples/fig6_duchemin_pitching.toml`.
+The three main zones are parametric resonances of the first mode pair at Omega = 250 rad/s:
+as A0 -> 0 they tend to the base-frame frequencies 254, 278 and 302 rad/s, and their width
+shrinks as A0^2, so on a finite grid they show only from some A0 up. Without the original
+data the zone positions cannot be compared number by number."""),
+    "|mu|max at a bifurcation": (("fig7-*", "sens-*", "fig1[07]-*", "fig12-*", "fig16-*",
+                                  "fig2[14]-*", "damp-*"), """\
+A multiplier crosses +1 exactly at a fold, so the value in
 Table 1 is the largest multiplier at a computed point near it: it depends on the
 continuation step (ours: the modulus of the critical multiplier at the nearest computed
-point on the unstable side, `nearest_multiplier_abs` in bifurcations.csv; the multiplier
+point on the unstable side, `nearest_multiplier_abs` in `bifurcations.csv`; the multiplier
 at the located fold itself, `located_multiplier_re`, is +1 up to the Floquet error), as
-the paper's does. The rows
-marked "close" are within 0.02.
-
-**Harmonics and aliasing.** H = 3 for U <= 144.02 g mm, H = 8 for U = 252 and 360.04 g mm
-and for section 4.3, as in the paper; N_f is chosen free of aliasing by rotorsfd.
-
-**Journal contact.** Every response case continues until the SFD eccentricity reaches
+the paper's does. The rows marked "close" are within 0.02."""),
+    "Harmonics and aliasing": ((), """\
+H = 3 for U <= 144.02 g mm, H = 8 for U = 252 and 360.04 g mm
+and for section 4.3, as in the paper; N_f is chosen free of aliasing by rotorsfd."""),
+    "Journal contact": ((), """\
+Every response case continues until the SFD eccentricity reaches
 0.995 (default limiter 0.95). Where the paper's branch folds back while ours keeps rising
-to the clearance, our branch ends at contact; the row says where.
-"""
+to the clearance, our branch ends at contact; the row says where."""),
+}
+
+#: The cases each diagnosis of :data:`DIAGNOSES` concerns (fnmatch patterns): a report lists
+#: a diagnosis only when one of its cases ran (a diagnosis not named here: always).
+DIAGNOSIS_CASES: dict[str, tuple[str, ...]] = {
+    "Journal contact instead of a fold (U = 360.04 g mm: Table 1, Figs. 17-19, 24)":
+        ("fig7-u360", "fig17-u360-*", "fig19-u360", "fig24-u360", "damp-u360",
+         "damp-fig19-u360"),
+    "Figure 19 widths, U = 252 g mm (0.058 vs 0.041) and the end of bistability":
+        ("fig19-*",),
+    "Figure 15, second disk peak near Omega~ 1.40 (w_by = 9 rad/s)": ("fig12-w9", "fig12-w10"),
+    "Figure 21, C/R = 0.485 % stable in the paper": ("fig21-cr0.485",),
+    "Table 3 and Figure 23 (C/R = 0.728 %)": ("fig21-cr0.728", "fig23-*", "damp-fig22"),
+    "|mu|max at the folds": ("fig7-u144", "fig7-u360", "sens-*", "fig19-*", "damp-*",
+                             "fig17-*"),
+}
+
+
+def _ran(patterns: Sequence[str], outcomes: Mapping[str, Outcome]) -> bool:
+    return not patterns or any(fnmatch.fnmatchcase(name, p) for name in outcomes
+                               for p in patterns)
+
+
+def relevant_diagnoses(diagnoses: Mapping[str, str], outcomes: Mapping[str, Outcome]
+                       ) -> dict[str, str]:
+    """The diagnoses whose cases ran (:data:`DIAGNOSIS_CASES`): a quick or single-figure
+    report does not explain figures it did not draw."""
+    return {k: v for k, v in diagnoses.items() if _ran(DIAGNOSIS_CASES.get(k, ()), outcomes)}
+
+
+def chart_sentence(outcomes: Mapping[str, Outcome]) -> str:
+    """What the Figure 6 chart shows, from its grid (zones, how far down, islands)."""
+    o = outcomes.get("fig6")
+    if o is None or not o.data:
+        return ""
+    d = o.data
+    units = str(d.get("y_label", "")).partition("[")[2].rstrip("] ")
+    shown = describe(unstable_regions(d["x"], d["y"], d["max_abs"]), "A0", units,
+                     mu="|mu|", ringed=False)
+    nx, ny = np.shape(d["max_abs"])
+    return f"On this run's {nx} x {ny} grid the chart shows {shown}."
+
+
+def explanations(outcomes: Mapping[str, Outcome]) -> str:
+    """The paragraphs of :data:`CHOICES` whose cases ran."""
+    out = []
+    for title, (patterns, text) in CHOICES.items():
+        if _ran(patterns, outcomes):
+            extra = f" {chart_sentence(outcomes)}" if "Figure 6" in title else ""
+            out.append(f"**{title}.** {text}{extra}")
+    return "\n\n".join(out) + "\n"
 
 
 def _table_md(rows: Sequence[Row]) -> str:
@@ -263,10 +322,11 @@ def render_markdown(rows: Sequence[Row], figures: Mapping[str, str],
              "## Where we differ from the paper", ""]
     for r in _differences(rows):
         lines.append(f"- **{r.section}, {r.quantity}**: paper {r.paper}, ours {r.ours}.")
+    diagnoses = relevant_diagnoses(diagnoses or {}, outcomes)
     if diagnoses:
         lines += ["", "Diagnoses:", ""]
         lines += [f"- **{k}**: {v}" for k, v in diagnoses.items()]
-    lines += ["", "## Choices and sensitivity", "", EXPLANATIONS, "## Figures", ""]
+    lines += ["", "## Choices and sensitivity", "", explanations(outcomes), "## Figures", ""]
     for number, path in figures.items():
         lines += [f"### Figure {number}", "", f"![Figure {number}]({path})", ""]
     lines += ["## Cases", "", "| case | status | time [s] | message |", "|---|---|---|---|"]
@@ -276,58 +336,62 @@ def render_markdown(rows: Sequence[Row], figures: Mapping[str, str],
     return "\n".join(lines) + "\n"
 
 
+#: ASCII spellings of the report's text -> HTML (outside code).
+HTML_SYMBOLS: tuple[tuple[str, str], ...] = (
+    (r"Omega~", "\u03a9\u0303"), (r"Omega_ref", "\u03a9<sub>ref</sub>"),
+    (r"Omega", "\u03a9"), (r"\|mu\|max", "|\u03bc|<sub>max</sub>"), (r"\|mu\|", "|\u03bc|"),
+    (r"w_b([xyz])", "\u03c9<sub>b<1></sub>"), (r"w_b", "\u03c9<sub>b</sub>"),
+    (r"r~", "r\u0303"), (r"A0", "A<sub>0</sub>"), (r"eps", "\u03b5"),
+    (r"mu", "\u03bc"), (r"N_f", "N<sub>f</sub>"), (r"\+/-", "\u00b1"), (r"<=", "\u2264"),
+    (r"->", "\u2192"),
+)
+_HTML_PATTERNS = [(re.compile(rf"(?<![A-Za-z]){a}(?![A-Za-z])"), b)
+                  for a, b in HTML_SYMBOLS]
+_CODE_OR_TAG = re.compile(r"(<code>.*?</code>|<[^>]*>)", re.S)
+
+
+def html_symbols(page: str) -> str:
+    """``Omega~`` -> Ω̃, ``|mu|max`` -> |μ|<sub>max</sub>, ``w_by`` -> ω<sub>by</sub> ...
+    in the text of an HTML fragment (not in code, not in tags)."""
+    pieces = _CODE_OR_TAG.split(page)
+    for i in range(0, len(pieces), 2):
+        p = pieces[i].replace("&lt;=", "<=").replace("-&gt;", "->")
+        for pattern, sub in _HTML_PATTERNS:
+            p = pattern.sub(lambda m, s=sub: s.replace("<1>", m.group(m.lastindex or 0)), p)
+        p = re.sub(r"\^(\d+)", r"<sup>\1</sup>", p)
+        pieces[i] = p.replace("<=", "&lt;=").replace("->", "-&gt;")
+    return "".join(pieces)
+
+
+def _markdown_to_html(text: str) -> str:
+    """CommonMark-like markdown (tables, no raw HTML: a ``<`` in a message is text)."""
+    import markdown
+
+    md = markdown.Markdown(extensions=["tables"], output_format="html")
+    md.preprocessors.deregister("html_block")
+    md.inlinePatterns.deregister("html")
+    return md.convert(text)
+
+
 def render_html(markdown: str, figures: Mapping[str, bytes]) -> str:
-    """report.html: the markdown as simple HTML with the figures embedded (base64)."""
-    body, table, in_list = [], [], False
-    for line in markdown.splitlines():
-        if line.startswith("|"):
-            cells = [c.strip().replace("\\|", "|")
-                     for c in re.split(r"(?<!\\)\|", line.strip().strip("|"))]
-            if set("".join(cells)) <= set("-"):
-                continue
-            tag = "th" if not table else "td"
-            table.append("<tr>" + "".join(f"<{tag}>{_inline(c)}</{tag}>" for c in cells)
-                         + "</tr>")
-            continue
-        if table:
-            body.append("<table>" + "".join(table) + "</table>")
-            table = []
-        if line.startswith("- "):
-            if not in_list:
-                body.append("<ul>")
-                in_list = True
-            body.append(f"<li>{_inline(line[2:])}</li>")
-            continue
-        if in_list:
-            body.append("</ul>")
-            in_list = False
-        if line.startswith("#"):
-            level = len(line) - len(line.lstrip("#"))
-            body.append(f"<h{level}>{html.escape(line[level:].strip())}</h{level}>")
-        elif line.startswith("![Figure "):
-            number = line[len("![Figure "):line.index("]")]
-            png = figures.get(number)
-            if png is not None:
-                b64 = base64.b64encode(png).decode("ascii")
-                body.append(f'<img alt="Figure {number}" src="data:image/png;base64,{b64}">')
-        elif line.strip():
-            body.append(f"<p>{_inline(line)}</p>")
-    if table:
-        body.append("<table>" + "".join(table) + "</table>")
-    if in_list:
-        body.append("</ul>")
-    style = ("body{font-family:sans-serif;max-width:1200px;margin:auto;padding:1em}"
-             "table{border-collapse:collapse;font-size:90%}td,th{border:1px solid #ccc;"
-             "padding:2px 6px}img{max-width:100%}")
+    """report.html: the markdown rendered (paragraphs joined across source lines, inline
+    code as code, tables), the symbols written as symbols, the figures embedded (base64)."""
+    body = html_symbols(_markdown_to_html(markdown))
+
+    def embed(m: re.Match[str]) -> str:
+        png = figures.get(m.group(1))
+        if png is None:
+            return ""
+        b64 = base64.b64encode(png).decode("ascii")
+        return f'<img alt="Figure {m.group(1)}" src="data:image/png;base64,{b64}"'
+
+    body = re.sub(r'<img alt="Figure ([^"]+)" src="[^"]*"', embed, body)
+    style = ("body{font-family:sans-serif;max-width:1200px;margin:auto;padding:1em;"
+             "line-height:1.4}table{border-collapse:collapse;font-size:90%}"
+             "td,th{border:1px solid #ccc;padding:2px 6px;vertical-align:top}"
+             "code{background:#f3f3f3;padding:0 2px}img{max-width:100%}")
     return ("<!DOCTYPE html><html><head><meta charset='utf-8'><title>rotorsfd paper "
-            f"report</title><style>{style}</style></head><body>" + "\n".join(body)
-            + "</body></html>\n")
-
-
-def _inline(text: str) -> str:
-    out = html.escape(text)
-    parts = out.split("**")
-    return "".join(f"<b>{p}</b>" if i % 2 else p for i, p in enumerate(parts))
+            f"report</title><style>{style}</style></head><body>\n{body}\n</body></html>\n")
 
 
 def _plain(obj: Any) -> Any:
@@ -373,7 +437,7 @@ DIAGNOSES: dict[str, str] = {
         "our upper branch rises until the journal reaches the clearance at Omega~ = 1.3121 "
         "for every pitching rate. That speed is the first critical speed of the rotor "
         "pinned at the SFD (1065.1 rad/s = 1.3129 Omega_ref; `rotorsfd modal "
-        "--set sfd.centring_stiffness=1e11`): when the film locks, nothing damps that "
+        "--set elements.sfd.centring_stiffness=1e11`): when the film locks, nothing damps that "
         "mode, since our model has no structural damping. Changing the support "
         "stiffnesses only moves the contact with that resonance (right support 12 MN/m: "
         "contact at 1.367), never gives a fold. With a light modal damping of 0.2 % "

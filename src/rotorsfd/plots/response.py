@@ -1,5 +1,5 @@
 """Frequency-response figures like the paper's: dimensionless amplitudes against
-Omega~ = Omega / Omega_ref (or the continuation parameter).
+Omega~ = Omega / Omega_ref (or the continuation parameter, named in words).
 
 The figures are drawn from the columns of ``branch.csv`` (no physics here): the deflection
 r~ of every output node, and per node the static term X_0 / C and the harmonic amplitudes
@@ -17,6 +17,8 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
+
+from rotorsfd.plots.labels import label, mathtext, wrap
 
 MARKERS = {"saddle-node": "o", "period-doubling": "s", "secondary-hopf": "^"}
 
@@ -57,9 +59,10 @@ def mark_bifurcations(ax: Axes, x: Any, y: Any, bifurcations: Sequence[Mapping[s
                 mfc="none", zorder=5)
 
 
-def key_legend(ax: Axes, stable: Any, bifurcations: Sequence[Mapping[str, Any]] | None
-               ) -> None:
-    """A second legend explaining the line styles and the bifurcation markers used."""
+def key_handles(stable: Any, bifurcations: Sequence[Mapping[str, Any]] | None
+                ) -> list[Line2D]:
+    """Legend entries for the line styles (when some part is unstable) and for the
+    bifurcation markers used."""
     handles = []
     if stable is not None and not np.all(np.asarray(stable, bool)):
         handles += [Line2D([], [], color="0.3", ls="-", label="stable"),
@@ -67,8 +70,43 @@ def key_legend(ax: Axes, stable: Any, bifurcations: Sequence[Mapping[str, Any]] 
     for kind in dict.fromkeys(b["type"] for b in bifurcations or ()):
         handles.append(Line2D([], [], ls="none", marker=MARKERS.get(kind, "x"), color="k",
                               mfc="none", label=kind))
+    return handles
+
+
+def key_legend(ax: Axes, stable: Any, bifurcations: Sequence[Mapping[str, Any]] | None
+               ) -> None:
+    """A second legend explaining the line styles and the bifurcation markers used."""
+    handles = key_handles(stable, bifurcations)
     if handles:
         ax.add_artist(ax.legend(handles=handles, fontsize=8, loc="upper left"))
+
+
+def outside_legend(fig: Figure, axes: Sequence[Axes], key: Sequence[Line2D] = (),
+                   **kw: Any) -> None:
+    """One legend for the figure, right of the panels (never over a curve): the labelled
+    curves of ``axes`` (each label once), then the style and marker ``key``."""
+    handles, labels = [], []
+    for ax in axes:
+        for h, lab in zip(*ax.get_legend_handles_labels(), strict=True):
+            if lab not in labels:
+                handles.append(h)
+                labels.append(lab)
+    handles += list(key)
+    labels += [h.get_label() for h in key]
+    if handles:
+        fig.legend(handles, labels, loc="outside right upper", fontsize=8, **kw)
+
+
+def _peak(y: Any) -> float:
+    y = np.asarray(y, float)
+    return float(np.nanmax(y)) if y.size and np.any(np.isfinite(y)) else 0.0
+
+
+def separate_scales(peaks: Sequence[float], ratio: float = 4.0) -> bool:
+    """True when curves of these peak values do not share one axis well (the largest
+    more than ``ratio`` times the smallest): a small one would be flat at the bottom."""
+    p = [x for x in peaks if x > 0]
+    return len(p) > 1 and max(p) > ratio * min(p)
 
 
 def response_figures(table: Mapping[str, Any], *, x_name: str, x_label: str,
@@ -76,50 +114,56 @@ def response_figures(table: Mapping[str, Any], *, x_name: str, x_label: str,
                      clearance: float,
                      bifurcations: Sequence[Mapping[str, Any]] | None = None,
                      title: str = "") -> dict[str, Figure]:
-    """``response_deflection.png`` (r~ of every node) and ``response_node<n>.png`` (one
-    panel per direction: X_0/C and |X_k|/C, k = 1..H)."""
+    """``response_deflection.png`` (r~ of every node; one panel per node when their
+    amplitudes differ by more than 4 times) and ``response_node<n>.png`` (one panel per
+    direction: X_0/C and |X_k|/C, k = 1..H); legends right of the panels."""
     x = np.asarray(table[x_name], float)
     stable = table.get("stable")
     x_key = x_name if x_name in ("speed_ratio", "speed_rad_s") else "parameter"
+    xlabel = label(x_label)
+    key = key_handles(stable, bifurcations)
     figs: dict[str, Figure] = {}
 
-    fig = Figure(figsize=(7, 4.5), layout="constrained")
-    ax = fig.add_subplot()
-    for n in nodes:
+    nodes = list(nodes)
+    apart = separate_scales([_peak(table[f"defl_{n}"]) for n in nodes])
+    rows = len(nodes) if apart else 1
+    fig = Figure(figsize=(8, 2.6 * rows + 1.4 if apart else 4.5), layout="constrained")
+    axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
+    for k, n in enumerate(nodes):
+        ax = axes[k if apart else 0]
         y = table[f"defl_{n}"]
-        styled_line(ax, x, y, stable, label=f"node {n}", lw=1.4)
+        styled_line(ax, x, y, stable, label=f"node {n}", lw=1.4, color=f"C{k}")
         if bifurcations:
             mark_bifurcations(ax, x, y, bifurcations, x_key)
-    ax.set_xlabel(x_label)
-    ax.set_ylabel(r"$\tilde r = \max_t \sqrt{y^2 + z^2} / C$")
-    ax.set_title(_short(title or "Frequency response"), fontsize=9)
-    ax.grid(alpha=0.3)
-    key_legend(ax, stable, bifurcations)
-    ax.legend(fontsize=8, loc="upper right")
+    for ax in axes:
+        ax.set_ylabel(r"$\tilde r = \max_t \sqrt{y^2 + z^2} / C$" if not apart else
+                      r"$\tilde r$ = max$_t\,r / C$")
+        ax.grid(alpha=0.3)
+    axes[-1].set_xlabel(xlabel)
+    fig.suptitle(wrap(title or "Frequency response", 90), fontsize=9)
+    outside_legend(fig, axes, key)
     figs["response_deflection.png"] = fig
 
     for n in nodes:
-        fig = Figure(figsize=(7, 3.2 * len(directions)), layout="constrained")
+        fig = Figure(figsize=(8, 3.0 * len(directions) + 0.6), layout="constrained")
         axes = fig.subplots(len(directions), 1, sharex=True, squeeze=False)[:, 0]
         for ax, d in zip(axes, directions, strict=True):
             styled_line(ax, x, np.asarray(table[f"static_{n}_{d}"]) / clearance, stable,
                         label="static (0X)", lw=1.2, color="0.4")
             for k in range(1, H + 1):
                 y = np.asarray(table[f"amp_{n}_{d}_h{k}"]) / clearance
-                styled_line(ax, x, y, stable, label=f"{k}X", lw=1.4 if k == 1 else 1.0)
+                styled_line(ax, x, y, stable, label=f"{k}X", lw=1.4 if k == 1 else 1.0,
+                            color=f"C{(k - 1) % 10}")
                 if bifurcations and k == 1:
                     mark_bifurcations(ax, x, y, bifurcations, x_key)
-            ax.set_ylabel(f"{d}/C: " + r"$X_0/C$, $|X_k|/C$")
+            ax.set_ylabel(rf"$X_0/C$, $|X_k|/C$ ({d})")
             ax.grid(alpha=0.3)
-            ax.set_title(f"node {n}, {d}", fontsize=9)
-        axes[0].legend(fontsize=8, ncol=min(H + 1, 5))
-        axes[-1].set_xlabel(x_label)
+            ax.set_title(f"node {n}, {d} direction", fontsize=9)
+        axes[-1].set_xlabel(xlabel)
+        fig.suptitle(wrap(title or "Harmonic amplitudes", 90), fontsize=9)
+        outside_legend(fig, axes, key)
         figs[f"response_node{n}.png"] = fig
     return figs
-
-
-def _short(text: str, n: int = 80) -> str:
-    return text if len(text) <= n else text[: n - 3] + "..."
 
 
 def plot_multipliers(multipliers: Any, *, where: str, max_multiplier: float | None = None,
@@ -153,9 +197,9 @@ def plot_multipliers(multipliers: Any, *, where: str, max_multiplier: float | No
     ax.set_xlabel(r"Re $\mu$")
     ax.set_ylabel(r"Im $\mu$")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="upper right")
+    fig.legend(loc="outside lower center", fontsize=8, ncol=3)
     state = "" if stable is None else (" (stable)" if stable else " (unstable)")
-    head = f"{_short(title, 70)}\n" if title else ""
-    ax.set_title(f"{head}Floquet multipliers at {_short(where, 70)}\n"
+    head = f"{wrap(title, 70)}\n" if title else ""
+    ax.set_title(f"{head}{wrap('Floquet multipliers at ' + mathtext(where), 70)}\n"
                  rf"$|\mu|_{{max}}$ = {mu_max:.5f}{state}", fontsize=9)
     return fig

@@ -14,10 +14,29 @@ from typing import Any
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+from matplotlib.ticker import MaxNLocator
+
+from rotorsfd.plots.labels import label, wrap
 
 
-def _short(title: str, n: int = 90) -> str:
-    return title if len(title) <= n else title[:n - 3] + "..."
+def section_limits(points: Any, orbit: Any = None, floor: float = 0.02,
+                   pad: float = 0.15) -> tuple[float, float]:
+    """Axis limits for Poincare points: their own span (so a torus 0.05 C across fills the
+    panel), at least ``floor`` times the orbit's span (so a period-1 point is not blown up
+    to its rounding scatter), padded by ``pad`` of the span on each side."""
+    p = np.asarray(points, float).ravel()
+    p = p[np.isfinite(p)]
+    if p.size == 0:
+        return -1.0, 1.0
+    lo, hi = float(p.min()), float(p.max())
+    ref = np.asarray(orbit, float).ravel() if orbit is not None else p
+    ref = ref[np.isfinite(ref)]
+    least = floor * float(ref.max() - ref.min()) if ref.size else 0.0
+    least = least or 1e-3 * max(abs(lo), abs(hi), 1.0)
+    if hi - lo < least:
+        mid = 0.5 * (lo + hi)
+        lo, hi = mid - 0.5 * least, mid + 0.5 * least
+    return lo - pad * (hi - lo), hi + pad * (hi - lo)
 
 
 def orbit_axes(ax: Axes, y: Any, z: Any, py: Any = None, pz: Any = None, *,
@@ -52,12 +71,15 @@ def phase_axes(ax: Axes, y: Any, vy: Any, py: Any = None, pvy: Any = None, *,
 
 def poincare_axes(ax: Axes, py: Any, pz: Any, y: Any = None, z: Any = None, *,
                   unit: str = "C") -> Axes:
-    """Poincare section: (y, z) once per rotor period, over the orbit (grey) when given
-    (so that a period-1 point is not blown up to its rounding scatter)."""
+    """Poincare section: (y, z) once per rotor period, on the scale of the points
+    (:func:`section_limits`), over the orbit (grey) when given."""
     if y is not None:
         ax.plot(y, z, "-", lw=0.4, color="0.75")
     ax.plot(py, pz, ".", ms=5, color="C3")
+    ax.set_xlim(*section_limits(py, y))
+    ax.set_ylim(*section_limits(pz, z))
     ax.ticklabel_format(useOffset=False)
+    ax.xaxis.set_major_locator(MaxNLocator(5))
     ax.set_xlabel(f"y [{unit}]")
     ax.set_ylabel(f"z [{unit}]")
     ax.set_title(f"Poincare section ({len(np.atleast_1d(py))} periods)", fontsize=9)
@@ -93,7 +115,7 @@ def simulation_figures(*, y: Any, z: Any, vy: Any, py: Any, pz: Any, pvy: Any,
     phase_axes(axs[0, 1], y, vy, py, pvy, unit=unit)
     poincare_axes(axs[1, 0], py, pz, y, z, unit=unit)
     spectrum_axes(axs[1, 1], frequency_ratio, amplitude, unit=unit)
-    fig.suptitle(_short(title), fontsize=10)
+    fig.suptitle(wrap(title, 110), fontsize=10)
     figs["simulation.png"] = fig
     for name, draw in (
             ("orbit.png", lambda ax: orbit_axes(ax, y, z, clearance_circle=clearance_circle,
@@ -104,7 +126,7 @@ def simulation_figures(*, y: Any, z: Any, vy: Any, py: Any, pz: Any, pvy: Any,
                                                       unit=unit))):
         f = Figure(figsize=(6, 5), layout="constrained")
         draw(f.add_subplot())
-        f.suptitle(_short(title, 70), fontsize=9)
+        f.suptitle(wrap(title, 75), fontsize=9)
         figs[name] = f
     return figs
 
@@ -112,9 +134,10 @@ def simulation_figures(*, y: Any, z: Any, vy: Any, py: Any, pz: Any, pvy: Any,
 def bifurcation_figure(table: Mapping[str, Any], *, nodes: Sequence[int],
                        x_name: str = "speed_ratio", x_label: str = r"$\tilde\Omega$",
                        scale: float = 1.0, unit: str = "C", title: str = "") -> Figure:
-    """Poincare points y (per node, one panel each) against the speed; the up sweep in
-    blue dots, the down sweep in red crosses (jumps and hysteresis show as their
-    difference)."""
+    """Poincare points y (per node, one panel each, each on its own scale) against the
+    speed; the down sweep in red crosses under the up sweep's blue dots (so both show
+    where they coincide; jumps and hysteresis show as their difference); one legend
+    right of the panels."""
     nodes = list(nodes)
     fig = Figure(figsize=(8, 2.8 * len(nodes) + 0.6), layout="constrained")
     axs = np.atleast_1d(fig.subplots(len(nodes), 1, sharex=True))
@@ -123,14 +146,17 @@ def bifurcation_figure(table: Mapping[str, Any], *, nodes: Sequence[int],
     direction = np.asarray(table["direction"])
     y = np.asarray(table["y"], float) / scale
     for ax, n in zip(axs, nodes, strict=True):
-        for d, style, color in (("up", ".", "C0"), ("down", "x", "C3")):
+        for d, style, color, ms, z in (("down", "x", "C3", 5.0, 2), ("up", ".", "C0", 3.0, 3)):
             sel = (node == n) & (direction == d)
             if np.any(sel):
-                ax.plot(x[sel], y[sel], style, ms=3 if d == "up" else 3.5, color=color,
-                        label=f"speed {d}")
+                ax.plot(x[sel], y[sel], style, ms=ms, color=color, zorder=z,
+                        label=f"speed {d}", gid=f"sweep-{d}")
         ax.set_ylabel(f"y at node {n} [{unit}]")
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8, loc="best")
-    axs[-1].set_xlabel(x_label)
-    axs[0].set_title(_short(title or "Bifurcation diagram (Poincare points)"), fontsize=9)
+    axs[-1].set_xlabel(label(x_label))
+    handles, labels = axs[0].get_legend_handles_labels()
+    order = sorted(range(len(labels)), key=lambda i: labels[i] != "speed up")
+    fig.legend([handles[i] for i in order], [labels[i] for i in order],
+               loc="outside right upper", fontsize=8)
+    fig.suptitle(wrap(title or "Bifurcation diagram (Poincare points)", 90), fontsize=9)
     return fig
