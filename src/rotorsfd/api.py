@@ -68,13 +68,19 @@ def linear_system(config: Config, model: Model | None = None) -> Any:
     return MovingBaseRotor(model.rotor, base.state(0.0))
 
 
-def reference_speed(config: Config, system: Any | None = None) -> float:
-    """Omega_ref [rad/s]: ``reference.speed``, or the first forward critical speed."""
+def reference_speed(config: Config, system: Any | None = None,
+                    forward_critical: Sequence[CriticalSpeed] | None = None) -> float:
+    """Omega_ref [rad/s]: ``reference.speed``, or the first forward critical speed
+    (``forward_critical``: the forward critical speeds of ``system`` below
+    ``analysis.modal.critical_speed_max`` when already computed; the first is reused)."""
     if isinstance(config.reference.speed, float):
         return config.reference.speed
-    system = linear_system(config) if system is None else system
     top = config.analysis.modal.critical_speed_max
-    found = critical_speeds(system, n=1, whirl="forward", speed_range=(0.0, top))
+    if forward_critical is not None:
+        found = list(forward_critical)
+    else:
+        system = linear_system(config) if system is None else system
+        found = critical_speeds(system, n=1, whirl="forward", speed_range=(0.0, top))
     if not found:
         raise ConfigError("reference.speed", "first_critical",
                           f"no forward critical speed below analysis.modal.critical_speed_max"
@@ -156,15 +162,15 @@ def run_modal(config: Config, search_path: Path | None = None,
     with tqdm(total=3, desc="modal", disable=not progress, file=sys.stderr,
               leave=False) as bar:
         system = linear_system(config, build_model(config, search_path))
-        bar.set_postfix_str("reference speed")
-        ref = reference_speed(config, system)
-        bar.update()
-        bar.set_postfix_str("Campbell diagram")
-        camp = campbell(system, modal_speeds(config, ref), m.n_modes)
-        bar.update()
         bar.set_postfix_str("critical speeds")
         crit = critical_speeds(system, n=m.n_critical, whirl=m.whirl,
                                speed_range=(0.0, m.critical_speed_max))
+        bar.update()
+        bar.set_postfix_str("reference speed")   # the first forward one, not searched again
+        ref = reference_speed(config, system, crit if m.whirl == "forward" else None)
+        bar.update()
+        bar.set_postfix_str("Campbell diagram")
+        camp = campbell(system, modal_speeds(config, ref), m.n_modes)
         bar.update()
     return ModalRunResult(config, camp, crit, ref)
 

@@ -5,19 +5,25 @@ Hungarian algorithm (``scipy.optimize.linear_sum_assignment``) on the cost
 ``(1 - MAC) + |w_new - w_old| / max(w_old, w_new)``, so a branch follows its mode shape
 (MAC) and its eigenvalue continuity through crossings of branches of other shapes.
 Branch numbers are the order at the first speed (1-based). Whirl is per point.
+
+With the sparse eigensolver (``method`` "sparse", or "auto" on a large model) the modes at
+every speed come from a reduced model on exact modes at a few speeds
+(:mod:`rotorsfd.linear.reduced`), refined until its measured relative eigenvalue error is
+below ``tol``; that error is ``CampbellResult.info["reduced_error"]``.
 """
 
 from __future__ import annotations
 
 import csv
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from rotorsfd.linear.modal import LinearDynamics, ModalResult, eigen, mac
+from rotorsfd.linear.modal import LinearDynamics, ModalResult, eigen, mac, use_sparse
 
 
 @dataclass(frozen=True)
@@ -27,6 +33,7 @@ class CampbellResult:
     speeds: np.ndarray          # (n_speeds,) [rad/s]
     eigenvalues: np.ndarray     # complex
     whirl: np.ndarray           # "forward" | "backward"
+    info: dict[str, Any] = field(default_factory=dict)   # how the modes were computed
 
     @property
     def frequencies(self) -> np.ndarray:
@@ -100,16 +107,37 @@ def _track(prev: ModalResult, cur: ModalResult, n_modes: int) -> np.ndarray:
 
 
 def campbell(system: LinearDynamics, speeds: Sequence[float], n_modes: int = 8,
-             spare_modes: int = 4) -> CampbellResult:
+             spare_modes: int = 4, method: str = "auto", tol: float = 1e-9
+             ) -> CampbellResult:
     """Modes at each speed, tracked (see module docstring). ``spare_modes`` extra modes are
-    computed at each speed so a branch can be followed when others cross into the window."""
+    computed at each speed so a branch can be followed when others cross into the window.
+    ``method``: the eigensolver ("auto", "dense", "sparse"; see :func:`eigen`); ``tol``:
+    relative eigenvalue error of the reduced model of the sparse path."""
     speeds = np.asarray(speeds, dtype=float)
     n_speeds = speeds.size
+    sparse = use_sparse(system, method)
+    info: dict[str, Any] = {"method": "sparse" if sparse else "dense"}
+
+    def solve(s: float, m: int) -> ModalResult:
+        return eigen(system, s, m, "sparse" if sparse else "dense")
+
+    if sparse:
+        if n_speeds > 6 and speeds.max() > speeds.min():
+            from rotorsfd.linear.reduced import reduced_modes
+
+            model = reduced_modes(system, float(speeds.min()), float(speeds.max()),
+                                  n_modes + spare_modes, tol)
+            info = {"method": "reduced", "reduced_error": model.error,
+                    "snapshots_rad_s": list(model.snapshots), "basis_size": model.basis.shape[1]}
+            if model.error <= tol:
+                solve = model.eigen  # type: ignore[assignment]
+            else:                    # not met with max_snapshots: exact at every speed
+                info["method"] = "sparse"
     lam = np.empty((n_speeds, n_modes), dtype=complex)
     whirl = np.empty((n_speeds, n_modes), dtype="<U8")
     prev: ModalResult | None = None
     for i, s in enumerate(speeds):
-        res = eigen(system, s, n_modes + spare_modes)
+        res = solve(float(s), n_modes + spare_modes)
         if prev is None:
             idx = np.arange(n_modes)
         else:
@@ -118,4 +146,4 @@ def campbell(system: LinearDynamics, speeds: Sequence[float], n_modes: int = 8,
         whirl[i] = res.whirl[idx]
         prev = ModalResult(res.speed, res.eigenvalues[idx], res.mode_shapes[:, idx],
                            res.whirl[idx])
-    return CampbellResult(speeds, lam, whirl)
+    return CampbellResult(speeds, lam, whirl, info)

@@ -24,7 +24,7 @@ from typing import Protocol, runtime_checkable
 import numpy as np
 import scipy.linalg
 
-from rotorsfd.errors import ConvergenceError
+from rotorsfd.errors import ConfigError, ConvergenceError
 
 RIGID_BODY_TOL = 1e-7
 
@@ -138,24 +138,55 @@ def _normalise(shapes: np.ndarray) -> np.ndarray:
     return out
 
 
-def eigen(system: LinearDynamics, speed: float, n_modes: int = 8) -> ModalResult:
-    """Complex modes of ``system`` at spin ``speed`` [rad/s], the ``n_modes`` lowest in
-    damped frequency. Overdamped (real) roots and rigid-body roots are dropped; a root is
-    taken as rigid-body when |lambda| < RIGID_BODY_TOL * max|lambda|."""
+DENSE_MAX_DOF = 200   # method "auto": dense eig up to this many DOF, sparse above
+
+
+def select_modes(lam: np.ndarray, vecs: np.ndarray, speed: float, n_modes: int,
+                 scale: float) -> ModalResult:
+    """The ``n_modes`` lowest modes in damped frequency from roots ``lam`` and their
+    displacement parts ``vecs`` (n_dof, n_roots): overdamped (real) and rigid-body roots
+    (|lambda| < RIGID_BODY_TOL * scale, scale ~ max|lambda|) dropped, degenerate pairs
+    split into forward/backward, shapes normalised, whirl classified."""
+    # rigid-body roots (lambda = 0, defective) come out as noise ~ 1e-8 max|lambda|
+    keep = (lam.imag > max(1e-9 * scale, 1e-12)) & (np.abs(lam) > RIGID_BODY_TOL * scale)
+    lam, vecs = lam[keep], vecs[:, keep]
+    order = np.argsort(lam.imag, kind="stable")
+    lam, vecs = lam[order][:n_modes], vecs[:, order][:, :n_modes]
+    vecs = _normalise(_split_degenerate(lam, vecs))
+    whirl = np.array([whirl_direction(vecs[:, j]) for j in range(vecs.shape[1])], dtype="<U8")
+    return ModalResult(float(speed), lam, vecs, whirl)
+
+
+def dense_eigen(system: LinearDynamics, speed: float, n_modes: int = 8) -> ModalResult:
+    """:func:`eigen` by ``scipy.linalg.eig`` of the whole 2n state matrix (the reference)."""
     mass, damping, stiffness = (np.asarray(m, dtype=float) for m in system.matrices(speed))
     n = mass.shape[0]
     lam, vecs = scipy.linalg.eig(state_matrix(mass, damping, stiffness))
     if not np.all(np.isfinite(lam)):
         raise ConvergenceError(f"non-finite eigenvalues at speed {speed} rad/s")
     scale = np.abs(lam).max() if lam.size else 1.0
-    # rigid-body roots (lambda = 0, defective) come out as noise ~ 1e-8 max|lambda|
-    keep = (lam.imag > max(1e-9 * scale, 1e-12)) & (np.abs(lam) > RIGID_BODY_TOL * scale)
-    lam, vecs = lam[keep], vecs[:n, keep]
-    order = np.argsort(lam.imag, kind="stable")
-    lam, vecs = lam[order][:n_modes], vecs[:, order][:, :n_modes]
-    vecs = _normalise(_split_degenerate(lam, vecs))
-    whirl = np.array([whirl_direction(vecs[:, j]) for j in range(vecs.shape[1])], dtype="<U8")
-    return ModalResult(float(speed), lam, vecs, whirl)
+    return select_modes(lam, vecs[:n], speed, n_modes, scale)
+
+
+def eigen(system: LinearDynamics, speed: float, n_modes: int = 8,
+          method: str = "auto") -> ModalResult:
+    """Complex modes of ``system`` at spin ``speed`` [rad/s], the ``n_modes`` lowest in
+    damped frequency. Overdamped (real) roots and rigid-body roots are dropped; a root is
+    taken as rigid-body when |lambda| < RIGID_BODY_TOL * max|lambda|. ``method``: "dense"
+    (every root of the state matrix), "sparse" (shift-invert Arnoldi for the few lowest,
+    :mod:`rotorsfd.linear.sparse_modes`) or "auto" (dense up to DENSE_MAX_DOF DOF)."""
+    if use_sparse(system, method):
+        from rotorsfd.linear.sparse_modes import sparse_eigen
+
+        return sparse_eigen(system, speed, n_modes)
+    return dense_eigen(system, speed, n_modes)
+
+
+def use_sparse(system: LinearDynamics, method: str) -> bool:
+    """True for method "sparse", or "auto" above DENSE_MAX_DOF; ConfigError otherwise."""
+    if method not in ("auto", "dense", "sparse"):
+        raise ConfigError("method", method, "one of 'auto', 'dense', 'sparse'")
+    return method == "sparse" or (method == "auto" and system.n_dof > DENSE_MAX_DOF)
 
 
 def mode_shapes(system: LinearDynamics, speed: float, n_modes: int = 8) -> np.ndarray:
