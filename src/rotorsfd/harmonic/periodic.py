@@ -39,6 +39,7 @@ from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.harmonic.residual import FullHB, nonlinear_coefficients
 from rotorsfd.harmonic.truncation import (
     convert_tangent,
+    estimate_condenser,
     harmonic_norms,
     pad_coefficients,
     tail_norms,
@@ -391,6 +392,7 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
     keys = ("lam", "X", "w", "t", "it", "ds", "J", "al", "N", "z", "sys", "H", "te")
     out: dict[str, list] = {k: [] for k in keys}
     state: dict = {"refine": False, "coarsen": False, "skip": False, "s": 0.0}
+    condensers: dict[int, CondensedHB] = {}   # of the truncation estimate, by H
     opts = ArcLengthOptions(ds=ds, ds_min=ds_min, ds_max=ds_max, tol=tol, max_iter=max_iter,
                             max_points=max_points, max_angle=float(np.radians(max_angle_deg)))
     lam0 = lam_start
@@ -432,8 +434,11 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
                     return True
             te, H_down = np.nan, system.H
             if harmonics_tol is not None:
+                if system.H not in condensers:
+                    condensers[system.H] = estimate_condenser(problem, system.H)
                 est = truncation_error(problem, system.hb.nl_part(x), lam,
-                                       tangent=system.nl_tangent(t), lam_scale=scale)
+                                       tangent=system.nl_tangent(t), lam_scale=scale,
+                                       condenser=condensers[system.H])
                 te = est.error
                 if adaptive_harmonics and te > harmonics_tol and system.H < H_max:
                     H_up = min(H_max, max(system.H + 1,

@@ -29,9 +29,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rotorsfd.continuation.branch import Branch
+from rotorsfd.harmonic.aft_kernels import condensed_assembly
 from rotorsfd.harmonic.condensation import CondensedHB
 from rotorsfd.harmonic.fourier import default_min_samples, to_real
 from rotorsfd.harmonic.problem import PeriodicProblem
+from rotorsfd.harmonic.residual import nonlinear_coefficients, real_blocks
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -118,10 +120,21 @@ def convert_tangent(t: FloatArray | None, H_new: int, m: int) -> FloatArray | No
     return np.append(x, t[-1])
 
 
+def estimate_condenser(problem: PeriodicProblem, H: int, H_check: int | None = None,
+                       n_samples: int | None = None) -> CondensedHB:
+    """The condensation at ``H_e`` harmonics that :func:`truncation_error` of an H
+    solution uses (``H_check`` default :func:`check_harmonics`; ``n_samples`` default: the
+    power of two >= 8 (H_e + 1), and >= 4 (2 H_e + 1)); pass it to every estimate of a
+    branch at that H to keep the band of the matrices found once."""
+    He = check_harmonics(H) if H_check is None else int(H_check)
+    N = n_samples or max(default_min_samples(He), 4 * (2 * He + 1))
+    return CondensedHB(problem, He, int(2 ** np.ceil(np.log2(N))))
+
+
 def truncation_error(problem: PeriodicProblem, xs: FloatArray, lam: float, *,
                      tangent: FloatArray | None = None, lam_scale: float = 1.0,
-                     H_check: int | None = None, n_samples: int | None = None
-                     ) -> TruncationEstimate:
+                     H_check: int | None = None, n_samples: int | None = None,
+                     condenser: CondensedHB | None = None) -> TruncationEstimate:
     """Estimate of the change of the solution ``xs`` ((2H+1, m) real layout on the
     nonlinear DOFs, or the complex all-DOF coefficients (H+1, n_dof)) at lam if H_check
     harmonics were kept (module docstring).
@@ -132,28 +145,45 @@ def truncation_error(problem: PeriodicProblem, xs: FloatArray, lam: float, *,
     bordered system ``[J_s; t^T] du = [-R_s; 0]`` stays regular at a fold, where the
     fixed-lam step is singular. The retained harmonics' own residual (the Newton test's
     remainder) is left out, so only the dropped harmonics drive the step. ``n_samples``:
-    AFT samples at H_check (default: the power of two >= 8 (H_check + 1), and >= 4 (2
-    H_check + 1)). ``error`` includes the lam component ``dlam / lam_scale``."""
+    AFT samples at H_check (:func:`estimate_condenser`); ``condenser``: that condensation,
+    reused from the previous estimate of the branch (its H_check and N then apply).
+    ``error`` includes the lam component ``dlam / lam_scale``.
+
+    The force coefficients and their Jacobian at H_check come from the AFT in matrix form
+    (:func:`~rotorsfd.harmonic.residual.nonlinear_coefficients`: ``dG = P (dF E)``, one
+    BLAS product), the condensed residual from the same assembly as the HB residual: at
+    the 2 H_check + 1 harmonics of the estimate this is several times cheaper than the
+    per-sample compiled loop, and the same numbers (round-off)."""
     xs = np.asarray(xs)
     if np.iscomplexobj(xs):
         xs = to_real(xs[:, problem.nl_dofs] if xs.shape[1] == problem.n_dof else xs)
     xs = np.asarray(xs, dtype=float).reshape(-1, problem.m)
     H, m = (xs.shape[0] - 1) // 2, problem.m
-    He = check_harmonics(H) if H_check is None else int(H_check)
+    hb = condenser if condenser is not None else estimate_condenser(problem, H, H_check,
+                                                                    n_samples)
+    He = hb.H
     if He <= H:
         raise ValueError(f"H_check must exceed H = {H}, got {He}")
-    N = n_samples or max(default_min_samples(He), 4 * (2 * He + 1))
-    N = int(2 ** np.ceil(np.log2(N)))
-    hb = CondensedHB(problem, He, N)
     x_pad = pad_harmonics(xs, He)
     hb.set_shift(x_pad, lam)
-    R, J, dR = hb.residual(x_pad, lam, jac=True, dlam=tangent is not None)
-    R = R.copy()
+    with_dlam = tangent is not None
+    cd = hb.condense(lam, deriv=with_dlam)
+    w = problem.frequency(lam)
+    nl = nonlinear_coefficients(problem, hb.aft, x_pad, w, jac=True)
+    if not (np.all(np.isfinite(nl.G)) and np.all(np.isfinite(nl.dG))):
+        raise FloatingPointError("non-finite nonlinear force in the truncation estimate")
+    nu = (2 * He + 1) * m
+    R, dR, J = np.empty_like(x_pad), np.empty_like(x_pad), np.empty((nu, nu))
+    zH, zP = np.zeros_like(cd.Ht), np.zeros_like(cd.Pt)
+    delta = np.ascontiguousarray(hb.delta, dtype=complex)
+    condensed_assembly(x_pad, np.ascontiguousarray(nl.G), np.ascontiguousarray(
+        nl.dG.reshape(nu, nu)), np.ascontiguousarray(nl.dGdw), delta, real_blocks(delta),
+        cd.Ht, cd.Pt, cd.dHt if with_dlam else zH, cd.dPt if with_dlam else zP,
+        problem.dfrequency(lam) if with_dlam else 0.0, True, R, J, dR)
     R[: 2 * H + 1] = 0.0            # the H equations' own remainder is not truncation
     c = np.tile(problem.dof_scale[problem.nl_dofs], 2 * He + 1)
     Js = J * (c[None, :] / c[:, None])
     rhs = -R.ravel() / c
-    nu = Js.shape[0]
     if tangent is None:
         du = np.linalg.solve(Js, rhs)
         dlam = 0.0
@@ -161,7 +191,7 @@ def truncation_error(problem: PeriodicProblem, xs: FloatArray, lam: float, *,
         t = np.asarray(tangent, dtype=float)
         A = np.zeros((nu + 1, nu + 1))
         A[:nu, :nu] = Js
-        A[:nu, nu] = dR * (lam_scale / c)
+        A[:nu, nu] = dR.ravel() * (lam_scale / c)
         A[nu, : t.size - 1] = t[:-1]          # the padded harmonics have no component
         A[nu, nu] = t[-1]
         sol = np.linalg.solve(A, np.append(rhs, 0.0))
