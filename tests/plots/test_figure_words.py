@@ -155,6 +155,8 @@ def test_mathtext_of_the_ascii_symbols(text, want):
     ("base.pitching.value=2 rad/s", r"$\omega_{by}$ = 2 rad/s"),
     ("base.rolling.value=10 rad/s", r"$\omega_{bx}$ = 10 rad/s"),
     ("sfd.clearance_ratio=0.485 %", "C/R = 0.485 %"),
+    ("elements.sfd.clearance_ratio=0.61 %", "C/R = 0.61 %"),
+    ("elements[0].clearance_ratio=0.728 %", "C/R = 0.728 %"),
     ("analysis.simulate.steps_per_period=200", "T/200"),
     ("rotor.damping.ratio=0.002", "0.2 % modal damping"),
     ("rotor.damping.kind=modal", ""),

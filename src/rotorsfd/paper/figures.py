@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -31,8 +32,8 @@ def case_label(name: str, spec: FigureSpec | None = None) -> str:
     common = set.intersection(*map(set, others)) if len(others) > 1 else set()
     words = settings(case.overrides, common)
     if not words:                       # e.g. the diagnosis case of a figure's file
-        stem = Path(case.config).stem.split("_")[0].removeprefix("fig").lstrip("0")
-        words = f"Figure {stem} case" if stem.isdigit() else name
+        m = re.search(r"fig(\d+)", name) or re.search(r"fig0*(\d+)", Path(case.config).stem)
+        words = f"Figure {m.group(1)} case" if m else name
     return words
 
 
@@ -250,6 +251,12 @@ def _isola(spec: FigureSpec, res: list[Outcome]) -> Figure:
         if d["bifurcations"]:
             mark_bifurcations(ax, x, y, d["bifurcations"], "speed_ratio")
     ax.set_xlim(1.0, 1.12)
+    shown = [np.asarray(o.data["defl_8"])[(o.data["speed_ratio"] >= 1.0)
+                                          & (o.data["speed_ratio"] <= 1.12)] for o in res]
+    top = min(max((float(v.max()) for v in shown if v.size), default=YMAX), YMAX)
+    low = min((float(v.min()) for v in shown if v.size), default=0.0)
+    ax.set_ylim(low - 0.08 * (top - low), top + 0.08 * (top - low))   # not the contact
+    # resonance far above the window
     ax.set_xlabel(XLABEL)
     ax.set_ylabel(r"$\tilde r$ at node 8 (disk)")
     ax.grid(alpha=0.3)

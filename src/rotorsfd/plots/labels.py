@@ -27,6 +27,10 @@ SYMBOLS: tuple[tuple[str, str], ...] = (
 )
 _PATTERNS = [(re.compile(rf"(?<![A-Za-z\\]){a}(?![A-Za-z])"), b) for a, b in SYMBOLS]
 
+#: Fields of an SFD element (so ``elements[0].clearance_ratio`` reads as the SFD's).
+_SFD_FIELDS = ("clearance", "clearance_ratio", "centring_stiffness", "radius", "length",
+               "viscosity", "node", "max_eccentricity")
+
 #: Base components and the name of their rate in the paper.
 _RATES = {"rolling": r"$\omega_{bx}$", "pitching": r"$\omega_{by}$", "yawing": r"$\omega_{bz}$"}
 
@@ -71,7 +75,14 @@ def wrap(text: str, width: int = 80) -> str:
 
 
 def _unindexed(path: str) -> str:
-    return re.sub(r"\[\d+\]", "", path.strip())
+    """The path without list indices, an element's fields under ``sfd.`` (as
+    ``elements.sfd.clearance`` or ``elements[0].clearance``: the SFD is the element)."""
+    p = re.sub(r"\[\d+\]", "", path.strip())
+    if p.startswith("elements."):
+        rest = p.removeprefix("elements.")
+        p = rest if rest.startswith("sfd.") else f"sfd.{rest.split('.', 1)[-1]}" \
+            if rest.split(".", 1)[0] not in _SFD_FIELDS else f"sfd.{rest}"
+    return p
 
 
 def field_words(path: str) -> str:

@@ -83,8 +83,9 @@ def key_legend(ax: Axes, stable: Any, bifurcations: Sequence[Mapping[str, Any]] 
 
 def outside_legend(fig: Figure, axes: Sequence[Axes], key: Sequence[Line2D] = (),
                    **kw: Any) -> None:
-    """One legend for the figure, right of the panels (never over a curve): the labelled
-    curves of ``axes`` (each label once), then the style and marker ``key``."""
+    """One legend for the figure, right of the top-right panel (never over a curve, nor
+    over the figure title): the labelled curves of ``axes`` (each label once), then the
+    style and marker ``key``."""
     handles, labels = [], []
     for ax in axes:
         for h, lab in zip(*ax.get_legend_handles_labels(), strict=True):
@@ -93,8 +94,11 @@ def outside_legend(fig: Figure, axes: Sequence[Axes], key: Sequence[Line2D] = ()
                 labels.append(lab)
     handles += list(key)
     labels += [h.get_label() for h in key]
-    if handles:
-        fig.legend(handles, labels, loc="outside right upper", fontsize=8, **kw)
+    if handles and len(axes):
+        corner = max(axes, key=lambda a: (round(a.get_position().x1, 3),
+                                          a.get_position().y1))
+        corner.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.02, 1.0),
+                      borderaxespad=0.0, fontsize=8, **kw)
 
 
 def _peak(y: Any) -> float:
