@@ -127,4 +127,4 @@ def test_chart_axes_in_words_and_title_says_what_it_shows():
     # a colour bar with round ticks (not 1.07361)
     bar = fig.axes[1]
     ticks = [t for t in bar.get_yticks() if bar.get_ylim()[0] <= t <= bar.get_ylim()[1]]
-    assert ticks and all(abs(t * 100 - round(t * 100)) < 1e-9 for t in ticks)
+    assert ticks and all(abs(t * 1000 - round(t * 1000)) < 1e-6 for t in ticks)

@@ -92,6 +92,8 @@ def field_words(path: str) -> str:
     if p in _FIELDS:
         return _FIELDS[p]
     parts = p.split(".")
+    if parts[0] == "base" and len(parts) == 2 and parts[1] in _RATES:
+        return _RATES[parts[1]]
     if parts[0] == "base" and len(parts) >= 3 and parts[1] in _RATES:
         if parts[-1] == "value":
             return _RATES[parts[1]]
@@ -108,7 +110,7 @@ def axis_label(path: str, units: str = "") -> str:
     u = units.strip().replace("**", "^").replace("*", " ")
     words = field_words(path)
     p = _unindexed(path).split(".")
-    if p[0] == "base" and len(p) >= 3 and p[-1] == "value":
+    if p[0] == "base" and (len(p) == 2 or p[-1] == "value") and p[1] in _RATES:
         words = f"{p[1]} rate {words}"
     words = _AXIS_NAMES.get(words, words)
     return words + (f" [{u}]" if u and u not in ("1", "dimensionless") else "")
