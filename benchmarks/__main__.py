@@ -47,6 +47,8 @@ REGISTRY: dict[str, tuple[str, str]] = {
                "bench_linear:run"),
     "convergence": ("rotorsfd response: convergence defaults (auto H, Floquet step control, "
                     "checked bifurcations) vs fixed H = 3, M = 400", "bench_convergence:run"),
+    "scale": ("first critical speed and modal of a stepped rotor, 80-2560 elements: sparse "
+              "shift-invert vs the dense eig path", "bench_scale:run"),
 }
 
 

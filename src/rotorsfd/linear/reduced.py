@@ -3,7 +3,8 @@
 The displacement parts of the exact lowest modes (sparse shift-invert,
 :func:`rotorsfd.linear.sparse_modes.sparse_eigen`) at snapshot speeds, real and imaginary
 parts, span the basis V (orthonormal, from an SVD that drops directions below
-``1e-12`` of the largest singular value). The Galerkin projection of the affine pencil,
+``SVD_RTOL`` = 1e-8 of the largest singular value). The Galerkin projection of the
+affine pencil,
 
     (lambda^2 V^T M V + lambda V^T (D0 + Omega D1) V + V^T K V) y = 0,   q = V y,
 
@@ -26,8 +27,8 @@ from rotorsfd.errors import ConvergenceError
 from rotorsfd.linear.modal import LinearDynamics, ModalResult, select_modes
 from rotorsfd.linear.sparse_modes import pencil_of, sparse_eigen
 
-GUARD_MODES = 4          # exact modes kept in the snapshots beyond the ones asked for
-SVD_RTOL = 1e-12
+GUARD_MODES = 2          # exact modes kept in the snapshots beyond the ones asked for
+SVD_RTOL = 1e-8
 CANDIDATE_MARGIN = 8     # reduced roots lifted beyond n_modes (rigid-body roots dropped later)
 
 
@@ -84,7 +85,7 @@ class ReducedModes:
         a[:r, r:] = np.eye(r)
         a[r:, :r] = -scipy.linalg.cho_solve(factor, k)
         a[r:, r:] = -scipy.linalg.cho_solve(factor, d)
-        lam, y = scipy.linalg.eig(a)
+        lam, y = scipy.linalg.eig(a, overwrite_a=True, check_finite=False)
         scale = max(float(np.abs(lam).max()) if lam.size else 1.0, self.scale)
         # lift only the candidates (Im > 0, lowest first): a superset of the selection
         cand = np.flatnonzero(lam.imag > 0.0)

@@ -44,15 +44,19 @@ AFFINE_RTOL = 1e-12    # relative check of the affine fit at the third speed
 
 
 def band_width(a: np.ndarray) -> int:
-    """Largest |i - j| of a nonzero a_ij of the dense square ``a`` (first and last nonzero
-    of every row, one boolean pass)."""
-    nz = a != 0.0
-    n = a.shape[0]
-    rows = np.arange(n)
-    full = nz.any(axis=1)
-    first = np.where(full, nz.argmax(axis=1), rows)
-    last = np.where(full, n - 1 - nz[:, ::-1].argmax(axis=1), rows)
-    return int(max(np.max(rows - first, initial=0), np.max(last - rows, initial=0)))
+    """Largest |i - j| of a nonzero a_ij of the dense square ``a``: the nonzeros of the
+    diagonals |d| <= h are counted outwards until they are all of ``a``'s (one counting
+    pass over ``a``; a full index scan past BANDED_MAX)."""
+    total = int(np.count_nonzero(a))
+    inside = int(np.count_nonzero(np.diagonal(a)))
+    h = 0
+    while inside < total and h < min(BANDED_MAX, a.shape[0] - 1):
+        h += 1
+        inside += int(np.count_nonzero(np.diagonal(a, h)) + np.count_nonzero(np.diagonal(a, -h)))
+    if inside == total:
+        return h
+    i, j = np.divmod(np.flatnonzero(a), a.shape[0])
+    return int(np.max(np.abs(i - j)))
 
 
 def _sparse(a: Any) -> sp.csr_matrix:
@@ -71,18 +75,21 @@ def _sparse(a: Any) -> sp.csr_matrix:
     return m
 
 
-def _affine(a0: np.ndarray, a1: np.ndarray, a2: np.ndarray, h: float
+def _affine(s0: sp.csr_matrix, s1: sp.csr_matrix, s2: sp.csr_matrix, h: float
             ) -> tuple[sp.csr_matrix, sp.csr_matrix] | None:
     """(A0, A1) with A(s) = A0 + s A1 from A(0), A(h), A(2h); None if A(2h) disagrees."""
-    if a1 is a0 and a2 is a0:                       # the same object: free of the speed
-        s0 = _sparse(a0)
+    if s1 is s0 and s2 is s0:                       # the same object: free of the speed
         return s0, sp.csr_matrix(s0.shape)
-    s0, s1, s2 = _sparse(a0), _sparse(a1), _sparse(a2)
     slope = (s1 - s0) / h
     diff = s2 - s0 - 2.0 * h * slope
     err = abs(diff).max() if diff.nnz else 0.0
     scale = max(abs(s2).max() if s2.nnz else 0.0, abs(s0).max() if s0.nnz else 0.0, 1e-300)
     return (s0, slope) if err <= AFFINE_RTOL * scale else None
+
+
+def _half_band(a: sp.spmatrix) -> int:
+    coo = a.tocoo()
+    return int(np.abs(coo.row - coo.col).max()) if coo.nnz else 0
 
 
 @dataclass
@@ -101,20 +108,23 @@ class SparsePencil:
         """Extract the pattern at speeds 0, h, 2h (h = SPEED_PROBE) once."""
         h = SPEED_PROBE
         samples = [system.matrices(s) for s in (0.0, h, 2.0 * h)]
-        terms = []
+        done: dict[int, sp.csr_matrix] = {}      # one conversion per distinct array
+
+        def convert(a: Any) -> sp.csr_matrix:
+            if id(a) not in done:
+                done[id(a)] = _sparse(a)
+            return done[id(a)]
+
+        sparse_samples = [[convert(a) for a in sample] for sample in samples]
+        terms: list | None = []
         for j in range(3):
-            fit = _affine(samples[0][j], samples[1][j], samples[2][j], h)
+            fit = _affine(*(sample[j] for sample in sparse_samples), h)
             if fit is None:
                 terms = None
                 break
             terms.append(fit)
-        mats = [_sparse(x) for x in samples[0]]
-        pattern = abs(mats[0]) + abs(mats[1]) + abs(mats[2])
-        if terms is not None:
-            for _, x1 in terms:
-                pattern = pattern + abs(x1)
-        coo = pattern.tocoo()
-        half = int(np.abs(coo.row - coo.col).max()) if coo.nnz else 0
+        mats = sparse_samples[0]
+        half = max(_half_band(m) for m in done.values())
         m_d, k_d = mats[0].diagonal(), mats[2].diagonal()
         if np.any(m_d <= 0.0):
             raise ConvergenceError("mass matrix is not positive definite (a diagonal entry "
@@ -137,8 +147,9 @@ class SparsePencil:
 class _Factor:
     """LU of the n x n sparse Z: LAPACK banded when the band is narrow, else SuperLU."""
 
-    def __init__(self, z: sp.csr_matrix, half_band: int) -> None:
+    def __init__(self, z: sp.csr_matrix) -> None:
         n = z.shape[0]
+        half_band = _half_band(z)
         self.banded = half_band <= BANDED_MAX
         if self.banded:
             kl = ku = max(half_band, 1)
@@ -172,7 +183,7 @@ def _operator(pencil: SparsePencil, mats, sigma: float) -> sla.LinearOperator:
     mass, damping, stiffness = mats
     n, w_s = pencil.n_dof, pencil.state_scale
     z = stiffness + sigma * damping + sigma * sigma * mass if sigma else stiffness
-    factor = _Factor(sp.csr_matrix(z), pencil.half_band)
+    factor = _Factor(sp.csr_matrix(z))
     d_shift = damping + sigma * mass if sigma else damping
 
     def apply(x: np.ndarray) -> np.ndarray:

@@ -1,0 +1,259 @@
+"""Linear analyses at scale (issue 17 items 3 and 6): the first critical speed and
+``rotorsfd modal`` (Campbell diagram + critical speeds) of a stepped 1.5 m rotor meshed
+in 80 to 2560 elements, sparse shift-invert eigensolver against the dense ``scipy.linalg.eig``
+path of before (the honest scipy baseline: the same grid, the same root finder, every
+mode of the 2n state matrix at each evaluation).
+
+The rotor (:func:`stepped_rotor_config`, a rotorsfd config dict): a 1.5 m steel shaft in
+five sections (16 units of 93.75 mm: radius 25 mm over 3 units, 35 mm over 5, a 1-unit
+coupling of 25 mm in a softer, titanium-like material with a hub mass at each end,
+35 mm over 4, 25 mm over 3), three disks (units 4, 7 and 11), the SFD with its centring
+spring at node 1 and a damped bearing at the last node. The mesh is 80 ... 2560 elements
+(N / 16 per unit).
+
+Each row times, from the built model: the first forward critical speed
+(``reference_speed``) and the whole ``run_modal`` (reference speed, 81-speed Campbell
+diagram of 8 modes, 2 critical speeds). The exponent p of ``time ~ elements^p`` is the
+least-squares slope in log-log. The dense baseline (the path of before: every eig solve
+of the whole 2n state matrix, the whole grid, the reference speed searched apart) is
+measured directly for the first critical speed at 80 elements; elsewhere it is the number
+of its eig solves (counted on the same grid and root finder) times one dense eig measured
+at that size (<= ``DENSE_MAX`` elements), or extrapolated as (2n)^3 beyond. ``--quick``:
+80 and 160 elements, one dense eig at 80, no baseline estimate (no time asserted).
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from functools import partial
+from pathlib import Path
+from typing import Any
+
+if __package__ in (None, ""):  # run as a script: make the repository's `benchmarks` importable
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+import numpy as np
+
+from benchmarks.common import Row, median_time
+
+UNITS = 16                      # the shaft is 16 units of L / 16
+LENGTH = 1.5                    # [m]
+# (units, outer radius [m], material) of the five sections, left to right
+SECTIONS = ((3, 0.025, "steel"), (5, 0.035, "steel"), (1, 0.025, "coupling"),
+            (4, 0.035, "steel"), (3, 0.025, "steel"))
+DISKS = ((4, 0.15, 0.04), (7, 0.12, 0.03), (11, 0.16, 0.05))   # unit, outer radius, thickness
+COUPLING_HUBS = (8, 9)          # units of the hub masses
+HUB_MASS = 1.5                  # [kg]
+SIZES = (80, 160, 320, 640, 1280, 2560)
+QUICK_SIZES = (80, 160)
+DENSE_MAX = 160                 # largest mesh of the dense baseline (80 s at 160 elements)
+
+
+def node_at(unit: int, n_elements: int) -> int:
+    """Node (1-based) at ``unit`` of the shaft meshed in ``n_elements``."""
+    return 1 + unit * n_elements // UNITS
+
+
+def stepped_rotor_config(n_elements: int) -> dict[str, Any]:
+    """The stepped rotor as a rotorsfd config dict (SI numbers), ``n_elements`` a multiple
+    of 16."""
+    if n_elements % UNITS:
+        raise ValueError(f"n_elements must be a multiple of {UNITS}")
+    per_unit = n_elements // UNITS
+    unit = LENGTH / UNITS
+    shaft = [{"length": u * unit, "n_elements": u * per_unit, "outer_radius": r,
+              "material": mat} for u, r, mat in SECTIONS]
+    disks = [{"node": node_at(u, n_elements), "material": "steel", "inner_radius": 0.035,
+              "outer_radius": ro, "thickness": t}
+             for u, ro, t in DISKS]
+    last = n_elements + 1
+    return {
+        "title": f"stepped 1.5 m rotor, 3 disks, coupling, SFD, bearing ({n_elements} el.)",
+        "materials": {
+            "steel": {"density": 7810.0, "young_modulus": 211e9, "shear_modulus": 81.2e9},
+            "coupling": {"density": 4500.0, "young_modulus": 110e9, "poisson_ratio": 0.34},
+        },
+        "rotor": {
+            "shaft": shaft, "disks": disks,
+            "point_masses": [{"node": node_at(u, n_elements), "mass": HUB_MASS}
+                             for u in COUPLING_HUBS],
+            "supports": [{"node": last, "name": "bearing", "stiffness": 5e7,
+                          "damping": 2e3}],
+        },
+        "elements": {"sfd": {"kind": "sfd", "node": 1, "viscosity": 0.0051, "clearance": 1.27e-4,
+                "clearance_ratio": 0.00485, "length_to_diameter": 0.325,
+                "cavitation": "pi", "centring_stiffness": 1e7, "centring_damping": 0.0}},
+        "unbalance": [{"node": node_at(7, n_elements), "magnitude": 1e-4}],
+        "reference": {"speed": "first_critical"},
+    }
+
+
+def config(n_elements: int) -> Any:
+    """Validated :class:`Config` of the stepped rotor."""
+    from rotorsfd.io.config import config_from_dict
+
+    return config_from_dict(stepped_rotor_config(n_elements))
+
+
+def exponent(x, y) -> float:
+    """Least-squares slope p of log y = p log x + c."""
+    return float(np.polyfit(np.log(x), np.log(y), 1)[0])
+
+
+def mem_available_gib() -> float:
+    try:
+        for line in Path("/proc/meminfo").read_text().splitlines():
+            if line.startswith("MemAvailable"):
+                return int(line.split()[1]) / 2**20
+    except OSError:
+        pass
+    return float("inf")
+
+
+def modal_from(system: Any, cfg: Any) -> tuple[list, Any, float]:
+    """What ``run_modal`` computes from a built linear system: the critical speeds, the
+    reference speed (reused) and the Campbell diagram."""
+    from rotorsfd import api
+    from rotorsfd.linear import campbell, critical_speeds
+
+    m = cfg.analysis.modal
+    crit = critical_speeds(system, n=m.n_critical, whirl=m.whirl,
+                           speed_range=(0.0, m.critical_speed_max))
+    ref = api.reference_speed(cfg, system, crit)
+    camp = campbell(system, api.modal_speeds(cfg, ref), m.n_modes)
+    return crit, camp, ref
+
+
+def first_critical(system: Any, cfg: Any, method: str = "auto", full_grid: bool = False
+                   ) -> float:
+    from rotorsfd.linear import critical_speeds
+
+    top = cfg.analysis.modal.critical_speed_max
+    return critical_speeds(system, n=1, speed_range=(0.0, top), method=method,
+                           full_grid=full_grid)[0].speed_rad_s
+
+
+def evaluations_of_dense_path(system: Any, cfg: Any) -> dict[str, int]:
+    """Eigen-solves of the dense path of before (whole grid, every mode; reference speed
+    searched apart): counted on the sparse solver's calls, the same grid and root finder."""
+    import rotorsfd.linear.critical as critical
+
+    calls = [0]
+    real = critical.sparse_eigen
+
+    def counting(*args, **kwargs):
+        calls[0] += 1
+        return real(*args, **kwargs)
+
+    m = cfg.analysis.modal
+    critical.sparse_eigen = counting
+    try:
+        first_critical(system, cfg, "sparse", full_grid=True)
+        ref = calls[0]
+        critical.critical_speeds(system, n=m.n_critical, whirl=m.whirl, method="sparse",
+                                 speed_range=(0.0, m.critical_speed_max), full_grid=True)
+        crit = calls[0] - ref
+    finally:
+        critical.sparse_eigen = real
+    return {"reference": ref, "critical": crit, "campbell": m.speed_range.n,
+            "modal": ref + crit + m.speed_range.n}
+
+
+def cold(pencil: Any, fun: Any, *args: Any) -> Any:
+    """``fun(*args)`` without an ARPACK start vector left by a previous run."""
+    pencil.last_start.clear()
+    return fun(*args)
+
+
+def run(quick: bool = False, repeat: int = 3) -> list[Row]:
+    from rotorsfd import api
+    from rotorsfd.linear.modal import dense_eigen
+    from rotorsfd.linear.sparse_modes import pencil_of
+
+    sizes = QUICK_SIZES if quick else SIZES
+    dense_sizes = (80,) if quick else tuple(n for n in SIZES if n <= DENSE_MAX)
+    rows: list[Row] = []
+    series: dict[str, list[tuple[int, float]]] = {}
+    counts: dict[str, int] = {}
+    dense_eval: dict[int, float] = {}
+    for n in sizes:
+        if n >= 2560 and mem_available_gib() < 12.0:
+            rows.append(Row("scale", f"{n} elements", "skipped", 0.0, unit="",
+                            note=f"{mem_available_gib():.1f} GiB available (< 12)"))
+            continue
+        cfg = config(n)
+        t0 = time.perf_counter()
+        system = api.linear_system(cfg)
+        t_build = time.perf_counter() - t0
+        dof = system.n_dof
+        t0 = time.perf_counter()
+        pencil = pencil_of(system)
+        t_extract = time.perf_counter() - t0
+        case = f"{n} elements ({dof} DOF)"
+        rows.append(Row("scale", case, "build model (dense matrices, not ours)", t_build))
+        rows.append(Row("scale", case, "sparse pencil: 3 matrices() calls + band extraction",
+                        t_extract, note=f"half band {pencil.half_band}"))
+
+        t_first, _, w1 = median_time(partial(cold, pencil, first_critical, system, cfg),
+                                     repeat)
+        t_modal, _, (crit, camp, _) = median_time(
+            partial(cold, pencil, modal_from, system, cfg), 1 if quick else repeat)
+        rows.append(Row("scale", case, "first critical speed (sparse)", t_first,
+                        repeat=repeat, note=f"{w1:.10g} rad/s"))
+        rows.append(Row("scale", case, "modal: critical speeds + Campbell (sparse)",
+                        t_modal, repeat=1 if quick else repeat,
+                        note=f"Campbell {camp.info.get('method')}, error "
+                             f"{camp.info.get('reduced_error', 0.0):.1e}, basis "
+                             f"{camp.info.get('basis_size', '-')}; crit "
+                             + ", ".join(f"{c.speed_rad_s:.8g}" for c in crit)))
+        series.setdefault("first critical incl. extraction", []).append(
+            (n, t_first + t_extract))
+        series.setdefault("modal incl. extraction", []).append((n, t_modal + t_extract))
+        series.setdefault("first critical", []).append((n, t_first))
+        series.setdefault("modal", []).append((n, t_modal))
+        if not counts and not quick:
+            counts = evaluations_of_dense_path(system, cfg)
+        if n in dense_sizes:
+            t_eval, _, _ = median_time(partial(dense_eigen, system, 300.0, 16), repeat)
+            dense_eval[n] = t_eval
+            rows.append(Row("scale", case, "dense eig of the 2n state matrix (one speed)",
+                            t_eval, repeat=repeat))
+            if n == 80 and not quick:
+                t0 = time.perf_counter()
+                w_dense = first_critical(system, cfg, "dense", full_grid=True)
+                t_dense = time.perf_counter() - t0
+                rows.append(Row("scale", case, "first critical speed, dense path of before",
+                                t_dense, ratio=t_first / t_dense, ref="dense",
+                                note=f"{w_dense:.10g} rad/s, sparse - dense: "
+                                     f"{abs(w1 / w_dense - 1):.1e} (rel.); "
+                                     f"{counts['reference']} eig solves"))
+        if dense_eval and counts:
+            top = max(dense_eval)
+            t_eval = dense_eval.get(n, dense_eval[top] * (n / top) ** 3)
+            how = "measured" if n in dense_eval else f"(n/{top})^3 from {top} elements"
+            for what, t_new in (("reference", t_first), ("modal", t_modal)):
+                est = counts[what] * t_eval
+                rows.append(Row("scale", case, f"{what}: dense path of before (estimate)",
+                                est, ratio=t_new / est, ref="dense",
+                                note=f"{counts[what]} eig solves x {t_eval:.3g} s ({how})"))
+    for name, data in series.items():
+        if len(data) < 2:
+            continue
+        x, y = np.array(data, float).T
+        rows.append(Row("scale", f"fit over elements {list(map(int, x))}",
+                        f"{name}: exponent p (time ~ elements^p)", exponent(x, y), unit="",
+                        note=f"{y[-1] / y[0]:.3g}x from {int(x[0])} to {int(x[-1])}",
+                        extra={"elements": x.tolist(), "seconds": y.tolist()}))
+    if len(dense_eval) >= 2:
+        x, y = np.array(sorted(dense_eval.items()), float).T
+        rows.append(Row("scale", f"fit over elements {list(map(int, x))}",
+                        "dense eig per speed: exponent p", exponent(x, y), unit=""))
+    return rows
+
+
+if __name__ == "__main__":
+    from benchmarks.__main__ import fmt_value
+
+    for r in run(quick="--quick" in sys.argv, repeat=1 if "--quick" in sys.argv else 3):
+        print(f"{r.case} | {r.method}: {fmt_value(r)}  {r.note}")
