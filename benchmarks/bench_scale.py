@@ -68,6 +68,9 @@ def stepped_rotor_config(n_elements: int) -> dict[str, Any]:
               "outer_radius": ro, "thickness": t}
              for u, ro, t in DISKS]
     last = n_elements + 1
+    sfd = {"node": 1, "viscosity": 0.0051, "clearance": 1.27e-4, "clearance_ratio": 0.00485,
+           "length_to_diameter": 0.325, "cavitation": "pi", "centring_stiffness": 1e7,
+           "centring_damping": 0.0}
     return {
         "title": f"stepped 1.5 m rotor, 3 disks, coupling, SFD, bearing ({n_elements} el.)",
         "materials": {
@@ -81,12 +84,20 @@ def stepped_rotor_config(n_elements: int) -> dict[str, Any]:
             "supports": [{"node": last, "name": "bearing", "stiffness": 5e7,
                           "damping": 2e3}],
         },
-        "elements": {"sfd": {"kind": "sfd", "node": 1, "viscosity": 0.0051, "clearance": 1.27e-4,
-                "clearance_ratio": 0.00485, "length_to_diameter": 0.325,
-                "cavitation": "pi", "centring_stiffness": 1e7, "centring_damping": 0.0}},
+        **sfd_table(sfd),
         "unbalance": [{"node": node_at(7, n_elements), "magnitude": 1e-4}],
         "reference": {"speed": "first_critical"},
     }
+
+
+def sfd_table(sfd: dict[str, Any]) -> dict[str, Any]:
+    """The SFD as ``[elements.sfd]`` (kind = "sfd") where the schema has elements, else
+    the top-level ``[sfd]`` table of before."""
+    from rotorsfd.io.schema import Config
+
+    if "elements" in Config.model_fields:
+        return {"elements": {"sfd": {"kind": "sfd", **sfd}}}
+    return {"sfd": sfd}
 
 
 def config(n_elements: int) -> Any:
