@@ -586,9 +586,13 @@ def branch_stability(branch: Branch, problem: PeriodicProblem,
                                     o.tol)
     index = {id(p): i for i, p in enumerate(samples)}
 
+    located: dict[float, tuple[Any, FloquetResult]] = {}   # this bracket's re-solves
+
     def solve_at(s_: float) -> tuple[float, NDArray, float]:
         p = branch.point_at(s_)
-        return p.lam, ev(p.lam, p.X).multipliers, p.dlam_ds
+        res = ev(p.lam, p.X)
+        located[float(s_)] = (p, res)
+        return p.lam, res.multipliers, p.dlam_ds
 
     bifs: list[Bifurcation] = []
     messages: list[str] = _hill_resolution(results)
@@ -597,8 +601,11 @@ def branch_stability(branch: Branch, problem: PeriodicProblem,
         ia, ib = index[id(br.a)], index[id(br.b)]
         b = None
         if can_locate:
+            located.clear()
             try:
                 b = locate(br, solve_at, rtol=o.rtol)
+                if float(b.s) in located:   # the point and multipliers there, for reuse
+                    b.info["located"] = located[float(b.s)]
             except (ConvergenceError, ArithmeticError, ValueError) as err:
                 messages.append(f"{br.kind} between lam = {br.a.lam:.9g} and "
                                 f"{br.b.lam:.9g} not located: {err}")

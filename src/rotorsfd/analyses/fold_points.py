@@ -47,7 +47,10 @@ def with_fold_points(branch: Branch, stability: BranchStability,
                      floquet: Callable[[float, NDArray], FloquetResult]
                      ) -> tuple[Branch, BranchStability, list[str]]:
     """The branch and its stability with the points of :func:`fold_points` inserted
-    (module docstring); ``floquet(lam, X)`` gives the multipliers of an inserted point.
+    (module docstring); ``floquet(lam, X)`` gives the multipliers of an inserted point
+    (a located saddle-node keeps the point and multipliers of its location,
+    ``info["located"]``, when :func:`~rotorsfd.analyses.branch_stability.branch_stability`
+    stored them).
     Bifurcation records keep their data; their ``point`` / ``bracket`` indices are
     renumbered. Returns messages for points that could not be re-solved."""
     todo = fold_points(branch, stability)
@@ -55,7 +58,13 @@ def with_fold_points(branch: Branch, stability: BranchStability,
         return branch, stability, []
     new: list[tuple[float, int, BranchPoint, FloquetResult]] = []
     messages = []
+    # a saddle-node's point and multipliers as its location computed them (not twice)
+    known = {float(b.s): b.info["located"] for b in stability.bifurcations
+             if "located" in b.info}
     for s_i, kind in todo:
+        if kind == 1 and s_i in known:
+            new.append((s_i, kind, *known[s_i]))
+            continue
         try:
             p = branch.point_at(s_i)
             new.append((s_i, kind, p, floquet(p.lam, p.X)))
