@@ -86,10 +86,16 @@ def _harmonics(spec: FigureSpec, res: list[Outcome]) -> Figure:
         x, st = d["speed_ratio"], d.get("stable")
         styled_line(ax, x, np.abs(d[f"static_{node}_y"]) / _clearance(d, node),
                     st, label=r"$|X_0|/C$ (static)", color="k", lw=1.2)
+        top = float(np.max(np.abs(d[f"static_{node}_y"]))) / _clearance(d, node)
         for h in range(1, d["H"] + 1):
             y = d[f"amp_{node}_y_h{h}"] / _clearance(d, node)
             if h <= 3 or np.max(y) > 1e-3:
                 styled_line(ax, x, y, st, label=f"{h}X", lw=1.1, color=f"C{(h - 1) % 10}")
+            if h == 1 and d["bifurcations"]:
+                mark_bifurcations(ax, x, y, d["bifurcations"], "speed_ratio")
+            top = max(top, float(np.max(y)))
+        if top > YMAX:   # the disk near journal contact
+            ax.set_ylim(0, YMAX)
         ax.set_xlabel(XLABEL)
         ax.set_ylabel(r"harmonic amplitude $|X_k|/C$ (y)")
         what = case_label(o.name, spec) if len(res) > 1 else ""

@@ -156,7 +156,7 @@ def bifurcation_figure(table: Mapping[str, Any], *, nodes: Sequence[int],
     axs[-1].set_xlabel(label(x_label))
     handles, labels = axs[0].get_legend_handles_labels()
     order = sorted(range(len(labels)), key=lambda i: labels[i] != "speed up")
-    fig.legend([handles[i] for i in order], [labels[i] for i in order],
-               loc="outside right upper", fontsize=8)
+    axs[0].legend([handles[i] for i in order], [labels[i] for i in order], fontsize=8,
+                  loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     fig.suptitle(wrap(title or "Bifurcation diagram (Poincare points)", 90), fontsize=9)
     return fig
