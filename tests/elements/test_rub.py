@@ -103,14 +103,14 @@ def test_diagnostics_of_a_circular_orbit():
     assert d["penetration_max"] == pytest.approx(0.05 * DELTA, rel=1e-12)
     assert d["contact_fraction"] == 1.0
     # a circle of radius a = 0.6 delta about the origin, the stator at o = (0.5 delta, 0):
-    # |q - o|^2 = a^2 + o^2 - 2 a o cos(theta) > (delta - eps/2)^2 on a fraction
-    # 1 - arccos(c0) / pi of the period, c0 = (a^2 + o^2 - (delta - eps/2)^2) / (2 a o)
+    # |q - o|^2 = a^2 + o^2 - 2 a o cos(theta) > delta^2 on a fraction 1 - arccos(c0) / pi
+    # of the period, c0 = (a^2 + o^2 - delta^2) / (2 a o)
     shifted = J.rub(smoothing=0.01 * DELTA, offset=(0.5 * DELTA, 0.0))
     th = np.linspace(0, 2 * np.pi, 4096, endpoint=False)
     a, o = 0.6 * DELTA, 0.5 * DELTA
     orbit = a * np.stack([np.cos(th), np.sin(th)], axis=-1)
     d = shifted.diagnostics(orbit, orbit)
-    c0 = (a**2 + o**2 - (0.995 * DELTA) ** 2) / (2 * a * o)
+    c0 = (a**2 + o**2 - DELTA**2) / (2 * a * o)
     assert d["contact_fraction"] == pytest.approx(1 - np.arccos(c0) / np.pi, abs=1e-3)
     assert d["penetration_max"] == pytest.approx(a + o - DELTA, rel=1e-9)
     assert e.limit(ring) == 0.0 and e.limit_label is None

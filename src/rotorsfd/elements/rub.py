@@ -183,13 +183,13 @@ class RubElement(NonlinearElement):
     def diagnostics(self, q: FloatArray, v: FloatArray) -> dict[str, float]:
         """Over one orbit (samples uniform in time): ``force_max`` the largest normal force
         [N], ``penetration_max`` the largest ``p = r - delta`` [m] (negative: the smallest
-        gap, no contact), ``contact_fraction`` the fraction of the period with
-        ``F_n > 0``."""
+        gap, no contact), ``contact_fraction`` the fraction of the period with ``p > 0``
+        (the hard law's contact arc; the smoothed force starts at ``p = -eps/2``, which
+        would add O(eps) to the fraction)."""
         p = self._geometry(q)[2]
-        fn = self.normal_force(q)
-        return {"force_max": float(np.max(fn, initial=0.0)),
+        return {"force_max": float(np.max(self.normal_force(q), initial=0.0)),
                 "penetration_max": float(np.max(p)) if p.size else float("nan"),
-                "contact_fraction": float(np.mean(fn > 0.0)) if fn.size else 0.0}
+                "contact_fraction": float(np.mean(p > 0.0)) if p.size else 0.0}
 
     def describe(self) -> str:
         return (f"rub {self.name!r} at node {self.node} (clearance {self.clearance:.4g} m, "
