@@ -167,8 +167,8 @@ def detect(samples: Sequence[BranchSample],
     with multipliers up to ``1 + dead_band`` in modulus counted as inside)."""
     out: list[Bracket] = []
     db = dead_band
-    for a, b in pairwise(samples):
-        sa, sb = crossing_signs(a.multipliers, db), crossing_signs(b.multipliers, db)
+    signs = [crossing_signs(p.multipliers, db) for p in samples]   # once per sample
+    for (a, b), (sa, sb) in zip(pairwise(samples), pairwise(signs), strict=False):
         fold_tangent = (a.dlam_ds is not None and b.dlam_ds is not None
                         and _changes(a.dlam_ds, b.dlam_ds))
         if _changes(sa["saddle-node"], sb["saddle-node"]):
