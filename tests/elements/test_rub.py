@@ -3,11 +3,14 @@ rotor against the full annular rub closed form and against time integration."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 import rub_jeffcott as J
 from pydantic import ValidationError
 
+from rotorsfd import cli
 from rotorsfd.elements import KINDS
 from rotorsfd.elements.rub import RubConfig, RubElement, smooth_ramp
 from rotorsfd.harmonic.periodic import continue_periodic, solve_periodic
@@ -141,6 +144,43 @@ def test_config_errors(fields, word):
     base = dict(node=1, clearance="0.1 mm", contact_stiffness=1e7)
     with pytest.raises(ValidationError, match=word):
         RubConfig(**(base | fields))
+
+
+PAPER = Path(__file__).parents[2] / "examples" / "paper_rotor.toml"
+SEAL = """
+[elements.seal]
+kind = "rub"
+node = 8
+clearance = "0.2 mm"
+contact_stiffness = "5e7 N/m"
+friction = 0.1
+"""
+
+
+@pytest.mark.parametrize("change, words", [
+    ({}, None),
+    ({'kind = "rub"': 'kind = "rubb"'}, ["elements.seal", "'rubb'", "'sfd'", "'rub'"]),
+    ({'friction = 0.1': 'smoothing = "0.3 mm"'}, ["smoothing", "smaller than the clearance"]),
+])
+def test_config_check_with_a_rub_table(tmp_path, capsys, change, words):
+    """``rotorsfd config check`` on the paper rotor with a rub at the disk: ok, or exit 2
+    with one line naming the table and what is allowed."""
+    text = SEAL
+    for old, new in change.items():
+        text = text.replace(old, new)
+    path = tmp_path / "rub.toml"
+    path.write_text(f'extends = "{PAPER.as_posix()}"\n' + text)
+    status = cli.main(["config", "check", str(path)])
+    out = capsys.readouterr()
+    if words is None:
+        assert status == 0, out.err
+        assert "elements.seal: smoothing eps = 2e-06 m (eps/delta = 0.01, the default)" \
+            in out.out
+        return
+    assert status == 2
+    lines = out.err.strip().splitlines()
+    assert len(lines) == 1 and "Traceback" not in out.err
+    assert all(w in lines[0] for w in words), lines[0]
 
 
 # ---- periodic response on a Jeffcott rotor ----------------------------------------------
