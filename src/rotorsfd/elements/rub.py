@@ -37,8 +37,10 @@ outside the band ``|p| < eps/2``; ``eps -> 0`` recovers the hard ramp. Jacobian:
 config asks ``eps < delta``). Full annular rub synchronous whirl of a Jeffcott rotor
 (the closed form of the tests, ``docs/elements.md``): in complex notation the force is
 ``-k_c s(p) (1 + i mu) z / r``, a circular orbit stays circular, and its radius solves a
-quadratic. References: Muszynska, Rotordynamics (2005), ch. 5 (rotor-to-stator rub);
-Choy and Padovan, J. Sound Vib. 113 (1987) (the friction term and the full annular rub).
+quadratic (derived in ``docs/elements.md``). References: Choy and Padovan, J. Sound Vib.
+113 (1987) (rotor-casing rub with a contact stiffness and Coulomb friction); Black,
+J. Mech. Eng. Sci. 10 (1968) (synchronous full annular rub); Muszynska, Rotordynamics
+(CRC, 2005), the chapter on rotor-to-stator rub.
 """
 
 from __future__ import annotations
