@@ -141,14 +141,20 @@ def _normalise(shapes: np.ndarray) -> np.ndarray:
 DENSE_MAX_DOF = 200   # method "auto": dense eig up to this many DOF, sparse above
 
 
+def kept_roots(lam: np.ndarray, scale: float) -> np.ndarray:
+    """Mask of the roots that are modes: Im > 1e-9 scale (not overdamped, one of each
+    conjugate pair) and |lambda| > RIGID_BODY_TOL * scale (not rigid-body)."""
+    # rigid-body roots (lambda = 0, defective) come out as noise ~ 1e-8 max|lambda|
+    return (lam.imag > max(1e-9 * scale, 1e-12)) & (np.abs(lam) > RIGID_BODY_TOL * scale)
+
+
 def select_modes(lam: np.ndarray, vecs: np.ndarray, speed: float, n_modes: int,
                  scale: float) -> ModalResult:
     """The ``n_modes`` lowest modes in damped frequency from roots ``lam`` and their
     displacement parts ``vecs`` (n_dof, n_roots): overdamped (real) and rigid-body roots
     (|lambda| < RIGID_BODY_TOL * scale, scale ~ max|lambda|) dropped, degenerate pairs
     split into forward/backward, shapes normalised, whirl classified."""
-    # rigid-body roots (lambda = 0, defective) come out as noise ~ 1e-8 max|lambda|
-    keep = (lam.imag > max(1e-9 * scale, 1e-12)) & (np.abs(lam) > RIGID_BODY_TOL * scale)
+    keep = kept_roots(lam, scale)
     lam, vecs = lam[keep], vecs[:, keep]
     order = np.argsort(lam.imag, kind="stable")
     lam, vecs = lam[order][:n_modes], vecs[:, order][:, :n_modes]

@@ -24,12 +24,11 @@ import numpy as np
 import scipy.linalg
 
 from rotorsfd.errors import ConvergenceError
-from rotorsfd.linear.modal import LinearDynamics, ModalResult, select_modes
+from rotorsfd.linear.modal import LinearDynamics, ModalResult, kept_roots, select_modes
 from rotorsfd.linear.sparse_modes import pencil_of, sparse_eigen
 
 GUARD_MODES = 2          # exact modes kept in the snapshots beyond the ones asked for
 SVD_RTOL = 1e-8
-CANDIDATE_MARGIN = 8     # reduced roots lifted beyond n_modes (rigid-body roots dropped later)
 
 
 def _relative_error(a: ModalResult, b: ModalResult, n_modes: int) -> float:
@@ -53,6 +52,7 @@ class ReducedModes:
     checks: list[float]
     error: float                      # largest relative eigenvalue error at ``checks``
     scale: float                      # lower bound of the full model's max|lambda|
+    _inverse_mass: tuple[np.ndarray, ...] | None = None   # Mr^-1 K0, K1, D0, D1
 
     @classmethod
     def build(cls, system: LinearDynamics, exact: dict[float, ModalResult]) -> ReducedModes:
@@ -74,25 +74,27 @@ class ReducedModes:
     def eigen(self, speed: float, n_modes: int) -> ModalResult:
         """The ``n_modes`` lowest modes of the reduced model at ``speed``."""
         r = self.basis.shape[1]
-        d = self.damping[0] + speed * self.damping[1]
-        k = self.stiffness[0] + speed * self.stiffness[1]
-        try:
-            factor = scipy.linalg.cho_factor(self.mass)
-        except np.linalg.LinAlgError as exc:
-            raise ConvergenceError(f"reduced mass matrix not positive definite: {exc}"
-                                   ) from None
+        if self._inverse_mass is None:
+            try:
+                factor = scipy.linalg.cho_factor(self.mass)
+            except np.linalg.LinAlgError as exc:
+                raise ConvergenceError(f"reduced mass matrix not positive definite: {exc}"
+                                       ) from None
+            self._inverse_mass = tuple(scipy.linalg.cho_solve(factor, x)
+                                       for x in (*self.stiffness, *self.damping))
+        k0, k1, d0, d1 = self._inverse_mass
         a = np.zeros((2 * r, 2 * r))
         a[:r, r:] = np.eye(r)
-        a[r:, :r] = -scipy.linalg.cho_solve(factor, k)
-        a[r:, r:] = -scipy.linalg.cho_solve(factor, d)
+        a[r:, :r] = -(k0 + speed * k1)
+        a[r:, r:] = -(d0 + speed * d1)
         lam, y = scipy.linalg.eig(a, overwrite_a=True, check_finite=False)
         scale = max(float(np.abs(lam).max()) if lam.size else 1.0, self.scale)
-        # lift only the candidates (Im > 0, lowest first): a superset of the selection
-        cand = np.flatnonzero(lam.imag > 0.0)
-        cand = cand[np.argsort(lam.imag[cand], kind="stable")][:n_modes + CANDIDATE_MARGIN]
-        yc = y[:r, cand]
+        # lift only the roots select_modes keeps (the same rule), the lowest n_modes
+        keep = np.flatnonzero(kept_roots(lam, scale))
+        keep = keep[np.argsort(lam.imag[keep], kind="stable")][:n_modes]
+        yc = y[:r, keep]
         shapes = self.basis @ yc.real + 1j * (self.basis @ yc.imag)
-        return select_modes(lam[cand], shapes, speed, n_modes, scale)
+        return select_modes(lam[keep], shapes, speed, n_modes, scale)
 
 
 def reduced_modes(system: LinearDynamics, lo: float, hi: float, n_modes: int,
