@@ -45,7 +45,7 @@ def system_and_options(case: str) -> tuple:
     path, override = CASES[case]
     config = load_config(path, [override])
     m = build_model(config)
-    system = RotorSystem(m.rotor, m.sfd, m.sfd_node, m.unbalances, m.base_motion)
+    system = RotorSystem(m.rotor, m.elements, m.unbalances, m.base_motion)
     return system, response_options(config), config.analysis.response.harmonics
 
 

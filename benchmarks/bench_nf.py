@@ -42,7 +42,7 @@ def pitching_problem(rate: str) -> tuple:
 
     config = load_config(PITCHING, [f"base.pitching.value={rate}"])
     m = build_model(config)
-    system = RotorSystem(m.rotor, m.sfd, m.sfd_node, m.unbalances, m.base_motion)
+    system = RotorSystem(m.rotor, m.elements, m.unbalances, m.base_motion)
     opts = response_options(config)
     return system.periodic_problem("speed"), opts, config.analysis.response.harmonics
 

@@ -40,7 +40,8 @@ def main() -> int:
     unbalances = [144.02, 360.04] if args.quick else [144.02, 252.0, 360.04]
     H = args.harmonics or (3 if args.quick else 8)
     config = load_config(ROOT / "examples" / "paper_pitching.toml",
-                         ["sfd.clearance_ratio=0.485 %", f"analysis.response.harmonics={H}"])
+                         ["elements.sfd.clearance_ratio=0.485 %",
+                          f"analysis.response.harmonics={H}"])
     axes = {"unbalance[0].magnitude": [f"{u} g*mm" for u in unbalances],
             "base.pitching.value": [f"{w} rad/s" for w in rates]}
     out = args.output or Path(tempfile.mkdtemp(prefix="bench_sweep_"))

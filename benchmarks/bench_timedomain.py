@@ -301,7 +301,8 @@ def ross_rows(system, inp, quick: bool, repeat: int) -> list[Row]:
          "length": sh.length, "n_el": sh.n_elements, "ri": sh.inner_radius,
          "ro": sh.outer_radius, "disk_node": dk.node - 1, "width": dk.thickness,
          "d_ri": dk.inner_radius, "d_ro": dk.outer_radius,
-         "k_left": cfg.sfd.centring_stiffness, "k_right": cfg.rotor.supports[0].stiffness,
+         "k_left": cfg.elements["sfd"].centring_stiffness,
+         "k_right": cfg.rotor.supports[0].stiffness,
          "speed": w, "spp": 200, "steps": round(200 * P_ross), "f": f}
     walls, steps, out = [], [], {}
     for _ in range(max(1, repeat)):

@@ -107,7 +107,7 @@ def paper_system(overrides: list[str] | None = None, unbalance: str = U_TABLE1) 
     from rotorsfd.model.system import RotorSystem
 
     m = build_model(paper_config(overrides, unbalance))
-    return RotorSystem(m.rotor, m.sfd, m.sfd_node, m.unbalances, m.base_motion)
+    return RotorSystem(m.rotor, m.elements, m.unbalances, m.base_motion)
 
 
 def response_options(config: Any) -> dict[str, Any]:

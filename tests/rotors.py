@@ -31,7 +31,8 @@ thickness = "40 mm"
 node = 5
 stiffness = "1e7 N/m"
 
-[sfd]
+[elements.sfd]
+kind = "sfd"
 node = 1
 viscosity = "0.0051 Pa*s"
 clearance = "0.127 mm"

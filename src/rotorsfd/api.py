@@ -1,7 +1,7 @@
 """The Python API behind the command line: everything ``rotorsfd`` does, a script can do.
 
 >>> from rotorsfd import api
->>> config = api.load_config("examples/paper_rotor.toml", ["sfd.clearance_ratio=0.61 %"])
+>>> config = api.load_config("examples/paper_rotor.toml", ["elements.sfd.clearance_ratio=0.61 %"])
 >>> result = api.run_modal(config)
 >>> result.critical_speeds[0].speed_rad_s, result.write("out")
 
@@ -23,14 +23,15 @@ from rotorsfd.io import atomic
 from rotorsfd.io.config import dump_config, get_path, load_config, show_config, with_values
 from rotorsfd.io.schema import Config
 from rotorsfd.linear import CampbellResult, CriticalSpeed, campbell, critical_speeds
-from rotorsfd.model.build import Model, build_model, build_rotor, build_sfd
+from rotorsfd.model.build import Model, build_elements, build_model, build_rotor, build_system
 
 __all__ = [
     "FitRunResult",
     "ModalRunResult",
+    "build_elements",
     "build_model",
     "build_rotor",
-    "build_sfd",
+    "build_system",
     "dump_config",
     "linear_system",
     "load_config",
@@ -51,8 +52,9 @@ __all__ = [
 
 def linear_system(config: Config, model: Model | None = None) -> Any:
     """The linear rotor for modal analysis (``LinearDynamics``): the rotor with its supports
-    and SFD centring spring (no film), plus the base terms of constant base rotation rates.
-    ConfigError if a base rate varies in time (no eigenvalues then)."""
+    and the elements' linear parts (an SFD's centring spring; no film), plus the base terms
+    of constant base rotation rates. ConfigError if a base rate varies in time (no
+    eigenvalues then)."""
     model = build_model(config) if model is None else model
     base = model.base_motion
     if base is None or not base.rates_constant:
@@ -211,10 +213,10 @@ class FitRunResult:
 
 def run_fit_supports(config: Config, fields: Sequence[str], targets: Sequence[float],
                      whirl: str = "forward") -> FitRunResult:
-    """Fit the stiffness fields at dotted paths ``fields`` (e.g. ``sfd.centring_stiffness``,
-    ``rotor.supports[0].stiffness``) so that the lowest ``whirl`` critical speeds of the
-    linear rotor are ``targets`` [rad/s] (as many fields as targets); the starting values
-    are the configuration's."""
+    """Fit the stiffness fields at dotted paths ``fields`` (e.g.
+    ``elements.sfd.centring_stiffness``, ``rotor.supports[0].stiffness``) so that the lowest
+    ``whirl`` critical speeds of the linear rotor are ``targets`` [rad/s] (as many fields as
+    targets); the starting values are the configuration's."""
     from rotorsfd.io.schema import resolve_kind
     from rotorsfd.linear.fit import fit_support_stiffness
 

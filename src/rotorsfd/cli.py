@@ -99,7 +99,7 @@ def _add_common(p: argparse.ArgumentParser, spec: Command) -> None:
         p.add_argument("--set", metavar="KEY=VALUE", action="append", default=[],
                        dest="overrides",
                        help="override a config field by its dotted path, e.g. "
-                            "--set sfd.clearance_ratio='0.61 %%' (repeatable)")
+                            "--set elements.sfd.clearance_ratio='0.61 %%' (repeatable)")
     if spec.output:
         p.add_argument("-o", "--output", metavar="DIR", required=True, type=Path,
                        help="output folder (created if missing)")
@@ -343,7 +343,8 @@ def _modal(args: argparse.Namespace, config: Any) -> int:
          "critical speeds meet targets; prints the values and the --set lines (the "
          "paper gives no support stiffnesses)", quiet=True,
          arguments=[arg("--field", action="append", required=True, metavar="PATH",
-                        help="a stiffness field, e.g. sfd.centring_stiffness (repeatable)"),
+                        help="a stiffness field, e.g. elements.sfd.centring_stiffness "
+                             "(repeatable)"),
                     arg("--target", action="append", required=True, type=cli_args.speed,
                         metavar="SPEED", help="target critical speed, e.g. 811.3 or "
                         "'7747 rpm' (repeatable, in the order of the modes)"),
@@ -425,7 +426,7 @@ def _static(args: argparse.Namespace, config: Any) -> int:
          output=True, quiet=True,
          arguments=[arg("--axis", action="append", default=[], metavar="PATH=V1,V2,...",
                         help="grid axis replacing [analysis.sweep] axes (repeatable), e.g. "
-                             "--axis 'sfd.clearance_ratio=0.4 %%,0.5 %%'"),
+                             "--axis 'elements.sfd.clearance_ratio=0.4 %%,0.5 %%'"),
                     arg("--task", metavar="NAME[:K=V,...]",
                         help="task kind: response, simulate, stability-chart, or "
                              "synthetic (tests) (default: analysis.sweep.task)"),

@@ -21,7 +21,12 @@ class ConfigError(RotorsfdError):
         super().__init__(f"{field}: got {value!r}; {allowed}")
 
 
-class JournalContactError(RotorsfdError, FloatingPointError):
+class ElementDomainError(RotorsfdError, FloatingPointError):
+    """A nonlinear element's state left the domain of its force law (a film journal at the
+    housing, a non-finite state). Solvers catch it to cut their step."""
+
+
+class JournalContactError(ElementDomainError):
     """The SFD journal reached the housing (eccentricity ratio eps >= 1, or above the
     configured limit): the short-bearing film force is unbounded there.
 

@@ -51,7 +51,7 @@ def test_period_two_branch_agrees_with_the_time_domain():
     k = np.arange(leg.H + 1)
     t = np.array([0.0, 2 * np.pi / td.speed])
     hb = (np.exp(0.5j * td.speed * np.outer(t, k)) @ X2).real / C
-    j = td.column(td.sfd_node)
+    j = td.column(td.element_node)
     pq = td.poincare_q[-2:, j, :] / C
     assert np.linalg.norm(pq[0] - pq[1]) > 0.03                 # a real period 2
     for q in pq:

@@ -28,7 +28,7 @@ def _system(path, sets=()):
     from rotorsfd.model.system import RotorSystem
 
     m = build_model(cfg)
-    return RotorSystem(m.rotor, m.sfd, m.sfd_node, m.unbalances, m.base_motion)
+    return RotorSystem(m.rotor, m.elements, m.unbalances, m.base_motion)
 
 
 def test_step_control_meets_the_multiplier_tolerance_where_m400_does_not():

@@ -82,7 +82,7 @@ def test_files(pitching, tmp_path):
         rows = list(csv.DictReader(f))
     assert len(rows) == len(pitching.table["speed_rad_s"])
     assert {"curve", "segment", "base_pitching_rad_s", "speed_rad_s", "speed_ratio",
-            "sfd_eccentricity", "aliasing", "amp_8_m"} <= set(rows[0])
+            "max_eps", "aliasing", "amp_8_m"} <= set(rows[0])
     info = json.loads(paths["fold_curve.json"].read_text())
     assert info["bistability_end"] == pytest.approx(pitching.bistability_end)
     assert len(info["cusps"]) == 1
@@ -129,7 +129,7 @@ def test_n_samples_by_the_adaptive_rule_criterion():
 
     cfg = api.load_config(ROOT / "examples" / "paper" / "fig19_unstable_range.toml", [U144])
     m = build_model(cfg)
-    system = RotorSystem(m.rotor, m.sfd, m.sfd_node, m.unbalances, m.base_motion)
+    system = RotorSystem(m.rotor, m.elements, m.unbalances, m.base_motion)
     ref = api.reference_speed(cfg, system)
     speeds = cfg.analysis.response.speed_range.bounds(ref)
     runs = {N: fold_curve(system, speeds, "base.pitching", (0.0, 6.0), 3,

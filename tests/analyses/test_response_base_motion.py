@@ -104,7 +104,7 @@ def test_rolling_shifts_campbell(tmp_path):
                                                 base=_constant("rolling", f"{wx} rad/s")))
     fixed, rolling = api.linear_system(fixed_cfg), api.linear_system(roll_cfg)
     m = api.build_model(roll_cfg)
-    system = RotorSystem(m.rotor, m.sfd, m.sfd_node, m.unbalances, m.base_motion)
+    system = RotorSystem(m.rotor, m.elements, m.unbalances, m.base_motion)
     for speed in (0.0, 400.0, 900.0):
         for a, b in zip(rolling.matrices(speed), system.matrices(speed), strict=True):
             np.testing.assert_array_equal(a, b)

@@ -30,8 +30,8 @@ def test_family_extends_paper_rotor(name):
     ref, ex = _resolved("paper_rotor"), _resolved(name)
     for table in ("materials", "rotor", "gravity", "reference"):
         assert ex[table] == ref[table], f"[{table}] of {name} differs from paper_rotor.toml"
-    sfd = {k: v for k, v in ex["sfd"].items() if k != "clearance_ratio"}
-    assert sfd == {k: v for k, v in ref["sfd"].items() if k != "clearance_ratio"}
+    sfd = {k: v for k, v in ex["elements"]["sfd"].items() if k != "clearance_ratio"}
+    assert sfd == {k: v for k, v in ref["elements"]["sfd"].items() if k != "clearance_ratio"}
     for table in ("modal", "stability", "simulate"):
         assert ex["analysis"][table] == ref["analysis"][table], table
     response = {k: v for k, v in ex["analysis"]["response"].items()
@@ -43,7 +43,7 @@ def test_family_extends_paper_rotor(name):
 @pytest.mark.parametrize("name", sorted(CASES))
 def test_base_motion_example(name):
     ref, ex = _resolved("paper_rotor"), _resolved(f"paper_{name}")
-    assert ex["analysis"] == ref["analysis"] and ex["sfd"] == ref["sfd"]
+    assert ex["analysis"] == ref["analysis"] and ex["elements"]["sfd"] == ref["elements"]["sfd"]
     config = load_config(EXAMPLES / f"paper_{name}.toml")
     assert config.unbalance[0].magnitude == pytest.approx(144.02e-6)
     component, rate = CASES[name]
@@ -63,10 +63,11 @@ def test_unbalance_and_clearance_examples():
     c = load_config(EXAMPLES / "paper_clearance.toml")
     assert c.analysis.response.harmonics == 8
     assert c.analysis.response.max_eccentricity == pytest.approx(0.995)
-    assert c.sfd.clearance_ratio == pytest.approx(0.00728)
+    assert c.elements["sfd"].clearance_ratio == pytest.approx(0.00728)
     assert c.base.pitching.value == pytest.approx(10.0)
     # C fixed: R and L follow C/R
     ref = load_config(EXAMPLES / "paper_rotor.toml")
-    assert c.sfd.resolved_clearance == pytest.approx(ref.sfd.resolved_clearance, rel=1e-12)
-    assert c.sfd.resolved_radius == pytest.approx(ref.sfd.resolved_radius * 0.485 / 0.728,
-                                                  rel=1e-9)
+    sfd, sfd_ref = c.elements["sfd"], ref.elements["sfd"]
+    assert sfd.resolved_clearance == pytest.approx(sfd_ref.resolved_clearance, rel=1e-12)
+    assert sfd.resolved_radius == pytest.approx(sfd_ref.resolved_radius * 0.485 / 0.728,
+                                                rel=1e-9)

@@ -54,7 +54,7 @@ def test_figure_circle_and_one_marker_per_multiplier(result):
     assert abs(crit) == pytest.approx(np.abs(mu).max(), rel=1e-12)
     assert f"{result.max_multiplier[i]:.5f}" in fig.axes[0].get_title()
     ratio = result.speeds[i] / result.reference_speed
-    assert f"Omega~ = {ratio:.5g}" in fig.axes[0].get_title()
+    assert rf"$\tilde\Omega$ = {ratio:.5g}" in fig.axes[0].get_title()
 
 
 def test_default_point_is_largest_and_speed_ratio_picks_nearest(result):

@@ -51,9 +51,9 @@ def test_linear_rotor_matches_frequency_domain(tmp_path, scheme, alpha) -> None:
     amplitude (800 steps per period; the transient decays through the damper). The error
     is the schemes' O(h^2) phase error: 1.1e-4 at 400 steps, 2.7e-5 at 800."""
     sfd_sys = _system(tmp_path)
-    c = sfd_sys.sfd.linear_damping
+    c = sfd_sys.elements[0].film.linear_damping
     rotor = sfd_sys.rotor.with_supports([LinearSupport(1, 0.0, 0.0, cyy=c, czz=c)])
-    system = RotorSystem(rotor, None, None, sfd_sys.unbalances)
+    system = RotorSystem(rotor, (), sfd_sys.unbalances)
     speed = 0.9 * REF
     res = run_simulation(system, speed, steps_per_period=800, periods=1500,
                          poincare_periods=20, record_periods=2, lyapunov_periods=0,
@@ -111,7 +111,7 @@ def test_constant_pitching_mean_position_is_hb_static_term(tmp_path) -> None:
     assert np.max(np.abs(X0)) > 0.05 * C             # the offset is not trivial
     np.testing.assert_allclose(mean, X0, atol=1e-3 * C, rtol=0)
 
-    tv = RotorSystem(system.rotor, system.sfd, system.sfd_node, system.unbalances,
+    tv = RotorSystem(system.rotor, system.elements, system.unbalances,
                      BaseMotion(wy=CallableLaw(lambda t: 10.0 + 0.0 * np.asarray(t))))
     assert not tv.base.is_constant
     inputs = time_domain_inputs(tv, speed)
@@ -127,7 +127,7 @@ def test_harmonic_pitching_follows_frozen_coefficients(tmp_path) -> None:
     peak (the dynamic corrections are O(w_b/w_n) and c w_b / k ~ 1e-4)."""
     sfd_sys = _system(tmp_path)
     base = BaseMotion(wy=Harmonic(mean=0.0, amplitude=10.0, frequency=2.0))
-    system = RotorSystem(sfd_sys.rotor, sfd_sys.sfd, sfd_sys.sfd_node, (), base)
+    system = RotorSystem(sfd_sys.rotor, sfd_sys.elements, (), base)
     speed = 0.75 * REF
     inputs = time_domain_inputs(system, speed)
     assert inputs.time_varying is not None and inputs.time_varying.n_terms > 0
@@ -162,12 +162,14 @@ def test_contact_raises_with_time_period_and_eccentricity(tmp_path) -> None:
     contact limit eps_max = 0.9 and U = 1000 g mm at resonance (steady eps ~ 0.96 without
     the limit) the run stops with JournalContactError: time, rotor period and eps in one
     line, eps at the limit."""
+    from rotorsfd.elements.sfd import SFDElement
     from rotorsfd.model.sfd import SFD
 
     base = _system(tmp_path, unbalance="1000 g*mm")
-    f = base.sfd
+    e = base.elements[0]
+    f = e.film
     sfd = SFD(f.viscosity, f.radius, f.length, f.clearance, f.cavitation, eps_max=0.9)
-    system = RotorSystem(base.rotor, sfd, base.sfd_node, base.unbalances)
+    system = RotorSystem(base.rotor, [SFDElement("sfd", e.node, sfd)], base.unbalances)
     with pytest.raises(JournalContactError) as info:
         run_simulation(system, 1.0 * REF, steps_per_period=200, periods=200,
                        poincare_periods=10, lyapunov_periods=0, progress=False)

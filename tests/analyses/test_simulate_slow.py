@@ -10,7 +10,7 @@ from rotorsfd import api
 from rotorsfd.analyses.simulate import run_simulation
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "paper_rotor.toml"
-FIG23 = ["sfd.clearance_ratio=0.728 %", "unbalance[0].magnitude=252 g*mm",
+FIG23 = ["elements.sfd.clearance_ratio=0.728 %", "unbalance[0].magnitude=252 g*mm",
          "base.pitching.law=constant", "base.pitching.value=10 rad/s"]
 
 

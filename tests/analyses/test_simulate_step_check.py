@@ -99,7 +99,7 @@ def test_auto_step_converges_to_the_tolerance(configs, tmp_path) -> None:
     fine = run_simulation(system, 1.05 * REF, steps_per_period=4 * spp, periods=300,
                           poincare_periods=20, lyapunov_periods=0, nodes=[1, 3],
                           progress=False, step_check_periods=0)
-    C = system.sfd.clearance
+    C = system.length_scale
     gap = np.max(np.hypot(*(res.poincare_q[-5:, 0] - fine.poincare_q[-5:, 0]).T)) / C
     assert gap < 1e-4
     assert gap < 0.6 * diffs[-1]          # the accepted step is ~d/3 from converged
@@ -146,7 +146,7 @@ def test_envelope_compares_motions_that_are_not_periodic(configs) -> None:
     start = (displaced_state(system.n_dof, 1e-5), np.zeros(system.n_dof), 0.0)
     w = {n: run_window(inputs, start, steps_per_period=n, periods=10, node=1)
          for n in (100, 200, 400)}
-    C = system.sfd.clearance
+    C = system.length_scale
     assert settled_period(w[100].pq, 2.5e-4 * C) is None
     a = compare_windows(w[100], w[200], node=1, scale=C, unit="C")
     b = compare_windows(w[200], w[400], node=1, scale=C, unit="C")

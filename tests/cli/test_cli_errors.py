@@ -35,17 +35,18 @@ def _variant(tmp_path, old, new):
     # wrong type
     ("n_elements = 20", 'n_elements = "twenty"', "rotor.shaft[0].n_elements", "'twenty'"),
     # wrong dimension
-    ('viscosity = "0.0051 Pa*s"', 'viscosity = "0.0051 kg"', "sfd.viscosity", "'0.0051 kg'"),
+    ('viscosity = "0.0051 Pa*s"', 'viscosity = "0.0051 kg"', "elements.sfd.viscosity",
+     "'0.0051 kg'"),
     # out of range
-    ('clearance = "0.127 mm"', 'clearance = "-0.127 mm"', "sfd.clearance", "'-0.127 mm'"),
+    ('clearance = "0.127 mm"', 'clearance = "-0.127 mm"', "elements.sfd.clearance", "'-0.127 mm'"),
     # unknown key
     ('thickness = "50.8 mm"', 'thicknes = "50.8 mm"', "rotor.disks[0].thicknes", "'50.8 mm'"),
     # missing required
-    ('viscosity = "0.0051 Pa*s"', "", "sfd.viscosity", "nothing"),
+    ('viscosity = "0.0051 Pa*s"', "", "elements.sfd.viscosity", "nothing"),
     # bad node
     ("node = 21", "node = 22", "rotor.supports[0].node", "22"),
     # bad choice
-    ('cavitation = "pi"', 'cavitation = "half"', "sfd.cavitation", "'half'"),
+    ('cavitation = "pi"', 'cavitation = "half"', "elements.sfd.cavitation", "'half'"),
 ])
 def test_bad_config_exits_2_with_one_line(tmp_path, capsys, old, new, field, value):
     path = _variant(tmp_path, old, new)
@@ -77,8 +78,8 @@ def test_bad_config_subprocess(tmp_path):
     (["config", "show", str(PAPER), "--format", "yaml"], "invalid choice: 'yaml'"),
     (["config", "show", "no/such/file.toml"], "config file: got 'no/such/file.toml'; no such"),
     (["config", "show", str(PAPER), "--set", "oops"], "--set: got 'oops'; expected KEY=VALUE"),
-    (["config", "show", str(PAPER), "--set", "sfd.clearance_ratio=5 mm"],
-     "sfd.clearance_ratio: got '5 mm'; expected a dimensionless ratio"),
+    (["config", "show", str(PAPER), "--set", "elements.sfd.clearance_ratio=5 mm"],
+     "elements.sfd.clearance_ratio: got '5 mm'; expected a dimensionless ratio"),
     (["config", "show", str(PAPER), "--set", "unbalance[4].node=3"], "index 4 out of range"),
 ])
 def test_bad_arguments_exit_2(capsys, argv, words):
@@ -118,11 +119,11 @@ def test_help_and_version(capsys):
 
 
 def test_config_show_with_set(capsys):
-    argv = ["config", "show", str(PAPER), "--set", "sfd.clearance_ratio=0.61 %",
+    argv = ["config", "show", str(PAPER), "--set", "elements.sfd.clearance_ratio=0.61 %",
             "--set", "unbalance[0].magnitude=144.02 g*mm", "--format", "json"]
     assert cli.main(argv) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["sfd"]["clearance_ratio"] == pytest.approx(0.0061)
+    assert data["elements"]["sfd"]["clearance_ratio"] == pytest.approx(0.0061)
     assert data["unbalance"][0]["magnitude"] == pytest.approx(144.02e-6)
     assert data["analysis"]["stability"]["intervals"] == 400          # default filled in
 

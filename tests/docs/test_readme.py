@@ -77,7 +77,7 @@ def test_readme_rotor_config_validates_and_builds():
     config = config_from_dict(tomllib.loads(block))
     model = build_model(config)
     assert model.rotor.n_nodes == 17
-    assert config.sfd.clearance == pytest.approx(0.15e-3)
+    assert config.elements["sfd"].clearance == pytest.approx(0.15e-3)
     assert config.base.pitching.value == pytest.approx(2.0)
 
 

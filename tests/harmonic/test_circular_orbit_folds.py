@@ -191,13 +191,14 @@ class CircularOrbit:
 @pytest.fixture(scope="module")
 def system() -> RotorSystem:
     m = build_model(api.load_config(CONFIG))
-    assert m.sfd_node == SFD_NODE and m.sfd.cavitation == "pi"
-    np.testing.assert_allclose([m.sfd.viscosity, m.sfd.radius, m.sfd.length,
-                                m.sfd.clearance], [MU, R, L, C], rtol=1e-14)
+    film = m.elements[0].film
+    assert m.elements[0].node == SFD_NODE and film.cavitation == "pi"
+    np.testing.assert_allclose([film.viscosity, film.radius, film.length, film.clearance],
+                               [MU, R, L, C], rtol=1e-14)
     assert len(m.unbalances) == 1 and m.unbalances[0].node == UNB_NODE
     assert m.unbalances[0].magnitude == pytest.approx(U, rel=1e-14)
     assert m.unbalances[0].phase == 0.0
-    return RotorSystem(m.rotor, m.sfd, m.sfd_node, m.unbalances, m.base_motion)
+    return RotorSystem(m.rotor, m.elements, m.unbalances, m.base_motion)
 
 
 @pytest.fixture(scope="module")

@@ -40,7 +40,7 @@ N_REF = 4096
 def _problem(example: str = "paper_pitching.toml", overrides: tuple[str, ...] = ()):
     config = load_config(EXAMPLES / example, list(overrides))
     m = build_model(config)
-    system = RotorSystem(m.rotor, m.sfd, m.sfd_node, m.unbalances, m.base_motion)
+    system = RotorSystem(m.rotor, m.elements, m.unbalances, m.base_motion)
     return system.periodic_problem("speed")
 
 

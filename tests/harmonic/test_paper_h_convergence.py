@@ -45,11 +45,11 @@ def _solutions(example: str, speed_ratio: float):
     """{H: X (H+1, n_dof)} at Omega = speed_ratio * 811.3 rad/s, and the clearance C."""
     config = load_config(EXAMPLES / example, ["unbalance[0].magnitude=144.02 g*mm"])
     model = build_model(config)
-    problem = RotorSystem(model.rotor, model.sfd, model.sfd_node, model.unbalances,
+    problem = RotorSystem(model.rotor, model.elements, model.unbalances,
                           model.base_motion).periodic_problem()
     speed = speed_ratio * REFERENCE_SPEED
     return ({H: solve_periodic(problem, speed, H, tol=TOL).X for H in HS},
-            float(model.sfd.clearance))
+            float(model.elements[0].film.clearance))
 
 
 def _errors(X: dict[int, np.ndarray], C: float) -> tuple[np.ndarray, np.ndarray]:

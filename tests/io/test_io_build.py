@@ -8,7 +8,7 @@ import pytest
 
 from rotorsfd.errors import ConfigError
 from rotorsfd.io.config import config_from_dict, read_toml
-from rotorsfd.model.build import build_base_motion, build_model, build_rotor, build_sfd
+from rotorsfd.model.build import build_base_motion, build_elements, build_model, build_rotor
 
 PAPER = Path(__file__).parents[2] / "examples" / "paper_rotor.toml"
 
@@ -29,20 +29,20 @@ def test_paper_rotor(raw):
     assert disk.mass == pytest.approx(7810 * math.pi * (ro**2 - ri**2) * h)
     # right support + the SFD centring spring at node 1; the film is not in the rotor
     assert sorted(s.node for s in rotor.supports) == [1, 21]
-    assert model.sfd_node == 1
-    assert model.sfd.clearance == pytest.approx(0.127e-3)
-    assert model.sfd.radius == pytest.approx(0.127e-3 / 0.00485)
-    assert model.sfd.length == pytest.approx(0.325 * 2 * model.sfd.radius)
+    assert model.elements[0].node == 1
+    assert model.elements[0].film.clearance == pytest.approx(0.127e-3)
+    assert model.elements[0].film.radius == pytest.approx(0.127e-3 / 0.00485)
+    assert model.elements[0].film.length == pytest.approx(0.325 * 2 * model.elements[0].film.radius)
     assert model.unbalances[0].magnitude == pytest.approx(360.04e-6)
     assert model.base_motion.is_fixed
 
 
 def test_no_sfd_no_centring_spring(raw):
-    del raw["sfd"]
+    del raw["elements"]["sfd"]
     raw["rotor"]["supports"].append({"node": 1, "kyy": 2e7, "kzz": 3e7, "cyy": 10, "czz": 20})
     cfg = config_from_dict(raw)
     rotor = build_rotor(cfg)
-    assert build_sfd(cfg) is None
+    assert build_elements(cfg) == []
     left = next(s for s in rotor.supports if s.node == 1)
     assert (left.kyy, left.kzz, left.cyy, left.czz) == (2e7, 3e7, 10, 20)
 

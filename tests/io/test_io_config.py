@@ -37,7 +37,7 @@ def test_paper_example_values(paper):
     assert paper.rotor.shaft[0].inner_radius == pytest.approx(20.65e-3)
     assert paper.materials["steel"].shear_modulus == pytest.approx(81.783e9)
     assert paper.unbalance[0].magnitude == pytest.approx(360.04e-6)
-    sfd = paper.sfd
+    sfd = paper.elements["sfd"]
     assert sfd.resolved_clearance == pytest.approx(0.127e-3)
     assert sfd.resolved_radius == pytest.approx(0.127e-3 / 0.00485)
     assert sfd.resolved_length == pytest.approx(0.325 * 2 * 0.127e-3 / 0.00485)
@@ -51,20 +51,20 @@ def test_defaults_filled_in(raw):
     assert cfg.analysis.response.harmonics == "auto"
     assert cfg.analysis.response.start_harmonics == 3
     assert cfg.analysis.stability.intervals == 400
-    assert cfg.sfd.cavitation == "pi"
+    assert cfg.elements["sfd"].cavitation == "pi"
 
 
 @pytest.mark.parametrize(("override", "check"), [
-    ('sfd.clearance_ratio=0.61 %', lambda c: c.sfd.resolved_radius == pytest.approx(
-        0.127e-3 / 0.0061)),
-    ('sfd.clearance_ratio="0.728 %"', lambda c: c.sfd.clearance_ratio == pytest.approx(
-        0.00728)),
+    ('elements.sfd.clearance_ratio=0.61 %',
+     lambda c: c.elements["sfd"].resolved_radius == pytest.approx(0.127e-3 / 0.0061)),
+    ('elements.sfd.clearance_ratio="0.728 %"',
+     lambda c: c.elements["sfd"].clearance_ratio == pytest.approx(0.00728)),
     ("unbalance[0].magnitude=144.02 g*mm", lambda c: c.unbalance[0].magnitude == pytest.approx(
         144.02e-6)),
     ("unbalance.0.magnitude=252e-6", lambda c: c.unbalance[0].magnitude == 252e-6),
     ("rotor.shaft[0].n_elements=10", lambda c: c.rotor.n_nodes == 11),
     ("analysis.response.harmonics=8", lambda c: c.analysis.response.harmonics == 8),
-    ("sfd.cavitation=none", lambda c: c.sfd.cavitation == "none"),
+    ("elements.sfd.cavitation=none", lambda c: c.elements["sfd"].cavitation == "none"),
     ("gravity.enabled=true", lambda c: c.gravity.enabled),
     ("gravity.direction=[0, 1, 0]", lambda c: c.gravity.direction == [0, 1, 0]),
     ("reference.speed=first_critical", lambda c: c.reference.speed == "first_critical"),
@@ -87,9 +87,9 @@ def test_set_constant_pitching(raw):
 @pytest.mark.parametrize(("override", "field"), [
     ("no_equals_sign", "--set"),
     ("=3", "--set"),
-    ("sfd.viscosity=", "sfd.viscosity"),
+    ("elements.sfd.viscosity=", "elements.sfd.viscosity"),
     ("a..b=3", "a..b"),
-    ("sfd.node.x=3", "sfd.node.x"),
+    ("elements.sfd.node.x=3", "elements.sfd.node.x"),
     ("unbalance[5].node=3", "unbalance[5].node"),
 ])
 def test_bad_set(raw, override, field):
@@ -103,26 +103,26 @@ def test_bad_set(raw, override, field):
     ("rotor.shaft[0].n_elements=abc", "rotor.shaft[0].n_elements", "integer"),
     ("gravity.enabled=3", "gravity.enabled", "true or false"),
     # out of range
-    ("sfd.viscosity=-1", "sfd.viscosity", "> 0"),
-    ("sfd.clearance_ratio=150 %", "sfd.clearance_ratio", "< 1"),
+    ("elements.sfd.viscosity=-1", "elements.sfd.viscosity", "> 0"),
+    ("elements.sfd.clearance_ratio=150 %", "elements.sfd.clearance_ratio", "< 1"),
     ("analysis.response.harmonics=0", "analysis.response.harmonics", "1 <= H <= 64"),
     # unknown key (with a suggestion)
     ("rotor.shaft[0].lenght=0.5", "rotor.shaft[0].lenght", "did you mean 'length'"),
-    ("sfd.clearence=1e-4", "sfd.clearence", "unknown key"),
+    ("elements.sfd.clearence=1e-4", "elements.sfd.clearence", "unknown key"),
     # wrong choice
-    ("sfd.cavitation=half", "sfd.cavitation", "'pi', 'none' or 'guembel'"),
+    ("elements.sfd.cavitation=half", "elements.sfd.cavitation", "'pi', 'none' or 'guembel'"),
     # bad node, bad material
     ("rotor.disks[0].node=22", "rotor.disks[0].node", "1..21"),
-    ("sfd.node=0", "sfd.node", ">= 1"),
+    ("elements.sfd.node=0", "elements.sfd.node", ">= 1"),
     ("rotor.shaft[0].material=alu", "rotor.shaft[0].material", "steel"),
     # cross-field checks
     ("rotor.shaft[0].inner_radius=40 mm", "rotor.shaft[0].inner_radius", "outer_radius"),
     ("rotor.disks[0].outer_radius=20 mm", "rotor.disks[0].inner_radius", "outer_radius"),
     # the SFD geometry forms: the table is named, with what was given (not the last field)
-    ("sfd.radius=30 mm", "sfd", "got 'clearance, clearance_ratio and radius'; give exactly "
-     "two of clearance, clearance_ratio, radius"),
-    ("sfd.length=20 mm", "sfd", "got 'length and length_to_diameter'; give exactly one of "
-     "length, length_to_diameter"),
+    ("elements.sfd.radius=30 mm", "elements.sfd", "got 'clearance, clearance_ratio and "
+     "radius'; give exactly two of clearance, clearance_ratio, radius"),
+    ("elements.sfd.length=20 mm", "elements.sfd", "got 'length and length_to_diameter'; "
+     "give exactly one of length, length_to_diameter"),
     # booleans are TOML booleans: "yes", 1 and "true" are not
     ("gravity.enabled='yes'", "gravity.enabled", "got 'yes'; expected true or false"),
     ("gravity.enabled=1", "gravity.enabled", "got 1; expected true or false"),
@@ -144,15 +144,15 @@ def test_bad_values_name_field(raw, override, field, words):
 
 @pytest.mark.parametrize(("drop", "override", "field", "words"), [
     # L/D derived from the length: held to length_to_diameter's range
-    ("length_to_diameter", "sfd.length=3 furlongs", "sfd.length",
+    ("length_to_diameter", "elements.sfd.length=3 furlongs", "elements.sfd.length",
      "got '3 furlongs'; gives L/D = L / (2R) = 11523.6 (R = 0.0261856 m); "
      "length_to_diameter must be 0 < value <= 10"),
     # C and R given: C/R derived, and C must stay below R
-    ("clearance_ratio", "sfd.radius=0.1 mm", "sfd.clearance",
+    ("clearance_ratio", "elements.sfd.radius=0.1 mm", "elements.sfd.clearance",
      "got '0.127 mm'; gives C = 0.000127 m >= R = 0.0001 m"),
 ])
 def test_derived_sfd_values_in_range(raw, drop, override, field, words):
-    del raw["sfd"][drop]
+    del raw["elements"]["sfd"][drop]
     with pytest.raises(ConfigError) as info:
         config_from_dict(raw, [override])
     assert info.value.field == field
@@ -160,16 +160,16 @@ def test_derived_sfd_values_in_range(raw, drop, override, field, words):
 
 
 def test_derived_sfd_values_at_the_bound_pass(raw):
-    del raw["sfd"]["length_to_diameter"]
+    del raw["elements"]["sfd"]["length_to_diameter"]
     radius = 0.127e-3 / 0.00485
-    config = config_from_dict(raw, [f"sfd.length={20 * radius!r}"])   # L/D = 10 exactly
-    assert config.sfd.resolved_length / (2 * config.sfd.resolved_radius) == \
-        pytest.approx(10.0)
+    config = config_from_dict(raw, [f"elements.sfd.length={20 * radius!r}"])   # L/D = 10 exactly
+    sfd = config.elements["sfd"]
+    assert sfd.resolved_length / (2 * sfd.resolved_radius) == pytest.approx(10.0)
 
 
 def test_missing_required(raw):
-    del raw["sfd"]["viscosity"]
-    with pytest.raises(ConfigError, match=r"^sfd\.viscosity: got nothing; required: oil"):
+    del raw["elements"]["sfd"]["viscosity"]
+    with pytest.raises(ConfigError, match=r"^elements\.sfd\.viscosity: got nothing; required: oil"):
         config_from_dict(raw)
     del raw["rotor"]
     with pytest.raises(ConfigError, match=r"^rotor: got nothing; required"):
@@ -183,7 +183,7 @@ def test_parameter_path_checked(raw):
     with pytest.raises(ConfigError, match="names no config field"):
         config_from_dict(raw, ["analysis.response.parameter=base.pitching.valu", *sets])
     with pytest.raises(ConfigError, match="not a scalar physical quantity"):
-        config_from_dict(raw, ["analysis.response.parameter=sfd.cavitation", *sets])
+        config_from_dict(raw, ["analysis.response.parameter=elements.sfd.cavitation", *sets])
 
 
 def test_missing_file_and_bad_toml(tmp_path):
@@ -205,7 +205,8 @@ def test_show_round_trips(paper, raw, fmt):
     assert dump_config(again) == dump_config(paper)
     # a config with the alternative forms round-trips too
     variant = config_from_dict(raw, [
-        "sfd.clearance_ratio=0.61 %", "rotor.damping.kind=rayleigh", "rotor.damping.beta=1e-5",
+        "elements.sfd.clearance_ratio=0.61 %", "rotor.damping.kind=rayleigh",
+        "rotor.damping.beta=1e-5",
         "base.pitching.law=harmonic", "base.pitching.frequency=20", "base.pitching.angle_amplitude"
         "=0.5 deg", "base.z.law=uniform_acceleration", "base.z.acceleration=-9.81",
         "unbalance[0].phase=30 deg"])
@@ -221,10 +222,11 @@ def test_show_is_si_with_derived_comment(paper):
 
 
 def test_with_values(paper):
-    cfg = with_values(paper, {"sfd.clearance_ratio": "0.728 %", "unbalance[0].magnitude": 252e-6})
-    assert cfg.sfd.clearance_ratio == pytest.approx(0.00728)
+    cfg = with_values(paper, {"elements.sfd.clearance_ratio": "0.728 %",
+                              "unbalance[0].magnitude": 252e-6})
+    assert cfg.elements["sfd"].clearance_ratio == pytest.approx(0.00728)
     assert cfg.unbalance[0].magnitude == 252e-6
-    assert paper.sfd.clearance_ratio == pytest.approx(0.00485)      # unchanged
+    assert paper.elements["sfd"].clearance_ratio == pytest.approx(0.00485)      # unchanged
 
 
 def test_paths_and_kinds(paper):
@@ -232,7 +234,7 @@ def test_paths_and_kinds(paper):
     assert split_path("rotor.shaft.0.length") == ("rotor", "shaft", 0, "length")
     assert resolve_kind(paper, "unbalance[0].magnitude") == "unbalance"
     assert resolve_kind(paper, "base.pitching.value") == "angular_velocity"
-    assert parameter_values(paper, "sfd.clearance_ratio", ["0.485 %", 0.0061]) == \
+    assert parameter_values(paper, "elements.sfd.clearance_ratio", ["0.485 %", 0.0061]) == \
         pytest.approx([0.00485, 0.0061])
     assert parameter_values(paper, "speed", ["3000 rpm"]) == pytest.approx([100 * math.pi])
     assert parse_override("a.b = 0.5 mm") == ("a.b", "0.5 mm")
@@ -272,7 +274,7 @@ def test_every_field_documented():
      '"3 mm"]}', "analysis.sweep.axes[0].values[1]"),
     ('analysis.stability_chart.x={parameter = "base.pitching.frequency", start = "1 kg", '
      'stop = 3}', "analysis.stability_chart.x.start"),
-    ('analysis.sweep.axes[0]={parameter = "sfd.viscosty", start = 0, stop = 1}',
+    ('analysis.sweep.axes[0]={parameter = "elements.sfd.viscosty", start = 0, stop = 1}',
      "analysis.sweep.axes[0].parameter"),
 ])
 def test_axis_values_checked(raw, override, field):

@@ -45,7 +45,8 @@ def test_extends_merges_into_the_paper_rotor(tmp_path):
     child = _write(tmp_path / "sub" / "child.toml", f'''
 extends = "{PAPER.as_posix()}"
 title = "child"
-[sfd]
+[elements.sfd]
+kind = "sfd"
 clearance_ratio = "0.61 %"
 [[unbalance]]
 node = 5
@@ -61,9 +62,9 @@ harmonics = 8
     ref = load_config(PAPER)
     assert config.title == "child"
     # a key of [sfd] changed, the others kept
-    assert config.sfd.clearance_ratio == pytest.approx(0.0061)
-    assert config.sfd.viscosity == ref.sfd.viscosity
-    assert config.sfd.centring_stiffness == ref.sfd.centring_stiffness
+    assert config.elements["sfd"].clearance_ratio == pytest.approx(0.0061)
+    assert config.elements["sfd"].viscosity == ref.elements["sfd"].viscosity
+    assert config.elements["sfd"].centring_stiffness == ref.elements["sfd"].centring_stiffness
     # [[unbalance]] replaced wholesale (one entry, at node 5)
     assert len(config.unbalance) == 1
     assert config.unbalance[0].node == 5
@@ -108,9 +109,9 @@ def test_config_from_dict_needs_base_dir(tmp_path):
     raw = {"extends": "base.toml", "title": "from a dict"}
     with pytest.raises(ConfigError, match=r"^extends: got 'base.toml'; .*base_dir"):
         config_from_dict(raw)
-    config = config_from_dict(raw, ["sfd.clearance_ratio=0.728 %"], base_dir=tmp_path)
+    config = config_from_dict(raw, ["elements.sfd.clearance_ratio=0.728 %"], base_dir=tmp_path)
     assert config.title == "from a dict"
-    assert config.sfd.clearance_ratio == pytest.approx(0.00728)
+    assert config.elements["sfd"].clearance_ratio == pytest.approx(0.00728)
 
 
 def test_cycle_is_an_error(tmp_path):
@@ -166,4 +167,4 @@ def test_cli_config_show_prints_the_merged_config(tmp_path, capsys):
     assert main(["config", "show", str(child)]) == 0
     shown = tomllib.loads(capsys.readouterr().out)
     assert shown["analysis"]["response"]["harmonics"] == 8
-    assert shown["sfd"]["viscosity"] == pytest.approx(0.0051)
+    assert shown["elements"]["sfd"]["viscosity"] == pytest.approx(0.0051)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import re
+import types
 import typing
 from collections import Counter
 from pathlib import Path
@@ -22,14 +23,22 @@ README = Path(__file__).resolve().parents[2] / "README.md"
 
 def _leaves(model: type[BaseModel], prefix: str = "") -> dict[str, typing.Any]:
     """Every leaf field of ``model`` -> its FieldInfo, walked here independently of the
-    reference module (lists of tables: ``[]``, tables of tables: ``.<name>``)."""
+    reference module (lists of tables: ``[]``, tables of tables: ``.<name>``, tables of
+    several kinds: ``.<kind>``)."""
     out: dict[str, typing.Any] = {}
     for name, info in model.model_fields.items():
         path = f"{prefix}.{name}" if prefix else name
         ann = unwrap(info.annotation)
         origin = typing.get_origin(ann)
         inner = unwrap(typing.get_args(ann)[-1]) if origin in (list, dict) else None
-        if isinstance(ann, type) and issubclass(ann, BaseModel):
+        kinds = typing.get_args(inner) if typing.get_origin(inner) in (
+            typing.Union, types.UnionType) else (inner,)
+        if origin is dict and all(isinstance(k, type) and issubclass(k, BaseModel)
+                                  and "kind" in k.model_fields for k in kinds):
+            for k in kinds:   # tables of several kinds: one group per kind, ".<kind>"
+                kind = typing.get_args(k.model_fields["kind"].annotation)[0]
+                out.update(_leaves(k, f"{path}.<{kind}>"))
+        elif isinstance(ann, type) and issubclass(ann, BaseModel):
             out.update(_leaves(ann, path))
         elif isinstance(inner, type) and issubclass(inner, BaseModel):
             out.update(_leaves(inner, path + ("[]" if origin is list else ".<name>")))
@@ -76,7 +85,7 @@ def test_every_leaf_field_appears_exactly_once():
 def test_sections_one_per_table_and_per_analysis():
     headers = [s.header for s in reference.sections()]
     assert headers[0] == "top-level keys"
-    for name in ("[rotor]", "[sfd]", "[base]", "[gravity]", "[reference]",
+    for name in ("[rotor]", "[elements.<sfd>]", "[base]", "[gravity]", "[reference]",
                  "[[unbalance]]", "[materials.<name>]"):
         assert name in headers
     assert [h for h in headers if h.startswith("[analysis")] == [
@@ -135,7 +144,7 @@ def test_every_literal_lists_its_values():
         for value in typing.get_args(ann):
             assert json.dumps(value) in DOCS[path].allowed, (path, value)
     assert found >= 15
-    assert DOCS["sfd.cavitation"].allowed == '"pi", "none", "guembel"'
+    assert DOCS["elements.<sfd>.cavitation"].allowed == '"pi", "none", "guembel"'
     assert DOCS["gravity.enabled"].allowed == "true, false"
 
 

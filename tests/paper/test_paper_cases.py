@@ -37,7 +37,7 @@ FIGURE_FILES = sorted(p.relative_to(EXAMPLES).as_posix()
 EXCEPTIONS = {
     "damp-": ({"rotor.damping.kind", "rotor.damping.ratio"},
               "diagnosis: 0.2 % modal damping, which the paper does not state"),
-    "sens-": ({"sfd.centring_stiffness", "rotor.supports[0].stiffness"},
+    "sens-": ({"elements.sfd.centring_stiffness", "rotor.supports[0].stiffness"},
               "sensitivity to the support stiffnesses the paper does not give (+/- 5 %)"),
     "fig23-t200-": ({"analysis.simulate.steps_per_period"},
                     "the paper's time step T/200 beside the file's converged T/800"),
@@ -159,7 +159,7 @@ def test_fixed_values_of_the_figures():
 
     c = cfg("fig07_table1_fixed_base.toml")
     assert c.analysis.response.harmonics == 3 and c.base.pitching.law == "off"
-    assert c.sfd.clearance_ratio == pytest.approx(0.00485)
+    assert c.elements["sfd"].clearance_ratio == pytest.approx(0.00485)
     assert cfg("fig17_20_unbalance_h8.toml").analysis.response.harmonics == 8
     c = cfg("fig21_22_table3_clearance.toml")
     assert (c.analysis.response.harmonics, c.base.pitching.value,
@@ -175,7 +175,7 @@ def test_fixed_values_of_the_figures():
         elif case.config == "paper/fig23_time_domain.toml":
             assert not any("steps_per_period" in o for o in case.overrides), name
     assert s.initial_displacement == pytest.approx(1e-6)
-    assert c.sfd.clearance_ratio == pytest.approx(0.00728)
+    assert c.elements["sfd"].clearance_ratio == pytest.approx(0.00728)
     # Figure 19's fold curves at H = 16 (converged), and at the paper's H
     assert CASES["fig19-u144"].options["harmonics"] == 16
     assert CASES["fig19-u252"].options["harmonics"] == 16

@@ -100,5 +100,5 @@ def test_custom_eps_max_and_bad_inputs() -> None:
     for kwargs in ({"cavitation": "half"}, {"eps_max": 1.0}, {"eps_max": 0.0}):
         with pytest.raises(ConfigError):
             SFD(0.0051, 0.026, 0.017, 1.27e-4, **kwargs)
-    with pytest.raises(ConfigError, match=r"sfd\.clearance"):
+    with pytest.raises(ConfigError, match=r"^clearance: got"):
         SFD(0.0051, 0.026, 0.017, -1.0)

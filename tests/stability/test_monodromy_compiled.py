@@ -47,7 +47,7 @@ def paper():
     from rotorsfd.stability.reduction import craig_bampton
 
     model = build_model(load_config(ROOT / "examples" / "paper_rotor.toml"))
-    system = RotorSystem(model.rotor, model.sfd, model.sfd_node, model.unbalances,
+    system = RotorSystem(model.rotor, model.elements, model.unbalances,
                          model.base_motion)
     problem = system.periodic_problem()
     speed = 850.0

@@ -24,7 +24,7 @@ def problem():
     from rotorsfd.model.system import RotorSystem
 
     model = build_model(load_config(ROOT / "examples" / "paper_rotor.toml"))
-    system = RotorSystem(model.rotor, model.sfd, model.sfd_node, model.unbalances,
+    system = RotorSystem(model.rotor, model.elements, model.unbalances,
                          model.base_motion)
     speed = 850.0
     sol = solve_periodic(system.periodic_problem(), speed, H=3)
@@ -40,7 +40,7 @@ def problem():
 
     def jac(t):
         q, v = state(np.asarray(t, dtype=float))
-        return model.sfd.jacobian(q[..., 0], q[..., 1], v[..., 0], v[..., 1])
+        return model.elements[0].film.jacobian(q[..., 0], q[..., 1], v[..., 0], v[..., 1])
 
     t = np.arange(401) * T / 400
     Jq, Jv = jac(t)

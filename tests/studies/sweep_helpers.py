@@ -18,7 +18,7 @@ task = "response"
 
 AXES_2x3 = """
 [[analysis.sweep.axes]]
-parameter = "sfd.clearance_ratio"
+parameter = "elements.sfd.clearance_ratio"
 values = ["0.4 %", "0.5 %"]
 
 [[analysis.sweep.axes]]

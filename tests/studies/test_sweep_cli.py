@@ -17,7 +17,7 @@ from sweep_helpers import sweep_toml
 
 from rotorsfd.cli import main
 
-AXES = ["--axis", "sfd.clearance_ratio=0.4 %,0.5 %,0.6 %",
+AXES = ["--axis", "elements.sfd.clearance_ratio=0.4 %,0.5 %,0.6 %",
         "--axis", "unbalance[0].magnitude=40 g*mm,45 g*mm,50 g*mm,55 g*mm"]
 FILES = ("sweep.nc", "summary.csv", "sweep.json")
 

@@ -25,11 +25,11 @@ def config(tmp_path):
 def test_grid_from_config_axes(config):
     grid = grid_from_config(config)
     assert grid.shape == (2, 3)
-    assert [a.path for a in grid.axes] == ["sfd.clearance_ratio", "unbalance[0].magnitude"]
+    assert [a.path for a in grid.axes] == ["elements.sfd.clearance_ratio", "unbalance[0].magnitude"]
     assert grid.axes[0].values == pytest.approx((0.004, 0.005), rel=1e-15)
     assert grid.axes[1].values == pytest.approx((4e-5, 5e-5, 6e-5), rel=1e-12)
     assert [a.units for a in grid.axes] == ["1", "kg*m"]
-    assert [a.name for a in grid.axes] == ["sfd_clearance_ratio", "unbalance_0_magnitude"]
+    assert [a.name for a in grid.axes] == ["elements_sfd_clearance_ratio", "unbalance_0_magnitude"]
 
 
 def test_point_ids_c_order_and_stable(config):
@@ -50,7 +50,7 @@ def test_config_at_sets_dotted_paths_with_units(tmp_path):
     grid = grid_from_axes(config, {
         "base.pitching.value": ["3 rad/s", 6.0],
         "unbalance[0].magnitude": ["144.02 g*mm"],
-        "sfd.clearance_ratio": ["0.61 %"],
+        "elements.sfd.clearance_ratio": ["0.61 %"],
         "rotor.supports[0].stiffness": ["2e7 N/m"],
     })
     assert grid.shape == (2, 1, 1, 1)
@@ -58,9 +58,10 @@ def test_config_at_sets_dotted_paths_with_units(tmp_path):
         c = grid.config_at(config, p)
         assert c.base.pitching.value == p.as_dict()["base.pitching.value"]
         assert c.unbalance[0].magnitude == pytest.approx(144.02e-6, rel=1e-12)
-        assert c.sfd.clearance_ratio == pytest.approx(0.0061, rel=1e-12)
+        assert c.elements["sfd"].clearance_ratio == pytest.approx(0.0061, rel=1e-12)
         assert c.rotor.supports[0].stiffness == 2e7
-        assert get_path(c, "sfd.clearance") == config.sfd.clearance  # untouched
+        # untouched
+        assert get_path(c, "elements.sfd.clearance") == config.elements["sfd"].clearance
     assert [p.as_dict()["base.pitching.value"] for p in grid.points()] == [3.0, 6.0]
 
 
@@ -72,12 +73,12 @@ def test_bad_axes_name_the_field(config):
     with pytest.raises(ConfigError, match="unbalance"):
         grid_from_axes(config, {"unbalance[0].magnitude": ["3 m"]})
     with pytest.raises(ConfigError, match="one axis"):
-        grid_from_axes(config, {"sfd.clearance_ratio": [0.004],
-                                "sfd.clearance_ratio ": [0.005]})
+        grid_from_axes(config, {"elements.sfd.clearance_ratio": [0.004],
+                                "elements.sfd.clearance_ratio ": [0.005]})
 
 
 def test_out_of_range_value_is_a_config_error_at_that_point(config):
-    grid = grid_from_axes(config, {"sfd.clearance_ratio": [0.004, 1.5]})
+    grid = grid_from_axes(config, {"elements.sfd.clearance_ratio": [0.004, 1.5]})
     pts = list(grid.points())
     grid.config_at(config, pts[0])
     with pytest.raises(ConfigError, match="clearance_ratio"):
@@ -85,8 +86,8 @@ def test_out_of_range_value_is_a_config_error_at_that_point(config):
 
 
 def test_parse_axis():
-    assert parse_axis("sfd.clearance_ratio=0.4 %, 0.5 %") == (
-        "sfd.clearance_ratio", ["0.4 %", "0.5 %"])
+    assert parse_axis("elements.sfd.clearance_ratio=0.4 %, 0.5 %") == (
+        "elements.sfd.clearance_ratio", ["0.4 %", "0.5 %"])
     assert parse_axis("base.pitching.value=0,3.5,6") == ("base.pitching.value", [0, 3.5, 6])
     with pytest.raises(ConfigError):
-        parse_axis("sfd.clearance_ratio=")
+        parse_axis("elements.sfd.clearance_ratio=")

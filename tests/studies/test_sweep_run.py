@@ -17,7 +17,7 @@ from rotorsfd.studies import DaskExecutor, SyntheticTask, load_sweep, run_sweep
 from rotorsfd.studies.executors import ProcessExecutor, SerialExecutor
 
 FILES = ("sweep.nc", "summary.csv", "sweep.json")
-AXES = {"sfd.clearance_ratio": ["0.4 %", "0.5 %", "0.6 %"],
+AXES = {"elements.sfd.clearance_ratio": ["0.4 %", "0.5 %", "0.6 %"],
         "unbalance[0].magnitude": ["40 g*mm", "50 g*mm"]}
 TASK = SyntheticTask(fail_above=0.0055)     # the 0.6 % row fails
 
@@ -59,8 +59,8 @@ def test_failed_points_recorded_and_rest_complete(config, tmp_path):
     assert result.complete and result.counts() == {"ok": 4, "incomplete": 0, "failed": 2,
                                                    "pending": 0}
     ds = load_sweep(tmp_path)
-    assert ds.sizes == {"sfd_clearance_ratio": 3, "unbalance_0_magnitude": 2, "sample": 5}
-    assert ds["sfd_clearance_ratio"].attrs == {"long_name": "sfd.clearance_ratio",
+    assert ds.sizes == {"elements_sfd_clearance_ratio": 3, "unbalance_0_magnitude": 2, "sample": 5}
+    assert ds["elements_sfd_clearance_ratio"].attrs == {"long_name": "elements.sfd.clearance_ratio",
                                                "units": "1"}
     assert ds["unbalance_0_magnitude"].attrs["units"] == "kg*m"
     status = ds["status"].values
@@ -76,7 +76,7 @@ def test_failed_points_recorded_and_rest_complete(config, tmp_path):
         assert raw["even"].attrs["_FillValue"] == -127        # bool -> int8 with fill
         assert raw["n_sample"].values[2].tolist() == [0, 0]   # no data at failed points
     lines = (tmp_path / "summary.csv").read_text().splitlines()
-    assert lines[0] == ("sfd_clearance_ratio,unbalance_0_magnitude_kg_m,point_id,status,"
+    assert lines[0] == ("elements_sfd_clearance_ratio,unbalance_0_magnitude_kg_m,point_id,status,"
                         "message,total,echo_0,echo_1,even,label")
     assert lines[1].startswith("0.004,4e-05,000000,ok,,0.00404,0.004,4e-05,")
     assert lines[5].startswith("0.006,4e-05,000004,failed,ConvergenceError")
@@ -134,31 +134,31 @@ def test_resume_recomputes_stale_and_retries_failed(config, tmp_path):
                   resume=True, retry_failed=True)
     assert r.computed == 2                                   # the failed points only
     changed = load_config(sweep_toml(tmp_path / "other.toml"),
-                          ["sfd.viscosity=0.006 Pa*s"])
+                          ["elements.sfd.viscosity=0.006 Pa*s"])
     r = run_sweep(changed, AXES, TASK, directory=tmp_path, workers=1, progress=False,
                   resume=True)
     assert r.computed == 6                                   # another config: all stale
 
 
 def test_resume_with_an_extended_grid_reuses_finished_values(config, tmp_path):
-    run_sweep(config, {"sfd.clearance_ratio": ["0.4 %", "0.5 %"]}, TASK,
+    run_sweep(config, {"elements.sfd.clearance_ratio": ["0.4 %", "0.5 %"]}, TASK,
               directory=tmp_path / "a", workers=1, progress=False)
     log = tmp_path / "log"
-    extended = {"sfd.clearance_ratio": ["0.3 %", "0.4 %", "0.45 %", "0.5 %"]}
+    extended = {"elements.sfd.clearance_ratio": ["0.3 %", "0.4 %", "0.45 %", "0.5 %"]}
     r = run_sweep(config, extended, SyntheticTask(fail_above=0.0055, log=str(log)),
                   directory=tmp_path / "a", workers=1, progress=False, resume=True)
     assert r.computed == 2 and len(log.read_text().splitlines()) == 2
     run_sweep(config, extended, TASK, directory=tmp_path / "b", workers=1, progress=False)
     assert _bytes(tmp_path / "a") == _bytes(tmp_path / "b")
     rec = json.loads((tmp_path / "a" / "points" / "000003.json").read_text())
-    assert rec["index"] == [3] and rec["values"] == {"sfd.clearance_ratio": 0.005}
+    assert rec["index"] == [3] and rec["values"] == {"elements.sfd.clearance_ratio": 0.005}
 
 
 def test_a_grid_invalid_everywhere_is_a_config_error(config, tmp_path):
     with pytest.raises(ConfigError, match=r"law = 'off'.*every grid point"):
         run_sweep(config, {"base.pitching.value": [1.0, 2.0]}, TASK, directory=tmp_path,
                   workers=1, progress=False)
-    r = run_sweep(config, {"sfd.clearance_ratio": [0.004, 1.5]}, TASK,
+    r = run_sweep(config, {"elements.sfd.clearance_ratio": [0.004, 1.5]}, TASK,
                   directory=tmp_path / "b", workers=1, progress=False)
     assert r.status("000001") == "failed"                   # one bad value: recorded
     assert "clearance" in r.records["000001"]["message"]

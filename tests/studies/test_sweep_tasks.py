@@ -98,7 +98,7 @@ def test_response_summary_without_stability_marks_missing():
 
 AXES_2x2 = """
 [[analysis.sweep.axes]]
-parameter = "sfd.clearance_ratio"
+parameter = "elements.sfd.clearance_ratio"
 values = ["0.45 %", "0.5 %"]
 
 [[analysis.sweep.axes]]

@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from rotorsfd.elements.sfd import SFDElement
 from rotorsfd.model import Disk, LinearSupport, Material, Rotor, uniform_shaft
 from rotorsfd.model.base_motion import BaseMotion, BaseState, UniformAcceleration
 from rotorsfd.model.base_terms import (
@@ -38,7 +39,7 @@ def small_system(base: BaseMotion) -> RotorSystem:
     rotor = Rotor(shaft, disks=[Disk.from_geometry(3, 7810.0, 0.03, 0.1, 0.05)],
                   supports=[LinearSupport.isotropic(1, 5e6), LinearSupport.isotropic(7, 1e7)])
     sfd = SFD(viscosity=0.0051, radius=0.0262, length=0.017, clearance=0.127e-3)
-    return RotorSystem(rotor, sfd, 1, [Unbalance(3, 5e-6, 0.3)], base)
+    return RotorSystem(rotor, [SFDElement("sfd", 1, sfd)], [Unbalance(3, 5e-6, 0.3)], base)
 
 
 def close(a: np.ndarray, b: np.ndarray) -> bool:

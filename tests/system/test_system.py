@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from rotorsfd.elements.sfd import SFDElement
 from rotorsfd.harmonic.periodic import solve_periodic
 from rotorsfd.model import Disk, LinearSupport, Material, Rotor, uniform_shaft
 from rotorsfd.model.base_motion import BaseMotion
@@ -21,7 +22,8 @@ def small_system(base: BaseMotion | None = None, magnitude: float = 5e-6) -> Rot
                   supports=[LinearSupport.isotropic(1, 5e6), LinearSupport.isotropic(7, 1e7)])
     sfd = SFD(viscosity=0.0051, radius=0.127e-3 / 0.00485, length=0.325 * 2 * 0.127e-3 / 0.00485,
               clearance=0.127e-3)
-    return RotorSystem(rotor, sfd, 1, [Unbalance(3, magnitude, 0.3)], base or BaseMotion())
+    return RotorSystem(rotor, [SFDElement("sfd", 1, sfd)], [Unbalance(3, magnitude, 0.3)],
+                       base or BaseMotion())
 
 
 @pytest.mark.parametrize("parameter", list(PARAMETERS))
@@ -51,8 +53,8 @@ def test_small_unbalance_gives_the_linear_response_with_the_film_as_a_damper() -
     M, D, K = system.matrices(speed)
     iy, iz = system.nl_dofs
     D = D.copy()
-    D[iy, iy] += system.sfd.linear_damping
-    D[iz, iz] += system.sfd.linear_damping
+    D[iy, iy] += system.elements[0].film.linear_damping
+    D[iz, iz] += system.elements[0].film.linear_damping
     Fc, Fs = system.unbalance_harmonics(speed)
     X1 = np.linalg.solve(K - speed**2 * M + 1j * speed * D, Fc - 1j * Fs)
     # The film's linear damping holds to O(eps^2); eps here is ~1e-4.

@@ -89,7 +89,7 @@ def isola(case):
     config, system, ref = case
     find = run_simulation(config, speed_ratio=1.075, from_hb=True, hb_phase=0.5,
                           steps_per_period=200, lyapunov_periods=0, progress=False)
-    C = system.sfd.clearance
+    C = system.length_scale
     assert find.poincare_q[-1, 0] / C == pytest.approx([-0.241, -0.901], abs=0.01)
     problem = system.periodic_problem()
     sol, _, _ = orbit_start(problem, find, 16)
@@ -106,7 +106,7 @@ def test_isola_at_1_07_is_period_1_and_agrees_with_floquet(case, isola) -> None:
     (0.27, -0.83) C): period-1 at the converged step, Floquet |mu|max 0.88-0.89."""
     _, system, ref = case
     X, r, _ = isola
-    C = system.sfd.clearance
+    C = system.length_scale
     assert r.step_check.converged
     assert r.poincare_q[-1, 0] / C == pytest.approx([-0.093, -0.920], abs=0.01)
     floquet = FloquetEvaluator(system.periodic_problem())(1.07 * ref, X)
@@ -167,7 +167,7 @@ def test_isola_period_3_at_1_062_matches_dop853(case, isola) -> None:
     DOP853 (rtol 1e-8) give the same Poincare points to 2e-3 C."""
     _, system, _ = case
     _, _, r = isola
-    C = system.sfd.clearance
+    C = system.length_scale
     assert r.motion_name == "period-3" and r.step_check.converged, r.summary()
     last = r.poincare_q[-3:, 0] / C
     assert min(np.hypot(*(last[i] - last[j])) for i, j in ((0, 1), (1, 2), (0, 2))) > 3e-3

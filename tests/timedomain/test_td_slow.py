@@ -22,21 +22,21 @@ def test_paper_rotor_2000_periods_land_on_the_hb_orbit() -> None:
     """Omega~ = 0.8, U = 360.04 g mm: the last 100 periods of the SFD journal equal the
     H = 8 periodic solution to 1e-3 C (independent methods: time stepping vs HB)."""
     model = build_model(load_config(PAPER))
-    system = RotorSystem(model.rotor, model.sfd, model.sfd_node, model.unbalances,
+    system = RotorSystem(model.rotor, model.elements, model.unbalances,
                          model.base_motion)
     speed = 0.8 * 811.3
     M, D, K = system.matrices(speed)
     Fc, Fs = system.unbalance_harmonics(speed)
     forcing = Forcing(speed, constant=system.static_force(speed),
                       harmonics=[HarmonicLoad(1, cos=Fc, sin=Fs)])
-    r = integrate(M, D, K, system.nl_dofs, model.sfd.numba_kernel, model.sfd.kernel_params,
+    r = integrate(M, D, K, system.nl_dofs, system.elements.kernel, system.elements.kernel_params,
                   forcing, steps_per_period=200, n_periods=2000, q0=1e-6,
                   record_start=1900 * 200)
     assert r.success
     X = solve_periodic(system.periodic_problem(), speed, H=8).X[:, system.nl_dofs]
     k = np.arange(X.shape[0])
     q_hb = (np.exp(1j * speed * np.outer(r.t, k)) @ X).real
-    C = model.sfd.clearance
+    C = model.elements[0].film.clearance
     assert np.abs(r.q - q_hb).max() < 1e-3 * C
     # and the orbit is a real one (not the trivial solution): about 0.15 C at the journal
     assert 0.05 * C < np.abs(r.q).max() < 0.5 * C

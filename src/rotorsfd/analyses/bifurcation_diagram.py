@@ -48,7 +48,7 @@ from rotorsfd.analyses.simulate import (
 )
 from rotorsfd.analyses.simulation_result import plain
 from rotorsfd.analyses.step_control import integrate_controlled
-from rotorsfd.errors import ConfigError, ConvergenceError, JournalContactError, RotorsfdError
+from rotorsfd.errors import ConfigError, ConvergenceError, ElementDomainError, RotorsfdError
 from rotorsfd.model import dofs
 from rotorsfd.model.system import RotorSystem
 
@@ -273,7 +273,7 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
         H = harmonics or 3
         name = title or ""
         out_nodes = tuple(nodes) if nodes else tuple(sorted(
-            {d.node for d in system.rotor.disks} | ({system.sfd_node} - {None}))) or (1,)
+            {d.node for d in system.rotor.disks} | set(system.element_nodes))) or (1,)
     else:
         config = config_or_system
         system = system_from_config(config, search_path)
@@ -308,11 +308,12 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
         raise ConfigError(f"{FIELD}.settle_periods", settle, "must be >= 1 with "
                           'analysis.simulate.steps_per_period = "auto" (the step is '
                           "chosen on the settling periods; step_check_periods >= 1 too)")
-    j = out_nodes.index(system.sfd_node) if system.sfd_node in out_nodes else 0
+    primary = system.primary_node
+    j = out_nodes.index(primary) if primary in out_nodes else 0
     opts = scheme_options(scheme or sim.scheme, sim.alpha if alpha is None else alpha)
     disp = sim.initial_displacement if initial_displacement is None else initial_displacement
     rd = [dofs.dof_index(nd, d) for nd in out_nodes for d in DIRECTIONS]
-    clearance = system.sfd.clearance if system.sfd is not None else None
+    clearance = system.length_scale
     runs = sweep_speeds(start, stop, n, direction)
     settings = {"speed_start_rad_s": min(start, stop), "speed_stop_rad_s": max(start, stop),
                 "n_speeds": n, "direction": direction, "settle_periods": settle,
@@ -359,13 +360,12 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
                     check_column=j, check_node=out_nodes[j], check_periods=n_chk,
                     tolerance=sim.step_tolerance,
                     max_steps_per_period=sim.max_steps_per_period, method_options=opts,
-                    chunk_periods=settle + rec, clearance=clearance,
-                    check_clearance=clearance if out_nodes[j] == system.sfd_node
-                    else None)
-            except (JournalContactError, ConvergenceError) as exc:
+                    chunk_periods=settle + rec,
+                    check_clearance=clearance if out_nodes[j] == primary else None)
+            except (ElementDomainError, ConvergenceError) as exc:
                 msg = " ".join(str(exc).split())
                 empty = np.zeros((0, nn, 2))
-                kind = "contact" if isinstance(exc, JournalContactError) else "failed"
+                kind = "contact" if isinstance(exc, ElementDomainError) else "failed"
                 points.append(SpeedPoint(d, speed, np.zeros(0), empty, empty, kind, None,
                                          None, msg, start=origin))
                 notes.append(f"{d} sweep: {kind} at {speed:.6g} rad/s ({origin} start); "
@@ -380,7 +380,7 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
                           2 * math.pi / speed / step, speed, first=2 * j,
                           n_record=rec * step)
             eps = None
-            if clearance is not None and system.sfd_node in out_nodes:
+            if clearance is not None and primary in out_nodes:
                 eps = float(np.max(np.hypot(tr.q[:, 2 * j], tr.q[:, 2 * j + 1]))) / clearance
             points.append(SpeedPoint(
                 d, speed, tr.poincare_t, tr.poincare_q.reshape(-1, nn, 2),

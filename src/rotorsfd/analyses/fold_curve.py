@@ -14,7 +14,8 @@ branches (the paper's Figure 19). Where the pair meets, the curve turns back in 
 a cusp, beyond which the bistability has vanished. Each turn starts a new ``segment``.
 
 Per point: ``speed_rad_s``, ``speed_ratio`` = Omega / Omega_ref, the second parameter,
-``sfd_eccentricity`` = max_t |q_sfd| / C, ``aliasing`` (the sampling error of N_f in the
+``max_eps`` = the largest validity measure of the elements over the orbit (an SFD's
+eccentricity ratio |q - o| / C), ``aliasing`` (the sampling error of N_f in the
 units of the Newton test: the change of the scaled residual if N_f doubled,
 :meth:`TwoParameterHB.sampling_error
 <rotorsfd.continuation.folds.TwoParameterHB.sampling_error>`, the criterion of
@@ -41,6 +42,7 @@ from rotorsfd.analyses.response import (
     _first_critical,
     column_slug,
     max_radius,
+    orbit_samples,
     system_parameter,
 )
 from rotorsfd.continuation.folds import (
@@ -73,7 +75,7 @@ class CuspPoint:
     speed_rad_s: float
     speed_ratio: float
     value: float            #: second parameter (SI)
-    sfd_eccentricity: float
+    max_eps: float
 
 
 @dataclass
@@ -180,7 +182,7 @@ class FoldCurve:
         for c in self.cusps:
             lines.append(f"cusp (a fold pair meets): {self.parameter} = {c.value:.6g} "
                          f"{self.units} at Omega~ = {c.speed_ratio:.5f} "
-                         f"({c.speed_rad_s:.2f} rad/s), eccentricity {c.sfd_eccentricity:.3f}")
+                         f"({c.speed_rad_s:.2f} rad/s), eccentricity {c.max_eps:.3f}")
         end = self.bistability_end
         if end is not None:
             lines.append(f"bistability vanishes at {self.parameter} = {end:.6g} {self.units}")
@@ -249,10 +251,9 @@ def _table(hb: TwoParameterHB, curves: list[FoldBranch], system: RotorSystem,
            ref: float, nodes: Sequence[int], value_column: str) -> dict[str, FloatArray]:
     cols: dict[str, list] = {k: [] for k in ("curve", "segment", "s", value_column,
                                               "speed_rad_s", "speed_ratio",
-                                              "sfd_eccentricity", "aliasing")}
+                                              "max_eps", "aliasing")}
     amp: dict[int, list] = {n: [] for n in nodes}
-    C = system.sfd.clearance
-    nl = system.nl_dofs
+    el = system.elements
     for k, c in enumerate(curves):
         for z, seg, s in zip(c.z, c.segment, c.s, strict=True):
             _, speed, value = hb.from_z(z)
@@ -263,7 +264,7 @@ def _table(hb: TwoParameterHB, curves: list[FoldBranch], system: RotorSystem,
             cols[value_column].append(value)
             cols["speed_rad_s"].append(speed)
             cols["speed_ratio"].append(speed / ref)
-            cols["sfd_eccentricity"].append(float(max_radius(X[:, nl[0]], X[:, nl[1]])) / C)
+            cols["max_eps"].append(el.limit(orbit_samples(X[:, el.nl_dofs])[0]))
             cols["aliasing"].append(hb.sampling_error(z, hb.N))
             for n in nodes:
                 iy, iz = dofs.dof_index(n, "y"), dofs.dof_index(n, "z")
@@ -398,8 +399,8 @@ def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_par
         for cp in c.cusps:
             _, speed, value = hb.from_z(cp.z)
             X = hb.coefficients(cp.z)
-            nl = system.nl_dofs
-            ecc = float(max_radius(X[:, nl[0]], X[:, nl[1]])) / system.sfd.clearance
+            el = system.elements
+            ecc = el.limit(orbit_samples(X[:, el.nl_dofs])[0])
             cusps.append(CuspPoint(speed, speed / ref, value, ecc))
     success = all(c.success for c in curves)
     timings = {"speed_branch": t1 - t0, "fold_curve": t2 - t1,
@@ -418,15 +419,15 @@ def run_fold_curve(config: Config, parameter: str, start: Any, stop: Any, *,
     its range (numbers in SI or strings with units)."""
     from rotorsfd.api import reference_speed as config_reference_speed
     from rotorsfd.io.schema import parameter_values
-    from rotorsfd.model.build import build_model
+    from rotorsfd.model.build import build_system
 
-    if config.sfd is None:
-        raise ConfigError("sfd", None, "the fold curve needs an [sfd] section")
+    if not config.elements:
+        raise ConfigError("elements", None, "the fold curve needs at least one nonlinear "
+                          "element (an [elements.<name>] table)")
     param = system_parameter(parameter)
     if param == "speed":
         raise ConfigError("--parameter", parameter, "must differ from the speed")
-    m = build_model(config, search_path)
-    system = RotorSystem(m.rotor, m.sfd, m.sfd_node, m.unbalances, m.base_motion)
+    system = build_system(config, search_path)
     ref = config_reference_speed(config, system)
     r = config.analysis.response
     lo, hi = r.speed_range.bounds(ref)

@@ -1,4 +1,4 @@
-"""Nonlinear periodic response of the rotor-SFD system: a branch of HB-AFT solutions
+"""Nonlinear periodic response of the rotor and its elements: a branch of HB-AFT solutions
 continued in the rotor speed (or a base rate, or the unbalance), its table, files and plots.
 
 ``run_response(config) -> ResponseResult`` reads ``[analysis.response]``; the result holds
@@ -8,7 +8,11 @@ plots. Quantities per point, for an output node n and direction d in (y, z)::
 
     static_<n>_<d>    = X_0                    [m]   (zero-order term)
     amp_<n>_<d>_h<k>  = |X_k|                  [m]   (half peak-to-peak of harmonic k)
-    defl_<n>          = max_t sqrt(y^2 + z^2) / C    (the paper's r~, C the SFD clearance)
+    defl_<n>          = max_t sqrt(y^2 + z^2) / C    (the paper's r~, C the smallest
+                                                      clearance of the elements)
+
+and per nonlinear element e its orbit diagnostics ``<key>_<e>`` (an SFD's ``eps_max_<e>``,
+the largest eccentricity ratio over the period; :meth:`ResponseResult.element_columns`).
 
 Per-point stability (``stable``, ``max_multiplier``, ``multipliers``) and the located
 bifurcations: computed after the branch by
@@ -100,6 +104,20 @@ def column_slug(text: str) -> str:
 # ---- quantities of a branch ----------------------------------------------------------------
 
 
+def orbit_samples(X: NDArray[np.complex128], frequency: float = 0.0, n: int | None = None
+                  ) -> tuple[FloatArray, FloatArray]:
+    """``(q, v)``, each ``(n, m)``: ``q(theta) = Re sum_k X_k exp(i k theta)`` of the
+    coefficients ``X (H+1, m)`` at ``n`` phases (default ``max(1024, 64 (H+1))``) and
+    ``v = w dq/dtheta`` at the frequency ``w`` [rad/s]."""
+    X = np.asarray(X, dtype=complex)
+    k = np.arange(X.shape[0])
+    n = n or max(1024, 64 * X.shape[0])
+    E = np.exp(1j * np.outer(k, 2 * np.pi * np.arange(n) / n))       # (H+1, n)
+    q = (X.T @ E).real.T
+    v = (frequency * (1j * k[:, None] * X).T @ E).real.T
+    return q, v
+
+
 def max_radius(Xy: NDArray[np.complex128], Xz: NDArray[np.complex128],
                n_grid: int | None = None) -> FloatArray:
     """max over one period of sqrt(y^2 + z^2), y(theta) = Re sum_k Xy_k exp(i k theta).
@@ -169,7 +187,9 @@ class ResponseResult:
             return str(b.message)
         last = (f"Omega~ = {b.frequency[-1] / self.reference_speed:.5g}" if self.is_speed
                 else f"{self.parameter} = {b.lam[-1]:.6g} {self.parameter_units}")
-        return f"response branch stopped after {b.n_points} points at {last}: {b.message}"
+        limit = self.limit_text()
+        return (f"response branch stopped after {b.n_points} points at {last}: {b.message}"
+                + (f"; {limit}" if limit else ""))
 
     @property
     def is_speed(self) -> bool:
@@ -188,8 +208,8 @@ class ResponseResult:
 
     @property
     def clearance(self) -> float:
-        """SFD radial clearance C [m] (the length scale of r~)."""
-        return float(self.system.sfd.clearance)
+        """The elements' length scale C [m] (the smallest clearance; the scale of r~)."""
+        return float(self.system.length_scale or 1.0)
 
     @property
     def speeds(self) -> FloatArray:
@@ -225,6 +245,7 @@ class ResponseResult:
                     cols[f"amp_{n}_{d}_h{k}"] = self.amplitude(n, d, k)
         for n in self.nodes:
             cols[f"defl_{n}"] = self.deflection(n)
+        cols.update(self.element_columns())
         cols.update(point_info_columns(self.branch))
         if self.stable is not None:
             cols["stable"] = np.asarray(self.stable, dtype=bool)
@@ -232,6 +253,36 @@ class ResponseResult:
             cols["max_multiplier"] = np.asarray(self.max_multiplier, dtype=float)
         cols.update(self.floquet_columns())
         return cols
+
+    def element_columns(self) -> dict[str, FloatArray]:
+        """Every element's orbit diagnostics along the branch, ``<key>_<element name>``
+        (``eps_max_<name>`` of an SFD): the element's ``diagnostics`` of the orbit sampled
+        at ``max(1024, 64 (H + 1))`` phases, ``v = w dq/dtheta``."""
+        el = self.system.elements
+        b = self.branch
+        if not len(el) or not b.n_points:
+            return {}
+        rows = [el.diagnostics(*orbit_samples(b.X[i][:, el.nl_dofs], b.frequency[i]))
+                for i in range(b.n_points)]
+        return {key: np.array([r[key] for r in rows]) for key in rows[0]}
+
+    def limit_text(self) -> str:
+        """Which element is nearest its validity limit at the last point, and the limit
+        (``analysis.response.max_eccentricity``)."""
+        el = self.system.elements
+        b = self.branch
+        if not len(el) or not b.n_points:
+            return ""
+        element, value = el.limiting(orbit_samples(b.X[-1][:, el.nl_dofs])[0])
+        if element is None:
+            return ""
+        limit = self.info.get("limit_max")
+        text = (f"element {element.name!r} ({element.describe()}) at {element.limit_label} "
+                f"= {value:.4g} at the last point")
+        if limit is not None and value > 0.9 * limit:
+            text += (f", near the limit analysis.response.max_eccentricity = {limit:g} "
+                     "(raise it, up to 0.999, to continue closer to the housing)")
+        return text
 
     def floquet_columns(self) -> dict[str, NDArray[Any]]:
         """``floquet_intervals`` (the Newmark M of every point) and ``multiplier_error``
@@ -270,7 +321,8 @@ class ResponseResult:
         from rotorsfd.io.branch_files import branch_dataset
 
         attrs = {"run_title": self.title, "clearance_m": self.clearance,
-                 "sfd_node": int(self.system.sfd_node), "output_nodes":
+                 "elements": "; ".join(e.describe() for e in self.system.elements),
+                 "output_nodes":
                  np.asarray(self.nodes, dtype=np.int32), "output_directions":
                  " ".join(self.directions), "rotorsfd_version": __version__,
                  "elapsed_s": float(self.elapsed)}
@@ -479,8 +531,7 @@ def _options(r: ResponseAnalysis) -> dict[str, Any]:
 
 def _default_nodes(system: RotorSystem) -> tuple[int, ...]:
     nodes = {d.node for d in system.rotor.disks}
-    if system.sfd_node is not None:
-        nodes.add(system.sfd_node)
+    nodes.update(system.element_nodes)
     return tuple(sorted(nodes)) or (1,)
 
 
@@ -612,6 +663,8 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
                             None if sys_param == "speed" else float(speed), name,
                             time.perf_counter() - t0)
     result.info.update(orbit_info)
+    if "limit_max" in opts:
+        result.info["limit_max"] = float(opts["limit_max"])
     if data and len(data) >= branch.n_points:
         pts = [data[i] for i in range(branch.n_points)]
         mu = None
@@ -711,13 +764,13 @@ def _from_config(config: Config, search_path: Path | None, parameter: str | None
     """(system, parameter path, reference speed, H, options, (start, stop, speed), nodes)."""
     from rotorsfd.api import reference_speed as config_reference_speed
     from rotorsfd.io.schema import parameter_values
-    from rotorsfd.model.build import build_model
+    from rotorsfd.model.build import build_system
 
     r = config.analysis.response
-    if config.sfd is None:
-        raise ConfigError("sfd", None, "the nonlinear response needs an [sfd] section")
-    m = build_model(config, search_path)
-    system = RotorSystem(m.rotor, m.sfd, m.sfd_node, m.unbalances, m.base_motion)
+    if not config.elements:
+        raise ConfigError("elements", None, "the nonlinear response needs at least one "
+                          "nonlinear element (an [elements.<name>] table)")
+    system = build_system(config, search_path)
     path = (parameter or r.parameter).strip()
     sys_param = system_parameter(path)
     ref = reference_speed if reference_speed is not None else config_reference_speed(

@@ -67,7 +67,7 @@ from rotorsfd.analyses.td_integration import (
     time_domain_inputs,
 )
 from rotorsfd.analyses.td_lyapunov import lyapunov_pair
-from rotorsfd.errors import ConfigError, ConvergenceError, JournalContactError
+from rotorsfd.errors import ConfigError, ConvergenceError, ElementDomainError
 from rotorsfd.model import dofs
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.timedomain import (
@@ -202,16 +202,14 @@ def load_state(path: str | Path) -> SavedState:
 
 def system_from_config(config: Config, search_path: Path | None = None) -> RotorSystem:
     """The :class:`RotorSystem` of a configuration."""
-    from rotorsfd.model.build import build_model
+    from rotorsfd.model.build import build_system
 
-    m = build_model(config, search_path)
-    return RotorSystem(m.rotor, m.sfd, m.sfd_node, m.unbalances, m.base_motion)
+    return build_system(config, search_path)
 
 
 def _default_nodes(system: RotorSystem) -> tuple[int, ...]:
     nodes = {d.node for d in system.rotor.disks}
-    if system.sfd_node is not None:
-        nodes.add(system.sfd_node)
+    nodes.update(system.element_nodes)
     return tuple(sorted(nodes)) or (1,)
 
 
@@ -355,9 +353,10 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
         start = (f"final state of {saved.source or 'a previous run'} (t = {saved.t:.6g} s "
                  f"at {saved.speed:.6g} rad/s; this run starts at t = {t_start:.6g} s)")
     elif from_hb:
-        if system.sfd is None or not system.base.is_constant:
-            raise ConfigError("from_hb", True, "the HB start needs an SFD and a constant "
-                              "base motion (start from the displaced state instead)")
+        if not len(system.elements) or not system.base.is_constant:
+            raise ConfigError("from_hb", True, "the HB start needs a nonlinear element and "
+                              "a constant base motion (start from the displaced state "
+                              "instead)")
         start = f"HB periodic solution (H={H})" + (
             f" shifted by {hb_phase:g} of the period" if hb_phase else "")
         q_init, v_init = hb_start(system, speed, H, h_samples, phase=hb_phase)
@@ -367,8 +366,9 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
     inputs = time_domain_inputs(system, speed,
                                 horizon=t_start + (n_per + n_ly + 1) * T)
     rd = [dofs.dof_index(nd, d) for nd in out_nodes for d in DIRECTIONS]
-    clearance = system.sfd.clearance if system.sfd is not None else None
-    jc = _first_column(out_nodes, system.sfd_node)
+    clearance = system.length_scale
+    primary = system.primary_node
+    jc = _first_column(out_nodes, primary)
     settings = {"speed_rad_s": speed, "speed_ratio": speed / ref if ref else None,
                 "reference_speed_rad_s": ref, "scheme": scheme, **opts,
                 "step_control": "auto" if auto else "fixed",
@@ -392,8 +392,7 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
             record_dofs=rd, record_periods=n_keep, poincare_periods=n_pc,
             check_column=jc, check_node=out_nodes[jc], check_periods=n_chk, tolerance=tol,
             max_steps_per_period=cap, method_options=opts, chunk_periods=chunk_periods,
-            clearance=clearance,
-            check_clearance=clearance if out_nodes[jc] == system.sfd_node else None,
+            check_clearance=clearance if out_nodes[jc] == primary else None,
             t0=t_start, progress=tick)
     finally:
         bar.close()
@@ -420,7 +419,7 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
             lyap, lyap_full = pair.reduced, pair.full
             settings["lyapunov_modes_kept"] = pair.n_modes
             settings["lyapunov_omega_max_rad_s"] = pair.omega_max
-        except (JournalContactError, ConvergenceError) as exc:
+        except (ElementDomainError, ConvergenceError) as exc:
             notes.append(f"no Lyapunov exponent: {' '.join(str(exc).split())}")
     settings["elapsed_lyapunov_s"] = time.perf_counter() - tic_ly
     motion = classify(traj.poincare_q, traj.poincare_v, traj.q, traj.v, T / spp, speed,
@@ -429,19 +428,19 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
         notes.append("fewer than 8 Poincare points: motion not classified")
     elapsed = time.perf_counter() - tic
     eps_rec = None
-    if clearance is not None and system.sfd_node in out_nodes:
-        j = out_nodes.index(system.sfd_node)
+    if clearance is not None and primary in out_nodes:
+        j = out_nodes.index(primary)
         eps_rec = float(np.max(np.hypot(q[:, j, 0], q[:, j, 1]))) / clearance
     elif clearance is not None:
         eps_rec = eps_run
     return SimulationResult(speed, ref, tuple(out_nodes), traj.t, q, v, traj.poincare_t, pq,
-                            pv, motion, lyap, clearance, system.sfd_node, settings, eps_rec,
+                            pv, motion, lyap, clearance, primary, settings, eps_rec,
                             eps_run, traj.q_final, traj.v_final,
                             traj.t_final, elapsed, name, notes, control, lyap_full)
 
 
-def _first_column(nodes: Sequence[int], sfd_node: int | None) -> int:
-    return list(nodes).index(sfd_node) if sfd_node in nodes else 0
+def _first_column(nodes: Sequence[int], node: int | None) -> int:
+    return list(nodes).index(node) if node in nodes else 0
 
 
 def classify(pq: np.ndarray, pv: np.ndarray, q: np.ndarray, v: np.ndarray, dt: float,

@@ -71,7 +71,7 @@ class SimulationResult:
     motion: MotionClass | None
     lyapunov: LyapunovResult | None
     clearance: float | None
-    sfd_node: int | None
+    element_node: int | None
     settings: dict[str, Any]
     max_eccentricity: float | None
     max_eccentricity_run: float | None
@@ -103,7 +103,7 @@ class SimulationResult:
     @property
     def plot_node(self) -> int:
         """The SFD journal if recorded, else the first output node."""
-        return self.sfd_node if self.sfd_node in self.nodes else self.nodes[0]
+        return self.element_node if self.element_node in self.nodes else self.nodes[0]
 
     def column(self, node: int) -> int:
         return self.nodes.index(node)
@@ -145,7 +145,7 @@ class SimulationResult:
             attrs["speed_ratio"] = self.speed_ratio
         if self.clearance is not None:
             attrs["clearance_m"] = self.clearance
-            attrs["sfd_node"] = int(self.sfd_node)
+            attrs["element_node"] = int(self.element_node)
         attrs["t_final_s"] = float(self.t_final)
         attrs["final_phase_rad"] = float(math.fmod(self.speed * self.t_final, 2 * math.pi))
         attrs["initial_state"] = str(self.settings.get("initial_state", ""))
@@ -203,7 +203,7 @@ class SimulationResult:
                                                                  self.period)},
             "max_eccentricity": self.max_eccentricity,
             "max_eccentricity_whole_run": self.max_eccentricity_run,
-            "clearance_m": self.clearance, "sfd_node": self.sfd_node,
+            "clearance_m": self.clearance, "element_node": self.element_node,
             "nodes": list(self.nodes), "settings": self.settings,
             "elapsed_s": self.elapsed, "t_final_s": self.t_final, "notes": self.notes,
             "step_check": None if self.step_check is None else self.step_check.as_dict(),
@@ -245,7 +245,7 @@ class SimulationResult:
             py=self.poincare_q[:, j, 0] / scale, pz=self.poincare_q[:, j, 1] / scale,
             pvy=self.poincare_v[:, j, 0] / (scale * self.speed),
             frequency_ratio=ratio, amplitude=amp / scale,
-            clearance_circle=self.clearance is not None and node == self.sfd_node,
+            clearance_circle=self.clearance is not None and node == self.element_node,
             unit="C" if self.clearance else "m", title=title)
 
     def summary(self) -> str:

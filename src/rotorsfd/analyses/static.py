@@ -86,11 +86,10 @@ def run_static(config_or_system: Config | RotorSystem, *, speeds: Sequence[float
     else:
         from rotorsfd.api import modal_speeds
         from rotorsfd.api import reference_speed as config_reference_speed
-        from rotorsfd.model.build import build_model
+        from rotorsfd.model.build import build_system
 
         config = config_or_system
-        m = build_model(config, search_path)
-        system = RotorSystem(m.rotor, m.sfd, m.sfd_node, m.unbalances, m.base_motion)
+        system = build_system(config, search_path)
         ref = reference_speed or config_reference_speed(config, system)
         speeds = modal_speeds(config, ref) if speeds is None else speeds
         title = config.title

@@ -44,7 +44,7 @@ from rotorsfd.analyses.td_integration import (
     Trajectory,
     integrate_periods,
 )
-from rotorsfd.errors import ConvergenceError, JournalContactError
+from rotorsfd.errors import ConvergenceError, ElementDomainError
 from rotorsfd.model import dofs
 
 STEP_TOLERANCE = 1e-3
@@ -76,24 +76,22 @@ class Window:
 
 def run_window(inputs: TimeDomainInputs, start: tuple[np.ndarray, np.ndarray, float], *,
                steps_per_period: int, periods: int, node: int,
-               method_options: dict[str, Any] | None = None,
-               clearance: float | None = None) -> Window:
+               method_options: dict[str, Any] | None = None) -> Window:
     """Integrate ``periods`` periods from ``start = (q, v, t)`` recording ``node``."""
     rd = [dofs.dof_index(node, d) for d in DIRECTIONS]
     tr = integrate_periods(inputs, start[0], start[1], steps_per_period=steps_per_period,
                            periods=periods, record_dofs=rd, record_periods=periods,
                            poincare_periods=periods, method_options=method_options,
-                           clearance=clearance, t0=start[2])
+                           t0=start[2])
     return Window(int(steps_per_period), int(periods), tr.t, tr.q, tr.poincare_q,
                   (tr.q_final, tr.v_final, tr.t_final))
 
 
 def extend_window(inputs: TimeDomainInputs, w: Window, periods: int, *, node: int,
-                  method_options: dict[str, Any] | None = None,
-                  clearance: float | None = None) -> Window:
+                  method_options: dict[str, Any] | None = None) -> Window:
     """``w`` continued by ``periods`` more periods from its final state."""
     more = run_window(inputs, w.end, steps_per_period=w.steps_per_period, periods=periods,
-                      node=node, method_options=method_options, clearance=clearance)
+                      node=node, method_options=method_options)
     return Window(w.steps_per_period, w.periods + periods,
                   np.concatenate([w.t, more.t[1:]]), np.concatenate([w.q, more.q[1:]]),
                   np.concatenate([w.pq, more.pq]), more.end)
@@ -238,8 +236,8 @@ def halving_check(inputs: TimeDomainInputs, start: tuple[np.ndarray, np.ndarray,
     steps = (base.steps_per_period, 2 * base.steps_per_period)
     try:
         fine = run_window(inputs, start, steps_per_period=steps[1], periods=base.periods,
-                          node=node, method_options=method_options, clearance=clearance)
-    except (JournalContactError, ConvergenceError) as exc:
+                          node=node, method_options=method_options)
+    except (ElementDomainError, ConvergenceError) as exc:
         return failed_check(steps, base.periods, node, unit, tolerance, exc,
                             time.perf_counter() - tic)
     c = compare_windows(base, fine, node=node, scale=scale, unit=unit, tolerance=tolerance)
@@ -350,7 +348,7 @@ def auto_step(inputs: TimeDomainInputs, start: tuple[np.ndarray, np.ndarray, flo
     scale, unit = check_scale(clearance, base.q)
     checks: list[StepCheck] = []
     coarse = base
-    kw = {"node": node, "method_options": method_options, "clearance": clearance}
+    kw = {"node": node, "method_options": method_options}
     while 2 * coarse.steps_per_period <= max_steps_per_period:
         t0 = time.perf_counter()
         steps = (coarse.steps_per_period, 2 * coarse.steps_per_period)
@@ -368,7 +366,7 @@ def auto_step(inputs: TimeDomainInputs, start: tuple[np.ndarray, np.ndarray, flo
                 c = compare_windows(coarse, fine, node=node, scale=scale, unit=unit,
                                     tolerance=tolerance)
                 extensions += 1
-        except (JournalContactError, ConvergenceError) as exc:
+        except (ElementDomainError, ConvergenceError) as exc:
             checks.append(failed_check(steps, coarse.periods, node, unit, tolerance, exc,
                                        time.perf_counter() - t0))
             break
@@ -400,7 +398,7 @@ def integrate_controlled(inputs: TimeDomainInputs, q0: Any, v0: Any, *,
                          check_node: int, check_periods: int,
                          tolerance: float = STEP_TOLERANCE, max_steps_per_period: int = 3200,
                          method_options: dict[str, Any] | None = None,
-                         chunk_periods: int | None = None, clearance: float | None = None,
+                         chunk_periods: int | None = None,
                          check_clearance: float | None = None, t0: float = 0.0,
                          progress: Any = None) -> ControlledRun:
     """``periods`` periods from ``(q0, v0)`` at ``t0`` with the step control of the module
@@ -409,9 +407,9 @@ def integrate_controlled(inputs: TimeDomainInputs, q0: Any, v0: Any, *,
     ``periods > record_periods``) or an integer (one halving over the last
     ``check_periods <= poincare_periods``, 0: none). ``check_column``: the column pair
     (y at ``2 j``) of ``record_dofs`` that is node ``check_node``, compared in units of
-    ``check_clearance`` (None: the orbit's max radius); ``clearance`` flags contact."""
+    ``check_clearance`` (None: the orbit's max radius)."""
     common = {"record_dofs": record_dofs, "method_options": method_options,
-              "chunk_periods": chunk_periods, "clearance": clearance}
+              "chunk_periods": chunk_periods}
     chk = {"node": check_node, "tolerance": tolerance, "method_options": method_options,
            "clearance": check_clearance}
     cols = slice(2 * check_column, 2 * check_column + 2)

@@ -18,7 +18,8 @@ from typing import Any
 
 import numpy as np
 
-from rotorsfd.errors import ConfigError, ConvergenceError, JournalContactError
+from rotorsfd.elements.composite import ElementSet
+from rotorsfd.errors import ConfigError, ConvergenceError
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.timedomain import Forcing, HarmonicLoad, TimeVaryingMatrices
 from rotorsfd.timedomain import newmark as nm
@@ -44,6 +45,7 @@ class TimeDomainInputs:
     forcing: Forcing
     time_varying: TimeVaryingMatrices | None
     speed: float
+    elements: ElementSet | None = None
 
     @property
     def period(self) -> float:
@@ -81,15 +83,15 @@ def time_domain_inputs(system: RotorSystem, speed: float, *,
         raise ConfigError(f"{FIELD}.speed", speed, "the rotor speed must be > 0 rad/s")
     r = system.rotor
     nl = system.nl_dofs
-    kernel = system.sfd.numba_kernel if system.sfd is not None else None
-    params = system.sfd.kernel_params if system.sfd is not None else None
+    el = system.elements
+    kernel, params = (el.kernel, el.kernel_params) if len(el) else (None, None)
     if system.base.is_constant:
         M, D, K = system.matrices(speed)
         Fc, Fs = system.unbalance_harmonics(speed)
         harm = [HarmonicLoad(1.0, Fc, Fs)] if system.unbalances else []
         forcing = Forcing(omega=speed, constant=system.static_force(speed), harmonics=harm)
         return TimeDomainInputs(M, D.copy(), K.copy(), nl, kernel, params, forcing, None,
-                                float(speed))
+                                float(speed), el)
     from rotorsfd.model.base_terms import time_varying_terms
     from rotorsfd.model.unbalance import unbalance_series
 
@@ -108,7 +110,7 @@ def time_domain_inputs(system: RotorSystem, speed: float, *,
     tv = TimeVaryingMatrices(damping=damping, stiffness=stiffness) \
         if damping or stiffness else None
     return TimeDomainInputs(r.M, np.asarray(D, float), np.asarray(K, float), nl, kernel,
-                            params, forcing, tv, float(speed))
+                            params, forcing, tv, float(speed), el)
 
 
 def scheme_options(scheme: str, alpha: float) -> dict[str, Any]:
@@ -156,16 +158,18 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
                       periods: int, record_dofs: Sequence[int], record_periods: int,
                       poincare_periods: int, method_options: dict[str, Any] | None = None,
                       chunk_periods: int | None = None, progress: Any = None,
-                      clearance: float | None = None, t0: float = 0.0,
+                      t0: float = 0.0,
                       snapshot_period: int | None = None) -> Trajectory:
     """Integrate ``periods`` rotor periods in chunks from ``(q0, v0)`` at ``t0``.
 
     ``snapshot_period`` (0 < p < periods): a chunk ends after p periods and the full state
     there is kept (``Trajectory.snapshot = (q, v, t)``, the start of the step check).
 
-    ``progress(periods_done)`` is called after each chunk. Contact raises
-    :class:`JournalContactError` (time, rotor period, eccentricity in the message); other
-    failures :class:`ConvergenceError`.
+    ``progress(periods_done)`` is called after each chunk. A state outside an element's
+    law raises that element's contact error (an SFD's
+    :class:`~rotorsfd.errors.JournalContactError`, with the time and rotor period in its
+    ``where``); other failures :class:`ConvergenceError`. ``max_eccentricity_run`` is the
+    largest validity measure of the elements over the run (None if none has one).
     """
     spp = int(steps_per_period)
     n_steps = spp * int(periods)
@@ -174,6 +178,8 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
                  inputs.forcing, dt, n_steps, t0=t0, time_varying=inputs.time_varying,
                  **(method_options or {}))
     nl = ps.nl
+    elements = inputs.elements
+    limited = elements is not None and any(e.limit_label is not None for e in elements)
     rd = np.asarray(record_dofs, dtype=np.int64)
     rec_all = np.concatenate([rd, nl]).astype(np.int64)
     rec_start = (periods - record_periods) * spp
@@ -194,20 +200,19 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
                                 record_start=0, poincare_every=spp, poincare_start=0,
                                 record_initial=(done == 0))
         newton_max = max(newton_max, int(info[nm.I_NEWTON_MAX]))
-        if nl.size and clearance and smp["q"].shape[0]:
-            qn = smp["q"][:, rd.size:rd.size + 2]
-            eps_max = max(eps_max, float(np.max(np.hypot(qn[:, 0], qn[:, 1]))) / clearance)
+        if limited and smp["q"].shape[0]:
+            eps_max = max(eps_max, elements.limit(smp["q"][:, rd.size:]))
         if status != nm.OK:
             step = int(info[nm.I_STEP]) + 1
             t = ps.t0 + step * dt
             where = (f"t={t:.6g} s, rotor period {step / spp:.2f} of {periods} "
                      f"(step {step})")
-            if status == nm.CONTACT:
-                y, z, vy, vz = (float(x) for x in smp["fail"][:4])  # q_nl (y, z), v_nl
-                eps = math.hypot(y, z) / clearance if clearance else math.nan
-                where += (": the step's Newton iterates reached the contact limit (state "
-                          "of the last iterate)")
-                err = JournalContactError(eps, y, z, vy, vz, where=where)
+            if status == nm.CONTACT and elements is not None:
+                m = nl.size
+                q_nl, v_nl = smp["fail"][:m], smp["fail"][m:2 * m]   # the last iterate
+                where += (": the step's Newton iterates left the element's force law "
+                          "(state of the last iterate)")
+                err = elements.located_contact(q_nl, v_nl, where)
                 err.time, err.period = t, step / spp
                 raise err
             raise ConvergenceError(f"time integration: {MESSAGES.get(status)} at {where}")
@@ -229,5 +234,5 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
     cat = {k: np.concatenate(v) for k, v in parts.items()}
     return Trajectory(cat["t"], cat["q"], cat["v"], cat["pt"], cat["pq"], cat["pv"], rd,
                       state.X[:n].copy(), state.X[n:2 * n].copy(), ps.t0 + state.step * dt,
-                      eps_max if nl.size and clearance else None, newton_max, snapshot)
+                      eps_max if limited else None, newton_max, snapshot)
 

@@ -8,7 +8,8 @@ With elements ``e`` acting on DOFs ``dofs_e``, the nonlinear DOFs are their unio
 where ``l_e`` are the positions of ``dofs_e`` in ``nl_dofs`` (elements may share DOFs, an
 SFD and a rub at one node: their forces add). The compiled composite kernel is generated
 for the layout (a loop over the elements with their DOF positions and parameter offsets,
-calling each element's own kernel) and compiled once per layout; a single element whose
+calling each element's own kernel) and compiled once per layout and process; a single
+element whose
 DOFs are the nonlinear DOFs in order is passed through unchanged (no overhead). The kernel
 returns ``e + 1`` when element ``e`` reports a state outside its law's domain.
 """
@@ -177,7 +178,9 @@ class ElementSet:
 
 def _composite_kernel(key: tuple) -> Any:
     """Generate and compile the composite kernel of a layout ``key``: per element (its
-    kernel, its DOF positions, its parameter slice), then the number of nonlinear DOFs."""
+    kernel, its DOF positions, its parameter slice), then the number of nonlinear DOFs.
+    Compiled in memory, once per layout and process (a few seconds: the element kernels
+    are inlined; numba does not cache generated code on disk)."""
     from numba import njit
 
     *layout, _m = key

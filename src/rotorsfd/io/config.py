@@ -1,6 +1,6 @@
 """Load, override, validate and show configurations.
 
-``load_config("rotor.toml", overrides=["sfd.clearance_ratio=0.61 %"]) -> Config``.
+``load_config("rotor.toml", overrides=["elements.sfd.clearance_ratio=0.61 %"]) -> Config``.
 An override is ``KEY=VALUE``: KEY a dotted path into the TOML (``rotor.shaft[0].length``
 or ``rotor.shaft.0.length``; lists are indexed from 0), VALUE a TOML value or, if it is not
 one, a bare string (so ``0.61 %`` and ``none`` need no quotes). Every problem is raised as
@@ -23,7 +23,7 @@ import math
 import tomllib
 import types
 import typing
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -139,12 +139,15 @@ def validate(data: Mapping[str, Any]) -> Config:
     return config
 
 
-def _strict_booleans(model: type[BaseModel], data: Any, where: tuple[Any, ...]) -> None:
+def _strict_booleans(model: type[BaseModel], data: Any, where: tuple[Any, ...],
+                     root: Any = None) -> None:
     """ConfigError for a true/false field given anything but a TOML boolean: pydantic
     takes ``"yes"``, ``"off"``, ``1`` and ``"false"`` (a string, hence truthy to a reader)
-    as booleans; a config must say ``true`` or ``false``."""
+    as booleans; a config must say ``true`` or ``false``. ``root``: the whole raw config
+    (default ``data``)."""
     if not isinstance(data, Mapping):
         return
+    root = data if root is None else root
     for key, value in data.items():
         info = model.model_fields.get(key) if isinstance(key, str) else None
         if info is None:
@@ -152,18 +155,18 @@ def _strict_booleans(model: type[BaseModel], data: Any, where: tuple[Any, ...]) 
         annotation = unwrap(info.annotation)
         path = (*where, key)
         if annotation is bool and not isinstance(value, bool):
-            desc = _description(list(path))
+            desc = _description(list(path), root)
             raise ConfigError(_join(path), value, "expected true or false"
                               + (f": {desc}" if desc else ""))
         if isinstance(annotation, type) and issubclass(annotation, BaseModel):
-            _strict_booleans(annotation, value, path)
+            _strict_booleans(annotation, value, path, root)
         elif typing.get_origin(annotation) in (list, dict):
-            item = unwrap(typing.get_args(annotation)[-1])
-            if isinstance(item, type) and issubclass(item, BaseModel):
-                items = value.items() if isinstance(value, Mapping) else \
-                    enumerate(value) if isinstance(value, list) else ()
-                for k, v in items:
-                    _strict_booleans(item, v, (*path, k))
+            items = value.items() if isinstance(value, Mapping) else \
+                enumerate(value) if isinstance(value, list) else ()
+            for k, v in items:
+                item = table_model(typing.get_args(annotation)[-1], v)
+                if isinstance(item, type) and issubclass(item, BaseModel):
+                    _strict_booleans(item, v, (*path, k), root)
 
 
 def with_values(config: Config, values: Mapping[str, Any]) -> Config:
@@ -183,7 +186,8 @@ def parse_override(item: str) -> tuple[str, Any]:
     key, sep, text = item.partition("=")
     key, text = key.strip(), text.strip()
     if not sep or not key:
-        raise ConfigError("--set", item, "expected KEY=VALUE, e.g. sfd.clearance_ratio=0.61%")
+        raise ConfigError("--set", item,
+                          "expected KEY=VALUE, e.g. elements.sfd.clearance_ratio=0.61%")
     if not text:
         raise ConfigError(key, item, "--set needs a value after '='")
     try:
@@ -249,6 +253,22 @@ def _lookup(data: Any, loc: Iterable[Any]) -> tuple[bool, Any]:
     return True, data
 
 
+def table_model(annotation: Any, table: Any) -> Any:
+    """The model of one table of a field: for tables of several kinds (a union of models
+    told apart by their ``kind``, the ``[elements.<name>]`` tables) the member whose kind
+    the table names; otherwise :func:`unwrap`."""
+    inner = annotation
+    while typing.get_origin(inner) is typing.Annotated:
+        inner = typing.get_args(inner)[0]
+    if typing.get_origin(inner) in (typing.Union, types.UnionType) and isinstance(
+            table, Mapping):
+        for member in typing.get_args(inner):
+            fields = getattr(member, "model_fields", {})
+            if "kind" in fields and fields["kind"].default == table.get("kind"):
+                return member
+    return unwrap(annotation)
+
+
 def unwrap(annotation: Any) -> Any:
     """The model or container inside Optional / Annotated."""
     while True:
@@ -263,26 +283,45 @@ def unwrap(annotation: Any) -> Any:
             return annotation
 
 
-def _schema_at(loc: Iterable[Any]) -> tuple[type[BaseModel] | None, Any]:
-    """(model class holding the last field of ``loc``, that field's FieldInfo or None)."""
+def _schema_at(loc: Sequence[Any], data: Any = None
+               ) -> tuple[type[BaseModel] | None, Any]:
+    """(model class holding the last field of ``loc``, that field's FieldInfo or None);
+    ``data`` (the raw tables) picks the model of a table of several kinds."""
     model: Any = Config
     info = None
     holder = None
-    for part in loc:
+    for i, part in enumerate(loc):
         if isinstance(model, type) and issubclass(model, BaseModel):
             info = model.model_fields.get(part) if isinstance(part, str) else None
             if info is None:
                 return model, None
             holder, model = model, unwrap(info.annotation)
         elif typing.get_origin(model) in (list, dict):
-            model = unwrap(typing.get_args(model)[-1])
+            model = table_model(typing.get_args(model)[-1], _lookup(data, loc[:i + 1])[1])
         else:
             return holder, info
     return holder, info
 
 
-def _description(loc: list[Any]) -> str:
-    _, info = _schema_at(loc)
+def _without_tags(loc: Sequence[Any], data: Any) -> list[Any]:
+    """``loc`` without the tags pydantic adds inside unions: a member type of a union field
+    (``harmonics: int | 'auto'`` tags ``'int'``, ``"literal['auto']"``) and the kind of a
+    table of several kinds (``elements.front.sfd.viscosity``)."""
+    out: list[Any] = []
+    for i, p in enumerate(loc):
+        if i == len(loc) - 1 and i > 0 and isinstance(p, str) and (
+                p in ("int", "float", "str", "bool") or p.startswith("literal[")):
+            continue
+        found, table = _lookup(data, out)
+        if (i > 0 and isinstance(p, str) and found and isinstance(table, Mapping)
+                and table.get("kind") == p and p not in table):
+            continue
+        out.append(p)
+    return out
+
+
+def _description(loc: list[Any], data: Any = None) -> str:
+    _, info = _schema_at(loc, data)
     if info is None:
         return ""
     if info.description:
@@ -306,11 +345,7 @@ _TYPES = {
 def to_config_error(exc: ValidationError, data: Any) -> ConfigError:
     """The first pydantic error as one ConfigError: dotted field, value, what is allowed."""
     err = exc.errors()[0]
-    # a union field (e.g. harmonics: int | 'auto') tags its members' errors with the
-    # member type ('int', "literal['auto']"): not a part of the field's path
-    loc = [p for i, p in enumerate(err["loc"]) if not (
-        i == len(err["loc"]) - 1 and i > 0 and isinstance(p, str)
-        and (p in ("int", "float", "str", "bool") or p.startswith("literal[")))]
+    loc = _without_tags(err["loc"], data)
     ctx = err.get("ctx") or {}
     kind = err["type"]
     if kind == "rotorsfd" and "path" in ctx:
@@ -322,11 +357,11 @@ def to_config_error(exc: ValidationError, data: Any) -> ConfigError:
         value = ctx.get("value", err.get("input", MISSING))
         value = MISSING if value is None else value
     field = _join(loc) or "config"
-    desc = _description(loc)
+    desc = _description(loc, data)
     if kind == "missing":
         return ConfigError(field, MISSING, f"required: {desc}" if desc else "required")
     if kind == "extra_forbidden":
-        holder, _ = _schema_at(loc)  # the model that lacks the key
+        holder, _ = _schema_at(loc, data)  # the model that lacks the key
         allowed = sorted(holder.model_fields) if holder is not None else []
         near = difflib.get_close_matches(str(loc[-1]), allowed, n=1)
         hint = f"; did you mean {near[0]!r}?" if near else ""
@@ -364,11 +399,10 @@ def derived_values(config: Config) -> dict[str, str]:
     out = {"rotor": f"{config.rotor.n_nodes} nodes, "
                     f"{sum(s.n_elements for s in config.rotor.shaft)} shaft elements, "
                     f"length {sum(s.length for s in config.rotor.shaft):.6g} m"}
-    if config.sfd is not None:
-        s = config.sfd
-        c, r, length = s.resolved_clearance, s.resolved_radius, s.resolved_length
-        out["sfd"] = (f"C = {c:.6g} m, R = {r:.6g} m, L = {length:.6g} m, "
-                      f"C/R = {c / r:.6g}, L/D = {length / (2 * r):.6g}")
+    for name, table in config.elements.items():
+        text = table.derived_text() if hasattr(table, "derived_text") else ""
+        if text:
+            out[f"elements.{name}"] = text
     return out
 
 

@@ -19,6 +19,7 @@ import io
 import json
 import re
 import sys
+import types
 import typing
 from collections.abc import Iterator, Sequence
 from dataclasses import asdict, dataclass
@@ -199,8 +200,29 @@ def _default(info: FieldInfo, parent_default: BaseModel | None, name: str) -> st
     return _toml(default)
 
 
+def _kind_tables(annotation: Any) -> list[tuple[str, type[BaseModel]]]:
+    """[(kind, model), ...] of a table of tables told apart by their ``kind`` field (the
+    ``[elements.<name>]`` tables, one model per registered kind); [] for any other field."""
+    ann = unwrap(annotation)
+    if typing.get_origin(ann) is not dict:
+        return []
+    inner = unwrap(typing.get_args(ann)[-1])
+    members = typing.get_args(inner) if typing.get_origin(inner) in (
+        typing.Union, types.UnionType) else (inner,)
+    out = []
+    for m in members:
+        if not (isinstance(m, type) and issubclass(m, BaseModel) and "kind" in m.model_fields
+                and typing.get_origin(m.model_fields["kind"].annotation) is typing.Literal):
+            return []
+        out.append((typing.get_args(m.model_fields["kind"].annotation)[0], m))
+    return out
+
+
 def _model_of(annotation: Any) -> tuple[type[BaseModel] | None, str]:
-    """(model, container) of a field holding tables: container is "", "list" or "dict"."""
+    """(model, container) of a field holding tables: container is "", "list" or "dict"
+    (None for the tables of several kinds, :func:`_kind_tables`)."""
+    if _kind_tables(annotation):
+        return None, ""
     ann = unwrap(annotation)
     if isinstance(ann, type) and issubclass(ann, BaseModel):
         return ann, ""
@@ -225,6 +247,8 @@ def _header(path: str, container: str) -> str:
 def _leaves(model: type[BaseModel], path: str, section: str,
             default: BaseModel | None) -> Iterator[FieldDoc]:
     for name, info in model.model_fields.items():
+        if _kind_tables(info.annotation):   # documented in a section per kind
+            continue
         sub, container = _model_of(info.annotation)
         child = _child_path(path, name, container)
         if sub is not None:
@@ -281,6 +305,14 @@ def sections(model: type[BaseModel] = Config) -> list[SectionDoc]:
     out = [SectionDoc("", "top-level keys", _one_line(model.__doc__) + " These keys come "
                       "before the first table.", (), tuple(top))]
     for name, info in model.model_fields.items():
+        for kind, part in _kind_tables(info.annotation):
+            section = f"{name}.<{kind}>"
+            intro = (f"{_one_line(part.__doc__)} One table per element of this kind, "
+                     f"[{name}.<any name>] with kind = \"{kind}\"; the name labels its "
+                     "results.")
+            out.append(SectionDoc(section, f"[{section}]", intro,
+                                  tuple(_tables(part, section)),
+                                  tuple(_leaves(part, section, section, None))))
         sub, container = _model_of(info.annotation)
         if sub is None:
             continue

@@ -1,4 +1,4 @@
-"""The configuration schema: a rotor, its squeeze film damper, base motion and analyses.
+"""The configuration schema: a rotor, its nonlinear elements, base motion and analyses.
 
 Every physical field is declared with :func:`quantity`: its kind (SI unit) and allowed
 range go into the field's description, so the generated documentation cannot drift.
@@ -12,13 +12,14 @@ Errors raised here are pydantic errors whose context carries the offending sub-f
 """
 
 import math
+import operator
 import re
+from functools import reduce
 from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import (
     BaseModel,
     BeforeValidator,
-    ConfigDict,
     Field,
     StrictBool,
     field_validator,
@@ -26,125 +27,21 @@ from pydantic import (
 )
 from pydantic_core import PydanticCustomError
 
-from rotorsfd.io.units import KINDS, UnitError, describe, to_si
-
-# ---- field helpers ---------------------------------------------------------------------
-
-
-def fail(path: str | tuple[str | int, ...], value: Any, allowed: str) -> PydanticCustomError:
-    """A validation error about ``path`` (relative to the model that raises it)."""
-    if isinstance(path, str):
-        path = tuple(path.split("."))
-    return PydanticCustomError("rotorsfd", "{allowed}", {"path": path, "value": value,
-                                                         "allowed": allowed})
-
-
-def range_text(unit: str, gt: float | None = None, ge: float | None = None,
-               lt: float | None = None, le: float | None = None) -> str:
-    """``"> 0 m"``, ``"0 < value < 1"``, ``"any value"``."""
-    u = "" if unit == "1" else f" {unit}"
-    low = (f"{gt:g} <", f"> {gt:g}") if gt is not None else (
-        (f"{ge:g} <=", f">= {ge:g}") if ge is not None else None)
-    high = f"< {lt:g}" if lt is not None else (f"<= {le:g}" if le is not None else None)
-    if low and high:
-        return f"{low[0]} value {high}{u}"
-    if low:
-        return f"{low[1]}{u}"
-    if high:
-        return f"{high}{u}"
-    return "any value"
-
-
-def _in_range(x: float, gt, ge, lt, le) -> bool:
-    return ((gt is None or x > gt) and (ge is None or x >= ge)
-            and (lt is None or x < lt) and (le is None or x <= le))
-
-
-def quantity(kind: str, doc: str, *, gt: float | None = None, ge: float | None = None,
-             lt: float | None = None, le: float | None = None, optional: bool = False) -> Any:
-    """Annotated float field of physical ``kind`` (a key of ``units.KINDS``) in SI.
-
-    Accepts an SI number or a string with units; checks the dimension and the range.
-    """
-    unit = KINDS[kind].unit
-    allowed_range = range_text(unit, gt, ge, lt, le)
-
-    def parse(value: Any) -> Any:
-        if value is None and optional:
-            return None
-        try:
-            si = to_si(value, kind)
-        except UnitError as exc:
-            raise PydanticCustomError("rotorsfd", "{allowed}",
-                                      {"allowed": str(exc), "value": value}) from None
-        if not _in_range(si, gt, ge, lt, le):
-            shown = f" (it is {si:.6g}{'' if unit == '1' else ' ' + unit})" \
-                if isinstance(value, str) else ""
-            raise PydanticCustomError("rotorsfd", "{allowed}", {
-                "allowed": f"must be {allowed_range}{shown}", "value": value})
-        return si
-
-    unit_text = "dimensionless" if unit == "1" else unit
-    description = f"{doc} [{unit_text}]; allowed: {allowed_range}"
-    extra = {"unit": unit, "kind": kind}
-    return Annotated[
-        float | None if optional else float,
-        BeforeValidator(parse),
-        Field(description=description, json_schema_extra=extra),
-    ]
-
-
-def integer(doc: str, *, ge: int | None = None, le: int | None = None,
-            optional: bool = False) -> Any:
-    """Annotated int field (``None`` allowed if ``optional``) with its range in the
-    description."""
-    return Annotated[int | None if optional else int,
-                     Field(ge=ge, le=le,
-                           description=f"{doc}; allowed: {range_text('1', ge=ge, le=le)}")]
-
-
-NODE = integer("node number (1-based, as in the paper)", ge=1)
-NAME_PATTERN = r"^[A-Za-z_][A-Za-z0-9_\-]*$"
-NAME = Annotated[str, Field(pattern=NAME_PATTERN,
-                            description="name of a [materials.<name>] table; allowed: "
-                                        "letters, digits, '_' and '-', starting with a "
-                                        "letter or '_'")]
-LABEL = Annotated[str, Field(description="a free label, used in messages and plots")]
-CALLABLE = Annotated[str | None, Field(
-    pattern=r"^[A-Za-z_][\w.]*:[A-Za-z_]\w*$",
-    description="a Python function f(t) (importable, e.g. from the config file's folder); "
-                "allowed: 'module:function'")]
-
-
-class Section(BaseModel):
-    """Base of every config table: unknown keys are errors, values are frozen."""
-
-    model_config = ConfigDict(extra="forbid", frozen=True)
-
-
-def _given(model: BaseModel, names: tuple[str, ...]) -> list[str]:
-    return [n for n in names if getattr(model, n) is not None]
-
-
-def _exactly_one_form(model: BaseModel, forms: dict[str, tuple[str, ...]],
-                      required: dict[str, tuple[str, ...]] | None = None) -> str:
-    """The one form (a named group of optional fields) given in ``model``; error if none or
-    several are given, or if a field of ``required[form]`` (default: all) is missing."""
-    required = required or forms
-    used = {name: _given(model, fields) for name, fields in forms.items()}
-    chosen = [name for name, fields in used.items() if fields]
-    text_forms = " or ".join("(" + ", ".join(f) + ")" for f in required.values())
-    if len(chosen) != 1:
-        first = used[chosen[1]][0] if len(chosen) > 1 else next(iter(required.values()))[0]
-        value = getattr(model, first)
-        raise fail(first, value, f"give exactly one of {text_forms}")
-    form = chosen[0]
-    for name in required[form]:
-        if getattr(model, name) is None:
-            raise fail(name, None, f"required with {', '.join(used[form])}: "
-                       f"give all of ({', '.join(required[form])})")
-    return form
-
+from rotorsfd.elements import KINDS
+from rotorsfd.io.fields import (
+    CALLABLE,
+    LABEL,
+    NAME,
+    NAME_PATTERN,
+    NODE,
+    Section,
+    exactly_one_form,
+    fail,
+    given_fields,
+    integer,
+    quantity,
+)
+from rotorsfd.io.units import UnitError, describe, to_si
 
 # ---- materials and rotor -----------------------------------------------------------------
 
@@ -161,7 +58,7 @@ class MaterialConfig(Section):
 
     @model_validator(mode="after")
     def _one_shear_form(self):
-        _exactly_one_form(self, {"G": ("shear_modulus",), "nu": ("poisson_ratio",)})
+        exactly_one_form(self, {"G": ("shear_modulus",), "nu": ("poisson_ratio",)})
         if self.shear_modulus is not None:
             nu = self.young_modulus / (2 * self.shear_modulus) - 1
             if not -1 < nu <= 0.5:
@@ -217,7 +114,7 @@ class DiskConfig(Section):
 
     @model_validator(mode="after")
     def _one_form(self):
-        form = _exactly_one_form(
+        form = exactly_one_form(
             self,
             {"geometry": ("material", "inner_radius", "outer_radius", "thickness"),
              "inertia": ("mass", "polar_inertia", "diametral_inertia")},
@@ -257,13 +154,14 @@ class SupportConfig(Section):
 
     @model_validator(mode="after")
     def _forms(self):
-        _exactly_one_form(self, {"isotropic": ("stiffness",),
+        exactly_one_form(self, {"isotropic": ("stiffness",),
                                  "coefficients": ("kyy", "kzz", "kyz", "kzy")},
                           {"isotropic": ("stiffness",), "coefficients": ("kyy", "kzz")})
-        if self.damping is not None and _given(self, ("cyy", "czz", "cyz", "czy")):
+        damping_terms = given_fields(self, ("cyy", "czz", "cyz", "czy"))
+        if self.damping is not None and damping_terms:
             raise fail("damping", self.damping,
                        "give either damping or (cyy, czz, cyz, czy), not both")
-        if _given(self, ("cyy", "czz", "cyz", "czy")) and (self.cyy is None or self.czz is None):
+        if damping_terms and (self.cyy is None or self.czz is None):
             raise fail("cyy" if self.cyy is None else "czz", None,
                        "required with damping coefficients: give both cyy and czz")
         return self
@@ -296,7 +194,7 @@ class DampingConfig(Section):
             given = getattr(self, name) is not None
             if given and name not in needs:
                 raise fail(name, getattr(self, name), f"not used with kind = {self.kind!r}")
-        if self.kind == "rayleigh" and not _given(self, ("alpha", "beta")):
+        if self.kind == "rayleigh" and not given_fields(self, ("alpha", "beta")):
             raise fail("alpha", None, "kind = 'rayleigh' needs alpha and/or beta")
         if self.kind == "modal" and self.ratio is None:
             raise fail("ratio", None, "kind = 'modal' needs the damping ratio")
@@ -323,98 +221,9 @@ class RotorConfig(Section):
 # ---- squeeze film damper -----------------------------------------------------------------
 
 
-#: Ranges of the SFD ratios, also applied when a ratio is derived from the other fields.
-SFD_RATIO_BOUNDS: dict[str, dict[str, float]] = {
-    "clearance_ratio": {"gt": 0.0, "lt": 1.0},
-    "length_to_diameter": {"gt": 0.0, "le": 10.0},
-}
-
-
-def _and(names: list[str]) -> str:
-    return ", ".join(names[:-1]) + " and " + names[-1] if len(names) > 1 else "".join(names)
-
-
-class SFDConfig(Section):
-    """Short-bearing squeeze film damper at a node, with an optional centring spring.
-
-    Geometry: give the clearance C with C/R (radius derived, as in the paper, which varies
-    C/R at fixed C) or with R, or R with C/R; and L or L/D.
-    """
-
-    node: NODE
-    viscosity: quantity("viscosity", "oil dynamic viscosity mu", gt=0)
-    clearance: quantity("length", "radial clearance C", gt=0, optional=True) = None
-    clearance_ratio: quantity("ratio", "clearance ratio C/R", optional=True,
-                              **SFD_RATIO_BOUNDS["clearance_ratio"]) = None
-    radius: quantity("length", "journal radius R", gt=0, optional=True) = None
-    length: quantity("length", "land length L", gt=0, optional=True) = None
-    length_to_diameter: quantity("ratio", "land length to diameter L/D = L/(2R)",
-                                 optional=True,
-                                 **SFD_RATIO_BOUNDS["length_to_diameter"]) = None
-    cavitation: Literal["pi", "none", "guembel"] = Field(
-        "pi", description="film model: 'pi' (half-Sommerfeld, theta in [pi, 2pi]), "
-                          "'none' (full 2pi film), 'guembel' (film where pressure > 0)")
-    centring_stiffness: quantity("stiffness", "centring spring stiffness (isotropic, in "
-                                 "parallel with the film)", ge=0) = 0.0
-    centring_damping: quantity("damping", "centring spring damping (isotropic)", ge=0) = 0.0
-
-    @model_validator(mode="after")
-    def _geometry(self):
-        given = _given(self, ("clearance", "clearance_ratio", "radius"))
-        if len(given) != 2:
-            # one of the three is given too many or too few: the field is the table
-            raise fail((), _and(given) or "none of them",
-                       "give exactly two of clearance, clearance_ratio, radius (the "
-                       "third is derived)")
-        if (self.length is None) == (self.length_to_diameter is None):
-            raise fail((), "length and length_to_diameter" if self.length is not None
-                       else "neither length nor length_to_diameter",
-                       "give exactly one of length, length_to_diameter")
-        if self.resolved_clearance >= self.resolved_radius:
-            raise fail("clearance", self.clearance,
-                       f"gives C = {self.resolved_clearance:.6g} m >= R = "
-                       f"{self.resolved_radius:.6g} m; the clearance must be smaller "
-                       "than the journal radius")
-        self._derived_in_range()
-        return self
-
-    def _derived_in_range(self) -> None:
-        """A derived value (the third of C, C/R, R; L or L/D) within the range its own
-        field would have: ``length = "3 furlongs"`` must not pass with L/D = 11524."""
-        derived = {"clearance_ratio": self.resolved_clearance / self.resolved_radius,
-                   "length_to_diameter": self.resolved_length / (2.0 * self.resolved_radius)}
-        for name, value in derived.items():
-            if getattr(self, name) is not None:
-                continue
-            bounds = SFD_RATIO_BOUNDS[name]
-            if not _in_range(value, *(bounds.get(k) for k in ("gt", "ge", "lt", "le"))):
-                given = "length" if name == "length_to_diameter" else _given(
-                    self, ("clearance", "radius"))[-1]
-                symbol = "L/D = L / (2R)" if name == "length_to_diameter" else "C/R"
-                raise fail(given, getattr(self, given),
-                           f"gives {symbol} = {value:.6g} (R = {self.resolved_radius:.6g} m); "
-                           f"{name} must be {range_text('1', **bounds)}")
-
-    @property
-    def resolved_clearance(self) -> float:
-        """C [m]."""
-        if self.clearance is not None:
-            return self.clearance
-        return self.clearance_ratio * self.radius
-
-    @property
-    def resolved_radius(self) -> float:
-        """R [m], given or C / (C/R)."""
-        if self.radius is not None:
-            return self.radius
-        return self.clearance / self.clearance_ratio
-
-    @property
-    def resolved_length(self) -> float:
-        """L [m], given or (L/D) * 2R."""
-        if self.length is not None:
-            return self.length
-        return self.length_to_diameter * 2.0 * self.resolved_radius
+#: One ``[elements.<name>]`` table: the config model of its ``kind``.
+ElementTable = Annotated[reduce(operator.or_, KINDS.values()), Field(discriminator="kind")] \
+    if len(KINDS) > 1 else next(iter(KINDS.values()))
 
 
 # ---- loads: unbalance, base motion, gravity ---------------------------------------------------
@@ -611,7 +420,7 @@ class SpeedRange(Section):
 
     @model_validator(mode="after")
     def _one_form(self):
-        form = _exactly_one_form(self, {"rad/s": ("start", "stop"),
+        form = exactly_one_form(self, {"rad/s": ("start", "stop"),
                                         "ratio": ("start_ratio", "stop_ratio")})
         a, b = (("start", "stop") if form == "rad/s" else ("start_ratio", "stop_ratio"))
         if getattr(self, a) == getattr(self, b):
@@ -626,7 +435,8 @@ class SpeedRange(Section):
 
 
 PARAMETER_DOC = ("'speed' or the dotted path of a scalar config field, e.g. "
-                 "'base.pitching.value', 'unbalance[0].magnitude', 'sfd.clearance_ratio'")
+                 "'base.pitching.value', 'unbalance[0].magnitude', "
+                 "'elements.sfd.clearance_ratio'")
 
 
 def _path_field(doc: str) -> Any:
@@ -913,12 +723,22 @@ class Config(Section):
     materials: dict[str, MaterialConfig] = Field(min_length=1,
                                                  description="named materials")
     rotor: RotorConfig
-    sfd: SFDConfig | None = None
+    elements: dict[str, ElementTable] = Field(
+        default_factory=dict,
+        description="the nonlinear elements, each an [elements.<name>] table with its kind")
     unbalance: list[UnbalanceConfig] = []
     base: BaseConfig = BaseConfig()
     gravity: GravityConfig = GravityConfig()
     reference: ReferenceConfig = ReferenceConfig()
     analysis: AnalysisConfig = AnalysisConfig()
+
+    @model_validator(mode="before")
+    @classmethod
+    def _no_sfd_table(cls, data: Any) -> Any:
+        if isinstance(data, dict) and "sfd" in data:
+            raise fail(("sfd",), "[sfd]", "the squeeze film damper is an element now: "
+                       "write its table as [elements.sfd] with kind = \"sfd\" (same fields)")
+        return data
 
     def output_nodes(self, section: str = "response") -> list[int]:
         """Output nodes of ``analysis.<section>``: as given, else the SFD and disk nodes
@@ -927,8 +747,8 @@ class Config(Section):
         if given:
             return list(given)
         nodes = {d.node for d in self.rotor.disks}
-        if self.sfd is not None:
-            nodes.add(self.sfd.node)
+        for element in self.elements.values():
+            nodes.update(element.nodes)
         return sorted(nodes) or list(range(1, self.rotor.n_nodes + 1))
 
     @model_validator(mode="after")
@@ -949,8 +769,18 @@ class Config(Section):
                  for kind in ("disks", "point_masses", "supports")
                  for i, item in enumerate(getattr(self.rotor, kind))]
         nodes += [(("unbalance", i, "node"), u.node) for i, u in enumerate(self.unbalance)]
-        if self.sfd is not None:
-            nodes.append((("sfd", "node"), self.sfd.node))
+        seen: dict[tuple[str, int], str] = {}
+        for key, element in self.elements.items():
+            if not re.match(NAME_PATTERN, key):
+                raise fail(("elements", key), key, "a name: letters, digits, '_' and '-'")
+            nodes += [(("elements", key, "node"), node) for node in element.nodes]
+            for node in element.nodes:
+                other = seen.setdefault((element.kind, node), key)
+                if other != key:
+                    raise fail(("elements", key, "node"), node,
+                               f"elements.{other} is an {element.kind} at node {node} too; "
+                               f"one {element.kind} element per node (elements of different "
+                               "kinds may share a node)")
         for section in ("response", "simulate"):
             nodes += [(("analysis", section, "nodes", i), node)
                       for i, node in enumerate(getattr(self.analysis, section).nodes)]

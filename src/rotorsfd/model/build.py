@@ -1,8 +1,9 @@
 """Configuration -> model objects: the only place where config tables become physics.
 
 ``build_rotor(config)`` is the linear rotor of every analysis: shaft, disks, point masses,
-supports, structural damping and the SFD's centring spring (a linear support at the SFD
-node). The squeeze film itself is nonlinear and is built separately by ``build_sfd``.
+supports, structural damping and the elements' linear parts (an SFD's centring spring is a
+linear support at its node). The nonlinear elements are built by ``build_elements``, and
+``build_system(config)`` is the whole :class:`~rotorsfd.model.system.RotorSystem`.
 """
 
 from __future__ import annotations
@@ -26,11 +27,12 @@ from rotorsfd.model import (
     Rotor,
     uniform_shaft,
 )
+from rotorsfd.model.system import RotorSystem
 
 if TYPE_CHECKING:
+    from rotorsfd.elements.base import NonlinearElement
     from rotorsfd.model.base_motion import BaseMotion, TimeLaw
     from rotorsfd.model.gravity import Gravity
-    from rotorsfd.model.sfd import SFD
     from rotorsfd.model.unbalance import Unbalance
 
 
@@ -41,17 +43,15 @@ def build_material(config: Config, name: str) -> Material:
 
 
 def build_supports(config: Config) -> list[LinearSupport]:
-    """``[[rotor.supports]]`` plus the SFD centring spring (if it has stiffness or damping)."""
+    """``[[rotor.supports]]`` plus the elements' linear parts (an SFD's centring spring)."""
     out = [LinearSupport(s.node, **s.coefficients()) for s in config.rotor.supports]
-    sfd = config.sfd
-    if sfd is not None and (sfd.centring_stiffness > 0 or sfd.centring_damping > 0):
-        out.append(LinearSupport.isotropic(sfd.node, sfd.centring_stiffness,
-                                           sfd.centring_damping))
+    for element in config.elements.values():
+        out += element.linear_supports()
     return out
 
 
 def build_rotor(config: Config) -> Rotor:
-    """The linear finite-element rotor (with the SFD centring spring, without the film)."""
+    """The linear finite-element rotor (with the elements' linear parts)."""
     r = config.rotor
     elements = []
     for s in r.shaft:
@@ -75,15 +75,9 @@ def build_rotor(config: Config) -> Rotor:
                  supports=build_supports(config), damping=damping, x_start=r.x_start)
 
 
-def build_sfd(config: Config) -> SFD | None:
-    """The squeeze film of ``[sfd]`` (None without one); its node is ``config.sfd.node``."""
-    from rotorsfd.sfd import SFD
-
-    s = config.sfd
-    if s is None:
-        return None
-    return SFD(s.viscosity, s.resolved_radius, s.resolved_length, s.resolved_clearance,
-               cavitation=s.cavitation)
+def build_elements(config: Config) -> list[NonlinearElement]:
+    """The nonlinear elements of the ``[elements.<name>]`` tables, in their order."""
+    return [table.build(name) for name, table in config.elements.items()]
 
 
 def build_unbalances(config: Config) -> list[Unbalance]:
@@ -165,15 +159,20 @@ class Model:
 
     config: Config
     rotor: Rotor
-    sfd: SFD | None
-    sfd_node: int | None
+    elements: list[NonlinearElement] = field(default_factory=list)
     unbalances: list[Unbalance] = field(default_factory=list)
     base_motion: BaseMotion | None = None
 
 
 def build_model(config: Config, search_path: Path | None = None) -> Model:
-    """Rotor, SFD (and its node), unbalances and base motion of ``config``."""
-    return Model(config=config, rotor=build_rotor(config), sfd=build_sfd(config),
-                 sfd_node=config.sfd.node if config.sfd is not None else None,
+    """Rotor, nonlinear elements, unbalances and base motion of ``config``."""
+    return Model(config=config, rotor=build_rotor(config), elements=build_elements(config),
                  unbalances=build_unbalances(config),
                  base_motion=build_base_motion(config, search_path))
+
+
+def build_system(config: Config, search_path: Path | None = None) -> RotorSystem:
+    """The :class:`~rotorsfd.model.system.RotorSystem` of ``config``: the one way from a
+    configuration to what the solvers take."""
+    m = build_model(config, search_path)
+    return RotorSystem(m.rotor, m.elements, m.unbalances, m.base_motion)

@@ -84,16 +84,16 @@ class SFD:
 
     def __init__(self, viscosity: float, radius: float, length: float, clearance: float,
                  cavitation: str = "pi", eps_max: float = DEFAULT_EPS_MAX) -> None:
-        self.viscosity = _positive("sfd.viscosity", viscosity)
-        self.radius = _positive("sfd.radius", radius)
-        self.length = _positive("sfd.length", length)
-        self.clearance = _positive("sfd.clearance", clearance)
+        self.viscosity = _positive("viscosity", viscosity)
+        self.radius = _positive("radius", radius)
+        self.length = _positive("length", length)
+        self.clearance = _positive("clearance", clearance)
         if cavitation not in CAVITATION_CODES:
-            raise ConfigError("sfd.cavitation", cavitation, "one of 'pi', 'none', 'guembel'")
+            raise ConfigError("cavitation", cavitation, "one of 'pi', 'none', 'guembel'")
         self.cavitation = cavitation
         eps_max = float(eps_max)
         if not 0.0 < eps_max < 1.0:
-            raise ConfigError("sfd.eps_max", eps_max, "a number with 0 < eps_max < 1")
+            raise ConfigError("eps_max", eps_max, "a number with 0 < eps_max < 1")
         self.eps_max = eps_max
         params = np.empty(N_PARAMS)
         params[P_VISCOSITY] = self.viscosity
@@ -110,9 +110,9 @@ class SFD:
                     eps_max: float = DEFAULT_EPS_MAX) -> SFD:
         """SFD from ``C``, ``C/R`` and ``L/D`` as the paper gives them:
         ``R = C / (C/R)``, ``L = (L/D) 2 R`` (``clearance_ratio`` as a fraction, 0.00485)."""
-        clearance = _positive("sfd.clearance", clearance)
-        radius = clearance / _positive("sfd.clearance_ratio", clearance_ratio)
-        length = _positive("sfd.length_to_diameter", length_to_diameter) * 2.0 * radius
+        clearance = _positive("clearance", clearance)
+        radius = clearance / _positive("clearance_ratio", clearance_ratio)
+        length = _positive("length_to_diameter", length_to_diameter) * 2.0 * radius
         return cls(viscosity, radius, length, clearance, cavitation, eps_max)
 
     def __repr__(self) -> str:

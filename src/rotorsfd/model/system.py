@@ -1,10 +1,11 @@
-"""The rotor-SFD system on a moving base, assembled into the inputs of the generic solvers.
+"""The rotor with its nonlinear elements on a moving base, assembled into the solvers' inputs.
 
-    M q'' + (C + Omega G + C_base) q' + (K + K_base) q = F_mu(t) + F_base + F_sfd(q_s, q_s')
+    M q'' + (C + Omega G + C_base) q' + (K + K_base) q = F_mu(t) + F_base + F_nl(q_n, q_n')
 
-(paper eq. 1) with the linear rotor (shaft, disks, supports, the SFD's centring spring),
-the squeeze film acting on the two lateral DOFs ``q_s = (y, z)`` of the SFD node, the
-unbalances and the base motion (with gravity). This module is the only place where the
+(paper eq. 1) with the linear rotor (shaft, disks, supports, the linear parts of the
+elements such as an SFD's centring spring), the nonlinear elements acting on their DOFs
+``q_n`` (:class:`~rotorsfd.elements.ElementSet`: squeeze films, rubs, ...), the unbalances
+and the base motion (with gravity). This module is the only place where the
 physics meets the solvers: it hands the harmonic-balance solver a
 :class:`~rotorsfd.harmonic.problem.PeriodicProblem` and the linear analyses the
 ``LinearDynamics`` protocol (``n_dof``, ``matrices(speed)``).
@@ -17,9 +18,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from rotorsfd.elements.base import NonlinearElement
+from rotorsfd.elements.composite import ElementSet
 from rotorsfd.errors import ConfigError
 from rotorsfd.harmonic.problem import PeriodicProblem
-from rotorsfd.model import dofs
 from rotorsfd.model.base_motion import BaseMotion, BaseState, Constant
 from rotorsfd.model.base_terms import (
     BaseBasis,
@@ -30,7 +32,6 @@ from rotorsfd.model.base_terms import (
     base_coefficients,
 )
 from rotorsfd.model.rotor import Rotor
-from rotorsfd.model.sfd import SFD
 from rotorsfd.model.unbalance import (
     Unbalance,
     unbalance_harmonics,
@@ -51,15 +52,15 @@ _RATE_NAME = {"base.rolling": "wx", "base.pitching": "wy", "base.yawing": "wz"}
 
 @dataclass
 class RotorSystem:
-    """Linear rotor + squeeze film at ``sfd_node`` + unbalances + base motion.
+    """Linear rotor + nonlinear elements + unbalances + base motion.
 
-    ``rotor`` already carries the SFD's centring spring (a linear support at the SFD node).
-    ``base`` None means a fixed base without gravity.
+    ``rotor`` already carries the elements' linear parts (an SFD's centring spring is a
+    linear support at its node). ``elements``: an :class:`ElementSet` or a sequence of
+    elements. ``base`` None means a fixed base without gravity.
     """
 
     rotor: Rotor
-    sfd: SFD | None = None
-    sfd_node: int | None = None
+    elements: ElementSet | Sequence[NonlinearElement] = ()
     unbalances: Sequence[Unbalance] = ()
     base: BaseMotion = field(default_factory=BaseMotion)
     _basis: BaseBasis | None = field(default=None, init=False, repr=False)
@@ -69,9 +70,12 @@ class RotorSystem:
         self.unbalances = tuple(self.unbalances)
         if self.base is None:
             self.base = BaseMotion()
-        if self.sfd is not None:
-            if self.sfd_node is None or not 1 <= self.sfd_node <= self.rotor.n_nodes:
-                raise ConfigError("sfd.node", self.sfd_node,
+        if not isinstance(self.elements, ElementSet):
+            self.elements = ElementSet(self.elements)
+        for e in self.elements:
+            if any(not 1 <= node <= self.rotor.n_nodes for node in e.nodes) or (
+                    e.m and int(e.dofs.max()) >= self.n_dof):
+                raise ConfigError(f"elements.{e.name}.node", e.nodes,
                                   f"must be a node of the rotor, 1..{self.rotor.n_nodes}")
         for u in self.unbalances:
             if u.node > self.rotor.n_nodes:
@@ -85,11 +89,29 @@ class RotorSystem:
 
     @property
     def nl_dofs(self) -> np.ndarray:
-        """Global indices of the SFD node's (y, z); empty without an SFD."""
-        if self.sfd is None:
-            return np.zeros(0, dtype=np.int64)
-        return np.array([dofs.dof_index(self.sfd_node, "y"),
-                         dofs.dof_index(self.sfd_node, "z")], dtype=np.int64)
+        """Global indices of the DOFs the nonlinear elements act on (their union)."""
+        return self.elements.nl_dofs
+
+    @property
+    def length_scale(self) -> float | None:
+        """The smallest length scale of the elements (a clearance) [m]: displacements in
+        results and plots are shown in it; None without elements."""
+        return self.elements.scale
+
+    @property
+    def primary_node(self) -> int | None:
+        """The node of the first element (the one shown in the clearance unit C by default
+        and checked first); None without elements."""
+        nodes = self.element_nodes
+        return nodes[0] if nodes else None
+
+    @property
+    def element_nodes(self) -> list[int]:
+        """The nodes the elements sit at, in the elements' order, each once."""
+        out: list[int] = []
+        for e in self.elements:
+            out += [n for n in e.nodes if n not in out]
+        return out
 
     @property
     def basis(self) -> BaseBasis:
@@ -183,8 +205,9 @@ class RotorSystem:
         """
         if assembly not in ("polynomial", "direct"):
             raise ConfigError("assembly", assembly, "must be 'polynomial' or 'direct'")
-        if self.sfd is None:
-            raise ConfigError("sfd", None, "the nonlinear response needs an [sfd] section")
+        if not len(self.elements):
+            raise ConfigError("elements", None, "the nonlinear response needs at least one "
+                              "nonlinear element (an [elements.<name>] table)")
         if parameter not in PARAMETERS:
             raise ConfigError("parameter", parameter,
                               f"must be one of {', '.join(PARAMETERS)}")
@@ -305,27 +328,21 @@ class RotorSystem:
         def dfrequency(lam: float) -> float:
             return 1.0 if parameter == "speed" else 0.0
 
-        sfd = self.sfd
-
-        def nl_force_jacobian(q: np.ndarray, v: np.ndarray
-                              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-            return sfd.force_and_jacobian(q[..., 0], q[..., 1], v[..., 0], v[..., 1])
-
-        def nl_limit(q: np.ndarray) -> float:
-            return float(np.max(np.hypot(q[..., 0], q[..., 1]))) / sfd.clearance
-
+        el = self.elements
+        limited = any(e.limit_label is not None for e in el)
         return PeriodicProblem(
             n_dof=self.n_dof, nl_dofs=self.nl_dofs, matrices=matrices, dmatrices=dmatrices,
             forcing=forcing, dforcing=dforcing, frequency=frequency, dfrequency=dfrequency,
-            nl_force=sfd.nl_force, nl_jacobian=sfd.nl_jacobian,
-            nl_force_jacobian=nl_force_jacobian, nl_kernel=sfd.numba_kernel,
-            nl_kernel_params=sfd.kernel_params, scaling=self.dof_scale(),
-            nl_limit=nl_limit, name=f"rotor-SFD response in {parameter}")
+            nl_force=el.force, nl_jacobian=el.jacobian, nl_force_jacobian=el.force_and_jacobian,
+            nl_kernel=el.kernel, nl_kernel_params=el.kernel_params, scaling=self.dof_scale(),
+            nl_limit=el.limit if limited else None,
+            name=f"rotor response in {parameter}")
 
     def dof_scale(self) -> np.ndarray:
-        """Per-DOF scale: the clearance C for displacements, C / rotor length for rotations,
-        so that a tolerance on scaled unknowns means the same in any units."""
-        c = self.sfd.clearance if self.sfd is not None else 1e-4
+        """Per-DOF scale: the elements' length scale c (the smallest clearance; 1e-4 m
+        without elements) for displacements, c / rotor length for rotations, so that a
+        tolerance on scaled unknowns means the same in any units."""
+        c = self.length_scale or 1e-4
         length = float(self.rotor.node_x[-1] - self.rotor.node_x[0])
         scale = np.full(self.n_dof, c)
         scale[2::4] = scale[3::4] = c / length
@@ -337,7 +354,7 @@ class RotorSystem:
         laws = list(self.base.rotation)
         laws[_RATE_INDEX[parameter]] = Constant(value)
         base = BaseMotion(*self.base.translation, *laws, gravity=self.base.gravity)
-        return RotorSystem(self.rotor, self.sfd, self.sfd_node, self.unbalances, base)
+        return RotorSystem(self.rotor, self.elements, self.unbalances, base)
 
 
     def with_parameter(self, parameter: str, value: float) -> RotorSystem:
@@ -352,7 +369,7 @@ class RotorSystem:
                                   "continuing in the unbalance needs a nonzero first unbalance")
             scale = value / self.unbalances[0].magnitude
             ub = [Unbalance(u.node, u.magnitude * scale, u.phase) for u in self.unbalances]
-            out = RotorSystem(self.rotor, self.sfd, self.sfd_node, ub, self.base)
+            out = RotorSystem(self.rotor, self.elements, ub, self.base)
         else:
             raise ConfigError("parameter", parameter,
                               f"must be one of {', '.join(p for p in PARAMETERS if p != 'speed')}")

@@ -112,7 +112,7 @@ def _cases() -> list[Case]:
         out.append(Case(f"fig7-{tag}", FIG7, "response", (_u(u),)))
     for sign, k in (("m", 0.95), ("p", 1.05)):
         out.append(Case(f"sens-sfd{sign}", FIG7, "response",
-                        (_u(U144), f"sfd.centring_stiffness={10325127.78 * k:.6g} N/m"),
+                        (_u(U144), f"elements.sfd.centring_stiffness={10325127.78 * k:.6g} N/m"),
                         note=f"SFD centring spring x {k}"))
         out.append(Case(f"sens-right{sign}", FIG7, "response",
                         (_u(U144), f"rotor.supports[0].stiffness={9551305.04 * k:.6g} N/m"),
@@ -151,7 +151,7 @@ def _cases() -> list[Case]:
     ]
     for cr in ("0.485", "0.61", "0.728"):
         out.append(Case(f"fig21-cr{cr}", FIG21, "response",
-                        (f"sfd.clearance_ratio={cr} %",)))
+                        (f"elements.sfd.clearance_ratio={cr} %",)))
     for tag, u in (("u144", U144), ("u360", U360)):
         out.append(Case(f"fig24-{tag}", FIG24, "response", (_u(u),)))
     damp = ("rotor.damping.kind=modal", f"rotor.damping.ratio={DIAGNOSIS_DAMPING}")

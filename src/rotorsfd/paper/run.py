@@ -87,11 +87,11 @@ def response_numbers(result: Any, orbits: Sequence[float] = ()) -> tuple[dict, d
                  sn_lo=sn[0]["speed_ratio"], sn_lo_mu=sn[0]["max_multiplier"])
     if len(sn) >= 2:
         n["width"] = sn[-1]["speed_ratio"] - sn[0]["speed_ratio"]
-    ecc = np.asarray(table[f"defl_{result.system.sfd_node}"], float)
+    ecc = np.asarray(table[f"defl_{result.system.primary_node}"], float)
     n["end"] = (f"reached Omega~ = {s[-1]:.4f}" if result.success else
                 f"stopped at Omega~ = {s[-1]:.4f}, eps = {ecc[-1]:.3f}")
     n["message"] = result.message
-    sfd = result.system.sfd_node
+    sfd = result.system.primary_node
     d1 = np.asarray(table[f"defl_{sfd}"])
     i = int(np.argmax(d1))
     n["peak_ratio"], n["peak_defl"] = float(s[i]), float(d1[i])
@@ -166,7 +166,7 @@ def _simulate(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
 def _td_numbers(r: Any, prefix: str = "") -> dict[str, Any]:
     """Step, journal Poincare point (last, in C), the eccentricity there and the orbit's
     maximum, and the step check of a SimulationResult (keys ``prefix + ...``)."""
-    j = r.column(r.sfd_node if r.sfd_node in r.nodes else r.plot_node)
+    j = r.column(r.element_node if r.element_node in r.nodes else r.plot_node)
     scale = r.clearance or 1.0
     y, z = (float(r.poincare_q[-1, j, k] / scale) for k in (0, 1))
     chk = r.step_check.as_dict() if r.step_check is not None else {}
@@ -250,10 +250,10 @@ def _isola(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
     if out is not None:
         b.write(out / "c-second-attractor", plots=False)
     n.update({"second_motion": b.motion_name, **_td_numbers(b, "second_")})
-    j = b.column(b.sfd_node)
+    j = b.column(b.element_node)
     w = np.exp(1j * np.outer(b.t[-int(b.settings["steps_per_period"]):] * speed,
                              np.arange(X.shape[0])))
-    hb = np.stack([(w @ X[:, dofs.dof_index(b.sfd_node, d)]).real for d in ("y", "z")], -1)
+    hb = np.stack([(w @ X[:, dofs.dof_index(b.element_node, d)]).real for d in ("y", "z")], -1)
     n["second_hb_difference"] = float(np.max(np.hypot(*(
         hb - b.q[-hb.shape[0]:, j, :]).T)) / b.clearance)
     runs, t200 = [], []

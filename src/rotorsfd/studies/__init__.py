@@ -2,7 +2,7 @@
 on a Dask cluster, stored point by point (resumable), combined into labelled files.
 
 >>> from rotorsfd.studies import run_sweep
->>> result = run_sweep(config, {"sfd.clearance_ratio": ["0.4 %", "0.5 %"]}, "response",
+>>> result = run_sweep(config, {"elements.sfd.clearance_ratio": ["0.4 %", "0.5 %"]}, "response",
 ...                    directory="out", workers=2)
 >>> result.summary()
 """

@@ -1,7 +1,7 @@
 """The grid of a parameter study: a Cartesian product of axes over scalar config fields.
 
 An axis is a dotted config path (``base.pitching.value``, ``unbalance[0].magnitude``,
-``sfd.clearance_ratio``) with its values in SI (strings with units are converted with the
+``elements.sfd.clearance_ratio``) with its values in SI (strings with units are converted with the
 field's kind). Point ``i`` is the C-order (last axis fastest) flat index of the product;
 its id is ``f"{i:06d}"``, so ids sort like the grid and are the same in every run of the
 same sweep. ``grid.config_at(config, point)`` sets the point's values with
@@ -134,7 +134,7 @@ def grid_from_config(config: Config) -> Grid:
     axes = config.analysis.sweep.axes
     if not axes:
         raise ConfigError("analysis.sweep.axes", [], "give at least one axis, e.g. "
-                          "[[analysis.sweep.axes]] parameter = 'sfd.clearance_ratio'")
+                          "[[analysis.sweep.axes]] parameter = 'elements.sfd.clearance_ratio'")
     out = []
     for i, ax in enumerate(axes):
         where = f"analysis.sweep.axes[{i}].parameter"
@@ -166,13 +166,13 @@ def point_key(digest: str, point: GridPoint) -> str:
 
 
 def parse_axis(text: str) -> tuple[str, list[Any]]:
-    """``"sfd.clearance_ratio=0.4 %,0.5 %"`` -> ``("sfd.clearance_ratio", ["0.4 %",
-    "0.5 %"])`` (each value a TOML number or a string with units)."""
+    """``"elements.sfd.clearance_ratio=0.4 %,0.5 %"`` -> ``("elements.sfd.clearance_ratio",
+    ["0.4 %", "0.5 %"])`` (each value a TOML number or a string with units)."""
     from rotorsfd.io.config import parse_override
 
     path, _, rest = text.partition("=")
     items = [s.strip() for s in rest.split(",")]
     if not path.strip() or not all(items):
         raise ConfigError("--axis", text, "expected PATH=V1,V2,..., e.g. "
-                          "sfd.clearance_ratio='0.4 %,0.5 %'")
+                          "elements.sfd.clearance_ratio='0.4 %,0.5 %'")
     return path.strip(), [parse_override(f"v={s}")[1] for s in items]
