@@ -170,6 +170,35 @@ def test_cached_reduction_equals_orbit_floquet(rotor_case):
     assert ev.n_bases == 1
 
 
+def test_step_control_and_basis_intervals_against_orbit_floquet(rotor_case):
+    # the step control runs M and M/2 on one reduced model with the Jacobian samples of M
+    # reused for M/2; basis_intervals keeps the modes of another M (the bifurcation
+    # check's): both against orbit_floquet's own Craig-Bampton reduction and sampling
+    r = rotor_case
+    problem = r.system.periodic_problem("speed")
+    i = r.branch.n_points // 2
+    lam, X, w = r.branch.lam[i], r.branch.X[i], r.branch.frequency[i]
+    T = 2 * np.pi / w
+    M, D, K = problem.matrices(lam)
+    ctrl = FloquetEvaluator(problem, StabilityOptions(interval_tol=1e-6))(lam, X)
+    n = ctrl.info["n_intervals"]
+    ref = orbit_floquet(M, D, K, X, w, problem.nl_dofs, problem.nl_jacobian, n_intervals=n,
+                        omega_max=0.25 * 400 / T)
+    np.testing.assert_allclose(ctrl.multipliers, ref.multipliers, atol=1e-10)
+    half = orbit_floquet(M, D, K, X, w, problem.nl_dofs, problem.nl_jacobian,
+                         n_intervals=n // 2, omega_max=0.25 * 400 / T)
+    err = float(np.max(np.abs(np.sort(np.abs(ref.multipliers))[::-1][:4]
+                              - np.sort(np.abs(half.multipliers))[::-1][:4]))) / 3
+    assert ctrl.info["multiplier_error"] == pytest.approx(err, rel=1e-6, abs=1e-12)
+    kept = FloquetEvaluator(problem, StabilityOptions(n_intervals=3200, basis_intervals=400))
+    grown = FloquetEvaluator(problem, StabilityOptions(n_intervals=3200))
+    a, g = kept(lam, X), grown(lam, X)
+    ref = orbit_floquet(M, D, K, X, w, problem.nl_dofs, problem.nl_jacobian,
+                        n_intervals=3200, omega_max=0.25 * 400 / T)
+    np.testing.assert_allclose(a.multipliers, ref.multipliers, atol=1e-10)
+    assert a.info["n_modes"] < g.info["n_modes"]       # the modes of M = 400, not 3200
+
+
 def test_basis_recomputed_when_k_changes():
     p = generic_chain()           # K depends on lam
     b = continue_periodic(p, 0.5, 0.6, 2, ds=0.05)

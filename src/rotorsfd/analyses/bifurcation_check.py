@@ -195,6 +195,8 @@ def check_bifurcations(branch: Branch, problem: PeriodicProblem, stability: Bran
             if stability.n_intervals is not None else options.n_intervals
         M_c = min(c.interval_factor * M_b, max(options.max_intervals, options.n_intervals))
         opts = dataclasses.replace(options, n_intervals=M_c,
+                                   basis_intervals=options.basis_intervals
+                                   or options.n_intervals,
                                    max_intervals=max(options.max_intervals, M_c),
                                    n_harmonics=None if options.n_harmonics is None
                                    else max(options.n_harmonics, H_c))

@@ -83,7 +83,9 @@ class StabilityOptions:
     Hill's exponents need at least the harmonics of the orbit: with fewer, on the paper
     rotor near journal contact, a period doubling came out as spurious saddle-nodes);
     ``n_modes`` / ``omega_max`` the kept
-    fixed-interface modes (default ``omega_max = n_intervals / (4 T)`` at each point);
+    fixed-interface modes (default ``omega_max = M_b / (4 T)`` at each point, ``M_b`` =
+    ``basis_intervals``, default ``n_intervals``: the bifurcation check refines the step
+    on the branch's reduced model);
     ``interval_tol`` (Newmark methods): step control of the monodromy, see
     :class:`FloquetEvaluator` (None: ``n_intervals`` fixed); ``min_intervals`` /
     ``max_intervals`` its bounds;
@@ -110,6 +112,7 @@ class StabilityOptions:
     interval_tol: float | None = None
     max_intervals: int = 12800
     min_intervals: int = 100
+    basis_intervals: int | None = None
     check: bool = False
     check_rtol: float = 1e-3
 
@@ -197,8 +200,8 @@ class FloquetEvaluator:
     or ``max_intervals`` is reached; the M that met it starts the next point, halved when
     the estimate is below 1/16 of the tolerance (the halved M then meets it too). The
     result's ``info`` holds ``n_intervals`` and ``multiplier_error``. The Craig-Bampton
-    basis stays the one of ``options.n_intervals`` (modes with ``omega <= M_0 / (4 T)``):
-    the control refines the step on one reduced model."""
+    basis stays the one of ``options.basis_intervals`` or ``n_intervals`` (modes with
+    ``omega <= M_b / (4 T)``): the control refines the step on one reduced model."""
 
     def __init__(self, problem: PeriodicProblem, options: StabilityOptions | None = None
                  ) -> None:
@@ -215,8 +218,9 @@ class FloquetEvaluator:
         return o.interval_tol is not None and not o.method.startswith("hill")
 
     def reduced(self, lam: float, period: float) -> ReducedModel:
-        """Craig-Bampton model at lam (modes with ``omega <= n_intervals / (4 T)`` of the
-        options' M unless ``n_modes``/``omega_max`` are given)."""
+        """Craig-Bampton model at lam (modes with ``omega <= M_b / (4 T)``, ``M_b`` the
+        options' ``basis_intervals`` or ``n_intervals``, unless ``n_modes``/``omega_max``
+        are given)."""
         o = self.options
         M, D, K = self.problem.matrices(lam)
         if self._basis is None or not self._basis.matches(M, K):
@@ -224,7 +228,7 @@ class FloquetEvaluator:
             self.n_bases += 1
         om = o.omega_max
         if o.n_modes is None and om is None:
-            om = 0.25 * o.n_intervals / period
+            om = 0.25 * (o.basis_intervals or o.n_intervals) / period
         return self._basis.reduce(np.asarray(D, float), o.n_modes, om)
 
     def __call__(self, lam: float, X: NDArray) -> FloquetResult:
