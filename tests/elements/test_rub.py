@@ -275,9 +275,9 @@ def test_smoothing_sensitivity_is_second_order():
     """The largest orbit radius of the partial rub converges as eps^2 (the smoothing error
     of the centred ramp is even in p): successive halvings shrink the change ~4 times."""
     radii = []
-    for ratio in (0.2, 0.1, 0.05):
+    for ratio in (0.1, 0.05, 0.025):   # measured ratio 4.28 (4.83 from 0.2 down)
         res = td_orbit(partial_rub(ratio * DELTA))
         radii.append(np.hypot(*res.q.T).max())
     d1, d2 = radii[0] - radii[1], radii[1] - radii[2]
     assert 3.0 < d1 / d2 < 5.5
-    assert abs(d2) < 1e-2 * DELTA
+    assert abs(d2) < 1e-3 * DELTA
