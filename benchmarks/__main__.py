@@ -49,6 +49,8 @@ REGISTRY: dict[str, tuple[str, str]] = {
                     "checked bifurcations) vs fixed H = 3, M = 400", "bench_convergence:run"),
     "scale": ("first critical speed and modal of a stepped rotor, 80-2560 elements: sparse "
               "shift-invert vs the dense eig path", "bench_scale:run"),
+    "elements": ("nonlinear elements: one SFD through the element interface vs the previous "
+                 "path; cost against 1, 2, 4, 8 elements", "bench_elements:run"),
 }
 
 
