@@ -148,17 +148,45 @@ def test_reduced_campbell_equals_dense_paper_rotor(paper):
     np.testing.assert_array_equal(red.whirl, ref.whirl)
 
 
-def test_reduced_error_is_measured(paper):
-    """With its three first snapshots only, the reduced model's reported error is the one
-    of its midpoints against the exact modes, and it falls when snapshots are added."""
-    coarse = reduced_modes(paper, 0.0, 8000.0, 8, tol=1e-16, max_snapshots=3)
-    mid = coarse.checks[0]
-    exact = sparse_eigen(paper, mid, 12)
-    err = np.max(np.abs(coarse.eigen(mid, 8).eigenvalues / exact.eigenvalues[:8] - 1.0))
-    assert coarse.error >= err > 0.0
-    fine = reduced_modes(paper, 0.0, 8000.0, 8, tol=1e-10)
-    assert fine.error <= 1e-10 and len(fine.snapshots) >= 3
-    assert isinstance(fine, ReducedModes)
+def test_campbell_not_affine_system_solves_every_speed(paper):
+    system = SpeedSquared(paper, 5.0)
+    speeds = np.linspace(0.0, 3000.0, 8)
+    sparse = campbell(system, speeds, 4, method="sparse")
+    assert sparse.info["method"] == "sparse"
+    np.testing.assert_allclose(sparse.eigenvalues,
+                               campbell(system, speeds, 4, method="dense").eigenvalues,
+                               rtol=1e-8)
+
+
+def test_reduced_campbell_equals_dense_mid_size_rotor():
+    """The 244-DOF damped rotor (method auto: reduced), 9 speeds to 6000 rad/s, tracked
+    through the gyroscopic splitting: the same branches as the dense path."""
+    rotor = damped_rotor(60)
+    speeds = np.linspace(0.0, 6000.0, 9)
+    red = campbell(rotor, speeds, 6)
+    ref = campbell(rotor, speeds, 6, method="dense")
+    assert red.info["method"] == "reduced"
+    np.testing.assert_allclose(red.eigenvalues, ref.eigenvalues, rtol=1e-8)
+    np.testing.assert_array_equal(red.whirl, ref.whirl)
+
+
+def test_reduced_model_refines_and_reports_its_error(paper):
+    """An unreachable tol: the failing midpoints become snapshots (3 -> 5), the error kept
+    is the largest one measured at the 4 new midpoints against exact solves, and the
+    Campbell diagram then falls back to the exact solve at every speed."""
+    model = reduced_modes(paper, 0.0, 8000.0, 8, tol=1e-16, max_snapshots=5)
+    assert len(model.snapshots) == 5 and len(model.checks) == 4
+    assert isinstance(model, ReducedModes) and 1e-16 < model.error < 1e-10
+    measured = max(np.max(np.abs(model.eigen(s, 8).eigenvalues
+                                 / sparse_eigen(paper, s, 10).eigenvalues[:8] - 1.0))
+                   for s in model.checks)
+    assert abs(measured - model.error) < 1e-12
+    speeds = np.linspace(0.0, 8000.0, 9)
+    camp = campbell(paper, speeds, 4, method="sparse", tol=1e-16)
+    assert camp.info["method"] == "sparse" and camp.info["reduced_error"] > 1e-16
+    np.testing.assert_allclose(camp.eigenvalues,
+                               campbell(paper, speeds, 4, method="dense").eigenvalues,
+                               rtol=1e-8)
 
 
 def test_run_modal_reuses_the_reference_speed():

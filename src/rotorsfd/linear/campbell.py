@@ -121,8 +121,10 @@ def campbell(system: LinearDynamics, speeds: Sequence[float], n_modes: int = 8,
     def solve(s: float, m: int) -> ModalResult:
         return eigen(system, s, m, "sparse" if sparse else "dense")
 
-    if sparse:
-        if n_speeds > 6 and speeds.max() > speeds.min():
+    if sparse and n_speeds > 6 and speeds.max() > speeds.min():
+        from rotorsfd.linear.sparse_modes import pencil_of
+
+        if pencil_of(system).terms is not None:   # affine in the speed: a reduced model
             from rotorsfd.linear.reduced import reduced_modes
 
             model = reduced_modes(system, float(speeds.min()), float(speeds.max()),
