@@ -211,7 +211,9 @@ def sparse_eigen(system: LinearDynamics, speed: float, n_modes: int = 8,
     """The ``n_modes`` lowest modes at ``speed`` (as :func:`rotorsfd.linear.modal.eigen`),
     or, with ``whirl`` ("forward", "backward", "any") and ``count``, only the lowest ones
     up to the ``count``-th of that whirl (never more than ``n_modes``). The shift is 0, or
-    -w_s, -10 w_s when K is singular (rigid-body roots) or ARPACK fails there."""
+    -w_s, -10 w_s when K is singular (rigid-body roots) or ARPACK fails there. ARPACK
+    starts from the previous call's Ritz vectors (same ``n_modes``, ``count``), so results
+    depend on the call history at round-off level only."""
     pencil = pencil_of(system)
     mats = pencil.matrices(system, speed)
     failure = ""
@@ -270,4 +272,4 @@ def pencil_of(system: LinearDynamics) -> SparsePencil:
     return pencil
 
 
-__all__ = ["COVER", "RIGID_BODY_TOL", "SparsePencil", "pencil_of", "sparse_eigen"]
+__all__ = ["COVER", "SparsePencil", "band_width", "pencil_of", "sparse_eigen"]
