@@ -5,7 +5,10 @@ may be an artefact of either truncation: a fold pair of a truncated orbit that t
 converged orbit does not have, a multiplier that crosses +1 only because the monodromy
 is under-resolved. Each one is re-located on a short piece of the branch recomputed with
 ``H_c`` harmonics (default :func:`~rotorsfd.harmonic.truncation.check_harmonics`: about
-1.5 H) and ``factor x M`` intervals (the converged M of the step control where it ran):
+1.5 H) and ``factor x M`` intervals (the converged M of the step control where it ran)
+on the branch's Craig-Bampton model (``StabilityOptions.basis_intervals``: the modes of
+the branch's M, so only H and the step are refined, and a larger M does not bring in
+more, lightly damped, modes):
 
 1. the piece starts ``window`` computed points before the bracket of the bifurcation
    (its HB solution padded with zeros and Newton-corrected at H_c) and follows the
