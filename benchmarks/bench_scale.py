@@ -19,7 +19,8 @@ of the whole 2n state matrix, the whole grid, the reference speed searched apart
 measured directly for the first critical speed at 80 elements; elsewhere it is the number
 of its eig solves (counted on the same grid and root finder) times one dense eig measured
 at that size (<= ``DENSE_MAX`` elements), or extrapolated as (2n)^3 beyond. ``--quick``:
-80 and 160 elements, one dense eig at 80, no baseline estimate (no time asserted).
+80 and 160 elements, one dense eig at 80, no baseline estimate (no time asserted). The full
+run writes ``benchmarks/scale.png`` (time against DOF, log-log, with the exponents).
 """
 
 from __future__ import annotations
@@ -37,6 +38,7 @@ import numpy as np
 
 from benchmarks.common import Row, median_time
 
+HERE = Path(__file__).resolve().parent
 UNITS = 16                      # the shaft is 16 units of L / 16
 LENGTH = 1.5                    # [m]
 # (units, outer radius [m], material) of the five sections, left to right
@@ -171,6 +173,34 @@ def evaluations_of_dense_path(system: Any, cfg: Any) -> dict[str, int]:
             "modal": ref + crit + m.speed_range.n}
 
 
+def plot(series: dict[str, list[tuple[int, float]]], dofs: dict[int, int], path: Path
+         ) -> None:
+    """Time against DOF, log-log, each series with its fitted exponent."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+    for name in ("first critical incl. extraction", "modal incl. extraction", "extraction",
+                 "reference: dense path of before (est.)", "modal: dense path of before (est.)"):
+        data = series.get(name)
+        if not data or len(data) < 2:
+            continue
+        x, y = np.array(data, float).T
+        mark = "s--" if "dense" in name else "o-"
+        ax.loglog([dofs[int(v)] for v in x], y, mark, label=f"{name} (p = {exponent(x, y):.2f})")
+    ax.set_xlabel("DOF (4 per node)")
+    ax.set_ylabel("wall time [s]")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title("stepped 1.5 m rotor: first critical speed and modal, sparse vs dense eig",
+                 fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
 def cold(pencil: Any, fun: Any, *args: Any) -> Any:
     """``fun(*args)`` without an ARPACK start vector left by a previous run."""
     pencil.last_start.clear()
@@ -205,6 +235,11 @@ def run(quick: bool = False, repeat: int = 3) -> list[Row]:
         rows.append(Row("scale", case, "build model (dense matrices, not ours)", t_build))
         rows.append(Row("scale", case, "sparse pencil: 3 matrices() calls + band extraction",
                         t_extract, note=f"half band {pencil.half_band}"))
+        nnz = sum(x.nnz for pair in pencil.terms or () for x in pair)
+        rows.append(Row("scale", case, "storage of M, D, K: sparse (dense)",
+                        nnz * 12 / 2**20, unit="MiB",
+                        note=f"dense {3 * dof**2 * 8 / 2**20:.4g} MiB"))
+        series.setdefault("extraction", []).append((n, t_extract))
 
         t_first, _, w1 = median_time(partial(cold, pencil, first_critical, system, cfg),
                                      repeat)
@@ -245,6 +280,7 @@ def run(quick: bool = False, repeat: int = 3) -> list[Row]:
             how = "measured" if n in dense_eval else f"(n/{top})^3 from {top} elements"
             for what, t_new in (("reference", t_first), ("modal", t_modal)):
                 est = counts[what] * t_eval
+                series.setdefault(f"{what}: dense path of before (est.)", []).append((n, est))
                 rows.append(Row("scale", case, f"{what}: dense path of before (estimate)",
                                 est, ratio=t_new / est, ref="dense",
                                 note=f"{counts[what]} eig solves x {t_eval:.3g} s ({how})"))
@@ -256,6 +292,8 @@ def run(quick: bool = False, repeat: int = 3) -> list[Row]:
                         f"{name}: exponent p (time ~ elements^p)", exponent(x, y), unit="",
                         note=f"{y[-1] / y[0]:.3g}x from {int(x[0])} to {int(x[-1])}",
                         extra={"elements": x.tolist(), "seconds": y.tolist()}))
+    if not quick:
+        plot(series, {n: 4 * (n + 1) for n in sizes}, HERE / "scale.png")
     if len(dense_eval) >= 2:
         x, y = np.array(sorted(dense_eval.items()), float).T
         rows.append(Row("scale", f"fit over elements {list(map(int, x))}",
