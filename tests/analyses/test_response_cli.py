@@ -82,6 +82,9 @@ def test_contact_stops_branch_exit_1(tmp_path, capsys):
     assert status == 1
     assert err.count("\n") == 1 and err.startswith("rotorsfd: error: ")
     assert "limit" in err and "lam=" in err
+    # the element and the field that ended the branch, in the user's terms, first
+    assert "points at Omega~ = " in err and ": SFD 'sfd' at node 1 (pi film, C = 0.000127 m) " \
+        "reached eps = 0.95" in err and "analysis.response.max_eccentricity = 0.95" in err
     text = (out / "branch.csv").read_text()
     assert "nan" not in text.lower() and "inf" not in text.lower()
     rows = list(csv.DictReader(text.splitlines()))

@@ -113,3 +113,21 @@ def test_config_two_sfds_and_bad_tables():
     raw["sfd"] = raw.pop("elements")["sfd"]
     with pytest.raises(ConfigError, match=r"^sfd: .*\[elements\.sfd\] with kind"):
         config_from_dict(raw)
+
+
+@pytest.mark.parametrize(("change", "message"), [
+    ({"kind": "rubb"}, "elements.sfd.kind: got 'rubb'; allowed: 'sfd', 'rub'"),
+    ({"kind": None}, "elements.sfd.kind: got nothing; required, the element's kind: "
+                     "'sfd', 'rub'"),
+])
+def test_element_kind_errors_are_one_line(change, message):
+    raw = read_toml(PAPER_TOML)
+    table = raw["elements"]["sfd"]
+    for key, value in change.items():
+        if value is None:
+            del table[key]
+        else:
+            table[key] = value
+    with pytest.raises(ConfigError) as info:
+        config_from_dict(raw)
+    assert str(info.value) == message

@@ -30,7 +30,9 @@ def _leaves(model: type[BaseModel], prefix: str = "") -> dict[str, typing.Any]:
         path = f"{prefix}.{name}" if prefix else name
         ann = unwrap(info.annotation)
         origin = typing.get_origin(ann)
-        inner = unwrap(typing.get_args(ann)[-1]) if origin in (list, dict) else None
+        inner = typing.get_args(ann)[-1] if origin in (list, dict) else None
+        while typing.get_origin(inner) is typing.Annotated:     # keep a union of kinds
+            inner = typing.get_args(inner)[0]
         kinds = typing.get_args(inner) if typing.get_origin(inner) in (
             typing.Union, types.UnionType) else (inner,)
         if origin is dict and all(isinstance(k, type) and issubclass(k, BaseModel)
@@ -40,7 +42,7 @@ def _leaves(model: type[BaseModel], prefix: str = "") -> dict[str, typing.Any]:
                 out.update(_leaves(k, f"{path}.<{kind}>"))
         elif isinstance(ann, type) and issubclass(ann, BaseModel):
             out.update(_leaves(ann, path))
-        elif isinstance(inner, type) and issubclass(inner, BaseModel):
+        elif isinstance(inner := unwrap(inner), type) and issubclass(inner, BaseModel):
             out.update(_leaves(inner, path + ("[]" if origin is list else ".<name>")))
         else:
             out[path] = info

@@ -188,8 +188,10 @@ class ResponseResult:
         last = (f"Omega~ = {b.frequency[-1] / self.reference_speed:.5g}" if self.is_speed
                 else f"{self.parameter} = {b.lam[-1]:.6g} {self.parameter_units}")
         limit = self.limit_text()
-        return (f"response branch stopped after {b.n_points} points at {last}: {b.message}"
-                + (f"; {limit}" if limit else ""))
+        if limit:
+            return (f"response branch ended after {b.n_points} points at {last}: {limit} "
+                    f"[solver: {b.message}]")
+        return f"response branch stopped after {b.n_points} points at {last}: {b.message}"
 
     @property
     def is_speed(self) -> bool:
@@ -267,22 +269,19 @@ class ResponseResult:
         return {key: np.array([r[key] for r in rows]) for key in rows[0]}
 
     def limit_text(self) -> str:
-        """Which element is nearest its validity limit at the last point, and the limit
-        (``analysis.response.max_eccentricity``)."""
+        """Which element reached its validity limit (``analysis.response.max_eccentricity``)
+        at the last point, in the user's terms; "" if none is near it."""
         el = self.system.elements
         b = self.branch
-        if not len(el) or not b.n_points:
+        limit = self.info.get("limit_max")
+        if not len(el) or not b.n_points or limit is None:
             return ""
         element, value = el.limiting(orbit_samples(b.X[-1][:, el.nl_dofs])[0])
-        if element is None:
+        if element is None or value < 0.98 * limit:
             return ""
-        limit = self.info.get("limit_max")
-        text = (f"element {element.name!r} ({element.describe()}) at {element.limit_label} "
-                f"= {value:.4g} at the last point")
-        if limit is not None and value > 0.9 * limit:
-            text += (f", near the limit analysis.response.max_eccentricity = {limit:g} "
-                     "(raise it, up to 0.999, to continue closer to the housing)")
-        return text
+        return (f"{element.describe()} reached {element.limit_label} = {value:.3f}, the limit "
+                f"analysis.response.max_eccentricity = {limit:g} (raise it, up to 0.999, to "
+                "follow the branch closer to the housing)")
 
     def floquet_columns(self) -> dict[str, NDArray[Any]]:
         """``floquet_intervals`` (the Newmark M of every point) and ``multiplier_error``

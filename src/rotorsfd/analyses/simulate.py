@@ -436,7 +436,8 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
     return SimulationResult(speed, ref, tuple(out_nodes), traj.t, q, v, traj.poincare_t, pq,
                             pv, motion, lyap, clearance, primary, settings, eps_rec,
                             eps_run, traj.q_final, traj.v_final,
-                            traj.t_final, elapsed, name, notes, control, lyap_full)
+                            traj.t_final, elapsed, name, notes, control, lyap_full,
+                            traj.element_diagnostics)
 
 
 def _first_column(nodes: Sequence[int], node: int | None) -> int:

@@ -57,7 +57,10 @@ def plain(obj: Any) -> Any:
 class SimulationResult:
     """A simulation at one speed: recorded motion of ``nodes`` (``q, v``: (n_t, n_nodes,
     2) with directions y, z, every step of the last max(record, Poincare) periods), the
-    Poincare points, the motion class and its evidence."""
+    Poincare points, the motion class and its evidence. ``clearance`` and ``element_node``:
+    the elements' length scale and the first element's node (the journal shown in C);
+    ``element_diagnostics``: every element's orbit diagnostics over the recorded periods
+    (``eps_max_<name>``)."""
 
     speed: float
     reference_speed: float | None
@@ -83,6 +86,7 @@ class SimulationResult:
     notes: list[str] = field(default_factory=list)
     step_check: StepControl | None = None
     lyapunov_full: LyapunovResult | None = None
+    element_diagnostics: dict[str, float] = field(default_factory=dict)
 
     FILES = ("timeseries.nc", "poincare.csv", "summary.json", "simulation.png", "orbit.png",
              "phase.png", "poincare.png", "spectrum.png")
@@ -204,6 +208,7 @@ class SimulationResult:
             "max_eccentricity": self.max_eccentricity,
             "max_eccentricity_whole_run": self.max_eccentricity_run,
             "clearance_m": self.clearance, "element_node": self.element_node,
+            "elements": dict(self.element_diagnostics),
             "nodes": list(self.nodes), "settings": self.settings,
             "elapsed_s": self.elapsed, "t_final_s": self.t_final, "notes": self.notes,
             "step_check": None if self.step_check is None else self.step_check.as_dict(),
@@ -271,6 +276,9 @@ class SimulationResult:
         if self.max_eccentricity is not None:
             lines.append(f"max eccentricity ratio: {self.max_eccentricity:.4f} (recorded "
                          f"periods), {self.max_eccentricity_run:.4f} (whole run)")
+        if len(self.element_diagnostics) > 1:
+            lines.append("elements over the recorded periods: " + ", ".join(
+                f"{k} = {v:.4g}" for k, v in self.element_diagnostics.items()))
         lines.append(f"{self.settings['periods']} periods, {self.settings['steps_per_period']}"
                      f" steps per period ({self.settings['step_control']}, "
                      f"{self.settings['scheme']}) in {self.elapsed:.2f} s")

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -152,6 +152,7 @@ class Trajectory:
     max_eccentricity_run: float | None
     newton_iterations_max: int = 0
     snapshot: tuple[np.ndarray, np.ndarray, float] | None = None
+    element_diagnostics: dict[str, float] = field(default_factory=dict)
 
 
 def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_period: int,
@@ -169,7 +170,9 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
     law raises that element's contact error (an SFD's
     :class:`~rotorsfd.errors.JournalContactError`, with the time and rotor period in its
     ``where``); other failures :class:`ConvergenceError`. ``max_eccentricity_run`` is the
-    largest validity measure of the elements over the run (None if none has one).
+    largest validity measure of the elements over the run (None if none has one),
+    ``element_diagnostics`` every element's orbit diagnostics over the recorded periods
+    (``eps_max_<name>``, :meth:`~rotorsfd.elements.ElementSet.diagnostics`).
     """
     spp = int(steps_per_period)
     n_steps = spp * int(periods)
@@ -186,7 +189,8 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
     pc_start = (periods - poincare_periods + 1) * spp
     state = initial_state(ps, q0, v0)
     chunk = max(1, chunk_periods or math.ceil(periods / 100))
-    parts: dict[str, list[np.ndarray]] = {k: [] for k in ("t", "q", "v", "pt", "pq", "pv")}
+    parts: dict[str, list[np.ndarray]] = {k: [] for k in ("t", "q", "v", "pt", "pq", "pv",
+                                                          "qn", "vn")}
     eps_max = 0.0
     newton_max = 0
     done = 0
@@ -220,6 +224,8 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
         parts["t"].append(smp["t"][keep])
         parts["q"].append(smp["q"][keep, :rd.size])
         parts["v"].append(smp["v"][keep, :rd.size])
+        parts["qn"].append(smp["q"][keep, rd.size:])
+        parts["vn"].append(smp["v"][keep, rd.size:])
         keep = smp["pt"] >= ps.t0 + (pc_start - 0.5) * dt
         parts["pt"].append(smp["pt"][keep])
         parts["pq"].append(smp["pq"][keep, :rd.size])
@@ -234,5 +240,7 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
     cat = {k: np.concatenate(v) for k, v in parts.items()}
     return Trajectory(cat["t"], cat["q"], cat["v"], cat["pt"], cat["pq"], cat["pv"], rd,
                       state.X[:n].copy(), state.X[n:2 * n].copy(), ps.t0 + state.step * dt,
-                      eps_max if limited else None, newton_max, snapshot)
+                      eps_max if limited else None, newton_max, snapshot,
+                      elements.diagnostics(cat["qn"], cat["vn"])
+                      if elements is not None and len(elements) and cat["qn"].shape[0] else {})
 

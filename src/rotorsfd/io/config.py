@@ -29,6 +29,7 @@ from typing import Any
 
 from pydantic import BaseModel, ValidationError
 
+from rotorsfd.elements import KINDS
 from rotorsfd.errors import ConfigError
 from rotorsfd.io.schema import Config, split_path
 
@@ -356,6 +357,13 @@ def to_config_error(exc: ValidationError, data: Any) -> ConfigError:
     if not found:
         value = ctx.get("value", err.get("input", MISSING))
         value = MISSING if value is None else value
+    if kind in ("union_tag_invalid", "union_tag_not_found"):   # the kind of a table
+        tag = ctx.get("discriminator", "'kind'").strip("'")
+        found, value = _lookup(data, [*loc, tag])
+        kinds = ctx.get("expected_tags") or ", ".join(repr(k) for k in KINDS)
+        return ConfigError(_join([*loc, tag]), value if found else MISSING,
+                           f"required, the element's kind: {kinds}" if not found
+                           else f"allowed: {kinds}")
     field = _join(loc) or "config"
     desc = _description(loc, data)
     if kind == "missing":

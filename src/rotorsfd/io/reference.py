@@ -206,7 +206,9 @@ def _kind_tables(annotation: Any) -> list[tuple[str, type[BaseModel]]]:
     ann = unwrap(annotation)
     if typing.get_origin(ann) is not dict:
         return []
-    inner = unwrap(typing.get_args(ann)[-1])
+    inner = typing.get_args(ann)[-1]
+    while typing.get_origin(inner) is typing.Annotated:   # keep the union of kinds
+        inner = typing.get_args(inner)[0]
     members = typing.get_args(inner) if typing.get_origin(inner) in (
         typing.Union, types.UnionType) else (inner,)
     out = []
