@@ -131,3 +131,17 @@ def test_element_kind_errors_are_one_line(change, message):
     with pytest.raises(ConfigError) as info:
         config_from_dict(raw)
     assert str(info.value) == message
+
+
+def test_composite_module_is_written_to_the_cache_folder(tmp_path, monkeypatch):
+    """The generated kernel's module lands in $ROTORSFD_CACHE_DIR, named by its text's
+    hash (so numba caches its compiled code); the same layout reuses it in a process."""
+    from rotorsfd.elements.composite import cache_folder
+
+    monkeypatch.setenv("ROTORSFD_CACHE_DIR", str(tmp_path))
+    assert cache_folder() == tmp_path
+    layout = [SFDElement(f"e{n}", n, FILM) for n in (1, 4, 6)]   # a layout no other test uses
+    kernel = ElementSet(layout).kernel
+    files = list(tmp_path.glob("rotorsfd_composite_*.py"))
+    assert len(files) == 1 and "cfunc(KERNEL_SIGNATURE, cache=True)" in files[0].read_text()
+    assert ElementSet([SFDElement(f"x{n}", n, STIFF) for n in (2, 3, 5)]).kernel is kernel
