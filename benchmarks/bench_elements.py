@@ -20,9 +20,11 @@ number of elements.
    (as above, N_f = 32 fixed), a Floquet point at that solution (the analysis'
    ``FloquetEvaluator``: Newmark, M = 400, Craig-Bampton model, basis already built as
    along a branch) and 2000 periods x 200 steps. The composite kernel (generated for the
-   layout, compiled once per process) is timed apart: its first ``as_cfunc``.
+   layout) is timed apart: its first ``as_cfunc`` in a fresh process with an empty cache
+   folder (``ROTORSFD_CACHE_DIR``), then in a second fresh process with that folder.
 
-Small calls (an HB point, a Floquet point) are timed as the mean of ``CALLS`` calls, the
+Methods run in turn, the order reversed every other round (A B, B A, ...). Small calls
+(an HB point, a Floquet point) are timed as the mean of ``CALLS`` calls, the
 median over the repeats (at least 5 of them). ``--quick``: the branch over Omega~ 0.5-0.7,
 20 periods, 1 and 2 elements, one repeat (no time asserted; the agreement of the two paths
 still is).
@@ -32,6 +34,7 @@ Run: ``python -m benchmarks --only elements``.
 from __future__ import annotations
 
 import dataclasses
+import statistics
 import sys
 import time
 from collections.abc import Callable
@@ -43,7 +46,7 @@ if __package__ in (None, ""):  # run as a script: make the repository's `benchma
 
 import numpy as np
 
-from benchmarks.common import W1, Row, interleaved, paper_config, response_options
+from benchmarks.common import W1, Row, paper_config, response_options
 
 #: Nodes of the SFDs: the first n are used (1 is the paper's, with its centring spring).
 NODES = (1, 20, 4, 17, 6, 14, 10, 12)
@@ -101,6 +104,20 @@ def mean_of(fun: Callable[[], Any], calls: int) -> Callable[[], Any]:
             out = fun()
         return out
     return run
+
+
+def interleaved(funs: dict[str, Callable[[], Any]], repeat: int
+                ) -> dict[str, tuple[float, list[float], Any]]:
+    """Median times of methods run in turn, the order reversed every other round (A B, B A,
+    A B, ...): load changes and any cost of running first hit them alike."""
+    times: dict[str, list[float]] = {k: [] for k in funs}
+    outs: dict[str, Any] = {}
+    for i in range(max(1, repeat)):
+        for k in (list(funs) if i % 2 == 0 else list(funs)[::-1]):
+            t0 = time.perf_counter()
+            outs[k] = funs[k]()
+            times[k].append(time.perf_counter() - t0)
+    return {k: (statistics.median(v), v, outs[k]) for k, v in times.items()}
 
 
 def _relative(a: np.ndarray, b: np.ndarray) -> float:
@@ -202,9 +219,7 @@ def count_rows(model: Any, quick: bool, repeat: int) -> list[Row]:
     setups: dict[int, dict[str, Any]] = {}
     for n in counts:
         system = system_with(model, n)
-        t0 = time.perf_counter()
-        as_cfunc(system.elements.kernel)   # generated and compiled once per layout/process
-        compile_s = time.perf_counter() - t0
+        as_cfunc(system.elements.kernel)   # generated and compiled (or loaded) once
         p = system.periodic_problem()
         sol = solve_periodic(p, HB_RATIO * W1, H, n_samples=N_SAMPLES, tol=1e-6)
         floquet = FloquetEvaluator(p, StabilityOptions())
@@ -213,7 +228,7 @@ def count_rows(model: Any, quick: bool, repeat: int) -> list[Row]:
         td_run(inp, 1)
         eps = system.elements.limit(_samples(sol.X, p))
         setups[n] = {"problem": p, "X": sol.X, "floquet": floquet, "inputs": inp,
-                     "compile_s": compile_s, "eps": eps}
+                     "eps": eps}
     label = {n: f"{n} SFD" + ("s" if n > 1 else "") for n in counts}
     where = f"nodes {', '.join(map(str, NODES[:max(counts)]))} (first n)"
     ref = label[counts[0]]
@@ -251,12 +266,45 @@ def count_rows(model: Any, quick: bool, repeat: int) -> list[Row]:
         lambda n, tr: (f"eps max {tr.max_eccentricity_run:.3f}, Newton max "
                        f"{tr.newton_iterations_max} it/step"))
 
-    case = "n SFDs: composite kernel, generated + compiled (once per layout and process)"
-    for n in counts:
-        c = setups[n]["compile_s"]
-        rows.append(Row("elements", case, label[n], c, repeat=1,
-                        note="single element: its own kernel passed through (cfunc from "
-                             "the disk cache)" if n == 1 else "in memory, not cached on disk"))
+    return rows + compile_rows(counts, label)
+
+
+#: Run in a fresh interpreter: the first ``as_cfunc`` of each layout's kernel, in seconds.
+_COMPILE = """
+import json, time
+from benchmarks.bench_elements import _model, system_with
+from rotorsfd.kernels import as_cfunc
+model, out = _model(), {}
+for n in %r:
+    system = system_with(model, n)
+    t0 = time.perf_counter()
+    as_cfunc(system.elements.kernel)
+    out[n] = time.perf_counter() - t0
+print(json.dumps(out))
+"""
+
+
+def compile_rows(counts: tuple[int, ...], label: dict[int, str]) -> list[Row]:
+    """The composite kernel's generation + compilation (first ``as_cfunc`` of the
+    layout) in a fresh process with an empty ``ROTORSFD_CACHE_DIR``, then in a second
+    fresh process with the same folder (what a disk cache of the layout saves)."""
+    import tempfile
+
+    from benchmarks.common import run_python
+
+    with tempfile.TemporaryDirectory(prefix="rotorsfd-bench-") as folder:
+        env = {"ROTORSFD_CACHE_DIR": folder}
+        cold = run_python(_COMPILE % (tuple(counts),), env=env)
+        warm = run_python(_COMPILE % (tuple(counts),), env=env)
+    rows = []
+    for what, got in (("first process, empty cache folder", cold),
+                      ("next process, same cache folder", warm)):
+        case = f"n SFDs: composite kernel, generated + compiled: {what}"
+        for n in counts:
+            rows.append(Row("elements", case, label[n], float(got[str(n)]), repeat=1,
+                            note="single element: its own kernel passed through (the process' "
+                            "first cfunc, from numba's cache)" if n == 1
+                            else "once per layout and process (or loaded from the cache)"))
     return rows
 
 
