@@ -52,6 +52,9 @@ class ElementSet:
                            for e in self.elements)
         sizes = [e.kernel_params.size for e in self.elements]
         self.param_offsets = tuple(int(o) for o in np.concatenate([[0], np.cumsum(sizes)]))
+        #: one element on the nonlinear DOFs in its own order: its laws are used as they are
+        self.passthrough = len(self.elements) == 1 and bool(
+            np.array_equal(self.local[0], np.arange(self.m)))
 
     def __len__(self) -> int:
         return len(self.elements)
@@ -85,7 +88,7 @@ class ElementSet:
         nonlinear DOFs: the sum of the elements' (module doc)."""
         q = np.asarray(q, dtype=np.float64)
         v = np.asarray(v, dtype=np.float64)
-        if self._passthrough:
+        if self.passthrough:
             return self.elements[0].force_and_jacobian(q, v)
         shape = q.shape[:-1]
         m = self.m
@@ -104,7 +107,7 @@ class ElementSet:
         """``F (..., m)``."""
         q = np.asarray(q, dtype=np.float64)
         v = np.asarray(v, dtype=np.float64)
-        if self._passthrough:
+        if self.passthrough:
             return self.elements[0].force(q, v)
         F = np.zeros(q.shape)
         for e, loc in zip(self.elements, self.local, strict=True):
@@ -118,16 +121,11 @@ class ElementSet:
 
     # ---- compiled form -----------------------------------------------------------------
     @property
-    def _passthrough(self) -> bool:
-        return len(self.elements) == 1 and bool(
-            np.array_equal(self.local[0], np.arange(self.m)))
-
-    @property
     def kernel(self) -> Any:
         """The composite compiled kernel (None without elements)."""
         if not self.elements:
             return None
-        if self._passthrough:
+        if self.passthrough:
             return self.elements[0].kernel
         key = tuple((e.kernel, tuple(loc.tolist()), self.param_offsets[i],
                      self.param_offsets[i + 1])
@@ -147,6 +145,8 @@ class ElementSet:
     # ---- validity and results ----------------------------------------------------------
     def limit(self, q: FloatArray) -> float:
         """The largest validity measure over the elements of samples ``q (..., m)``."""
+        if self.passthrough:
+            return self.elements[0].limit(q)
         return max((e.limit(q[..., loc]) for e, loc in zip(self.elements, self.local,
                                                           strict=True)), default=0.0)
 
