@@ -58,6 +58,9 @@ def test_element_eccentricity_is_the_deflection_at_its_node(written):
     _, _, _, table, _ = written
     np.testing.assert_allclose(table["eps_max_sfd"], table["defl_1"], rtol=2e-5)
     assert np.all(table["eps_max_sfd"] <= table["defl_1"] * (1 + 1e-12))
+    var = written[4]["eps_max_sfd"]                    # in branch.nc too, described
+    np.testing.assert_allclose(var.values, table["eps_max_sfd"], rtol=1e-12)
+    assert var.attrs["units"] == "1" and "SFD 'sfd' at node 1" in var.attrs["long_name"]
 
 
 def test_csv_matches_netcdf(written):

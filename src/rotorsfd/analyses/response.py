@@ -337,6 +337,10 @@ class ResponseResult:
                                     "moduli (|mu(M) - mu(M/2)| / 3)"}
         for key, values in self.floquet_columns().items():
             ds[key] = ("point", values, {"long_name": long[key], "units": "1"})
+        info = self.system.elements.diagnostic_info()
+        for key, values in self.element_columns().items():
+            text, unit = info.get(key, (key, ""))
+            ds[key] = ("point", values, {"long_name": text, "units": unit})
         if "n_multipliers" in self.info and self.multipliers is not None:
             ds["multiplier_count"] = ("point", np.asarray(self.info["n_multipliers"],
                                                           np.int32),

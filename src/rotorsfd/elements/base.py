@@ -46,6 +46,8 @@ class NonlinearElement(ABC):
 
     kind: ClassVar[str]
     limit_label: ClassVar[str | None] = None
+    #: key of :meth:`diagnostics` -> (long name, SI unit), for the results files
+    diagnostic_info: ClassVar[dict[str, tuple[str, str]]] = {}
 
     def __init__(self, name: str, dofs: Any, scale: float, nodes: tuple[int, ...] = ()
                  ) -> None:

@@ -161,6 +161,11 @@ class ElementSet:
                 best = (e, value)
         return best
 
+    def diagnostic_info(self) -> dict[str, tuple[str, str]]:
+        """``<key>_<element name>`` -> (long name naming the element, SI unit)."""
+        return {f"{key}_{e.name}": (f"{text} ({e.describe()})", unit)
+                for e in self.elements for key, (text, unit) in e.diagnostic_info.items()}
+
     def diagnostics(self, q: FloatArray, v: FloatArray) -> dict[str, float]:
         """Every element's orbit diagnostics, keyed ``<key>_<element name>``."""
         out: dict[str, float] = {}

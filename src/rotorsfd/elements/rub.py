@@ -45,7 +45,7 @@ J. Mech. Eng. Sci. 10 (1968) (synchronous full annular rub); Muszynska, Rotordyn
 
 from __future__ import annotations
 
-from typing import Literal
+from typing import ClassVar, Literal
 
 import numpy as np
 from numba import njit
@@ -125,6 +125,11 @@ class RubElement(NonlinearElement):
 
     kind = "rub"
     limit_label = None
+    diagnostic_info: ClassVar[dict[str, tuple[str, str]]] = {
+        "force_max": ("largest normal contact force over the period", "N"),
+        "penetration_max": ("largest penetration |q - o| - delta over the period "
+                            "(negative: the smallest gap)", "m"),
+        "contact_fraction": ("fraction of the period in contact (penetration > 0)", "1")}
 
     def __init__(self, name: str, node: int, clearance: float, contact_stiffness: float,
                  friction: float = 0.0, smoothing: float | None = None,

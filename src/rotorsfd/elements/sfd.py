@@ -16,7 +16,7 @@ SFD of Zhao, Linnett and McLean (J. Vib. Acoust. 116, 1994) is the classic case.
 from __future__ import annotations
 
 import math
-from typing import Literal
+from typing import ClassVar, Literal
 
 import numpy as np
 from numba import njit
@@ -60,6 +60,8 @@ class SFDElement(NonlinearElement):
 
     kind = "sfd"
     limit_label = "eps"
+    diagnostic_info: ClassVar[dict[str, tuple[str, str]]] = {
+        "eps_max": ("largest eccentricity ratio |q - o| / C over the period", "1")}
 
     def __init__(self, name: str, node: int, film: SFD,
                  offset: tuple[float, float] = (0.0, 0.0)) -> None:
