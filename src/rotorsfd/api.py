@@ -105,36 +105,57 @@ class ModalRunResult:
         """Rows ``(mode, whirl, speed_rad_s)``."""
         return [(c.mode, c.whirl, float(c.speed_rad_s)) for c in self.critical_speeds]
 
+    def method_words(self) -> str:
+        """How the modes were computed (``CampbellResult.info``) and, for the reduced model,
+        its measured relative eigenvalue error max |lambda_red - lambda| / |lambda|."""
+        info = self.campbell.info
+        method = info.get("method", "")
+        err = info.get("reduced_error")
+        if method == "reduced":
+            return (f"reduced model on exact modes at {len(info.get('snapshots_rad_s', []))} "
+                    f"speeds (basis {info.get('basis_size')}), measured relative eigenvalue "
+                    f"error {err:.1e}")
+        if method == "sparse" and err is not None:
+            return (f"sparse eigensolver at every speed (the reduced model's measured error "
+                    f"{err:.1e} was above its tolerance)")
+        if method:
+            return f"{method} eigensolver at every speed"
+        return ""
+
     def plot(self, ax: Any = None) -> Any:
-        """Campbell diagram with the critical speeds marked; returns the Axes."""
-        ax = self.campbell.plot(ax=ax)
-        for c in self.critical_speeds:
-            ax.plot([c.speed_rad_s], [c.speed_rad_s], "ko", ms=5)
-            ax.annotate(f"{c.speed_rad_s:.1f} rad/s", (c.speed_rad_s, c.speed_rad_s),
-                        textcoords="offset points", xytext=(6, -12), fontsize=8)
+        """Campbell diagram (:func:`rotorsfd.plots.campbell.campbell_axes`) with the
+        critical speeds marked, the title wrapped (never cut); returns the Axes."""
+        from rotorsfd.plots.campbell import campbell_axes, campbell_figure
+
+        c = self.campbell
+        crit = [s.speed_rad_s for s in self.critical_speeds]
         title = self.config.title or "Campbell diagram"
-        ax.set_title(title if len(title) < 70 else title[:67] + "...", fontsize=9)
-        return ax
+        if ax is None:
+            return campbell_figure(c.speeds, c.frequencies, c.whirl, critical=crit,
+                                   title=title).axes[0]
+        return campbell_axes(ax, c.speeds, c.frequencies, c.whirl, critical=crit,
+                             title=title)
 
     def write(self, directory: str | Path) -> dict[str, Path]:
         """Write ``critical_speeds.csv`` (mode, whirl, speed_rad_s), ``campbell.csv`` and
         ``campbell.png`` atomically into ``directory`` (created if missing)."""
-        from matplotlib.figure import Figure
-
         out = Path(directory)
         paths = {name: out / name for name in self.FILES}
         atomic.write_csv(paths["critical_speeds.csv"], ("mode", "whirl", "speed_rad_s"),
                          self.critical_speeds_rows())
         with atomic.atomic_path(paths["campbell.csv"]) as tmp:
             self.campbell.to_csv(tmp)
-        fig = Figure(figsize=(7, 5), layout="constrained")
-        self.plot(fig.add_subplot())
+        fig = self.plot().figure
         atomic.save_figure(fig, paths["campbell.png"], dpi=120)
         return paths
 
     def summary(self) -> str:
-        """Human-readable lines: the critical speeds (rad/s, rpm, Omega/Omega_ref)."""
+        """Human-readable lines: the Campbell method (and its measured error when known),
+        the critical speeds (rad/s, rpm, Omega/Omega_ref)."""
         lines = [f"reference speed: {self.reference_speed:.6g} rad/s"]
+        method = self.method_words()
+        if method:
+            lines.append(f"Campbell diagram: {self.campbell.speeds.size} speeds, {method}")
         for c in self.critical_speeds:
             lines.append(f"critical speed {c.mode} ({c.whirl}): {c.speed_rad_s:.6g} rad/s = "
                          f"{c.speed_rad_s * 30 / np.pi:.6g} rpm = "

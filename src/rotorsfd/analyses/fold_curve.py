@@ -215,36 +215,21 @@ class FoldCurve:
             paths.pop("fold_curve.png")
         return paths
 
-    def plot(self) -> Figure:
+    def plot(self, title: str = "") -> Figure:
         """Omega~ of the folds against the second parameter (bistable region shaded,
-        cusps marked) and the unstable width (the paper's Figure 19)."""
-        from matplotlib.figure import Figure
+        cusps marked) and the unstable width (the paper's Figure 19), through
+        :func:`rotorsfd.plots.fold.fold_curve_figure`: the parameter in words with its unit,
+        symbols in mathtext, the legend beside the panels."""
+        from rotorsfd.plots.fold import fold_curve_figure
 
-        fig = Figure(figsize=(7, 7), layout="constrained")
-        ax, ax2 = fig.subplots(2, 1, sharex=True)
         t = self.table
-        v = t[self.value_column]
-        for c in np.unique(t["curve"]):
-            sel = t["curve"] == c
-            ax.plot(v[sel], t["speed_ratio"][sel], "-", lw=1.5,
-                    label="fold curve" if c == 0 else None)
         grid = np.linspace(min(self.range2), max(self.range2), 401)
         lo, hi, count = self.envelope(grid)
-        ax.fill_between(grid, lo, hi, where=count >= 2, color="C1", alpha=0.25, lw=0,
-                        label="bistable (middle branch unstable)")
-        width = np.where(count >= 2, hi - lo, 0.0)
-        for cp in self.cusps:
-            ax.plot([cp.value], [cp.speed_ratio], "kv", ms=7,
-                    label=f"cusp {cp.value:.3g} {self.units}")
-        ax.set_ylabel("Omega~ of the saddle-nodes")
-        ax.set_title(f"Fold curve in (Omega, {self.parameter}), H = {self.H}", fontsize=9)
-        ax.legend(fontsize=8)
-        ax.grid(alpha=0.3)
-        ax2.plot(grid, width, "-")
-        ax2.set_xlabel(f"{self.parameter} [{self.units}]")
-        ax2.set_ylabel("unstable width in Omega~")
-        ax2.grid(alpha=0.3)
-        return fig
+        return fold_curve_figure(t[self.value_column], t["speed_ratio"], t["curve"],
+                                 grid=grid, lo=lo, hi=hi, count=count,
+                                 cusps=[(c.value, c.speed_ratio) for c in self.cusps],
+                                 parameter=self.parameter, units=self.units, H=self.H,
+                                 title=title)
 
 
 def _table(hb: TwoParameterHB, curves: list[FoldBranch], system: RotorSystem,

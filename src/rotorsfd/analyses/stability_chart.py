@@ -324,8 +324,8 @@ class ChartResult:
         return ds
 
     def plot(self, ax: Any = None) -> Any:
-        """Unstable zones shaded by max |mu| (log colour scale), stable white, the
-        boundary max |mu| = 1 + tol as a line; returns the Axes."""
+        """Unstable points shaded by max |mu|, stable white, the boundary max |mu| =
+        1 + tol as a line (:func:`plot_chart`); returns the Axes."""
         return plot_chart(self, ax)
 
     def write(self, directory: str | Path) -> dict[str, Path]:
@@ -337,7 +337,7 @@ class ChartResult:
         out = Path(directory)
         paths = {name: out / name for name in self.FILES}
         atomic.write_netcdf(self.to_dataset(), paths["chart.nc"])
-        fig = Figure(figsize=(7, 5), layout="constrained")
+        fig = Figure(figsize=(7.4, 5.6), layout="constrained")
         self.plot(fig.add_subplot())
         atomic.save_figure(fig, paths["chart.png"], dpi=130)
         return paths
@@ -577,37 +577,20 @@ def _with_units(config: Config, axis: tuple[str, Sequence[float]], name: str) ->
 
 
 def plot_chart(result: ChartResult, ax: Any = None) -> Any:
-    """Figure 6 style: unstable points shaded by max |mu| (light blue just above 1 + tol,
-    dark at the grid's maximum), stable white, the boundary max |mu| = 1 + tol in black;
-    returns the Axes."""
-    from matplotlib.colors import Normalize
+    """Figure 6 style (:func:`rotorsfd.plots.chart.chart_axes`): unstable points shaded by
+    max |mu| (white: stable), the boundary max |mu| = 1 + tol in black, islands ringed, the
+    axes in words with their units, the title (wrapped, never cut) saying what the grid
+    shows; returns the Axes."""
+    from rotorsfd.plots.chart import chart_axes
 
     if ax is None:
-        import matplotlib.pyplot as plt
+        from matplotlib.figure import Figure
 
-        _, ax = plt.subplots()
-    ch = result.chart
-    X, Y = np.meshgrid(result.x.values, result.y.values, indexing="ij")
-    unstable = np.where(ch.stable, np.nan, ch.max_abs)
-    if np.any(~ch.stable):
-        top = max(float(np.nanmax(unstable)), 1.0 + 2.0 * ch.tol)
-        norm = Normalize(vmin=1.0 - 0.25 * (top - 1.0), vmax=top)
-        mesh = ax.pcolormesh(X, Y, unstable, shading="nearest", cmap="Blues", norm=norm)
-        bar = ax.figure.colorbar(mesh, ax=ax, ticks=np.linspace(1.0, top, 5))
-        bar.set_label("max |Floquet multiplier| (unstable points)")
-        if min(ch.max_abs.shape) > 1:
-            ax.contour(X, Y, ch.max_abs, levels=[1.0 + ch.tol], colors="k",
-                       linewidths=0.6)
-    ax.set_xlim(result.x.values.min(), result.x.values.max())
-    ax.set_ylim(result.y.values.min(), result.y.values.max())
-    ax.set_xlabel(f"{result.x.path} [{result.x.units}]")
-    ax.set_ylabel(f"{result.y.path} [{result.y.units}]")
-    speed = "" if result.speed is None else f", Omega = {result.speed:.6g} rad/s"
-    title = result.title or "Stability chart"
-    title = title if len(title) <= 70 else title[:67] + "..."
-    ax.set_title(f"{title}\nshaded: unstable ({int((~ch.stable).sum())} of "
-                 f"{ch.max_abs.size} points, max |mu| > 1 + {ch.tol:g}){speed}", fontsize=9)
-    return ax
+        ax = Figure(figsize=(7.4, 5.6), layout="constrained").add_subplot()
+    return chart_axes(ax, result.x.values, result.y.values, result.chart.max_abs,
+                      x_label=f"{result.x.path} [{result.x.units}]",
+                      y_label=f"{result.y.path} [{result.y.units}]", tol=result.chart.tol,
+                      speed=result.speed, title=result.title or "Stability chart")
 
 
 __all__ = [

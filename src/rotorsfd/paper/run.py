@@ -9,6 +9,7 @@ runs several in a process pool with a progress bar.
 from __future__ import annotations
 
 import os
+import re
 import sys
 import time
 import traceback
@@ -21,6 +22,7 @@ from typing import Any
 import numpy as np
 
 from rotorsfd.paper.cases import Case, examples_dir
+from rotorsfd.plots.labels import mathtext, setting
 
 
 @dataclass
@@ -124,11 +126,38 @@ def response_numbers(result: Any, orbits: Sequence[float] = ()) -> tuple[dict, d
 # ---- the kinds -------------------------------------------------------------------------------
 
 
-def _config(case: Case, examples: Path, quick: bool, extra: Sequence[str] = ()) -> Any:
+def case_title(case: Case, config_title: str) -> str:
+    """The title of a case's own result figures: its config's title with the list of every
+    variant ("U = 72.008 / 144.02 / 360.04 g mm") and the settings the case changes
+    replaced by the case's settings in words ("U = 144.02 g mm"), its note after; the
+    config's title as it is when the case sets nothing."""
+    words = [w for w in (setting(o) for o in case.overrides) if w]
+    if not words:
+        return config_title
+    head, sep, rest = config_title.partition(":")
+    if not sep:
+        head, rest = "", config_title
+    m = re.search(r"\s*(\([^()]*\))\s*$", rest)        # "(Zhang et al. 2025)" kept last
+    source = m.group(1) if m else ""
+    rest = rest[:m.start()] if m else rest
+    names = {w.split(" = ")[0] for w in words}
+    kept = [p.strip() for p in rest.split(",") if p.strip() and " / " not in p
+            and mathtext(p.split(" = ")[0].strip()) not in names]
+    text = ", ".join([*kept, *words])
+    note = f"; {case.note}" if case.note else ""
+    return (f"{head.strip()}: " if head else "") + text + note + \
+        (f" {source}" if source else "")
+
+
+def load_case_config(case: Case, examples: Path | None = None, quick: bool = False,
+                     extra: Sequence[str] = ()) -> Any:
+    """The validated config of ``case`` (its overrides, ``--quick`` ones, ``extra``),
+    titled by :func:`case_title`."""
     from rotorsfd.io.config import load_config
 
-    return load_config(examples / case.config,
-                       [*case.overrides, *(case.quick if quick else ()), *extra])
+    config = load_config((examples or examples_dir()) / case.config,
+                         [*case.overrides, *(case.quick if quick else ()), *extra])
+    return config.model_copy(update={"title": case_title(case, config.title)})
 
 
 def _modal(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
@@ -336,7 +365,8 @@ def _chart(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
         r.write(out)
     n = {"unstable_fraction": float((~r.stable).mean())}
     return n, {"x": r.x.values, "y": r.y.values, "max_abs": r.chart.max_abs,
-               "x_label": f"{r.x.path} [{r.x.units}]", "y_label": f"{r.y.path} [{r.y.units}]"}
+               "x_label": f"{r.x.path} [{r.x.units}]", "y_label": f"{r.y.path} [{r.y.units}]",
+               "tol": float(r.chart.tol), "speed": r.speed}
 
 
 RUNNERS: dict[str, Callable[[Case, Any, Path | None], tuple[dict, dict]]] = {
@@ -353,7 +383,7 @@ def run_case(case: Case, examples: Path | None = None, quick: bool = False,
     t0 = time.perf_counter()
     examples = examples or examples_dir()
     try:
-        config = _config(case, examples, quick)
+        config = load_case_config(case, examples, quick)
         numbers, data = RUNNERS[case.kind](case, config, None if out is None
                                            else out / case.name)
     except RotorsfdError as exc:
