@@ -30,7 +30,7 @@ from rotorsfd.continuation.branch import Branch
 from rotorsfd.continuation.newton import newton_extended, tangent
 from rotorsfd.errors import ConvergenceError
 from rotorsfd.harmonic.fourier import to_real
-from rotorsfd.harmonic.periodic import _setup, continue_periodic
+from rotorsfd.harmonic.periodic import continue_periodic, hb_system
 from rotorsfd.harmonic.problem import PeriodicProblem
 
 ComplexArray = NDArray[np.complex128]
@@ -271,7 +271,7 @@ def switch_period_doubling(problem: PeriodicProblem, lam: float, X: ComplexArray
     X2 = doubled_coefficients(X, H2)
     lo, hi = sorted(lam_range)
     scale = (hi - lo) or max(abs(lam), 1.0)
-    system, z0 = _setup(p2, H2, lam, X2, n_samples, True, scale, limit_max)
+    system, z0 = hb_system(p2, H2, lam, X2, n_samples, True, scale, limit_max)
     p1 = _PeriodOne(system, z0, tol, problem.name)
     lam_z = float(z0[-1])
     lam_pd_z = None

@@ -221,9 +221,11 @@ def _initial_guess(problem: PeriodicProblem, H: int, lam: float,
     return X
 
 
-def _setup(problem: PeriodicProblem, H: int, lam: float, X0: ComplexArray | None,
-           n_samples: int | None, condensed: bool, lam_scale: float, limit_max: float
-           ) -> tuple[HBSystem, FloatArray]:
+def hb_system(problem: PeriodicProblem, H: int, lam: float, X0: ComplexArray | None,
+              n_samples: int | None, condensed: bool, lam_scale: float, limit_max: float
+              ) -> tuple[HBSystem, FloatArray]:
+    """The extended HB system of ``problem`` at ``lam`` and its first unknowns ``z0``
+    (from ``X0``, or the linearised response; N_f by the sampling rule if not given)."""
     Xg = _initial_guess(problem, H, lam, X0)
     xg = to_real(Xg)
     N = n_samples or choose_n_samples(problem.nl_force, xg[:, problem.nl_dofs],
@@ -276,7 +278,7 @@ def solve_periodic(problem: PeriodicProblem, lam: float, H: int,
     ``n_samples`` N_f (default: :func:`~rotorsfd.harmonic.fourier.choose_n_samples` at X0).
     Raises :class:`rotorsfd.errors.ConvergenceError` saying where and why on failure.
     """
-    system, z0 = _setup(problem, H, lam, X0, n_samples, condensed,
+    system, z0 = hb_system(problem, H, lam, X0, n_samples, condensed,
                         max(abs(lam), 1.0), limit_max)
     e = np.zeros(system.n + 1)
     e[-1] = 1.0
@@ -626,7 +628,7 @@ def _start_point(problem: PeriodicProblem, H: int, lam: float, X: ComplexArray, 
                  ) -> tuple[HBSystem, NewtonResult]:
     """Continuation system with N samples and the point at lam solved in it (at fixed lam,
     or on the plane through it normal to the tangent t near a fold or with ``plane``)."""
-    system, z0 = _setup(problem, H, lam, X, N, condensed, scale, limit_max)
+    system, z0 = hb_system(problem, H, lam, X, N, condensed, scale, limit_max)
     a = np.zeros(system.n + 1)
     a[-1] = 1.0
     if t is not None and (plane or abs(t[-1]) < FOLD_TANGENT):

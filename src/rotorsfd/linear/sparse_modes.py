@@ -35,7 +35,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as sla
 
 from rotorsfd.errors import ConvergenceError
-from rotorsfd.linear.modal import RIGID_BODY_TOL, LinearDynamics, ModalResult, select_modes
+from rotorsfd.linear.modes import RIGID_BODY_TOL, LinearDynamics, ModalResult, select_modes
 
 COVER = 1.2            # retained modes: Im(lambda) < |farthest root found - sigma| / COVER
 BANDED_MAX = 200       # widest half-bandwidth factorised by LAPACK's banded LU

@@ -228,7 +228,7 @@ def initial_state(ps: PreparedSystem, q0: Any, v0: Any, step: int = 0) -> StepSt
                                 np.ascontiguousarray(v[nl]), F, np.zeros((m, m)),
                                 np.zeros((m, m)))
         if status != 0:
-            raise _contact_error(q[nl], v[nl], ps.t0 + step * ps.ops.dt, step, None)
+            raise contact_error(q[nl], v[nl], ps.t0 + step * ps.ops.dt, step, None)
     T = np.zeros(n)
     for p, kind in enumerate(ps.tvkind):
         T -= ps.tvcoef[step, p] * (ps.PX[p] @ (v if kind == 0 else q))
@@ -243,7 +243,7 @@ def initial_state(ps: PreparedSystem, q0: Any, v0: Any, step: int = 0) -> StepSt
     return StepState(np.concatenate(parts), F, np.ascontiguousarray(G), T, step)
 
 
-def _contact_error(y: np.ndarray, vy: np.ndarray, t: float, step: int,
+def contact_error(y: np.ndarray, vy: np.ndarray, t: float, step: int,
                    result: TimeResult | None) -> JournalContactError:
     """Generic contact report: the kernel does not return the eccentricity ratio, so
     ``eps`` is NaN; ``y, z`` are the first two nonlinear DOFs."""
@@ -257,7 +257,8 @@ def _contact_error(y: np.ndarray, vy: np.ndarray, t: float, step: int,
     return err
 
 
-_MESSAGES = {
+#: What a stepping status means, for messages.
+MESSAGES = {
     nm.OK: "integration finished",
     nm.CONTACT: "nonlinear kernel reported contact",
     nm.NEWTON_FAILED: "Newton iteration on the nonlinear DOFs did not converge",
@@ -265,8 +266,6 @@ _MESSAGES = {
                   "(reduce the step)",
     nm.NOT_FINITE: "the state became non-finite",
 }
-#: What a stepping status means, for messages (public name of ``_MESSAGES``).
-MESSAGES = _MESSAGES
 
 
 def run(ps: PreparedSystem, state: StepState, n_steps: int, *,
@@ -405,7 +404,7 @@ def integrate(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: Any,
     elapsed = time.perf_counter() - tic
     steps_done = state.step
     n_newton = max(1, steps_done) if ps.nl.size else 1
-    msg = _MESSAGES.get(status, f"status {status}")
+    msg = MESSAGES.get(status, f"status {status}")
     if status != nm.OK:
         msg += f" at step {steps_done + 1} (t={ps.t0 + (steps_done + 1) * dt:.9g} s)"
     res = TimeResult(
@@ -421,7 +420,7 @@ def integrate(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: Any,
     if status != nm.OK and on_failure == "raise":
         m = ps.nl.size
         if status == nm.CONTACT:
-            raise _contact_error(smp["fail"][:m], smp["fail"][m:],
+            raise contact_error(smp["fail"][:m], smp["fail"][m:],
                                  ps.t0 + (steps_done + 1) * dt, steps_done, res)
         raise ConvergenceError(msg)
     return res

@@ -21,8 +21,8 @@ from rotorsfd.errors import ConvergenceError
 from rotorsfd.timedomain import newmark as nm
 from rotorsfd.timedomain.forcing import Forcing, TimeVaryingMatrices
 from rotorsfd.timedomain.integrate import (
-    _MESSAGES,
-    _contact_error,
+    MESSAGES,
+    contact_error,
     initial_state,
     prepare,
     run,
@@ -117,10 +117,10 @@ def lyapunov_exponents(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params
         status, smp, _ = run(ps, state, steps, **opts)
         if status == nm.CONTACT:
             m = ps.nl.size
-            raise _contact_error(smp["fail"][:m], smp["fail"][m:],
+            raise contact_error(smp["fail"][:m], smp["fail"][m:],
                                  ps.t0 + (state.step + 1) * dt, state.step, None)
         if status != nm.OK:
-            raise ConvergenceError(f"Lyapunov run: {_MESSAGES.get(status)} at step "
+            raise ConvergenceError(f"Lyapunov run: {MESSAGES.get(status)} at step "
                                    f"{state.step + 1}")
 
     ref = initial_state(ps, q0, v0)
