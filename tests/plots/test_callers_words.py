@@ -187,3 +187,28 @@ def test_paper_chart_case_passes_tol_and_speed():
     title = " ".join(fig.axes[0].get_title().split())
     assert r"$\Omega$ = 240 rad/s" in title and f"1 + {STABILITY_TOL:g}" in title
     _no_ascii_symbols(_words(fig))
+
+
+def test_paper_fold_curve_case_figure_titled(tmp_path, monkeypatch):
+    """The fold-curve case's own figure carries the case's title (a short range at H = 3)."""
+    from rotorsfd.io import atomic
+    from rotorsfd.paper.cases import CASES
+    from rotorsfd.paper.run import run_case
+
+    saved = {}
+    save = atomic.save_figure
+
+    def keep(fig, path, **kw):
+        saved[Path(path).name] = fig
+        return save(fig, path, **kw)
+
+    monkeypatch.setattr(atomic, "save_figure", keep)
+    c = CASES["fig19-u144"]
+    o = run_case(replace(c, options={**c.options, "range": [0.0, 2.0], "harmonics": 3}),
+                 out=tmp_path)
+    assert o.status == "ok", o.message
+    assert (tmp_path / "fig19-u144" / "fold_curve.png").exists()
+    words = _words(saved["fold_curve.png"])
+    assert "Fig. 19: unstable speed range against the pitching rate, U = 144.02 g mm" in words
+    assert "252 /" not in words
+    _no_ascii_symbols(words)

@@ -316,8 +316,11 @@ def _fold_curve(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
     lo, hi = case.options["range"]
     f = run_fold_curve(config, "base.pitching.value", lo, hi,
                        harmonics=case.options.get("harmonics"))
-    if out is not None:
-        f.write(out)
+    if out is not None:                        # the figure titled by the case's settings
+        from rotorsfd.io import atomic
+
+        f.write(out, plot=False)
+        atomic.save_figure(f.plot(title=config.title), out / "fold_curve.png", dpi=120)
     grid = np.linspace(lo, hi, 201)
     w = f.unstable_width(grid)
     n = {"end_rate": f.bistability_end, "width0": float(f.unstable_width([lo])[0]),
