@@ -546,9 +546,10 @@ def _stability_chart(args: argparse.Namespace, config: Any) -> int:
 
 def _fold_range(config: Any, parameter: str, start: str, stop: str) -> tuple[float, float]:
     """``--from`` and ``--to`` in SI, checked against the kind of ``--parameter``."""
-    from rotorsfd.analyses.response import PARAMETER_PATHS, system_parameter
+    from rotorsfd.analyses.response import system_parameter
     from rotorsfd.io.schema import resolve_kind
     from rotorsfd.io.units import UnitError, describe, to_si
+    from rotorsfd.model.parameters import find_parameter
 
     try:
         param = system_parameter(parameter)
@@ -558,8 +559,8 @@ def _fold_range(config: Any, parameter: str, start: str, stop: str) -> tuple[flo
         raise ConfigError("--parameter", parameter, "must differ from the speed (the "
                           "saddle-nodes are those of the speed response)")
     path = parameter.strip()
-    if path not in PARAMETER_PATHS:
-        path = next(k for k, v in PARAMETER_PATHS.items() if v == param)
+    if path == param:           # a parameter name: its config path for the units
+        path = find_parameter(param).path
     try:
         kind = resolve_kind(config, path)
     except KeyError as exc:

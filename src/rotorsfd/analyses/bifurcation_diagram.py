@@ -272,8 +272,7 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
             raise ConfigError("start/stop", (start, stop), "give the speed range [rad/s]")
         H = harmonics or 3
         name = title or ""
-        out_nodes = tuple(nodes) if nodes else tuple(sorted(
-            {d.node for d in system.rotor.disks} | set(system.element_nodes))) or (1,)
+        out_nodes = tuple(nodes) if nodes else system.output_nodes
     else:
         config = config_or_system
         system = system_from_config(config, search_path)
@@ -281,7 +280,7 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
         if reference_speed is not None:
             ref = reference_speed
         else:
-            from rotorsfd.api import reference_speed as config_reference_speed
+            from rotorsfd.analyses.modal import reference_speed as config_reference_speed
 
             ref = config_reference_speed(config, system)
         lo, hi = bd.speed_range.bounds(ref)

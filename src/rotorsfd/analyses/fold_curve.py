@@ -35,11 +35,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsfd.analyses.modal import first_critical
 from rotorsfd.analyses.response import (
-    _UNITS,
-    PARAMETER_PATHS,
-    _default_nodes,
-    _first_critical,
+    PARAMETER_UNITS,
     column_slug,
     max_radius,
     orbit_samples,
@@ -58,6 +56,7 @@ from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.harmonic.truncation import pad_harmonics
 from rotorsfd.io import atomic
 from rotorsfd.model import dofs
+from rotorsfd.model.parameters import find_parameter
 from rotorsfd.model.system import RotorSystem
 
 if TYPE_CHECKING:
@@ -107,7 +106,7 @@ class FoldCurve:
 
     @property
     def units(self) -> str:
-        return _UNITS[self.parameter]
+        return PARAMETER_UNITS[self.parameter]
 
     @property
     def value_column(self) -> str:
@@ -333,8 +332,8 @@ def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_par
                           "the second parameter must differ from the speed")
     if range2[0] == range2[1]:
         raise ConfigError("--to", range2[1], "must differ from --from (the start value)")
-    ref = float(reference_speed if reference_speed is not None else _first_critical(system))
-    out_nodes = tuple(nodes) if nodes else _default_nodes(system)
+    ref = float(reference_speed if reference_speed is not None else first_critical(system))
+    out_nodes = tuple(nodes) if nodes else system.output_nodes
     family = system.two_parameter_problem(param)
     t0 = time.perf_counter()
     bopts = dict(branch_options or {})
@@ -377,7 +376,7 @@ def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_par
             break
         N = N_new
     t2 = time.perf_counter()
-    col = f"{column_slug(param)}_{column_slug(_UNITS[param])}"
+    col = f"{column_slug(param)}_{column_slug(PARAMETER_UNITS[param])}"
     table = _table(hb, curves, system, ref, out_nodes, col)
     cusps = []
     for c in curves:
@@ -402,7 +401,7 @@ def run_fold_curve(config: Config, parameter: str, start: Any, stop: Any, *,
     reference speed of ``[analysis.response]`` / ``[reference]``; ``parameter`` a config
     path (``base.pitching.value``, ``unbalance[0].magnitude``, ...) and ``start, stop``
     its range (numbers in SI or strings with units)."""
-    from rotorsfd.api import reference_speed as config_reference_speed
+    from rotorsfd.analyses.modal import reference_speed as config_reference_speed
     from rotorsfd.io.schema import parameter_values
     from rotorsfd.model.build import build_system
 
@@ -417,8 +416,8 @@ def run_fold_curve(config: Config, parameter: str, start: Any, stop: Any, *,
     r = config.analysis.response
     lo, hi = r.speed_range.bounds(ref)
     path = parameter.strip()
-    if path not in PARAMETER_PATHS:
-        path = next(k for k, v in PARAMETER_PATHS.items() if v == param)
+    if path == param:           # a parameter name: its config path for the units
+        path = find_parameter(param).path
     v0, v1 = parameter_values(config, path, [start, stop])
     H = harmonics or (None if r.adaptive_harmonics else r.start_harmonics)
     return fold_curve(system, (lo, hi), param, (v0, v1), H,

@@ -39,11 +39,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsfd.analyses.modal import first_critical
 from rotorsfd.continuation.branch import Branch, BranchPoint
 from rotorsfd.errors import ConfigError
 from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.harmonic.truncation import point_info_columns
 from rotorsfd.model import dofs
+from rotorsfd.model.parameters import PARAMETERS, find_parameter
 from rotorsfd.model.system import RotorSystem
 
 if TYPE_CHECKING:
@@ -55,17 +57,8 @@ if TYPE_CHECKING:
 
 FloatArray = NDArray[np.float64]
 
-#: Config paths accepted as continuation parameter -> RotorSystem parameter.
-PARAMETER_PATHS: dict[str, str] = {
-    "speed": "speed",
-    "base.rolling.value": "base.rolling",
-    "base.pitching.value": "base.pitching",
-    "base.yawing.value": "base.yawing",
-    "unbalance[0].magnitude": "unbalance.magnitude",
-    "unbalance.0.magnitude": "unbalance.magnitude",
-}
-_UNITS = {"speed": "rad/s", "base.rolling": "rad/s", "base.pitching": "rad/s",
-          "base.yawing": "rad/s", "unbalance.magnitude": "kg*m"}
+#: SI unit of every continuation parameter (:data:`rotorsfd.model.parameters.PARAMETERS`).
+PARAMETER_UNITS = {p.name: p.unit for p in PARAMETERS.values()}
 FIELD = "analysis.response"
 
 
@@ -83,17 +76,9 @@ StabilityHook = Callable[[BranchPoint], "PointStability | None"]
 
 
 def system_parameter(path: str) -> str:
-    """RotorSystem parameter of a config path ('base.pitching.value' -> 'base.pitching')."""
-    path = path.strip()
-    if path in PARAMETER_PATHS.values():
-        return path
-    try:
-        return PARAMETER_PATHS[path]
-    except KeyError:
-        allowed = ", ".join(k for k in PARAMETER_PATHS if k != "unbalance.0.magnitude")
-        raise ConfigError(f"{FIELD}.parameter", path,
-                          f"must be one of {allowed} (continuation with exact derivatives)"
-                          ) from None
+    """RotorSystem parameter of a config path ('base.pitching.value' -> 'base.pitching');
+    ConfigError naming ``analysis.response.parameter`` for anything else."""
+    return find_parameter(path, f"{FIELD}.parameter").name
 
 
 def column_slug(text: str) -> str:
@@ -199,7 +184,7 @@ class ResponseResult:
 
     @property
     def parameter_units(self) -> str:
-        return _UNITS[system_parameter(self.parameter)]
+        return PARAMETER_UNITS[system_parameter(self.parameter)]
 
     @property
     def parameter_column(self) -> str:
@@ -532,22 +517,6 @@ def _options(r: ResponseAnalysis) -> dict[str, Any]:
             "H_max": r.harmonics_max}
 
 
-def _default_nodes(system: RotorSystem) -> tuple[int, ...]:
-    nodes = {d.node for d in system.rotor.disks}
-    nodes.update(system.element_nodes)
-    return tuple(sorted(nodes)) or (1,)
-
-
-def _first_critical(system: RotorSystem) -> float:
-    from rotorsfd.linear import critical_speeds
-
-    found = critical_speeds(system, n=1, whirl="forward", speed_range=(0.0, 2e4))
-    if not found:
-        raise ConfigError("reference_speed", None, "no forward critical speed below "
-                          "2e4 rad/s: give the reference speed")
-    return float(found[0].speed_rad_s)
-
-
 class _Progress:
     """tqdm bar on stderr: percent of the parameter range reached, points, position."""
 
@@ -611,12 +580,12 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
     if isinstance(config_or_system, RotorSystem):
         system = config_or_system
         path = parameter or "speed"
-        ref = reference_speed if reference_speed is not None else _first_critical(system)
+        ref = reference_speed if reference_speed is not None else first_critical(system)
         H = harmonics or 3
         opts: dict[str, Any] = {}
         if start is None or stop is None:
             raise ConfigError("start/stop", (start, stop), "give the parameter range in SI")
-        out_nodes = tuple(nodes) if nodes else _default_nodes(system)
+        out_nodes = tuple(nodes) if nodes else system.output_nodes
         name = title or ""
         floquet = _stability_options(None, stability_options)
     else:
@@ -635,7 +604,8 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
             raise ConfigError(f"{FIELD}.nodes", n, f"must be 1..{system.rotor.n_nodes}")
     opts.update(options)
     problem = system.periodic_problem(sys_param, None if sys_param == "speed" else speed)
-    scale, unit = (ref, " x ref") if sys_param == "speed" else (1.0, f" {_UNITS[sys_param]}")
+    scale, unit = ((ref, " x ref") if sys_param == "speed"
+                   else (1.0, f" {PARAMETER_UNITS[sys_param]}"))
     bar = _Progress(start, stop, progress, "response", scale, unit)
     data: dict[int, PointStability] = {}
 
@@ -765,7 +735,7 @@ def _from_config(config: Config, search_path: Path | None, parameter: str | None
                  reference_speed: float | None, harmonics: int | None,
                  nodes: Sequence[int] | None):
     """(system, parameter path, reference speed, H, options, (start, stop, speed), nodes)."""
-    from rotorsfd.api import reference_speed as config_reference_speed
+    from rotorsfd.analyses.modal import reference_speed as config_reference_speed
     from rotorsfd.io.schema import parameter_values
     from rotorsfd.model.build import build_system
 
@@ -791,7 +761,7 @@ def _from_config(config: Config, search_path: Path | None, parameter: str | None
     hi = hi if stop is None else stop
     if lo == hi:
         raise ConfigError(f"{FIELD}.speed_range", (lo, hi), "start and stop must differ")
-    out_nodes = tuple(nodes or r.nodes) or _default_nodes(system)
+    out_nodes = tuple(nodes or r.nodes) or system.output_nodes
     opts = _options(r)
     if harmonics:       # a given H is fixed
         opts["adaptive_harmonics"] = False

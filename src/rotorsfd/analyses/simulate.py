@@ -207,12 +207,6 @@ def system_from_config(config: Config, search_path: Path | None = None) -> Rotor
     return build_system(config, search_path)
 
 
-def _default_nodes(system: RotorSystem) -> tuple[int, ...]:
-    nodes = {d.node for d in system.rotor.disks}
-    nodes.update(system.element_nodes)
-    return tuple(sorted(nodes)) or (1,)
-
-
 def _progress_bar(enabled: bool, total: int, desc: str) -> Any:
     from tqdm import tqdm
 
@@ -263,7 +257,7 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
         ref = reference_speed
         H = harmonics or 3
         name = title or ""
-        out_nodes = tuple(nodes) if nodes else _default_nodes(system)
+        out_nodes = tuple(nodes) if nodes else system.output_nodes
     else:
         config = config_or_system
         system = system_from_config(config, search_path)
@@ -271,7 +265,7 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
         if reference_speed is not None:
             ref = reference_speed
         else:
-            from rotorsfd.api import reference_speed as config_reference_speed
+            from rotorsfd.analyses.modal import reference_speed as config_reference_speed
 
             ref = config_reference_speed(config, system)
         H = harmonics or config.analysis.response.start_harmonics

@@ -84,8 +84,8 @@ def run_static(config_or_system: Config | RotorSystem, *, speeds: Sequence[float
         ref = reference_speed or 1.0
         title = ""
     else:
-        from rotorsfd.api import modal_speeds
-        from rotorsfd.api import reference_speed as config_reference_speed
+        from rotorsfd.analyses.modal import modal_speeds
+        from rotorsfd.analyses.modal import reference_speed as config_reference_speed
         from rotorsfd.model.build import build_system
 
         config = config_or_system

@@ -31,23 +31,13 @@ from rotorsfd.model.base_terms import (
     base_coefficient_derivatives,
     base_coefficients,
 )
+from rotorsfd.model.parameters import PARAMETERS, find_parameter
 from rotorsfd.model.rotor import Rotor
 from rotorsfd.model.unbalance import (
     Unbalance,
     unbalance_harmonics,
     unbalance_harmonics_derivatives,
 )
-
-#: Continuation parameters with exact derivatives: name -> what it is.
-PARAMETERS: dict[str, str] = {
-    "speed": "rotor speed Omega [rad/s]",
-    "base.rolling": "constant base rolling rate w_bx [rad/s] at fixed speed",
-    "base.pitching": "constant base pitching rate w_by [rad/s] at fixed speed",
-    "base.yawing": "constant base yawing rate w_bz [rad/s] at fixed speed",
-    "unbalance.magnitude": "magnitude of the first unbalance [kg m], others scaled with it",
-}
-_RATE_INDEX = {"base.rolling": 0, "base.pitching": 1, "base.yawing": 2}
-_RATE_NAME = {"base.rolling": "wx", "base.pitching": "wy", "base.yawing": "wz"}
 
 
 @dataclass
@@ -99,6 +89,13 @@ class RotorSystem:
         return self.elements.scale
 
     @property
+    def output_nodes(self) -> tuple[int, ...]:
+        """The nodes results show by default: the disks' and the elements' (node 1 if
+        neither)."""
+        nodes = {d.node for d in self.rotor.disks} | set(self.element_nodes)
+        return tuple(sorted(nodes)) or (1,)
+
+    @property
     def primary_node(self) -> int | None:
         """The node of the first element (the one shown in the clearance unit C by default
         and checked first); None without elements."""
@@ -143,16 +140,17 @@ class RotorSystem:
         :class:`~rotorsfd.model.base_terms.PolynomialTerms`."""
         st = self.constant_base_state() if state is None else state
         r = self.rotor
-        if parameter == "speed":
+        par = find_parameter(parameter)
+        if par.kind == "speed":
             if self.base.is_fixed and state is None:
                 return PolynomialTerms(self.n_dof, D=(r.C, r.G), K=(r.K,))
             return PolynomialTerms.of_base(self.basis, st, 0.0, "speed").plus(
                 D=(r.C, r.G), K=(r.K,))
-        if parameter not in _RATE_NAME:
+        if par.kind != "base_rate":
             raise ConfigError("parameter", parameter,
                               "linear terms are polynomial in the speed or a base rate")
         om = float(speed)
-        return PolynomialTerms.of_base(self.basis, st, om, _RATE_NAME[parameter]).plus(
+        return PolynomialTerms.of_base(self.basis, st, om, par.rate_name).plus(
             D=(r.C + om * r.G,), K=(r.K,))
 
     def _speed_polynomial(self) -> PolynomialTerms:
@@ -208,46 +206,44 @@ class RotorSystem:
         if not len(self.elements):
             raise ConfigError("elements", None, "the nonlinear response needs at least one "
                               "nonlinear element (an [elements.<name>] table)")
-        if parameter not in PARAMETERS:
-            raise ConfigError("parameter", parameter,
-                              f"must be one of {', '.join(PARAMETERS)}")
-        if parameter != "speed" and (speed is None or speed <= 0):
+        par = find_parameter(parameter)
+        if par.kind != "speed" and (speed is None or speed <= 0):
             raise ConfigError("speed", speed,
                               f"continuing in {parameter} needs a fixed speed > 0 [rad/s]")
         state0 = self.constant_base_state()
         r = self.rotor
         basis = self.basis
-        fixed_base = self.base.is_fixed and parameter not in _RATE_INDEX
+        fixed_base = self.base.is_fixed and par.kind != "base_rate"
         U_ref = self.unbalances[0].magnitude if self.unbalances else 0.0
-        if parameter == "unbalance.magnitude" and U_ref == 0.0:
+        if par.kind == "unbalance" and U_ref == 0.0:
             raise ConfigError("unbalance", None,
                               "continuing in the unbalance needs a nonzero first unbalance")
 
         def at(lam: float) -> tuple[float, BaseState, float]:
             """(speed, base state, unbalance scale) at parameter value lam."""
-            if parameter == "speed":
+            if par.kind == "speed":
                 return lam, state0, 1.0
-            if parameter in _RATE_INDEX:
+            if par.kind == "base_rate":
                 w = np.array(state0.w, dtype=float)
-                w[_RATE_INDEX[parameter]] = lam
+                w[par.axis] = lam
                 return float(speed), BaseState(w, np.zeros(3), state0.a0, state0.v0,
                                                state0.g), 1.0
             return float(speed), state0, lam / U_ref
 
         def coefficient_derivative(om: float, st: BaseState) -> BaseCoefficients:
             d = base_coefficient_derivatives(st, om)
-            if parameter == "speed":
+            if par.kind == "speed":
                 return d["speed"]
-            if parameter in _RATE_NAME:
-                return d[_RATE_NAME[parameter]]
+            if par.kind == "base_rate":
+                return d[par.rate_name]
             return BaseCoefficients(np.zeros(12), np.zeros(12), np.zeros(8))
 
         if assembly == "polynomial":
-            if parameter in _RATE_INDEX:
-                lin = self.linear_terms(parameter, speed, state0)
+            if par.kind == "base_rate":
+                lin = self.linear_terms(par.name, speed, state0)
             else:
                 lin = self.linear_terms("speed", state=None if fixed_base else state0)
-            if parameter == "unbalance.magnitude":   # the linear part is free of lam
+            if par.kind == "unbalance":   # the linear part is free of lam
                 const = (r.M, lin.damping(float(speed)), lin.stiffness(float(speed)))
                 lin = PolynomialTerms(self.n_dof, D=(const[1],), K=(const[2],),
                                       F=(lin.load(float(speed)),))
@@ -283,7 +279,7 @@ class RotorSystem:
             def dmatrices(lam: float):
                 om, st, _ = at(lam)
                 zero = np.zeros_like(r.M)
-                dG = r.G if parameter == "speed" else zero
+                dG = r.G if par.kind == "speed" else zero
                 if fixed_base:
                     return zero, dG, zero
                 dC_b, dK_b, _ = basis.combine(coefficient_derivative(om, st))
@@ -313,20 +309,20 @@ class RotorSystem:
             if not fixed_base:
                 dF[0] = dbase_load(lam)
             if H >= 1 and self.unbalances:
-                if parameter == "unbalance.magnitude":
+                if par.kind == "unbalance":
                     Fc, Fs = unbalance_harmonics(self.unbalances, r, om, st)
                     dF[1] = (Fc - 1j * Fs) / U_ref
                 else:
-                    key = "speed" if parameter == "speed" else _RATE_NAME[parameter]
+                    key = "speed" if par.kind == "speed" else par.rate_name
                     dFc, dFs = unbalance_harmonics_derivatives(self.unbalances, r, om, st)[key]
                     dF[1] = scale * (dFc - 1j * dFs)
             return dF
 
         def frequency(lam: float) -> float:
-            return float(lam) if parameter == "speed" else float(speed)
+            return float(lam) if par.kind == "speed" else float(speed)
 
         def dfrequency(lam: float) -> float:
-            return 1.0 if parameter == "speed" else 0.0
+            return 1.0 if par.kind == "speed" else 0.0
 
         el = self.elements
         limited = any(e.limit_label is not None for e in el)
@@ -352,7 +348,7 @@ class RotorSystem:
         """A copy with the constant base rate ``parameter`` (base.rolling|pitching|yawing)
         set to ``value`` [rad/s]."""
         laws = list(self.base.rotation)
-        laws[_RATE_INDEX[parameter]] = Constant(value)
+        laws[find_parameter(parameter).axis] = Constant(value)
         base = BaseMotion(*self.base.translation, *laws, gravity=self.base.gravity)
         return RotorSystem(self.rotor, self.elements, self.unbalances, base)
 
@@ -361,9 +357,10 @@ class RotorSystem:
         """A copy with a continuation parameter (not the speed) set: a constant base rate
         [rad/s], or the first unbalance's magnitude [kg m] (the others scaled with it, as
         in :meth:`periodic_problem`). The copy shares the base-motion basis."""
-        if parameter in _RATE_INDEX:
-            out = self.with_base_rate(parameter, value)
-        elif parameter == "unbalance.magnitude":
+        par = find_parameter(parameter)
+        if par.kind == "base_rate":
+            out = self.with_base_rate(par.name, value)
+        elif par.kind == "unbalance":
             if not self.unbalances or self.unbalances[0].magnitude == 0.0:
                 raise ConfigError("unbalance", None,
                                   "continuing in the unbalance needs a nonzero first unbalance")
@@ -371,8 +368,8 @@ class RotorSystem:
             ub = [Unbalance(u.node, u.magnitude * scale, u.phase) for u in self.unbalances]
             out = RotorSystem(self.rotor, self.elements, ub, self.base)
         else:
-            raise ConfigError("parameter", parameter,
-                              f"must be one of {', '.join(p for p in PARAMETERS if p != 'speed')}")
+            raise ConfigError("parameter", parameter, "must be one of " + ", ".join(
+                p for p in PARAMETERS if PARAMETERS[p].kind != "speed"))
         out._basis = self._basis
         return out
 
@@ -385,10 +382,10 @@ class RotorSystem:
         from rotorsfd.continuation.folds import TwoParameterProblem
 
         self.constant_base_state()
-        if second == "speed" or second not in PARAMETERS:
-            raise ConfigError("parameter", second,
-                              f"must be one of {', '.join(p for p in PARAMETERS if p != 'speed')}")
-        if second in _RATE_INDEX or not self.base.is_fixed:
+        if second not in PARAMETERS or PARAMETERS[second].kind == "speed":
+            raise ConfigError("parameter", second, "must be one of " + ", ".join(
+                p for p in PARAMETERS if PARAMETERS[p].kind != "speed"))
+        if PARAMETERS[second].kind == "base_rate" or not self.base.is_fixed:
             _ = self.basis   # built once, shared by every copy
 
         def first(value: float) -> PeriodicProblem:

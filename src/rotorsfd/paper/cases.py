@@ -441,3 +441,17 @@ def select(figures: list[str] | None = None, quick: bool = False
             if ref in CASES and ref not in names:
                 names.append(ref)
     return specs, [CASES[n] for n in names]
+
+
+@dataclass
+class Outcome:
+    """What a case gave: status (``ok``; ``partial``: the branch stopped early, e.g. at
+    journal contact, its points kept; ``failed``: no result; ``error``: a bug), numbers,
+    plot data, time."""
+
+    name: str
+    status: str
+    message: str = ""
+    elapsed: float = 0.0
+    numbers: dict[str, Any] = field(default_factory=dict)
+    data: dict[str, Any] = field(default_factory=dict)

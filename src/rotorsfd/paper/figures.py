@@ -11,8 +11,7 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator
 
-from rotorsfd.paper.cases import CASES, FigureSpec
-from rotorsfd.paper.run import Outcome
+from rotorsfd.paper.cases import CASES, FigureSpec, Outcome
 from rotorsfd.plots.chart import chart_axes
 from rotorsfd.plots.labels import settings, wrap
 from rotorsfd.plots.response import key_handles, mark_bifurcations, outside_legend, styled_line

@@ -20,8 +20,7 @@ from typing import Any
 import numpy as np
 
 from rotorsfd.io import atomic
-from rotorsfd.paper.cases import CLAIMS, Claim
-from rotorsfd.paper.run import Outcome
+from rotorsfd.paper.cases import CLAIMS, Claim, Outcome
 from rotorsfd.plots.chart import describe, unstable_regions
 
 SHORT = {"saddle-node": "SN", "secondary-hopf": "SH", "period-doubling": "PD"}

@@ -15,29 +15,14 @@ import time
 import traceback
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from rotorsfd.paper.cases import Case, examples_dir
+from rotorsfd.paper.cases import Case, Outcome, examples_dir
 from rotorsfd.plots.labels import mathtext, setting
-
-
-@dataclass
-class Outcome:
-    """What a case gave: status (``ok``; ``partial``: the branch stopped early, e.g. at
-    journal contact, its points kept; ``failed``: no result; ``error``: a bug), numbers,
-    plot data, time."""
-
-    name: str
-    status: str
-    message: str = ""
-    elapsed: float = 0.0
-    numbers: dict[str, Any] = field(default_factory=dict)
-    data: dict[str, Any] = field(default_factory=dict)
-
 
 # ---- response -------------------------------------------------------------------------------
 
@@ -161,7 +146,7 @@ def load_case_config(case: Case, examples: Path | None = None, quick: bool = Fal
 
 
 def _modal(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
-    from rotorsfd.api import run_modal
+    from rotorsfd.analyses.modal import run_modal
 
     r = run_modal(config)
     if out is not None:
@@ -171,7 +156,7 @@ def _modal(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
 
 
 def _response(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
-    from rotorsfd.api import run_response
+    from rotorsfd.analyses.response import run_response
 
     r = run_response(config, progress=False)
     if out is not None:
@@ -180,7 +165,7 @@ def _response(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
 
 
 def _simulate(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
-    from rotorsfd.api import run_simulation
+    from rotorsfd.analyses.simulate import run_simulation
 
     r = run_simulation(config, speed_ratio=case.options.get("speed_ratio"), progress=False,
                        lyapunov_periods=0)
@@ -230,8 +215,8 @@ def _isola(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
     final state, at the config's step; (e) the same at ``find_steps`` from (a) at
     ``paper_speeds`` (what the paper's step shows); (d) and (e) with the Lyapunov
     exponent (``lyapunov_periods``)."""
-    from rotorsfd.analyses.simulate import SavedState, hb_state
-    from rotorsfd.api import run_response, run_simulation
+    from rotorsfd.analyses.response import run_response
+    from rotorsfd.analyses.simulate import SavedState, hb_state, run_simulation
     from rotorsfd.harmonic.periodic import solve_periodic
     from rotorsfd.io.config import with_values
     from rotorsfd.model import dofs
@@ -311,7 +296,7 @@ def _isola(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
 
 
 def _fold_curve(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
-    from rotorsfd.api import run_fold_curve
+    from rotorsfd.analyses.fold_curve import run_fold_curve
 
     lo, hi = case.options["range"]
     f = run_fold_curve(config, "base.pitching.value", lo, hi,
@@ -333,7 +318,7 @@ def _fold_curve(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
 
 
 def _width_sweep(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
-    from rotorsfd.api import run_response
+    from rotorsfd.analyses.response import run_response
     from rotorsfd.io.config import with_values
 
     values = [float(v) for v in case.options["values"]]
@@ -361,7 +346,7 @@ def _width_sweep(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]
 
 
 def _chart(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
-    from rotorsfd.api import run_stability_chart
+    from rotorsfd.analyses.stability_chart import run_stability_chart
 
     r = run_stability_chart(config, workers=1, progress=False)
     if out is not None:
