@@ -322,6 +322,12 @@ class ResponseResult:
                                     "moduli (|mu(M) - mu(M/2)| / 3)"}
         for key, values in self.floquet_columns().items():
             ds[key] = ("point", values, {"long_name": long[key], "units": "1"})
+        for n in self.nodes:
+            ds[f"defl_{n}"] = ("point", self.deflection(n), {
+                "long_name": f"largest radius over the period at node {n} / C (r~)",
+                "units": "1"})
+        if "config_toml" in self.info:
+            ds.attrs["config_toml"] = self.info["config_toml"]
         info = self.system.elements.diagnostic_info()
         for key, values in self.element_columns().items():
             text, unit = info.get(key, (key, ""))
@@ -636,6 +642,10 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
                             None if sys_param == "speed" else float(speed), name,
                             time.perf_counter() - t0)
     result.info.update(orbit_info)
+    if not isinstance(config_or_system, RotorSystem):
+        from rotorsfd.io.config import show_config
+
+        result.info["config_toml"] = show_config(config_or_system)
     if "limit_max" in opts:
         result.info["limit_max"] = float(opts["limit_max"])
     if data and len(data) >= branch.n_points:

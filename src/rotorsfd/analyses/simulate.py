@@ -68,6 +68,7 @@ from rotorsfd.analyses.td_integration import (
 )
 from rotorsfd.analyses.td_lyapunov import lyapunov_pair
 from rotorsfd.errors import ConfigError, ConvergenceError, ElementDomainError
+from rotorsfd.io.config import show_config
 from rotorsfd.model import dofs
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.timedomain import (
@@ -258,10 +259,12 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
         H = harmonics or 3
         name = title or ""
         out_nodes = tuple(nodes) if nodes else system.output_nodes
+        config_toml = ""
     else:
         config = config_or_system
         system = system_from_config(config, search_path)
         sim = config.analysis.simulate
+        config_toml = show_config(config)
         if reference_speed is not None:
             ref = reference_speed
         else:
@@ -431,7 +434,7 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
                             pv, motion, lyap, clearance, primary, settings, eps_rec,
                             eps_run, traj.q_final, traj.v_final,
                             traj.t_final, elapsed, name, notes, control, lyap_full,
-                            traj.element_diagnostics)
+                            traj.element_diagnostics, config_toml)
 
 
 def _first_column(nodes: Sequence[int], node: int | None) -> int:

@@ -87,6 +87,7 @@ class SimulationResult:
     step_check: StepControl | None = None
     lyapunov_full: LyapunovResult | None = None
     element_diagnostics: dict[str, float] = field(default_factory=dict)
+    config_toml: str = ""       # the resolved configuration it was run from, if any
 
     FILES = ("timeseries.nc", "poincare.csv", "summary.json", "simulation.png", "orbit.png",
              "phase.png", "poincare.png", "spectrum.png")
@@ -153,6 +154,8 @@ class SimulationResult:
         attrs["t_final_s"] = float(self.t_final)
         attrs["final_phase_rad"] = float(math.fmod(self.speed * self.t_final, 2 * math.pi))
         attrs["initial_state"] = str(self.settings.get("initial_state", ""))
+        if self.config_toml:
+            attrs["config_toml"] = self.config_toml
         coords["dof"] = ("dof", np.arange(self.q_final.size, dtype=np.int32),
                          {"description": "global DOF index: 4 (node - 1) + (y, z, ty, tz)"})
         return xr.Dataset(

@@ -300,6 +300,7 @@ class ChartResult:
     speed: float | None
     natural_frequencies: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
     title: str = ""
+    config_toml: str = ""       # the resolved configuration it was run from, if any
 
     FILES = ("chart.nc", "chart.png")
 
@@ -319,8 +320,13 @@ class ChartResult:
         ds["natural_frequency"].attrs.update(
             units="rad/s", long_name="damped natural frequencies of the constant part "
             "(base rates at their mean) at the chart speed")
+        from rotorsfd import __version__
+
         ds.attrs.update(title=self.title, x=self.x.path, y=self.y.path,
-                        speed_rad_s=float("nan") if self.speed is None else self.speed)
+                        speed_rad_s=float("nan") if self.speed is None else self.speed,
+                        rotorsfd_version=__version__)
+        if self.config_toml:
+            ds.attrs["config_toml"] = self.config_toml
         return ds
 
     def plot(self, ax: Any = None) -> Any:
@@ -558,8 +564,13 @@ def run_stability_chart(config_or_system: Config | RotorSystem, *,
     info = {**info, "speed_rad_s": speed, "mode_cutoff_rad_s": cutoff}
     chart = StabilityChart(xa.values, ya.values, max_abs, crit, tol,
                            (xa.name, ya.name), info)
+    config_toml = ""
+    if not isinstance(config_or_system, RotorSystem):
+        from rotorsfd.io.config import show_config
+
+        config_toml = show_config(config_or_system)
     return ChartResult(chart, xa, ya, speed,
-                       _natural_frequencies(rotor0, specs, speed), title)
+                       _natural_frequencies(rotor0, specs, speed), title, config_toml)
 
 
 def _with_units(config: Config, axis: tuple[str, Sequence[float]], name: str) -> ChartAxis:

@@ -119,6 +119,12 @@ def branch_dataset(branch: Branch, *, parameter: str, parameter_units: str,
             data[f"bifurcation_{name}"] = ("bifurcation", np.asarray(
                 [str(v) for v in values] if text else values, dtype=str if text else float))
     ds = xr.Dataset(data, coords=coords)
+    for dim, text in (("unknown", "scaled HB unknown (real coefficients, then lam)"),
+                      ("multiplier", "Floquet multiplier, largest modulus first"),
+                      ("bifurcation", "located bifurcation, in branch order")):
+        if dim in ds.dims:
+            ds = ds.assign_coords({dim: (dim, np.arange(ds.sizes[dim]),
+                                         {"long_name": text})})
     ds.attrs.update({
         "title": "rotorsfd periodic response branch",
         "convention": "q(t) = Re(sum_k (X_real + i X_imag)_k exp(i k w t)), w = "
