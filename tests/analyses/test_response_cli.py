@@ -96,3 +96,18 @@ def test_contact_stops_branch_exit_1(tmp_path, capsys):
     for name, var in {**ds.data_vars, **ds.coords}.items():
         if np.issubdtype(var.dtype, np.number):
             assert np.all(np.isfinite(var.values)), name
+
+
+def test_messages_in_the_users_terms(tmp_path, capsys):
+    """Issue 24 item 1: the outcome names the field to change (max_points) and the
+    success line says where the branch ended in Omega~, not in the solver's lam."""
+    config = small_rotor_toml(tmp_path / "small.toml")
+    sets = ["--set", "analysis.stability.enabled=false"]
+    assert main(["response", str(config), "-o", str(tmp_path / "a"), *sets]) == 0
+    out = capsys.readouterr().out
+    assert "ok: reached the end of the range at Omega~ = 1.4 (" in out and "lam=" not in out
+    status = main(["response", str(config), "-o", str(tmp_path / "b"), "--quiet", *sets,
+                   "--set", "analysis.response.max_points=5"])
+    err = capsys.readouterr().err
+    assert status == 1 and "stopped after 5 points at Omega~ = " in err
+    assert ": analysis.response.max_points reached (raise it" in err

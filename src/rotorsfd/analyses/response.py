@@ -75,6 +75,21 @@ class PointStability:
 StabilityHook = Callable[[BranchPoint], "PointStability | None"]
 
 
+def _failure_words(solver: str) -> str:
+    """Why a branch stopped early, in the user's terms, from the continuation's message
+    ("" when it says nothing more than the solver)."""
+    if "max_points reached" in solver:
+        return (f"{FIELD}.max_points reached (raise it, or raise {FIELD}.step_max to take "
+                "larger steps)")
+    if "stopped by the callback" in solver:
+        return "stopped on request; the points so far are kept"
+    if "minimum step" in solver:
+        return (f"no converged point beyond it even at the smallest step {FIELD}.step_min "
+                f"(a sharp turn of the branch: try a smaller {FIELD}.step_max or a fixed, "
+                f"larger {FIELD}.harmonics)")
+    return ""
+
+
 def system_parameter(path: str) -> str:
     """RotorSystem parameter of a config path ('base.pitching.value' -> 'base.pitching');
     ConfigError naming ``analysis.response.parameter`` for anything else."""
@@ -166,17 +181,19 @@ class ResponseResult:
 
     @property
     def message(self) -> str:
-        """The branch's message; on failure prefixed with where the branch stopped."""
+        """The outcome in the user's terms: where the branch ended and why, with the
+        solver's own text in brackets when it stopped early."""
         b = self.branch
-        if b.success or not b.n_points:
+        if not b.n_points:
             return str(b.message)
         last = (f"Omega~ = {b.frequency[-1] / self.reference_speed:.5g}" if self.is_speed
                 else f"{self.parameter} = {b.lam[-1]:.6g} {self.parameter_units}")
-        limit = self.limit_text()
-        if limit:
-            return (f"response branch ended after {b.n_points} points at {last}: {limit} "
-                    f"[solver: {b.message}]")
-        return f"response branch stopped after {b.n_points} points at {last}: {b.message}"
+        if b.success:
+            return f"reached the end of the range at {last} ({b.n_points} points)"
+        reason = self.limit_text() or _failure_words(str(b.message))
+        head = (f"response branch {'ended' if self.limit_text() else 'stopped'} after "
+                f"{b.n_points} points at {last}")
+        return f"{head}: {reason} [solver: {b.message}]" if reason else f"{head}: {b.message}"
 
     @property
     def is_speed(self) -> bool:

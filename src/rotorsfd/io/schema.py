@@ -471,8 +471,8 @@ class ParameterAxis(Section):
 
 
 class ModalAnalysis(Section):
-    """Campbell diagram and critical speeds of the linear rotor (SFD film excluded; its
-    centring spring included)."""
+    """Campbell diagram and critical speeds of the linear rotor (the nonlinear elements
+    excluded; their linear parts, such as an SFD's centring spring, included)."""
 
     speeds: list[quantity("angular_velocity", "speed", ge=0)] | None = Field(
         None, description="explicit list of speeds [rad/s] (instead of speed_range)")
@@ -494,7 +494,8 @@ class ResponseAnalysis(Section):
                     '"auto" or an integer 1 <= value <= 64')] = "auto"
     harmonics_tolerance: quantity(
         "ratio", "largest HB truncation error estimate (the change of the solution if "
-        "about 1.5 H harmonics were kept, 2-norm over the SFD coefficients, in "
+        "about 1.5 H harmonics were kept, 2-norm over the coefficients of the nonlinear "
+        "elements' DOFs, in "
         "clearances); with a fixed H a warning says where it is exceeded", gt=0,
         lt=1) = 1e-3
     harmonics_min: integer("smallest H with harmonics = 'auto'", ge=1, le=64) = 1
@@ -520,10 +521,13 @@ class ResponseAnalysis(Section):
     max_iterations: integer("Newton iterations per point", ge=1, le=1000) = 20
     max_tangent_angle: quantity("angle", "largest angle between successive tangents", gt=0,
                                 le=math.pi / 2) = math.radians(10.0)
-    max_eccentricity: quantity("ratio", "step limiter: SFD eccentricity ratio kept below",
+    max_eccentricity: quantity("ratio", "step limiter: every element's validity measure (a film's "
+                                "eccentricity ratio) kept below",
                                gt=0, lt=1) = 0.95
-    condensed: bool = Field(True, description="condense exactly onto the SFD DOFs")
-    nodes: list[NODE] = Field([], description="output nodes (default: SFD and disk nodes)")
+    condensed: bool = Field(True, description="condense exactly onto the nonlinear "
+                                                  "elements' DOFs")
+    nodes: list[NODE] = Field([], description="output nodes (default: element and disk "
+                                                      "nodes)")
     directions: list[Literal["y", "z"]] = Field(["y", "z"], min_length=1,
                                                 description="output directions")
 
@@ -615,7 +619,8 @@ class StabilityAnalysis(Section):
                         "stability.STABILITY_TOL)", ge=0, lt=1) = 1e-5
     locate_tolerance: quantity("ratio", "relative parameter tolerance of located "
                                "bifurcations", gt=0, lt=1) = 1e-6
-    n_modes: integer("fixed-interface modes kept with the SFD DOFs in the reduced model "
+    n_modes: integer("fixed-interface modes kept with the elements' DOFs in the reduced "
+                     "model "
                      "(default: those with omega h <= 1/4)", ge=1, le=10000,
                      optional=True) = None
 
@@ -648,8 +653,9 @@ class SimulateAnalysis(Section):
         "(paper: 200), checked by one halving; allowed: \"auto\" or an integer, 8 <= "
         "value <= 1000000")
     step_tolerance: quantity("ratio", "largest change of the journal orbit from one halving "
-                             "of the step, in SFD clearances (the orbit's max radius "
-                             "without an SFD); a fixed step above it draws a warning",
+                             "of the step, in the first element's clearance (the orbit's "
+                             "max radius without elements); a fixed step above it draws a "
+                             "warning",
                              gt=0, le=1) = 1e-3
     max_steps_per_period: integer("the finest step of \"auto\" (a warning if the step has "
                                   "not converged there)", ge=16, le=1000000) = 3200
@@ -663,7 +669,8 @@ class SimulateAnalysis(Section):
         "the step and the journal orbits compared (\"auto\": at each halving, the periods "
         "before the recorded ones; a fixed step: its last periods); 0: off (fixed step "
         "only)", ge=0, le=10000000) = 20
-    nodes: list[NODE] = Field([], description="output nodes (default: SFD and disk nodes)")
+    nodes: list[NODE] = Field([], description="output nodes (default: element and disk "
+                                                      "nodes)")
 
     def fixed_speed(self, reference_speed: float) -> float | None:
         """The speed [rad/s] (None if neither speed nor speed_ratio is set)."""
@@ -716,7 +723,8 @@ class AnalysisConfig(Section):
 
 
 class Config(Section):
-    """A rotor-SFD system on a (possibly moving) base and the settings of its analyses."""
+    """A rotor with its nonlinear elements on a (possibly moving) base and the settings of
+    its analyses."""
 
     title: str = Field("", description="a one-line title")
     description: str = Field("", description="free text")
@@ -741,7 +749,7 @@ class Config(Section):
         return data
 
     def output_nodes(self, section: str = "response") -> list[int]:
-        """Output nodes of ``analysis.<section>``: as given, else the SFD and disk nodes
+        """Output nodes of ``analysis.<section>``: as given, else the element and disk nodes
         (else every node)."""
         given = getattr(self.analysis, section).nodes
         if given:
