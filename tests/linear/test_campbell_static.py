@@ -48,14 +48,18 @@ def test_campbell_csv(tmp_path, camp):
 
 
 def test_campbell_plot(camp):
+    """The figure lives in plots/ (the solver returns data): whirls styled apart, 1X."""
     import matplotlib
 
     matplotlib.use("Agg")
-    ax = camp.plot()
+    from rotorsfd.plots.campbell import campbell_figure
+
+    ax = campbell_figure(camp.speeds, camp.frequencies, camp.whirl).axes[0]
     labels = [line.get_label() for line in ax.get_lines()]
-    assert "forward" in labels and "backward" in labels and "1X" in labels
+    assert "forward whirl" in labels and "backward whirl" in labels
+    assert any(label.startswith("1X") for label in labels)
     styles = {line.get_label(): line.get_linestyle() for line in ax.get_lines()}
-    assert styles["forward"] != styles["backward"]
+    assert styles["forward whirl"] != styles["backward whirl"]
 
 
 def test_static_deflection_pinned_timoshenko_beam():

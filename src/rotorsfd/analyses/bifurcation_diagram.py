@@ -46,7 +46,6 @@ from rotorsfd.analyses.simulate import (
     system_from_config,
     time_domain_inputs,
 )
-from rotorsfd.analyses.simulation_result import plain
 from rotorsfd.analyses.step_control import integrate_controlled
 from rotorsfd.errors import ConfigError, ConvergenceError, ElementDomainError, RotorsfdError
 from rotorsfd.model import dofs
@@ -171,7 +170,7 @@ class BifurcationDiagramResult:
         out = Path(directory)
         paths = {"diagram.csv": write_table(out / "diagram.csv", self.table()),
                  "speeds.csv": write_table(out / "speeds.csv", self.speeds_table()),
-                 "diagram.json": atomic.write_json(out / "diagram.json", plain({
+                 "diagram.json": atomic.write_json(out / "diagram.json", atomic.json_safe({
                      "settings": self.settings, "nodes": list(self.nodes),
                      "clearance_m": self.clearance, "elapsed_s": self.elapsed,
                      "contacts": [{"direction": p.direction, "speed_rad_s": p.speed,

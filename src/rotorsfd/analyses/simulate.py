@@ -48,7 +48,6 @@ from rotorsfd.analyses.simulation_result import (
     FILE_SAMPLES_PER_PERIOD,
     SimulationResult,
     file_stride,
-    plain,
 )
 from rotorsfd.analyses.step_control import (
     AUTO_START,
@@ -94,7 +93,6 @@ __all__ = [
     "hb_start",
     "integrate_periods",
     "load_state",
-    "plain",
     "run_simulation",
     "scheme_options",
     "system_from_config",

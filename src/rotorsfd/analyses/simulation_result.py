@@ -15,6 +15,7 @@ import numpy as np
 from rotorsfd.analyses.step_control import StepControl
 from rotorsfd.analyses.td_integration import DIRECTIONS
 from rotorsfd.analyses.td_lyapunov import uncertainty_per_period
+from rotorsfd.io import atomic
 from rotorsfd.timedomain import LyapunovResult, MotionClass, amplitude_spectrum
 
 if TYPE_CHECKING:
@@ -34,23 +35,6 @@ def file_stride(steps_per_period: int) -> int:
     while n % k:
         k -= 1
     return k
-
-
-def plain(obj: Any) -> Any:
-    """JSON-safe copy: numpy scalars/arrays to Python, NaN/inf to None, tuples to lists."""
-    if isinstance(obj, dict):
-        return {str(k): plain(v) for k, v in obj.items()}
-    if isinstance(obj, list | tuple):
-        return [plain(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return plain(obj.tolist())
-    if isinstance(obj, np.bool_ | bool):
-        return bool(obj)
-    if isinstance(obj, np.integer | int):
-        return int(obj)
-    if isinstance(obj, np.floating | float):
-        return float(obj) if math.isfinite(obj) else None
-    return obj if obj is None or isinstance(obj, str) else str(obj)
 
 
 @dataclass
@@ -188,7 +172,7 @@ class SimulationResult:
             ev["spectral_lines"] = [{"frequency_rad_s": f, "amplitude_m": a, "ratio": r}
                                     for f, a, r in lines]
         ly = self.lyapunov
-        return plain({
+        return atomic.json_safe({
             "motion": self.motion_name,
             "speed_rad_s": self.speed, "speed_ratio": self.speed_ratio,
             "evidence": ev,

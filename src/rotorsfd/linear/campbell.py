@@ -65,35 +65,6 @@ class CampbellResult:
                                 repr(float(zeta[i, j])), repr(float(dec[i, j]))])
         return path
 
-    def plot(self, ax=None, harmonics: Sequence[float] = (1.0,)):
-        """Frequencies vs speed: forward whirl solid blue, backward dashed red, nX lines
-        dotted grey. Returns the matplotlib Axes."""
-        import matplotlib.pyplot as plt
-
-        if ax is None:
-            _, ax = plt.subplots()
-        freq = self.frequencies
-        style = {"forward": dict(color="tab:blue", ls="-"),
-                 "backward": dict(color="tab:red", ls="--")}
-        labelled: set[str] = set()
-        for j in range(freq.shape[1]):
-            for kind, st in style.items():
-                y = np.where(self.whirl[:, j] == kind, freq[:, j], np.nan)
-                if np.all(np.isnan(y)):
-                    continue
-                label = None if kind in labelled else kind
-                labelled.add(kind)
-                ax.plot(self.speeds, y, label=label, **st)
-        for h in harmonics:
-            ax.plot(self.speeds, h * self.speeds, color="0.4", ls=":",
-                    label=f"{h:g}X")
-        top = np.nanmax(freq) * 1.05 if freq.size else 1.0
-        ax.set_ylim(0.0, top)
-        ax.set_xlabel("spin speed [rad/s]")
-        ax.set_ylabel("damped natural frequency [rad/s]")
-        ax.legend()
-        return ax
-
 
 def _track(prev: ModalResult, cur: ModalResult, n_modes: int) -> np.ndarray:
     """Column of ``cur`` assigned to each of the ``n_modes`` branches of ``prev``."""

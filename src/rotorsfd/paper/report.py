@@ -393,20 +393,6 @@ def render_html(markdown: str, figures: Mapping[str, bytes]) -> str:
             f"report</title><style>{style}</style></head><body>\n{body}\n</body></html>\n")
 
 
-def _plain(obj: Any) -> Any:
-    if isinstance(obj, dict):
-        return {str(k): _plain(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_plain(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return _plain(obj.tolist())
-    if isinstance(obj, (np.floating, float)):
-        return None if not math.isfinite(float(obj)) else float(obj)
-    if isinstance(obj, (np.integer, np.bool_)):
-        return obj.item()
-    return obj
-
-
 def write_report(directory: str | Path, outcomes: Mapping[str, Outcome],
                  figures: Mapping[str, bytes], *, elapsed: float | None = None,
                  diagnoses: Mapping[str, str] | None = None) -> dict[str, Path]:
@@ -426,7 +412,7 @@ def write_report(directory: str | Path, outcomes: Mapping[str, Outcome],
     paths["results.json"] = atomic.write_json(out / "results.json", {
         "rows": [vars(r) for r in rows],
         "cases": {k: {"status": o.status, "message": o.message, "elapsed_s": o.elapsed,
-                      "numbers": _plain(o.numbers)} for k, o in outcomes.items()}})
+                      "numbers": atomic.json_safe(o.numbers)} for k, o in outcomes.items()}})
     return paths
 
 

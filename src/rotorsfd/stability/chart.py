@@ -90,20 +90,6 @@ class StabilityChart:
     def to_netcdf(self, path: str) -> None:
         self.to_dataset().to_netcdf(path)
 
-    def plot(self, ax=None):
-        """Unstable regions shaded (filled contour of max |mu| > 1 + tol)."""
-        import matplotlib.pyplot as plt
-
-        if ax is None:
-            _, ax = plt.subplots()
-        X, Y = np.meshgrid(self.p1, self.p2, indexing="ij")
-        ax.contourf(X, Y, (~self.stable).astype(float), levels=[0.5, 1.5],
-                    colors=["tab:blue"], alpha=0.6)
-        ax.contour(X, Y, self.max_abs, levels=[1.0 + self.tol], colors="k", linewidths=0.5)
-        ax.set_xlabel(self.names[0])
-        ax.set_ylabel(self.names[1])
-        return ax
-
 
 def _coefs(terms, t, p1, p2) -> NDArray:
     out = np.empty((len(terms), *t.shape))
