@@ -36,13 +36,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rotorsfd.analyses.modal import first_critical
-from rotorsfd.analyses.response import (
-    PARAMETER_UNITS,
-    column_slug,
-    max_radius,
-    orbit_samples,
-    system_parameter,
-)
+from rotorsfd.analyses.response_result import PARAMETER_UNITS, column_slug, system_parameter
 from rotorsfd.continuation.folds import (
     FoldBranch,
     FoldOptions,
@@ -53,6 +47,7 @@ from rotorsfd.continuation.folds import (
 from rotorsfd.errors import ConfigError, ConvergenceError
 from rotorsfd.harmonic.fourier import smallest_n_samples
 from rotorsfd.harmonic.periodic import continue_periodic
+from rotorsfd.harmonic.synthesis import max_radius, orbit_samples
 from rotorsfd.harmonic.truncation import pad_harmonics
 from rotorsfd.io import atomic
 from rotorsfd.model import dofs
