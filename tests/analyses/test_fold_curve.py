@@ -76,6 +76,7 @@ def test_fold_curve_in_the_unbalance(config):
 
 
 def test_files(pitching, tmp_path):
+    assert pitching.title and pitching.title.startswith("Paper")  # the config's, drawn
     paths = pitching.write(tmp_path)
     assert sorted(p.name for p in paths.values()) == sorted(pitching.FILES)
     with open(paths["fold_curve.csv"]) as f:

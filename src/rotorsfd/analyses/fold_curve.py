@@ -96,6 +96,7 @@ class FoldCurve:
     success: bool
     message: str
     timings: dict[str, float] = field(default_factory=dict)
+    title: str = ""             # the configuration's title (the figure's by default)
 
     FILES = ("fold_curve.csv", "fold_curve.json", "fold_curve.png")
 
@@ -204,7 +205,7 @@ class FoldCurve:
         atomic.write_csv(paths["fold_curve.csv"], cols, rows)
         atomic.write_json(paths["fold_curve.json"], self.to_json())
         if plot:
-            atomic.save_figure(self.plot(), paths["fold_curve.png"], dpi=120)
+            atomic.save_figure(self.plot(self.title), paths["fold_curve.png"], dpi=120)
         else:
             paths.pop("fold_curve.png")
         return paths
@@ -415,5 +416,7 @@ def run_fold_curve(config: Config, parameter: str, start: Any, stop: Any, *,
         path = find_parameter(param).path
     v0, v1 = parameter_values(config, path, [start, stop])
     H = harmonics or (None if r.adaptive_harmonics else r.start_harmonics)
-    return fold_curve(system, (lo, hi), param, (v0, v1), H,
-                      reference_speed=ref, nodes=tuple(r.nodes) or None, options=options)
+    result = fold_curve(system, (lo, hi), param, (v0, v1), H,
+                        reference_speed=ref, nodes=tuple(r.nodes) or None, options=options)
+    result.title = config.title
+    return result
