@@ -85,3 +85,15 @@ def test_fold_curve_parameter_in_words():
     assert ax2.get_xlabel() == r"pitching rate $\omega_{by}$ [rad/s]"
     assert "Omega~" not in ax.get_ylabel() + ax2.get_ylabel() + ax.get_title()
     assert not legends_over_panels(fig)
+
+
+def test_island_threshold_scales_with_the_grid():
+    """A 5-point unstable patch is a zone on a coarse 29 x 21 grid (it would be called an
+    island with a fixed 10-point threshold) and an island on a 100 x 100 grid."""
+    from rotorsfd.plots.chart import unstable_regions
+
+    for shape, island in (((29, 21), False), ((100, 100), True)):
+        m = np.full(shape, 0.9)
+        m[3:8, 4] = 1.2                      # 5 unstable points in a row
+        (region,) = unstable_regions(np.arange(shape[0]), np.arange(shape[1]), m)
+        assert region.n_points == 5 and region.is_island is island

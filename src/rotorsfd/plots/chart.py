@@ -3,8 +3,9 @@ by max |mu|, with a title that says what the chart shows (how many zones, how fa
 they reach, the isolated points and their |mu|), computed from the grid.
 
 A point is unstable when max |mu| > 1 + tol; a region is a 4-connected set of unstable
-points; a region of fewer than ``ZONE_POINTS`` points is an island (drawn ringed so that a
-single-point speck is seen).
+points; a region smaller than ``ZONE_FRACTION`` of the grid (at least 3 points: 10 on a
+100 x 100 grid) is an island (drawn ringed so that a single-point speck is seen), so that
+the zones of a coarse grid are not called islands.
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ from scipy import ndimage
 
 from rotorsfd.plots.labels import label, wrap
 
-ZONE_POINTS = 10      # regions this large are zones; smaller ones islands
+ZONE_FRACTION = 1e-3   # regions of this fraction of the grid (>= 3 points) are zones
 
 
 @dataclass(frozen=True)
@@ -33,6 +34,12 @@ class Region:
     y_range: tuple[float, float]
     max_abs: float
     centre: tuple[float, float]
+    grid_points: int = 0        # the size of the grid it was found on
+
+    @property
+    def is_island(self) -> bool:
+        """Smaller than ``ZONE_FRACTION`` of its grid (and than 3 points at least)."""
+        return self.n_points < max(3, round(ZONE_FRACTION * self.grid_points))
 
 
 def unstable_regions(x: Any, y: Any, max_abs: Any, tol: float = 1e-5) -> list[Region]:
@@ -46,7 +53,7 @@ def unstable_regions(x: Any, y: Any, max_abs: Any, tol: float = 1e-5) -> list[Re
         i, j = np.nonzero(lab == k)
         out.append(Region(int(i.size), (float(x[i].min()), float(x[i].max())),
                           (float(y[j].min()), float(y[j].max())), float(m[i, j].max()),
-                          (float(x[i].mean()), float(y[j].mean()))))
+                          (float(x[i].mean()), float(y[j].mean())), int(m.size)))
     return sorted(out, key=lambda r: -r.n_points)
 
 
@@ -56,8 +63,8 @@ def describe(regions: list[Region], y_name: str, y_units: str = "", *,
     reach, the islands and their |mu| (``mu``: how to write it)."""
     if not regions:
         return "no unstable point on the grid"
-    zones = [r for r in regions if r.n_points >= ZONE_POINTS]
-    islands = [r for r in regions if r.n_points < ZONE_POINTS]
+    zones = [r for r in regions if not r.is_island]
+    islands = [r for r in regions if r.is_island]
     u = f" {y_units}" if y_units else ""
     parts = []
     if zones:
@@ -97,7 +104,7 @@ def chart_axes(ax: Axes, x: Any, y: Any, max_abs: Any, *, x_label: str, y_label:
         if min(m.shape) > 1:
             ax.contour(X, Y, m, levels=[1.0 + tol], colors="k", linewidths=0.6)
     regions = unstable_regions(x, y, m, tol)
-    islands = [r for r in regions if r.n_points < ZONE_POINTS]
+    islands = [r for r in regions if r.is_island]
     if islands:
         ax.plot([r.centre[0] for r in islands], [r.centre[1] for r in islands], "o",
                 ms=11, mfc="none", mec="C3", mew=1.0, ls="none", gid="islands")
