@@ -111,3 +111,16 @@ def test_messages_in_the_users_terms(tmp_path, capsys):
     err = capsys.readouterr().err
     assert status == 1 and "stopped after 5 points at Omega~ = " in err
     assert ": analysis.response.max_points reached (raise it" in err
+
+
+def test_success_line_keeps_the_continuation_warnings(tmp_path):
+    """The user's line replaces the solver's 'lam=' but keeps its '; warning: ...' tail."""
+    from rotorsfd import api
+
+    config = api.load_config(small_rotor_toml(tmp_path / "small.toml"),
+                             ["analysis.stability.enabled=false"])
+    result = api.run_response(config, progress=False)
+    result.branch.message += "; warning: HB truncation error above 0.001 at a test point"
+    assert result.message.startswith("reached the end of the range at Omega~ = 1.4 (")
+    assert result.message.endswith("; warning: HB truncation error above 0.001 at a test "
+                                   "point")

@@ -110,8 +110,11 @@ class ResponseResult:
             return str(b.message)
         last = (f"Omega~ = {b.frequency[-1] / self.reference_speed:.5g}" if self.is_speed
                 else f"{self.parameter} = {b.lam[-1]:.6g} {self.parameter_units}")
-        if b.success:
-            return f"reached the end of the range at {last} ({b.n_points} points)"
+        if b.success:     # the continuation's warnings (e.g. the truncation error) kept
+            solver = str(b.message)
+            at = solver.find("; warning")
+            return (f"reached the end of the range at {last} ({b.n_points} points)"
+                    + (solver[at:] if at >= 0 else ""))
         reason = self.limit_text() or _failure_words(str(b.message))
         head = (f"response branch {'ended' if self.limit_text() else 'stopped'} after "
                 f"{b.n_points} points at {last}")
