@@ -24,6 +24,7 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from rotorsfd.linear.modal import LinearDynamics, ModalResult, eigen, mac, use_sparse
+from rotorsfd.linear.modes import damping_ratio, log_decrement
 
 
 @dataclass(frozen=True)
@@ -43,12 +44,12 @@ class CampbellResult:
     @property
     def damping_ratios(self) -> np.ndarray:
         """zeta = -Re(lambda) / |lambda|."""
-        return -self.eigenvalues.real / np.abs(self.eigenvalues)
+        return damping_ratio(self.eigenvalues)
 
     @property
     def log_decrements(self) -> np.ndarray:
         """delta = -2 pi Re(lambda) / Im(lambda)."""
-        return -2.0 * np.pi * self.eigenvalues.real / self.eigenvalues.imag
+        return log_decrement(self.eigenvalues)
 
     def to_csv(self, path: str | Path) -> Path:
         """Write one row per (speed, mode): speed_rad_s, mode (1-based branch), whirl,

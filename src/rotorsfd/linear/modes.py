@@ -17,6 +17,16 @@ from rotorsfd.errors import ConvergenceError
 RIGID_BODY_TOL = 1e-7
 
 
+def damping_ratio(lam: np.ndarray) -> np.ndarray:
+    """zeta = -Re(lambda) / |lambda| of eigenvalues ``lam``."""
+    return -lam.real / np.abs(lam)
+
+
+def log_decrement(lam: np.ndarray) -> np.ndarray:
+    """delta = -2 pi Re(lambda) / Im(lambda) of eigenvalues ``lam``."""
+    return -2.0 * np.pi * lam.real / lam.imag
+
+
 @runtime_checkable
 class LinearDynamics(Protocol):
     """Any object with ``n_dof`` and ``matrices(speed) -> (M, D, K)``, D containing speed*G."""
@@ -48,12 +58,12 @@ class ModalResult:
     @property
     def damping_ratios(self) -> np.ndarray:
         """zeta = -Re(lambda) / |lambda|."""
-        return -self.eigenvalues.real / np.abs(self.eigenvalues)
+        return damping_ratio(self.eigenvalues)
 
     @property
     def log_decrements(self) -> np.ndarray:
         """delta = -2 pi Re(lambda) / Im(lambda)."""
-        return -2.0 * np.pi * self.eigenvalues.real / self.eigenvalues.imag
+        return log_decrement(self.eigenvalues)
 
 
 def state_matrix(mass: np.ndarray, damping: np.ndarray, stiffness: np.ndarray) -> np.ndarray:
