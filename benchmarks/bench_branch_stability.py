@@ -3,7 +3,7 @@
 The paper rotor's branches from 0.5 to 1.6 Omega~ (``[analysis.response]`` of
 examples/paper_rotor.toml, fixed base, U = 144.02 g mm, H = 3 and H = 8; and the pitching
 example, w_by = 4 rad/s, H = 8, whose orbits are not circular): the branch itself, then
-:func:`rotorsfd.analyses.branch_stability.branch_stability` with ``newmark-cb`` (ours,
+:func:`rotorsfd.stability.branch_stability.branch_stability` with ``newmark-cb`` (ours,
 the default: Craig-Bampton basis once per (M, K), compiled monodromy loop), the same with
 the numpy monodromy loop it replaced (``compiled=False``, the code before; H = 3 only),
 Hill (H = 8, same reduction) and the paper's literal full-model Newmark; and the whole
@@ -47,7 +47,7 @@ def _response(config):
 def numpy_monodromy() -> Iterator[None]:
     """``branch_stability`` with the numpy monodromy loop (``compiled=False``): the
     analysis module's ``floquet_multipliers`` replaced for the duration."""
-    import rotorsfd.analyses.branch_stability as bs
+    import rotorsfd.stability.branch_stability as bs
 
     original = bs.floquet_multipliers
     bs.floquet_multipliers = functools.partial(original, compiled=False)
@@ -58,12 +58,12 @@ def numpy_monodromy() -> Iterator[None]:
 
 
 def run(quick: bool = False, repeat: int = 3) -> list[Row]:
-    from rotorsfd.analyses.branch_stability import (
+    from rotorsfd.io.config import load_config
+    from rotorsfd.stability.branch_stability import (
         FloquetEvaluator,
         StabilityOptions,
         branch_stability,
     )
-    from rotorsfd.io.config import load_config
 
     cases = {"paper U=144.02 H=3": paper_config(["analysis.response.harmonics=3"]),
              "paper U=144.02 H=8": paper_config(["analysis.response.harmonics=8"])}

@@ -208,10 +208,10 @@ def single_rows(model: Any, quick: bool, repeat: int) -> list[Row]:
 
 def count_rows(model: Any, quick: bool, repeat: int) -> list[Row]:
     """Part 2: cost of an HB point, a Floquet point and a time run against n elements."""
-    from rotorsfd.analyses.branch_stability import FloquetEvaluator, StabilityOptions
     from rotorsfd.analyses.td_integration import time_domain_inputs
     from rotorsfd.harmonic.periodic import solve_periodic
     from rotorsfd.kernels import as_cfunc
+    from rotorsfd.stability.branch_stability import FloquetEvaluator, StabilityOptions
 
     periods = 20 if quick else 2000
     counts = QUICK_COUNTS if quick else COUNTS

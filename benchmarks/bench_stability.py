@@ -113,8 +113,8 @@ def _matched_distance(a: np.ndarray, b: np.ndarray) -> float:
 
 def run_monodromy(quick: bool = False, repeat: int = 3) -> list[Row]:
     """Compiled vs numpy monodromy loop per point (module docstring, ``monodromy``)."""
-    from rotorsfd.analyses.branch_stability import FloquetEvaluator
     from rotorsfd.harmonic.periodic import continue_periodic
+    from rotorsfd.stability.branch_stability import FloquetEvaluator
     from rotorsfd.stability.monodromy import floquet_multipliers
     from rotorsfd.stability.orbit import orbit_samples
 

@@ -13,19 +13,19 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from rotorsfd.analyses.bifurcation_check import CheckOptions, check_bifurcations
-from rotorsfd.analyses.branch_stability import (
+from rotorsfd.continuation.folds import locate_branch_fold
+from rotorsfd.harmonic import continue_periodic
+from rotorsfd.harmonic.examples import duffing
+from rotorsfd.stability.bifurcation_check import CheckOptions, check_bifurcations
+from rotorsfd.stability.bifurcations import Bifurcation
+from rotorsfd.stability.branch_stability import (
     FloquetEvaluator,
     StabilityOptions,
     branch_stability,
     located_critical,
     reported_kind,
 )
-from rotorsfd.analyses.fold_points import fold_points, with_fold_points
-from rotorsfd.continuation.folds import locate_branch_fold
-from rotorsfd.harmonic import continue_periodic
-from rotorsfd.harmonic.examples import duffing
-from rotorsfd.stability.bifurcations import Bifurcation
+from rotorsfd.stability.fold_points import fold_points, with_fold_points
 
 PARS = {"c": 0.05, "k": 1.0, "k3": 1.0, "F": 0.3}     # folds 2.3996 / 1.3292 (H = 15)
 OPTS = StabilityOptions(method="newmark", n_intervals=800)

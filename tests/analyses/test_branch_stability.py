@@ -8,14 +8,14 @@ import numpy as np
 import pytest
 from scipy.optimize import fsolve, minimize_scalar
 
-from rotorsfd.analyses.branch_stability import (
+from rotorsfd.harmonic.examples import duffing, generic_chain
+from rotorsfd.harmonic.periodic import continue_periodic
+from rotorsfd.stability import orbit_floquet
+from rotorsfd.stability.branch_stability import (
     FloquetEvaluator,
     StabilityOptions,
     branch_stability,
 )
-from rotorsfd.harmonic.examples import duffing, generic_chain
-from rotorsfd.harmonic.periodic import continue_periodic
-from rotorsfd.stability import orbit_floquet
 
 C, K1, K3, F = 0.05, 1.0, 0.1, 0.3
 

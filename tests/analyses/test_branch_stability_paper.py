@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from rotorsfd import api
-from rotorsfd.analyses.branch_stability import FloquetEvaluator, StabilityOptions
+from rotorsfd.stability.branch_stability import FloquetEvaluator, StabilityOptions
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "examples" / "paper_rotor.toml"

@@ -8,14 +8,14 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from rotorsfd.analyses.branch_stability import branch_stability
-from rotorsfd.analyses.branch_switching import (
+from rotorsfd.harmonic.branch_switching import (
     doubled_coefficients,
     period_doubled,
     switch_period_doubling,
 )
 from rotorsfd.harmonic.periodic import continue_periodic, solve_periodic
 from rotorsfd.harmonic.problem import PeriodicProblem
+from rotorsfd.stability.branch_stability import branch_stability
 
 C, B, K3, F = 0.05, 0.5, 0.5, 0.5
 

@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 
 from rotorsfd import api
-from rotorsfd.analyses.branch_stability import branch_stability
-from rotorsfd.analyses.branch_switching import switch_period_doubling
 from rotorsfd.analyses.simulate import run_simulation, system_from_config
+from rotorsfd.harmonic.branch_switching import switch_period_doubling
 from rotorsfd.harmonic.periodic import continue_periodic, solve_periodic
+from rotorsfd.stability.branch_stability import branch_stability
 
 pytestmark = pytest.mark.slow
 

@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 
 from rotorsfd import api
-from rotorsfd.analyses.branch_stability import FloquetEvaluator, StabilityOptions
 from rotorsfd.harmonic import continue_periodic
+from rotorsfd.stability.branch_stability import FloquetEvaluator, StabilityOptions
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 ROOT = Path(__file__).resolve().parents[2]

@@ -8,8 +8,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rotorsfd.analyses.branch_stability import _merge_folds
 from rotorsfd.stability.bifurcations import BranchSample, detect
+from rotorsfd.stability.branch_stability import _merge_folds
 
 S = np.arange(12, dtype=float)
 LAM = 1.094 - 1e-4 * (S - 6.4) ** 2  # turning point between samples 6 and 7

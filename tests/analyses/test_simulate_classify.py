@@ -15,9 +15,9 @@ import numpy as np
 import pytest
 
 from rotorsfd import api
-from rotorsfd.analyses.branch_stability import FloquetEvaluator
 from rotorsfd.analyses.simulate import classify, run_simulation, system_from_config
 from rotorsfd.harmonic.periodic import solve_periodic
+from rotorsfd.stability.branch_stability import FloquetEvaluator
 
 ROOT = Path(__file__).resolve().parents[2]
 

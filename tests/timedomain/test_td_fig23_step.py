@@ -19,7 +19,6 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from rotorsfd import api
-from rotorsfd.analyses.branch_stability import FloquetEvaluator
 from rotorsfd.analyses.orbit_branch import orbit_start
 from rotorsfd.analyses.simulate import (
     hb_state,
@@ -31,6 +30,7 @@ from rotorsfd.analyses.simulate import (
 from rotorsfd.harmonic.periodic import solve_periodic
 from rotorsfd.model.dofs import dof_index
 from rotorsfd.model.sfd_kernels import P_EPS_MAX
+from rotorsfd.stability.branch_stability import FloquetEvaluator
 
 pytestmark = pytest.mark.slow
 

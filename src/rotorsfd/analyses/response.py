@@ -16,7 +16,7 @@ the largest eccentricity ratio over the period; :meth:`ResponseResult.element_co
 
 Per-point stability (``stable``, ``max_multiplier``, ``multipliers``) and the located
 bifurcations: computed after the branch by
-:func:`~rotorsfd.analyses.branch_stability.branch_stability` when
+:func:`~rotorsfd.stability.branch_stability.branch_stability` when
 ``[analysis.stability].enabled`` (or ``stability_options`` is given); alternatively a
 ``stability`` hook called at every converged point fills them, or
 :meth:`ResponseResult.with_stability` adds them afterwards; they are written when present,
@@ -45,8 +45,8 @@ from rotorsfd.model.system import RotorSystem
 
 if TYPE_CHECKING:
 
-    from rotorsfd.analyses.branch_stability import StabilityOptions
     from rotorsfd.io.schema import Config, ResponseAnalysis
+    from rotorsfd.stability.branch_stability import StabilityOptions
 
 from rotorsfd.analyses.response_result import (
     FIELD,
@@ -239,7 +239,7 @@ def _branch_from_orbit(problem: Any, sys_param: str, from_orbit: Any, H: int,
 def _stability_options(config: Config | None, given: StabilityOptions | bool | None
                        ) -> StabilityOptions | None:
     """Options of the after-branch stability (None: off), see :func:`run_response`."""
-    from rotorsfd.analyses.branch_stability import StabilityOptions
+    from rotorsfd.stability.branch_stability import StabilityOptions
 
     if isinstance(given, StabilityOptions):
         return given
@@ -262,8 +262,8 @@ def _with_branch_stability(result: ResponseResult, problem: Any,
     """The result with the multipliers of every point and the located bifurcations."""
     from tqdm import tqdm
 
-    from rotorsfd.analyses.branch_stability import FloquetEvaluator, branch_stability
-    from rotorsfd.analyses.fold_points import with_fold_points
+    from rotorsfd.stability.branch_stability import FloquetEvaluator, branch_stability
+    from rotorsfd.stability.fold_points import with_fold_points
 
     n = result.branch.n_points
     bar = tqdm(total=n, desc="stability", disable=not progress, file=sys.stderr,
@@ -275,7 +275,7 @@ def _with_branch_stability(result: ResponseResult, problem: Any,
     try:
         st = branch_stability(result.branch, problem, options, progress=step)
         if options.check and st.bifurcations:
-            from rotorsfd.analyses.bifurcation_check import CheckOptions, check_bifurcations
+            from rotorsfd.stability.bifurcation_check import CheckOptions, check_bifurcations
 
             bar.set_description_str("checking bifurcations", refresh=True)
             st.checks = check_bifurcations(result.branch, problem, st, options,

@@ -312,7 +312,7 @@ class ResponseResult:
     @property
     def multiplier_counts(self) -> NDArray[np.int64]:
         """Multipliers in each row of ``multipliers`` (the rest of a row is zero padding,
-        see :class:`~rotorsfd.analyses.branch_stability.BranchStability`); the full row
+        see :class:`~rotorsfd.stability.branch_stability.BranchStability`); the full row
         width when no counts were recorded (stability hook, :meth:`with_stability`)."""
         if self.multipliers is None:
             raise ValueError("no multipliers: run the response with stability enabled")

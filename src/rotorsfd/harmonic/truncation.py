@@ -216,7 +216,7 @@ POINT_INFO_LONG_NAMES = {
 def point_info_columns(branch: Branch) -> dict[str, NDArray[np.generic]]:
     """Per-point columns of a branch's ``info``, when it has them: ``harmonics`` (int),
     ``truncation_error`` (only when computed at every point: never NaN) and ``inserted``
-    (:mod:`rotorsfd.analyses.fold_points`)."""
+    (:mod:`rotorsfd.stability.fold_points`)."""
     out: dict[str, NDArray[np.generic]] = {}
     n = branch.n_points
     Hs = branch.info.get("harmonics")

@@ -35,7 +35,7 @@ from rotorsfd.model.dofs import DIRECTIONS
 FloatArray = NDArray[np.float64]
 
 #: Columns of ``bifurcations.csv``
-#: (:meth:`rotorsfd.analyses.branch_stability.BranchStability.rows` says what each is).
+#: (:meth:`rotorsfd.stability.branch_stability.BranchStability.rows` says what each is).
 BIFURCATION_COLUMNS: tuple[str, ...] = (
     "type", "speed_rad_s", "speed_ratio", "parameter", "located_multiplier_re",
     "located_multiplier_im", "located_multiplier_abs", "nearest_point",

@@ -20,10 +20,10 @@ from itertools import pairwise
 import numpy as np
 from numpy.typing import NDArray
 
-from rotorsfd.analyses.branch_stability import BranchStability, reported_kind
 from rotorsfd.continuation.branch import Branch, BranchPoint
 from rotorsfd.errors import ConvergenceError
 from rotorsfd.harmonic.truncation import convert_tangent, pad_coefficients
+from rotorsfd.stability.branch_stability import BranchStability, reported_kind
 from rotorsfd.stability.floquet import FloquetResult
 
 #: Per-point entries of ``Branch.info`` copied from the nearest computed point.
@@ -49,7 +49,7 @@ def with_fold_points(branch: Branch, stability: BranchStability,
     """The branch and its stability with the points of :func:`fold_points` inserted
     (module docstring); ``floquet(lam, X)`` gives the multipliers of an inserted point
     (a located saddle-node keeps the point and multipliers of its location,
-    ``info["located"]``, when :func:`~rotorsfd.analyses.branch_stability.branch_stability`
+    ``info["located"]``, when :func:`~rotorsfd.stability.branch_stability.branch_stability`
     stored them).
     Bifurcation records keep their data; their ``point`` / ``bracket`` indices are
     renumbered. Returns messages for points that could not be re-solved."""

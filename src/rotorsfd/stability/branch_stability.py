@@ -90,7 +90,7 @@ class StabilityOptions:
     :class:`FloquetEvaluator` (None: ``n_intervals`` fixed); ``min_intervals`` /
     ``max_intervals`` its bounds;
     ``check``: re-locate every bifurcation at more harmonics and intervals
-    (:mod:`rotorsfd.analyses.bifurcation_check`, run by the response analysis), confirmed
+    (:mod:`rotorsfd.stability.bifurcation_check`, run by the response analysis), confirmed
     within ``check_rtol`` (relative);
     ``tol`` unstable when ``|mu|max > 1 + tol``; ``rtol`` relative parameter tolerance of
     located bifurcations (``locate=False``: linear interpolation between points);

@@ -129,12 +129,12 @@ class PeriodDoublingSwitch:
         return np.sqrt(np.sum(np.abs(odd) ** 2, axis=(1, 2)))
 
     def stability(self, options: Any = None) -> list[Any]:
-        """:func:`~rotorsfd.analyses.branch_stability.branch_stability` of every leg, its
+        """:func:`~rotorsfd.stability.branch_stability.branch_stability` of every leg, its
         multipliers over the period 2T, with ``n_intervals`` per 2T doubled (the same
         time step as the period-1 branch's ``n_intervals`` per T)."""
         from dataclasses import replace
 
-        from rotorsfd.analyses.branch_stability import StabilityOptions, branch_stability
+        from rotorsfd.stability.branch_stability import StabilityOptions, branch_stability
 
         o = options or StabilityOptions()
         o2 = replace(o, n_intervals=2 * o.n_intervals)

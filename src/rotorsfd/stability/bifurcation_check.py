@@ -18,7 +18,7 @@ more, lightly damped, modes):
 2. a turning point (saddle-node) is located on it by the HB equations alone (the
    multipliers are computed once, at the re-located fold, where one must be +1); any
    other bifurcation from the stability of the piece, computed as for the whole branch
-   (:func:`~rotorsfd.analyses.branch_stability.branch_stability`);
+   (:func:`~rotorsfd.stability.branch_stability.branch_stability`);
 3. the bifurcation of the same type nearest in the parameter is the re-located one. The
    original is *confirmed* when it exists and moved by at most ``rtol`` (relative);
    otherwise *unconfirmed* (vanished, or moved beyond rtol: the difference is reported).
@@ -35,14 +35,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rotorsfd.analyses.branch_stability import (
-    FOLD_MULTIPLIER_TOL,
-    BranchStability,
-    FloquetEvaluator,
-    StabilityOptions,
-    branch_stability,
-    reported_kind,
-)
 from rotorsfd.continuation.branch import Branch, BranchPoint
 from rotorsfd.continuation.folds import locate_branch_fold
 from rotorsfd.errors import ConvergenceError
@@ -50,6 +42,14 @@ from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.harmonic.truncation import check_harmonics
 from rotorsfd.stability.bifurcations import Bifurcation
+from rotorsfd.stability.branch_stability import (
+    FOLD_MULTIPLIER_TOL,
+    BranchStability,
+    FloquetEvaluator,
+    StabilityOptions,
+    branch_stability,
+    reported_kind,
+)
 
 
 @dataclass(frozen=True)
@@ -183,7 +183,7 @@ def check_bifurcations(branch: Branch, problem: PeriodicProblem, stability: Bran
                        options: StabilityOptions, check: CheckOptions | None = None
                        ) -> list[BifurcationCheck]:
     """One :class:`BifurcationCheck` per located bifurcation of ``stability`` (a
-    :func:`~rotorsfd.analyses.branch_stability.branch_stability` of ``branch``), in its
+    :func:`~rotorsfd.stability.branch_stability.branch_stability` of ``branch``), in its
     order (module docstring)."""
     c = check or CheckOptions()
     Hs = branch.info.get("harmonics")
