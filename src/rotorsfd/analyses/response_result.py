@@ -115,8 +115,9 @@ class ResponseResult:
             at = solver.find("; warning")
             return (f"reached the end of the range at {last} ({b.n_points} points)"
                     + (solver[at:] if at >= 0 else ""))
-        reason = self.limit_text() or _failure_words(str(b.message))
-        head = (f"response branch {'ended' if self.limit_text() else 'stopped'} after "
+        limit = self.limit_text()
+        reason = limit or _failure_words(str(b.message))
+        head = (f"response branch {'ended' if limit else 'stopped'} after "
                 f"{b.n_points} points at {last}")
         return f"{head}: {reason} [solver: {b.message}]" if reason else f"{head}: {b.message}"
 
@@ -191,8 +192,8 @@ class ResponseResult:
         b = self.branch
         if not len(el) or not b.n_points:
             return {}
-        rows = [el.diagnostics(*orbit_samples(b.X[i][:, el.nl_dofs], b.frequency[i]))
-                for i in range(b.n_points)]
+        q, v = orbit_samples(b.X[:, :, el.nl_dofs], b.frequency)   # (points, n, m)
+        rows = [el.diagnostics(q[i], v[i]) for i in range(b.n_points)]
         return {key: np.array([r[key] for r in rows]) for key in rows[0]}
 
     def limit_text(self) -> str:

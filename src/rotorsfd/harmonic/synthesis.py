@@ -3,23 +3,27 @@ its velocity, and the exact largest radius of a (y, z) orbit over the period."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from numpy.typing import NDArray
 
 FloatArray = NDArray[np.float64]
 
 
-def orbit_samples(X: NDArray[np.complex128], frequency: float = 0.0, n: int | None = None
+def orbit_samples(X: NDArray[np.complex128], frequency: Any = 0.0, n: int | None = None
                   ) -> tuple[FloatArray, FloatArray]:
-    """``(q, v)``, each ``(n, m)``: ``q(theta) = Re sum_k X_k exp(i k theta)`` of the
-    coefficients ``X (H+1, m)`` at ``n`` phases (default ``max(1024, 64 (H+1))``) and
-    ``v = w dq/dtheta`` at the frequency ``w`` [rad/s]."""
+    """``(q, v)``, each ``(..., n, m)``: ``q(theta) = Re sum_k X_k exp(i k theta)`` of the
+    coefficients ``X (..., H+1, m)`` (leading axes: several orbits, e.g. a branch's points)
+    at ``n`` phases (default ``max(1024, 64 (H+1))``) and ``v = w dq/dtheta`` at the
+    frequency ``w`` [rad/s] (a scalar or one per orbit)."""
     X = np.asarray(X, dtype=complex)
-    k = np.arange(X.shape[0])
-    n = n or max(1024, 64 * X.shape[0])
+    k = np.arange(X.shape[-2])
+    n = n or max(1024, 64 * X.shape[-2])
     E = np.exp(1j * np.outer(k, 2 * np.pi * np.arange(n) / n))       # (H+1, n)
-    q = (X.T @ E).real.T
-    v = (frequency * (1j * k[:, None] * X).T @ E).real.T
+    q = np.einsum("...km,kn->...nm", X, E).real
+    w = np.asarray(frequency, dtype=float)[..., None, None]
+    v = w * np.einsum("...km,kn->...nm", 1j * k[:, None] * X, E).real
     return q, v
 
 
