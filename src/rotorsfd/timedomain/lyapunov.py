@@ -47,36 +47,12 @@ class LyapunovResult:
     renorm_every: int
 
 
-def largest_lyapunov(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: Any,
-                     forcing: Forcing | None, dt: float | None = None,
-                     n_steps: int | None = None, q0: Any = 0.0, v0: Any = 0.0, *,
-                     steps_per_period: int | None = None, n_periods: float | None = None,
-                     transient_steps: int = 0, renorm_every: int | None = None,
-                     d0: float | None = None, velocity_scale: float | None = None,
-                     seed: int = 0, t0: float = 0.0,
-                     time_varying: TimeVaryingMatrices | None = None,
-                     method: str = "newmark", alpha: float = 0.05, rho_inf: float = 0.9,
-                     newton_rtol: float = 1e-12,
-                     project: Projector | None = None) -> LyapunovResult:
-    """Largest Lyapunov exponent of the system of :func:`integrate` (same inputs).
-
-    ``n_steps`` (or ``n_periods``) counts the measured steps after ``transient_steps``.
-    ``renorm_every`` defaults to one forcing period (or 100 steps); ``d0`` (absolute, in
-    the units of ``q``) to ``1e-7`` times the largest ``|q|`` or ``|v|/w`` at the end of
-    the transient (``1e-10`` if the state is zero).
-
-    ``project(dq, dv) -> (dq, dv)``: applied to the perturbation at the start and before
-    each measurement, so that directions it removes (e.g. the neutral, undamped high
-    modes: :func:`modal_projector`) neither grow nor enter ``d``; the exponent is then the
-    largest one of the remaining subspace.
-    """
-    return lyapunov_exponents(M, D, K, nl_dofs, kernel, params, forcing, dt, n_steps, q0,
-                              v0, steps_per_period=steps_per_period, n_periods=n_periods,
-                              transient_steps=transient_steps, renorm_every=renorm_every,
-                              d0=d0, velocity_scale=velocity_scale, seed=seed, t0=t0,
-                              time_varying=time_varying, method=method, alpha=alpha,
-                              rho_inf=rho_inf, newton_rtol=newton_rtol,
-                              projectors=(project,))[0]
+def largest_lyapunov(*args: Any, project: Projector | None = None,
+                     **kwargs: Any) -> LyapunovResult:
+    """Largest Lyapunov exponent of the system of :func:`integrate` (same inputs): the
+    exponent of :func:`lyapunov_exponents` with one perturbation, ``project`` applied to
+    it (None: the whole state)."""
+    return lyapunov_exponents(*args, projectors=(project,), **kwargs)[0]
 
 
 def lyapunov_exponents(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: Any,
@@ -91,9 +67,21 @@ def lyapunov_exponents(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params
                        newton_rtol: float = 1e-12,
                        projectors: tuple[Projector | None, ...] = (None,),
                        ) -> list[LyapunovResult]:
-    """:func:`largest_lyapunov` for one perturbation per entry of ``projectors`` (None:
-    the whole state), all around one reference trajectory (each perturbation costs one
-    trajectory, the reference is shared); the same random start direction, projected."""
+    """Largest Lyapunov exponents of the system of :func:`integrate` (same inputs), one
+    per entry of ``projectors``, all around one reference trajectory (each perturbation
+    costs one trajectory, the reference is shared; the same random start direction,
+    projected).
+
+    ``n_steps`` (or ``n_periods``) counts the measured steps after ``transient_steps``.
+    ``renorm_every`` defaults to one forcing period (or 100 steps); ``d0`` (absolute, in
+    the units of ``q``) to ``1e-7`` times the largest ``|q|`` or ``|v|/w`` at the end of
+    the transient (``1e-10`` if the state is zero).
+
+    A projector ``project(dq, dv) -> (dq, dv)`` is applied to its perturbation at the
+    start and before each measurement, so that directions it removes (e.g. the neutral,
+    undamped high modes: :func:`modal_projector`) neither grow nor enter ``d``; the
+    exponent is then the largest one of the remaining subspace (None: the whole state).
+    """
     if steps_per_period is not None or n_periods is not None:
         if forcing is None or not forcing.omega > 0.0 or steps_per_period is None \
                 or n_periods is None:
