@@ -24,32 +24,17 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from rotorsfd.linear.modal import LinearDynamics, ModalResult, eigen, mac, use_sparse
-from rotorsfd.linear.modes import damping_ratio, log_decrement
+from rotorsfd.linear.modes import EigenvalueMeasures
 
 
 @dataclass(frozen=True)
-class CampbellResult:
+class CampbellResult(EigenvalueMeasures):
     """Tracked modes: arrays of shape (n_speeds, n_modes), branch j in column j."""
 
     speeds: np.ndarray          # (n_speeds,) [rad/s]
     eigenvalues: np.ndarray     # complex
     whirl: np.ndarray           # "forward" | "backward"
     info: dict[str, Any] = field(default_factory=dict)   # how the modes were computed
-
-    @property
-    def frequencies(self) -> np.ndarray:
-        """Damped natural frequencies Im(lambda) [rad/s]."""
-        return self.eigenvalues.imag
-
-    @property
-    def damping_ratios(self) -> np.ndarray:
-        """zeta = -Re(lambda) / |lambda|."""
-        return damping_ratio(self.eigenvalues)
-
-    @property
-    def log_decrements(self) -> np.ndarray:
-        """delta = -2 pi Re(lambda) / Im(lambda)."""
-        return log_decrement(self.eigenvalues)
 
     def to_csv(self, path: str | Path) -> Path:
         """Write one row per (speed, mode): speed_rad_s, mode (1-based branch), whirl,

@@ -17,14 +17,26 @@ from rotorsfd.errors import ConvergenceError
 RIGID_BODY_TOL = 1e-7
 
 
-def damping_ratio(lam: np.ndarray) -> np.ndarray:
-    """zeta = -Re(lambda) / |lambda| of eigenvalues ``lam``."""
-    return -lam.real / np.abs(lam)
+class EigenvalueMeasures:
+    """What the eigenvalues ``lambda = -zeta w_n + i w_d`` of a result (its
+    ``eigenvalues`` attribute, any shape) say, for the modal and the Campbell results."""
 
+    eigenvalues: np.ndarray
 
-def log_decrement(lam: np.ndarray) -> np.ndarray:
-    """delta = -2 pi Re(lambda) / Im(lambda) of eigenvalues ``lam``."""
-    return -2.0 * np.pi * lam.real / lam.imag
+    @property
+    def frequencies(self) -> np.ndarray:
+        """Damped natural frequencies Im(lambda) [rad/s]."""
+        return self.eigenvalues.imag
+
+    @property
+    def damping_ratios(self) -> np.ndarray:
+        """zeta = -Re(lambda) / |lambda|."""
+        return -self.eigenvalues.real / np.abs(self.eigenvalues)
+
+    @property
+    def log_decrements(self) -> np.ndarray:
+        """delta = -2 pi Re(lambda) / Im(lambda)."""
+        return -2.0 * np.pi * self.eigenvalues.real / self.eigenvalues.imag
 
 
 @runtime_checkable
@@ -37,7 +49,7 @@ class LinearDynamics(Protocol):
 
 
 @dataclass(frozen=True)
-class ModalResult:
+class ModalResult(EigenvalueMeasures):
     """Modes at one speed, sorted by damped frequency (``n_modes`` of them)."""
 
     speed: float
@@ -46,24 +58,9 @@ class ModalResult:
     whirl: np.ndarray            # (n_modes,) "forward" | "backward"
 
     @property
-    def frequencies(self) -> np.ndarray:
-        """Damped natural frequencies Im(lambda) [rad/s]."""
-        return self.eigenvalues.imag
-
-    @property
     def natural_frequencies(self) -> np.ndarray:
         """Undamped-equivalent |lambda| [rad/s]."""
         return np.abs(self.eigenvalues)
-
-    @property
-    def damping_ratios(self) -> np.ndarray:
-        """zeta = -Re(lambda) / |lambda|."""
-        return damping_ratio(self.eigenvalues)
-
-    @property
-    def log_decrements(self) -> np.ndarray:
-        """delta = -2 pi Re(lambda) / Im(lambda)."""
-        return log_decrement(self.eigenvalues)
 
 
 def state_matrix(mass: np.ndarray, damping: np.ndarray, stiffness: np.ndarray) -> np.ndarray:
