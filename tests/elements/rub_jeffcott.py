@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotorsfd.elements.rub import RubElement
+from rotorsfd.harmonic.examples import unbalance_forcing
 from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.timedomain import Forcing, HarmonicLoad
 
@@ -30,17 +31,7 @@ def problem(element: RubElement, unbalance: float = UNBALANCE, **kw) -> Periodic
     """The periodic problem of the rotor with the rub (HB with the element's kernel)."""
     M, D, K = matrices(**kw)
     Z = np.zeros((2, 2))
-    dirn = np.array([1.0, -1.0j])
-
-    def forcing(lam: float, H: int) -> np.ndarray:
-        f = np.zeros((H + 1, 2), dtype=complex)
-        f[1] = unbalance * lam**2 * dirn
-        return f
-
-    def dforcing(lam: float, H: int) -> np.ndarray:
-        f = np.zeros((H + 1, 2), dtype=complex)
-        f[1] = 2 * unbalance * lam * dirn
-        return f
+    forcing, dforcing = unbalance_forcing(np.array([1.0, -1.0j]), unbalance)
 
     return PeriodicProblem(
         n_dof=2, nl_dofs=np.array([0, 1]), matrices=lambda lam: (M, D, K),

@@ -14,7 +14,7 @@
 from __future__ import annotations
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from rotorsfd.errors import JournalContactError
 from rotorsfd.harmonic.problem import PeriodicProblem
@@ -101,6 +101,27 @@ def _kernel_of(sfd) -> dict:
     return {"nl_kernel": sfd.numba_kernel, "nl_kernel_params": sfd.kernel_params}
 
 
+def unbalance_forcing(direction: NDArray[np.complex128], unbalance: float,
+                      static: ArrayLike = 0.0):
+    """``(forcing, dforcing)`` of an unbalance turning at lam = Omega: ``F_1 = U lam^2 d``
+    (``d`` the complex direction per DOF, e.g. ``(1, -i)`` for ``(cos, sin)`` on (y, z)),
+    ``F_0 = static``; ``dF_1/dlam = 2 U lam d``."""
+    direction = np.asarray(direction, dtype=complex)
+
+    def forcing(lam: float, H: int) -> np.ndarray:
+        f = np.zeros((H + 1, direction.size), dtype=complex)
+        f[0] = static
+        f[1] = unbalance * lam**2 * direction
+        return f
+
+    def dforcing(lam: float, H: int) -> np.ndarray:
+        f = np.zeros((H + 1, direction.size), dtype=complex)
+        f[1] = 2 * unbalance * lam * direction
+        return f
+
+    return forcing, dforcing
+
+
 def jeffcott_damper(mass: float = 10.0, stiffness: float = 1e6, damping: float = 20.0,
                     unbalance: float = 1e-4, c0: float = 400.0, clearance: float = 2e-4,
                     static: tuple[float, float] = (0.0, 0.0), sfd=None) -> PeriodicProblem:
@@ -108,18 +129,7 @@ def jeffcott_damper(mass: float = 10.0, stiffness: float = 1e6, damping: float =
     damper is :func:`radial_damper` (c0, clearance) or, if given, an SFD object."""
     M, D, K = mass * np.eye(2), damping * np.eye(2), stiffness * np.eye(2)
     Z = np.zeros((2, 2))
-    dirn = np.array([1.0, -1.0j])
-
-    def forcing(lam: float, H: int) -> np.ndarray:
-        f = np.zeros((H + 1, 2), dtype=complex)
-        f[0] = static
-        f[1] = unbalance * lam**2 * dirn
-        return f
-
-    def dforcing(lam: float, H: int) -> np.ndarray:
-        f = np.zeros((H + 1, 2), dtype=complex)
-        f[1] = 2 * unbalance * lam * dirn
-        return f
+    forcing, dforcing = unbalance_forcing(np.array([1.0, -1.0j]), unbalance, static)
 
     force, jac, limit, both = (radial_damper(c0, clearance) if sfd is None
                                else sfd_nonlinearity(sfd))
@@ -184,16 +194,7 @@ def beam_rotor(n_nodes: int = 21, unbalance: float = 1.44e-4, c0: float = 500.0,
     Z = np.zeros((n, n))
     dirn = np.zeros(n, dtype=complex)
     dirn[dn], dirn[dn + 1] = 1.0, -1.0j
-
-    def forcing(lam: float, H: int) -> np.ndarray:
-        f = np.zeros((H + 1, n), dtype=complex)
-        f[1] = unbalance * lam**2 * dirn
-        return f
-
-    def dforcing(lam: float, H: int) -> np.ndarray:
-        f = np.zeros((H + 1, n), dtype=complex)
-        f[1] = 2 * unbalance * lam * dirn
-        return f
+    forcing, dforcing = unbalance_forcing(dirn, unbalance)
 
     force, jac, limit, both = (radial_damper(c0, clearance) if sfd is None
                                else sfd_nonlinearity(sfd))
