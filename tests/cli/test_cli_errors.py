@@ -147,7 +147,9 @@ def test_config_check_and_schema(capsys):
 
 def test_registry_adds_commands(monkeypatch, capsys):
     """A new command slots in through the registry, with CONFIG, --set, -o and --quiet."""
-    monkeypatch.setattr(cli, "COMMANDS", dict(cli.COMMANDS))
+    from rotorsfd.cli import registry
+
+    monkeypatch.setattr(registry, "COMMANDS", dict(registry.COMMANDS))
     seen = {}
 
     @cli.command("demo", "a demo command", output=True, quiet=True,

@@ -1,5 +1,6 @@
 """argparse types of the command-line options: each checks a value before any work and
-says in one line what is allowed (argparse prefixes the option's name)."""
+says in one line what is allowed (argparse prefixes the option's name); and
+:func:`check_exists` for input paths, called by a handler before its work."""
 
 from __future__ import annotations
 

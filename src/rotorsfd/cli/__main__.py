@@ -1,0 +1,7 @@
+"""``python -m rotorsfd.cli``: the command line."""
+
+import sys
+
+from rotorsfd.cli import main
+
+sys.exit(main())

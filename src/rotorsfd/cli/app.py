@@ -1,0 +1,143 @@
+"""``main``: parse, load the config, check the output folder, run the command, and turn
+each kind of error into its exit status and one line.
+
+Exit status: 0 success; 2 bad input (config, ``--set``, arguments, an output folder that
+cannot be written: one line naming the field, before any work); 1 any other rotorsfd error
+(numerical failure) or a file that cannot be written (one line); 130 interrupted (the
+output folder keeps ``INCOMPLETE.txt``); 141 stdout closed early (``| head``), silently.
+``--debug`` adds the traceback. Every error line starts with ``rotorsfd: error: ``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import traceback
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from rotorsfd.cli.output import PREFIX, one_line, print_warning
+from rotorsfd.cli.registry import Command, UsageError, build_parser
+from rotorsfd.errors import ConfigError, RotorsfdError
+from rotorsfd.interrupt import Interrupted
+
+BLAS_THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "BLIS_NUM_THREADS",
+                         "VECLIB_MAXIMUM_THREADS")
+
+
+def single_threaded_blas() -> None:
+    """Default the BLAS libraries to one thread (unless the user set them): the matrices
+    here are small (hundreds of DOFs), where threaded LAPACK is slower, and on a busy
+    machine it can be 10-40 times slower. Effective only before numpy is first imported."""
+    for name in BLAS_THREAD_VARIABLES:
+        os.environ.setdefault(name, "1")
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; return the exit status."""
+    single_threaded_blas()
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+    except UsageError as exc:
+        print(f"{PREFIX}{one_line(exc)}", file=sys.stderr)
+        return 2
+    except SystemExit as exc:  # --help, --version
+        return int(exc.code or 0)
+    spec: Command = args._command
+    debug = bool(getattr(args, "debug", False))
+    try:
+        config = None
+        if spec.config:
+            # deferred: the config loader pulls pydantic and numpy (keeps --help fast)
+            from rotorsfd import api
+
+            config = api.load_config(args.config, args.overrides)
+        check_output(getattr(args, "output", None))
+        if spec.config and spec.output:
+            print_config_warnings(config, Path(args.config).parent)
+        status = run_marked(spec, args, config)
+        sys.stdout.flush()  # a closed pipe fails here, not at the interpreter's exit
+        return status
+    except ConfigError as exc:
+        return report(exc, 2, debug)
+    except RotorsfdError as exc:
+        return report(exc, 1, debug)
+    except Interrupted as exc:
+        print(f"rotorsfd: interrupted: {exc.kept}", file=sys.stderr)
+        return 130
+    except KeyboardInterrupt:
+        print("rotorsfd: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:  # e.g. `rotorsfd config schema | head`: the reader is gone
+        silence_stdout()
+        return 141
+    except OSError as exc:  # e.g. an output folder that cannot be written
+        return report(exc, 1, debug)
+    except Exception as exc:
+        return report(exc, 1, debug, f"internal error ({type(exc).__name__}), please "
+                      "report it; run with --debug for the traceback: ")
+
+
+def run_marked(spec: Command, args: argparse.Namespace, config: Any) -> int:
+    """Run the handler with ``INCOMPLETE.txt`` in its output folder while it runs (kept,
+    saying so, if the run is interrupted; left behind if it is killed)."""
+    if not spec.output:
+        return int(spec.handler(args, config) or 0)
+    from rotorsfd.io.marker import MARKER, IncompleteMarker
+
+    marker = IncompleteMarker.start(args.output, spec.name)
+    try:
+        status = int(spec.handler(args, config) or 0)
+    except Interrupted as exc:
+        marker.interrupted(exc.kept)
+        exc.kept += f"; {args.output / MARKER} marks the folder incomplete"
+        raise
+    except KeyboardInterrupt:
+        marker.interrupted()
+        raise Interrupted(f"{args.output / MARKER} marks the folder incomplete") from None
+    except BaseException:
+        marker.finished()
+        raise
+    marker.finished()
+    return status
+
+
+def report(exc: BaseException, status: int, debug: bool, prefix: str = "") -> int:
+    """Print the error on one line (the traceback first with ``--debug``); ``status``."""
+    if debug:
+        traceback.print_exc()
+    print(f"{PREFIX}{prefix}{one_line(exc)}", file=sys.stderr)
+    return status
+
+
+def silence_stdout() -> None:
+    """Point stdout at /dev/null so that the interpreter's final flush does not fail
+    again on a closed pipe (exit status 141, as for a process killed by SIGPIPE)."""
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):  # stdout is not a real file (tests capture it)
+        pass
+    finally:
+        os.close(devnull)
+
+
+def print_config_warnings(config: Any, search_path: Path) -> None:
+    """The configuration's plausibility warnings on stderr, before the work starts."""
+    # deferred: the checks build the model (numpy, scipy)
+    from rotorsfd.analyses.checks import config_warnings
+
+    for line in config_warnings(config, search_path):
+        print_warning(line)
+
+
+def check_output(folder: Path | None) -> None:
+    """ConfigError naming ``-o`` if results cannot be written in ``folder`` (checked after
+    the config, before any work)."""
+    from rotorsfd.io.atomic import folder_problem
+
+    if folder is not None and (problem := folder_problem(folder)) is not None:
+        raise ConfigError("-o", str(folder), problem)

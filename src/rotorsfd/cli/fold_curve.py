@@ -1,0 +1,81 @@
+"""``rotorsfd fold-curve``: two-parameter continuation of the saddle-nodes of the speed
+response in a second parameter."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+from typing import Any
+
+from rotorsfd.cli import options
+from rotorsfd.cli.output import print_error, print_written
+from rotorsfd.cli.registry import arg, command
+from rotorsfd.errors import ConfigError
+
+
+def fold_range(config: Any, parameter: str, start: str, stop: str) -> tuple[float, float]:
+    """``--from`` and ``--to`` in SI, checked against the kind of ``--parameter``."""
+    # deferred: the parameter registry and the schema pull numpy and pydantic
+    from rotorsfd.analyses.response import system_parameter
+    from rotorsfd.io.schema import resolve_kind
+    from rotorsfd.io.units import UnitError, describe, to_si
+    from rotorsfd.model.parameters import find_parameter
+
+    try:
+        param = system_parameter(parameter)
+    except ConfigError as exc:
+        raise ConfigError("--parameter", parameter, exc.allowed) from None
+    if param == "speed":
+        raise ConfigError("--parameter", parameter, "must differ from the speed (the "
+                          "saddle-nodes are those of the speed response)")
+    path = parameter.strip()
+    if path == param:           # a parameter name: its config path for the units
+        path = find_parameter(param).path
+    try:
+        kind = resolve_kind(config, path)
+    except KeyError as exc:
+        raise ConfigError("--parameter", parameter, exc.args[0]) from None
+    values = []
+    for option, text in (("--from", start), ("--to", stop)):
+        try:
+            values.append(to_si(text, kind))
+        except UnitError as exc:
+            text_exc = str(exc)
+            if not text_exc.startswith("expected"):
+                text_exc = f"expected {describe(kind)} for {path}; {text_exc}"
+            raise ConfigError(option, text, text_exc) from None
+    if values[0] == values[1]:
+        raise ConfigError("--to", stop, f"must differ from --from ({start!r})")
+    return values[0], values[1]
+
+
+@command("fold-curve", "two-parameter continuation of the saddle-nodes of the speed "
+         "response ([analysis.response] speeds and H) in a second parameter: "
+         "fold_curve.csv, fold_curve.json, fold_curve.png (Omega~ of the folds and the "
+         "unstable width against the parameter; the cusp where the bistability vanishes); "
+         "exit 1 if the curve stops early (the points so far are written)",
+         output=True, quiet=True,
+         arguments=[arg("--parameter", default="base.pitching.value", metavar="PATH",
+                        help="second parameter: base.pitching.value (default), "
+                             "base.rolling.value, base.yawing.value, unbalance[0].magnitude"),
+                    arg("--from", dest="start", required=True, metavar="VALUE",
+                        help="start value, e.g. '0 rad/s' (SI if no unit); the speed branch "
+                             "there must have a saddle-node"),
+                    arg("--to", dest="stop", required=True, metavar="VALUE",
+                        help="end value, e.g. '10 rad/s'"),
+                    arg("--harmonics", type=options.integer(1), metavar="H",
+                        help="override H")])
+def fold_curve(args: argparse.Namespace, config: Any) -> int:
+    """Continue the fold curve; exit 1 (after writing) if it stopped early."""
+    from rotorsfd import api  # deferred: numpy, scipy, numba (keeps --help fast)
+
+    start, stop = fold_range(config, args.parameter, args.start, args.stop)
+    result = api.run_fold_curve(config, args.parameter, start, stop,
+                                search_path=Path(args.config).parent,
+                                harmonics=args.harmonics)
+    paths = result.write(args.output)
+    if not result.success:
+        print_error(f"fold curve stopped early: {result.message}")
+        return 1
+    print_written(result, paths, args.quiet)
+    return 0

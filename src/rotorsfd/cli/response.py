@@ -1,0 +1,58 @@
+"""``rotorsfd response``: periodic response by harmonic balance and arc-length
+continuation; the first Ctrl-C stops the branch after the current point and writes it."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+from typing import Any
+
+from rotorsfd.cli import options
+from rotorsfd.cli.output import print_error, print_written
+from rotorsfd.cli.registry import arg, command
+from rotorsfd.interrupt import Interrupted, StopRequest
+
+
+@command("response", "periodic response by harmonic balance and arc-length continuation "
+         "([analysis.response]): branch.nc, branch.csv, response plots; exit 1 if the "
+         "branch stops early (the points so far are written)", output=True, quiet=True,
+         arguments=[arg("--multipliers-at", type=options.ratio, default=None, metavar="X",
+                        help="multipliers.png at the point nearest this speed ratio "
+                             "Omega/Omega_ref (the parameter in SI for a non-speed branch); "
+                             "default: the point of largest |mu|max"),
+                    arg("--from-orbit", type=Path, metavar="DIR_OR_NC",
+                        help="start the branch on the last period of a time-domain orbit "
+                             "(rotorsfd simulate output), Newton-corrected at its speed, "
+                             "and continue it both ways over the speed range, stopping "
+                             "when it closes on itself (an isola)")])
+def response(args: argparse.Namespace, config: Any) -> int:
+    """Continue the branch and write it; exit 1 (after writing) if it stopped early."""
+    from rotorsfd import api  # deferred: numpy, scipy, numba (keeps --help fast)
+
+    options.check_exists("--from-orbit", args.from_orbit)
+    with StopRequest("the current point") as stop:
+        result = api.run_response(config, search_path=Path(args.config).parent,
+                                  progress=not args.quiet, from_orbit=args.from_orbit,
+                                  callback=stop)
+    paths = result.write(args.output, multipliers_at=args.multipliers_at)
+    if stop.requested:
+        if not args.quiet:  # the branch's own last line would say "stopped by the callback"
+            print("\n".join(line for line in result.summary().splitlines()
+                            if "stopped by the callback" not in line))
+            print("wrote " + ", ".join(str(p) for p in paths.values()))
+        raise Interrupted(f"the {result.branch.n_points} points computed before Ctrl-C "
+                          f"({branch_end(result)}) are written to {args.output}")
+    if not result.success:
+        print_error(result.message)
+        return 1
+    print_written(result, paths, args.quiet)
+    return 0
+
+
+def branch_end(result: Any) -> str:
+    """Where an interrupted response branch ends, in the parameter's terms."""
+    lam = result.branch.lam
+    if result.is_speed:
+        return (f"Omega~ = {lam[0] / result.reference_speed:.4g} .. "
+                f"{lam[-1] / result.reference_speed:.4g}")
+    return f"{result.parameter} = {lam[0]:.6g} .. {lam[-1]:.6g}"

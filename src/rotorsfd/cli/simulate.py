@@ -1,0 +1,57 @@
+"""``rotorsfd simulate``: time integration at one speed, with the motion classified."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+from typing import Any
+
+from rotorsfd.cli import options
+from rotorsfd.cli.output import print_written
+from rotorsfd.cli.registry import arg, command
+from rotorsfd.errors import ConfigError
+
+
+@command("simulate", "time integration at one speed ([analysis.simulate]): timeseries.nc, "
+         "poincare.csv, summary.json (motion: period-n, quasi-periodic or chaotic, with the "
+         "evidence), simulation.png and orbit/phase/poincare/spectrum.png; journal contact: "
+         "one line, exit 1, nothing written", output=True, quiet=True,
+         arguments=[arg("--speed", type=options.positive_speed, metavar="SPEED",
+                        help="rotor speed, e.g. 850 or '8000 rpm' (rad/s if no unit)"),
+                    arg("--speed-ratio", type=options.positive_ratio, metavar="X",
+                        help="rotor speed / [reference] speed"),
+                    arg("--from-hb", action="store_true",
+                        help="start on the HB periodic solution at that speed (H from "
+                             "[analysis.response]) instead of the displaced state"),
+                    arg("--hb-phase", type=options.ratio, default=0.0, metavar="P",
+                        help="with --from-hb: start on the HB orbit a fraction P of the "
+                             "period later (e.g. 0.5; off the orbit at t = 0 unless it is "
+                             "symmetric: a way to find a coexisting attractor)"),
+                    arg("--initial-state", type=Path, metavar="DIR_OR_NC",
+                        help="start from the final state of a previous run (its output "
+                             "directory or timeseries.nc); same speed: continues it"),
+                    arg("--record-periods", type=options.integer(1), metavar="N",
+                        help="last periods kept in timeseries.nc (default: poincare_periods)"),
+                    arg("--lyapunov-periods", type=options.integer(0), metavar="N",
+                        help="periods of the Lyapunov run (default: min(100, periods); "
+                             "0: none)")])
+def simulate(args: argparse.Namespace, config: Any) -> int:
+    """Check the options against each other, integrate, write and print the summary."""
+    from rotorsfd import api  # deferred: numpy, scipy, numba (keeps --help fast)
+
+    if args.speed is not None and args.speed_ratio is not None:
+        raise ConfigError("--speed/--speed-ratio", (args.speed, args.speed_ratio),
+                          "give --speed or --speed-ratio, not both")
+    if args.hb_phase and not args.from_hb:
+        raise ConfigError("--hb-phase", args.hb_phase, "needs --from-hb")
+    options.check_exists("--initial-state", args.initial_state)
+    result = api.run_simulation(config, args.speed, speed_ratio=args.speed_ratio,
+                                search_path=Path(args.config).parent,
+                                from_hb=args.from_hb, hb_phase=args.hb_phase,
+                                initial_state=args.initial_state,
+                                record_periods=args.record_periods,
+                                lyapunov_periods=args.lyapunov_periods,
+                                progress=not args.quiet)
+    paths = result.write(args.output)
+    print_written(result, paths, args.quiet)
+    return 0
