@@ -2,6 +2,10 @@
 fresh interpreter (so that import and JIT compilation or cache loading are measured).
 
 - ``rotorsfd --help``: wall time of the console script (subprocess), median of 5.
+- ``import rotorsfd.io.config`` (what loading a config costs) and ``import rotorsfd.api``:
+  wall and CPU time of the import in a fresh interpreter, median of 5, with the number of
+  modules loaded and whether numba, matplotlib, xarray, dask or pint are among them (the
+  element kinds keep their kernels in ``elements/<kind>_kernel.py``, imported on first use).
 - First calls, each in a fresh subprocess, with numba's on-disk cache on (``cache=True``,
   the project's default; the cache was filled by an earlier call): import of the module,
   model set-up, then the first call (cache load + run) and a second call (run only):
@@ -81,6 +85,35 @@ def cli_help(n: int) -> list[float]:
     return times
 
 
+IMPORT_PROBE = r"""
+import json, sys, time
+t0, c0 = time.perf_counter(), time.process_time()
+import {module}
+t1, c1 = time.perf_counter(), time.process_time()
+heavy = [m for m in ("numba", "matplotlib", "xarray", "dask", "pint") if m in sys.modules]
+print(json.dumps({{"wall_s": t1 - t0, "cpu_s": c1 - c0, "modules": len(sys.modules),
+                  "heavy": " ".join(heavy) or "none"}}))
+"""
+
+#: modules whose import is timed: the config loader and the API
+IMPORTS = ("rotorsfd.io.config", "rotorsfd.api")
+
+
+def import_rows(n: int, bare: float) -> list[Row]:
+    """``import <module>`` in fresh interpreters: median wall and CPU time of ``n``."""
+    rows = []
+    for module in IMPORTS:
+        res = [run_python(IMPORT_PROBE.format(module=module)) for _ in range(n)]
+        wall = statistics.median(r["wall_s"] for r in res)
+        cpu = statistics.median(r["cpu_s"] for r in res)
+        rows.append(Row("coldstart", "import (fresh interpreter)", f"import {module}", wall,
+                        repeat=n, ratio=wall / bare, ref="bare python",
+                        note=(f"CPU {cpu:.2f} s, {res[0]['modules']} modules, heavy: "
+                              f"{res[0]['heavy']}"),
+                        extra={"cpu_s": cpu, "modules": res[0]["modules"]}))
+    return rows
+
+
 def python_startup(n: int) -> list[float]:
     times = []
     for _ in range(n):
@@ -97,6 +130,7 @@ def run(quick: bool = False, repeat: int = 3) -> list[Row]:
     rows = [Row("coldstart", "CLI (subprocess wall time)", "rotorsfd --help", t_help,
                 repeat=n, ratio=t_help / bare, ref="bare python",
                 note=f"bare 'python -c pass' {bare * 1e3:.0f} ms")]
+    rows += import_rows(n, bare)
     variants = [("cache on", False)] + ([] if quick else [("empty cache: compile", True)])
     for name, code in KERNELS.items():
         for label, fresh in variants:

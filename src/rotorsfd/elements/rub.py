@@ -48,7 +48,6 @@ from __future__ import annotations
 from typing import ClassVar, Literal
 
 import numpy as np
-from numba import njit
 from pydantic import Field, model_validator
 
 from rotorsfd.elements.base import FloatArray, NonlinearElement
@@ -56,11 +55,7 @@ from rotorsfd.elements.registry import register
 from rotorsfd.io.fields import NODE, Section, fail, quantity
 from rotorsfd.model.dofs import dof_index
 
-__all__ = ["RubConfig", "RubElement", "rub_kernel", "smooth_ramp"]
-
-#: Parameter vector of :func:`rub_kernel`.
-P_CLEARANCE, P_STIFFNESS, P_FRICTION, P_SMOOTHING, P_OFFSET_Y, P_OFFSET_Z = range(6)
-N_PARAMS = 6
+__all__ = ["RubConfig", "RubElement", "smooth_ramp"]
 
 
 def smooth_ramp(p: FloatArray, eps: float) -> tuple[FloatArray, FloatArray]:
@@ -70,51 +65,6 @@ def smooth_ramp(p: FloatArray, eps: float) -> tuple[FloatArray, FloatArray]:
     s = np.where(x >= 1.0, p, eps * x**3 * (1.0 - 0.5 * x))
     ds = x * x * (3.0 - 2.0 * x)
     return s, ds
-
-
-@njit(cache=True)
-def rub_kernel(q: np.ndarray, v: np.ndarray, params: np.ndarray, F: np.ndarray,
-               dFdq: np.ndarray, dFdv: np.ndarray) -> int:
-    """One sample of the rub law ``F = -k_c s(p) (I + mu J) d / r`` and its Jacobians
-    (module doc); always 0 (a contact law has no domain limit)."""
-    delta, kc, mu, eps = params[P_CLEARANCE], params[P_STIFFNESS], params[P_FRICTION], \
-        params[P_SMOOTHING]
-    dy = q[0] - params[P_OFFSET_Y]
-    dz = q[1] - params[P_OFFSET_Z]
-    for i in range(2):
-        for j in range(2):
-            dFdv[i, j] = 0.0
-    r = np.sqrt(dy * dy + dz * dz)
-    p = r - delta
-    x = (p + 0.5 * eps) / eps
-    if x <= 0.0:
-        F[0] = 0.0
-        F[1] = 0.0
-        for i in range(2):
-            for j in range(2):
-                dFdq[i, j] = 0.0
-        return 0
-    if x >= 1.0:
-        s = p
-        ds = 1.0
-    else:
-        s = eps * x * x * x * (1.0 - 0.5 * x)
-        ds = x * x * (3.0 - 2.0 * x)
-    g = kc * s / r
-    h = kc * ds - g
-    ey = dy / r
-    ez = dz / r
-    # B = g I + h e_r e_r^T;  F = -A g d,  dF/dq = -A B with A = [[1, -mu], [mu, 1]]
-    F[0] = -g * (dy - mu * dz)
-    F[1] = -g * (dz + mu * dy)
-    b00 = g + h * ey * ey
-    b01 = h * ey * ez
-    b11 = g + h * ez * ez
-    dFdq[0, 0] = -(b00 - mu * b01)
-    dFdq[0, 1] = -(b01 - mu * b11)
-    dFdq[1, 0] = -(b01 + mu * b00)
-    dFdq[1, 1] = -(b11 + mu * b01)
-    return 0
 
 
 class RubElement(NonlinearElement):
@@ -180,6 +130,9 @@ class RubElement(NonlinearElement):
 
     @property
     def kernel(self):
+        """The compiled law, :func:`rotorsfd.elements.rub_kernel.rub_kernel`."""
+        from rotorsfd.elements.rub_kernel import rub_kernel  # deferred: numba
+
         return rub_kernel
 
     @property

@@ -16,10 +16,9 @@ SFD of Zhao, Linnett and McLean (J. Vib. Acoust. 116, 1994) is the classic case.
 from __future__ import annotations
 
 import math
-from typing import ClassVar, Literal
+from typing import TYPE_CHECKING, ClassVar, Literal
 
 import numpy as np
-from numba import njit
 from pydantic import Field, model_validator
 
 from rotorsfd.elements.base import FloatArray, NonlinearElement
@@ -36,22 +35,12 @@ from rotorsfd.io.fields import (
     range_text,
 )
 from rotorsfd.model.dofs import dof_index
-from rotorsfd.model.sfd import SFD
-from rotorsfd.model.sfd_kernels import N_PARAMS, P_CLEARANCE, sfd_sample
 from rotorsfd.model.supports import LinearSupport
 
+if TYPE_CHECKING:
+    from rotorsfd.model.sfd import SFD
+
 __all__ = ["SFD_RATIO_BOUNDS", "SFDConfig", "SFDElement"]
-
-#: Parameter vector of :func:`sfd_element_kernel`: the film's, then the housing offset.
-P_OFFSET_Y, P_OFFSET_Z = N_PARAMS, N_PARAMS + 1
-
-
-@njit(cache=True)
-def sfd_element_kernel(q: np.ndarray, v: np.ndarray, params: np.ndarray, F: np.ndarray,
-                       dFdq: np.ndarray, dFdv: np.ndarray) -> int:
-    """The film of one sample relative to the housing centre: ``F_film(q - o, v)``."""
-    return sfd_sample(q[0] - params[P_OFFSET_Y], q[1] - params[P_OFFSET_Z], v[0], v[1],
-                      params, F, dFdq, dFdv)
 
 
 class SFDElement(NonlinearElement):
@@ -91,6 +80,9 @@ class SFDElement(NonlinearElement):
 
     @property
     def kernel(self):
+        """The compiled law, :func:`rotorsfd.elements.sfd_kernel.sfd_element_kernel`."""
+        from rotorsfd.elements.sfd_kernel import sfd_element_kernel  # deferred: numba
+
         return sfd_element_kernel
 
     @property
@@ -102,7 +94,7 @@ class SFDElement(NonlinearElement):
         """``eps = |q - o| / C`` of samples ``q (..., 2)``."""
         q = np.asarray(q, dtype=float)
         return np.hypot(q[..., 0] - self.offset[0], q[..., 1] - self.offset[1]) \
-            / self._params[P_CLEARANCE]
+            / self.film.clearance
 
     def limit(self, q: FloatArray) -> float:
         """The largest eccentricity ratio of the samples."""
@@ -239,6 +231,8 @@ class SFDConfig(Section):
 
     def build(self, name: str) -> SFDElement:
         """The element of this table, named ``name``."""
+        from rotorsfd.model.sfd import SFD  # deferred: numba (the film's kernels)
+
         film = SFD(self.viscosity, self.resolved_radius, self.resolved_length,
                    self.resolved_clearance, cavitation=self.cavitation)
         return SFDElement(name, self.node, film, (self.offset_y, self.offset_z))

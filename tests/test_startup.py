@@ -1,0 +1,74 @@
+"""Start-up cost (issue 17 item 5): loading a config or the API imports no heavy package
+that it does not use. Each import runs in a fresh interpreter, and the test lists the
+heavy packages that ended up in ``sys.modules``; it fails naming them (and the first
+rotorsfd module found importing one, from ``python -X importtime``)."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+import sys
+
+import pytest
+
+#: packages that a config load or ``import rotorsfd.api`` must not import
+HEAVY = ("numba", "matplotlib", "xarray")
+
+
+def _run(code: str, *flags: str) -> subprocess.CompletedProcess:
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
+    return subprocess.run([sys.executable, *flags, "-c", code], capture_output=True,
+                          text=True, env=env, timeout=120, check=True)
+
+
+def importer_of(module: str, package: str) -> str:
+    """The module whose import statement loads ``package`` first when importing
+    ``module`` (``python -X importtime`` prints a module after its imports, indented one
+    level deeper than its importer)."""
+    rows = []
+    for line in _run(f"import {module}", "-X", "importtime").stderr.splitlines():
+        m = re.match(r"import time:\s+\d+ \|\s+\d+ \|( *)(\S+)$", line)
+        if m:
+            rows.append((len(m[1]), m[2]))
+    first = next(i for i, (_, name) in enumerate(rows) if name == package)
+    depth = rows[first][0]
+    return next((name for d, name in rows[first:] if d < depth), module)
+
+
+def loaded_heavy(module: str) -> tuple[list[str], str]:
+    """The packages of :data:`HEAVY` that ``import module`` loads in a fresh interpreter,
+    and the module that imports the first of them."""
+    code = (f"import sys, json; import {module}; "
+            f"print(json.dumps([m for m in {HEAVY!r} if m in sys.modules]))")
+    loaded = json.loads(_run(code).stdout.strip().splitlines()[-1])
+    return loaded, importer_of(module, loaded[0]) if loaded else ""
+
+
+@pytest.mark.parametrize("module", ["rotorsfd.io.config"])
+def test_loading_a_config_imports_no_numba_matplotlib_xarray(module):
+    loaded, importer = loaded_heavy(module)
+    assert loaded == [], f"import {module} loads {loaded} (the first one from {importer})"
+
+
+@pytest.mark.slow
+def test_the_element_kernels_load_when_asked_for():
+    """The deferred kernel imports work: an element built from a config gives its compiled
+    kernel (numba loaded only then), and the kernel gives the numpy law's force."""
+    code = r"""
+import sys, json
+import numpy as np
+from rotorsfd.elements.rub import RubElement
+e = RubElement("seal", 2, 1e-4, 1e7, 0.1)
+before = "numba" in sys.modules
+k, p = e.kernel, e.kernel_params
+q, v = np.array([1.2e-4, 0.3e-4]), np.zeros(2)
+F, a, b = np.empty(2), np.empty((2, 2)), np.empty((2, 2))
+k(q, v, p, F, a, b)
+print(json.dumps([before, "numba" in sys.modules, F.tolist(), e.force(q, v).tolist()]))
+"""
+    p = _run(code)
+    before, after, f_kernel, f_numpy = json.loads(p.stdout.strip().splitlines()[-1])
+    assert (before, after) == (False, True)
+    assert f_kernel == pytest.approx(f_numpy, rel=1e-12)
