@@ -11,10 +11,13 @@ factors give
   ``d(Zt^-1) = -Zt^-1 dZ Zt^-1``: the rows s of ``Zt_k^-1 [-dZ_k C_k, dF_k - dZ_k u_k]``
   are ``[dHt_k, dPt_k]``, with ``dZ_k = dK - (kw)^2 dM - 2 k^2 w w' M + i k (w' D + w dD)``.
 
-All harmonics in one call, no Python between them (the LU and the solves run at the speed
-of LAPACK ``zgbtrf``/``zgbtrs`` on these sizes, without their per-call overhead); the
-arithmetic is LAPACK's, so the results agree with it to rounding. Band storage (the
-transpose of LAPACK's): ``ab[j, kl + ku + i - j] = A[i, j]``, shape (n, 2 kl + ku + 1);
+The matrices come in band storage (:func:`condense_bands`, ``Ab[j, ku + i - j] = A[i, j]``,
+the layout of :mod:`rotorsfd.model.sparse`: no n x n array is read) or dense
+(:func:`condense_banded` copies their band first). All harmonics in one call, no Python
+between them (the LU and the solves run at the speed of LAPACK
+``zgbtrf``/``zgbtrs`` on these sizes, without their per-call overhead); the arithmetic is
+LAPACK's, so the results agree with it to rounding. Storage of the factors (the transpose
+of LAPACK's): ``ab[j, kl + ku + i - j] = A[i, j]``, shape (n, 2 kl + ku + 1);
 column j of A is the contiguous row ``ab[j]``, its first kl entries hold the fill-in.
 (Running the H+1 factorisations side by side, harmonics as the innermost SIMD axis, was
 measured slower on the paper rotor: the loops are too short to vectorise.)
@@ -121,20 +124,20 @@ def _real_harmonic0(delta: np.ndarray, F: np.ndarray, dF: np.ndarray, deriv: boo
 
 
 @njit(cache=True)
-def _static_harmonic(M: np.ndarray, K: np.ndarray, dK: np.ndarray, kl: int, ku: int,
+def _static_harmonic(Mb: np.ndarray, Kb: np.ndarray, dKb: np.ndarray, kl: int, ku: int,
                      s: np.ndarray, delta: np.ndarray, F: np.ndarray, dF: np.ndarray,
                      deriv: bool, sol: np.ndarray, dsol: np.ndarray) -> int:
-    """Harmonic 0 of :func:`condense_banded` in real arithmetic (``Zt_0 = K + S^T Delta_0
+    """Harmonic 0 of :func:`condense_bands` in real arithmetic (``Zt_0 = K + S^T Delta_0
     S``, ``dZ_0 = dK``; a quarter of the complex work), when it is real."""
-    n = K.shape[0]
+    n = Kb.shape[0]
     m = s.shape[0]
-    kv = kl + ku
+    nb = kl + ku + 1
     ab = np.zeros((n, 2 * kl + ku + 1))
     for j in range(n):
-        for i in range(max(0, j - ku), min(n, j + kl + 1)):
-            ab[j, kv + i - j] = K[i, j]
+        for o in range(nb):
+            ab[j, kl + o] = Kb[j, o]
     for a in range(m):
-        ab[s[a], kv] += delta[0, a].real
+        ab[s[a], kl + ku] += delta[0, a].real
     ipiv = np.empty(n, dtype=np.int64)
     if band_lu(ab, kl, ku, ipiv) != 0:
         return 1
@@ -153,7 +156,7 @@ def _static_harmonic(M: np.ndarray, K: np.ndarray, dK: np.ndarray, kl: int, ku: 
     for i in range(n):
         y[i, m] = dF[0, i].real
         for j in range(max(0, i - kl), min(n, i + ku + 1)):
-            dz = dK[i, j]
+            dz = dKb[j, ku + i - j]
             if dz != 0.0:
                 for c in range(m + 1):
                     y[i, c] -= dz * x[j, c]
@@ -165,38 +168,67 @@ def _static_harmonic(M: np.ndarray, K: np.ndarray, dK: np.ndarray, kl: int, ku: 
 
 
 @njit(cache=True)
+def dense_to_band(A: np.ndarray, kl: int, ku: int) -> np.ndarray:
+    """Band storage ``Ab[j, ku + i - j] = A[i, j]`` (n, kl + ku + 1) of a dense A (the
+    layout of :mod:`rotorsfd.model.sparse`)."""
+    n = A.shape[0]
+    out = np.zeros((n, kl + ku + 1))
+    for j in range(n):
+        for i in range(max(0, j - ku), min(n, j + kl + 1)):
+            out[j, ku + i - j] = A[i, j]
+    return out
+
+
+@njit(cache=True)
 def condense_banded(M: np.ndarray, D: np.ndarray, K: np.ndarray, dM: np.ndarray,
                     dD: np.ndarray, dK: np.ndarray, w: float, dw: float, kl: int, ku: int,
                     s: np.ndarray, delta: np.ndarray, F: np.ndarray, dF: np.ndarray,
                     deriv: bool, check: np.ndarray, sol: np.ndarray, dsol: np.ndarray,
                     Ht: np.ndarray, Pt: np.ndarray, dHt: np.ndarray, dPt: np.ndarray) -> int:
-    """Condensation of all harmonics (module docstring).
-
-    Inputs: M, D, K, dM, dD, dK (n, n) C-contiguous; w, w' = dw/dlam; bandwidths kl, ku;
-    s (m,) nonlinear DOFs; delta (H+1, m) the diagonal of Delta_k; F, dF (H+1, n);
-    check (6,) bool: which of the six matrices to scan for nonzeros outside the band.
-    Outputs: sol (H+1, n, m+1) = ``Zt_k^-1 [S^T, F_k]``; with ``deriv``, dsol (H+1, m, m+1)
-    = rows s of ``Zt_k^-1 [-dZ_k C_k, dF_k - dZ_k u_k]``; the same split into the
-    receptance Ht (H+1, m, m), particular response Pt (H+1, m) and, with ``deriv``, their
-    derivatives dHt, dPt.
-    Returns OK (0); OUTSIDE_BAND (-1) if a checked matrix has a nonzero outside the band
-    (nothing computed: widen the band); k + 1 if Zt_k is exactly singular; NOT_FINITE
-    (-2) if an output is not finite.
-    """
-    n = K.shape[0]
-    m = s.shape[0]
-    nh = F.shape[0]
+    """:func:`condense_bands` of dense matrices M, D, K, dM, dD, dK (n, n) C-contiguous,
+    copied into band storage; ``check`` (6,) bool: which of the six to scan for nonzeros
+    outside the band first. Returns OUTSIDE_BAND (-1) if a checked matrix has one
+    (nothing computed: widen the band), else what :func:`condense_bands` returns."""
     mats = (M, D, K, dM, dD, dK)
     for i in range(6):
         if check[i] and _outside_band(mats[i], kl, ku):
             return OUTSIDE_BAND
+    return condense_bands(dense_to_band(M, kl, ku), dense_to_band(D, kl, ku),
+                          dense_to_band(K, kl, ku), dense_to_band(dM, kl, ku),
+                          dense_to_band(dD, kl, ku), dense_to_band(dK, kl, ku), w, dw, kl,
+                          ku, s, delta, F, dF, deriv, sol, dsol, Ht, Pt, dHt, dPt)
+
+
+@njit(cache=True)
+def condense_bands(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray, dMb: np.ndarray,
+                   dDb: np.ndarray, dKb: np.ndarray, w: float, dw: float, kl: int, ku: int,
+                   s: np.ndarray, delta: np.ndarray, F: np.ndarray, dF: np.ndarray,
+                   deriv: bool, sol: np.ndarray, dsol: np.ndarray, Ht: np.ndarray,
+                   Pt: np.ndarray, dHt: np.ndarray, dPt: np.ndarray) -> int:
+    """Condensation of all harmonics (module docstring) from band storage.
+
+    Inputs: Mb, Db, Kb, dMb, dDb, dKb (n, kl + ku + 1) the band storage
+    ``Ab[j, ku + i - j] = A[i, j]`` of M, D, K and their lam-derivatives (no n x n array);
+    w, w' = dw/dlam; s (m,) nonlinear DOFs; delta (H+1, m) the diagonal of Delta_k;
+    F, dF (H+1, n).
+    Outputs: sol (H+1, n, m+1) = ``Zt_k^-1 [S^T, F_k]``; with ``deriv``, dsol (H+1, m, m+1)
+    = rows s of ``Zt_k^-1 [-dZ_k C_k, dF_k - dZ_k u_k]``; the same split into the
+    receptance Ht (H+1, m, m), particular response Pt (H+1, m) and, with ``deriv``, their
+    derivatives dHt, dPt.
+    Returns OK (0); k + 1 if Zt_k is exactly singular; NOT_FINITE (-2) if an output is not
+    finite.
+    """
+    n = Kb.shape[0]
+    m = s.shape[0]
+    nh = F.shape[0]
+    nb = kl + ku + 1
     kv = kl + ku
     ab = np.zeros((n, 2 * kl + ku + 1), dtype=np.complex128)
     ipiv = np.empty(n, dtype=np.int64)
     rhs = np.empty((n, m + 1), dtype=np.complex128)
     k0 = 0
     if _real_harmonic0(delta, F, dF, deriv):
-        status = _static_harmonic(M, K, dK, kl, ku, s, delta, F, dF, deriv, sol, dsol)
+        status = _static_harmonic(Mb, Kb, dKb, kl, ku, s, delta, F, dF, deriv, sol, dsol)
         if status != 0:
             return status
         k0 = 1
@@ -206,8 +238,8 @@ def condense_banded(M: np.ndarray, D: np.ndarray, K: np.ndarray, dM: np.ndarray,
         for j in range(n):
             for t in range(kl):
                 ab[j, t] = 0.0
-            for i in range(max(0, j - ku), min(n, j + kl + 1)):
-                ab[j, kv + i - j] = complex(K[i, j] - kw2 * M[i, j], kw * D[i, j])
+            for o in range(nb):
+                ab[j, kl + o] = complex(Kb[j, o] - kw2 * Mb[j, o], kw * Db[j, o])
         for a in range(m):
             ab[s[a], kv] += delta[k, a]
         info = band_lu(ab, kl, ku, ipiv)
@@ -231,8 +263,9 @@ def condense_banded(M: np.ndarray, D: np.ndarray, K: np.ndarray, dM: np.ndarray,
             rhs[i, m] = dF[k, i]
         for i in range(n):
             for j in range(max(0, i - kl), min(n, i + ku + 1)):
-                dz = complex(dK[i, j] - kw2 * dM[i, j] - c2 * M[i, j],
-                             k * (dw * D[i, j] + w * dD[i, j]))
+                o = ku + i - j
+                dz = complex(dKb[j, o] - kw2 * dMb[j, o] - c2 * Mb[j, o],
+                             k * (dw * Db[j, o] + w * dDb[j, o]))
                 if dz != 0.0:
                     for c in range(m + 1):
                         rhs[i, c] -= dz * out[j, c]

@@ -82,6 +82,18 @@ def _bandwidth(*mats: FloatArray) -> tuple[int, int]:
     return kl, ku
 
 
+def banded_band(matrices: object) -> tuple[int, int] | None:
+    """(kl, ku) when the problem's ``matrices`` also give band storage (attributes
+    ``n``, ``band``, ``banded(lam)``, ``dbanded(lam)``, e.g.
+    :class:`rotorsfd.model.sparse.BandedLinearPart`) narrow enough for the banded kernel
+    to pay off (``3 (kl + ku + 1) < n``); None otherwise (the dense matrices are used)."""
+    band, n = getattr(matrices, "band", None), getattr(matrices, "n", None)
+    if band is None or n is None or not hasattr(matrices, "dbanded"):
+        return None
+    kl, ku = band
+    return (int(kl), int(ku)) if 3 * (kl + ku + 1) < n else None
+
+
 def apply_blocks(A: ComplexArray, Y: FloatArray) -> FloatArray:
     """Real layout of ``A_k Y_k`` for per-harmonic complex matrices A (H+1, p, p) and
     real-layout columns Y (2H+1, p, c): the product by ``real_blocks(A)`` without forming
@@ -169,19 +181,46 @@ class CondensedHB:
         if c is not None and c.lam == lam and (c.dHt is not None or not deriv):
             return c
         p, H, s, m = self.problem, self.H, self.problem.nl_dofs, self.problem.m
-        M, D, K = p.matrices(lam)
         w = p.frequency(lam)
         n = p.n_dof
         F = np.ascontiguousarray(p.forcing(lam, H), dtype=complex)
-        dM, dD, dK = p.dmatrices(lam) if deriv else (M, D, K)
         dF = np.ascontiguousarray(p.dforcing(lam, H), dtype=complex) if deriv else F
         dw = p.dfrequency(lam) if deriv else 0.0
         sol = np.empty((H + 1, n, m + 1), dtype=complex)
         dsol = np.empty((H + 1, m, m + 1), dtype=complex)
         Ht, dHt = np.empty((2, H + 1, m, m), dtype=complex)
         Pt, dPt = np.empty((2, H + 1, m), dtype=complex)
-        mats = tuple(_c_float(A) for A in (M, D, K, dM, dD, dK))
         diag = self._delta_diagonal()
+        band = banded_band(p.matrices)
+        if band is not None and diag is not None:
+            # band storage from the problem itself (e.g. model.sparse.BandedLinearPart):
+            # the band known, no n x n matrix formed or scanned
+            kl, ku = band
+            mb = p.matrices.banded(lam)
+            dmb = p.matrices.dbanded(lam) if deriv else mb
+            status = banded.condense_bands(*mb, *dmb, w, dw, kl, ku, s, diag, F, dF, deriv,
+                                           sol, dsol, Ht, Pt, dHt, dPt)
+        else:
+            status = self._dense_condense(lam, deriv, w, dw, F, dF, diag, sol, dsol, Ht,
+                                          Pt, dHt, dPt)
+        if status > 0:
+            raise FloatingPointError(f"singular dynamic stiffness Z_{status - 1} "
+                                     f"(w={w:.6g}, lam={lam:.6g})")
+        if status == banded.NOT_FINITE:
+            raise FloatingPointError(f"singular dynamic stiffness at lam={lam:.6g}")
+        out = Condensed(lam, Ht, Pt, sol[:, :, m], sol[:, :, :m],
+                        dHt if deriv else None, dPt if deriv else None)
+        self._cache = out
+        return out
+
+    def _dense_condense(self, lam, deriv, w, dw, F, dF, diag, sol, dsol, Ht, Pt, dHt, dPt
+                        ) -> int:
+        """:meth:`condense` from the problem's dense matrices: the compiled banded kernel
+        on their band (found by scanning them), or dense LAPACK when it is too wide."""
+        p, s = self.problem, self.problem.nl_dofs
+        M, D, K = p.matrices(lam)
+        dM, dD, dK = p.dmatrices(lam) if deriv else (M, D, K)
+        mats = tuple(_c_float(A) for A in (M, D, K, dM, dD, dK))
         # scan for nonzeros outside the band only the matrices not scanned before (the
         # problem returns the same array objects for constant matrices, e.g. M and K)
         sc = self._scanned
@@ -192,8 +231,7 @@ class CondensedHB:
             kl, ku = self._bandwidths(mats)
             if kl < 0 or diag is None:
                 self._dense_solves(*mats, w, dw, F, dF, deriv, sol, dsol)
-                status = banded._split(s, deriv, sol, dsol, Ht, Pt, dHt, dPt)
-                break
+                return banded._split(s, deriv, sol, dsol, Ht, Pt, dHt, dPt)
             status = banded.condense_banded(*mats, w, dw, kl, ku, s, diag, F, dF, deriv,
                                             check, sol, dsol, Ht, Pt, dHt, dPt)
             if status == banded.OUTSIDE_BAND:
@@ -201,15 +239,7 @@ class CondensedHB:
                 self._band = (max(kl, kl2), max(ku, ku2))
             else:
                 self._scanned = mats
-        if status > 0:
-            raise FloatingPointError(f"singular dynamic stiffness Z_{status - 1} "
-                                     f"(w={w:.6g}, lam={lam:.6g})")
-        if status == banded.NOT_FINITE:
-            raise FloatingPointError(f"singular dynamic stiffness at lam={lam:.6g}")
-        out = Condensed(lam, Ht, Pt, sol[:, :, m], sol[:, :, :m],
-                        dHt if deriv else None, dPt if deriv else None)
-        self._cache = out
-        return out
+        return status
 
     def _bandwidths(self, mats: list[FloatArray]) -> tuple[int, int]:
         """(kl, ku) of the band used, found at the first call (the union of the patterns

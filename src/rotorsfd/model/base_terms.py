@@ -46,12 +46,17 @@ with R the 90-degree rotation of the DOFs about x) and reproduces rigid-body mot
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cached_property
+from typing import Any
 
 import numpy as np
+import scipy.sparse as sp
 
 from rotorsfd.model import dofs
 from rotorsfd.model.base_motion import BaseState
+from rotorsfd.model.sparse import BandedLinearPart, as_csr, assemble
 
 MATRIX_NAMES: tuple[str, ...] = (
     "T11", "T22", "TS", "TJ", "P11", "P22", "PS", "PJ", "D11", "D22", "DS", "DJ",
@@ -212,30 +217,48 @@ def shaft_base_terms(element, x_left: float, state: BaseState,
 # ---------------------------------------------------------------------------------------
 # global assembly
 # ---------------------------------------------------------------------------------------
-@dataclass(frozen=True)
 class BaseBasis:
-    """Global basis of a rotor: ``matrices`` (12, n, n) and ``vectors`` (8, n)."""
+    """Global basis of a rotor: the 12 pattern matrices (stored sparse, ``sparse_matrices``,
+    CSR inside the rotor's band; ``matrices`` is their dense (12, n, n) stack, built on
+    first use) and the 8 load vectors ``vectors`` (8, n)."""
 
-    matrices: np.ndarray
-    vectors: np.ndarray
+    def __init__(self, matrices: Sequence[Any], vectors: np.ndarray) -> None:
+        self.sparse_matrices: tuple[sp.csr_matrix, ...] = tuple(as_csr(a) for a in matrices)
+        self.vectors = np.asarray(vectors, dtype=float)
+        self._dense: np.ndarray | None = None
 
     @property
     def n_dof(self) -> int:
         return self.vectors.shape[1]
 
+    @property
+    def matrices(self) -> np.ndarray:
+        """The dense (12, n, n) stack (built once, on request: 12 n^2 floats)."""
+        if self._dense is None:
+            self._dense = np.array([a.toarray() for a in self.sparse_matrices])
+        return self._dense
+
     def matrix(self, name: str) -> np.ndarray:
-        return self.matrices[MATRIX_NAMES.index(name)]
+        """Pattern ``name`` (MATRIX_NAMES), dense."""
+        return self.sparse_matrices[MATRIX_NAMES.index(name)].toarray()
 
     def vector(self, name: str) -> np.ndarray:
         return self.vectors[VECTOR_NAMES.index(name)]
 
-    def combine(self, co: BaseCoefficients) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(C_base, K_base, F_base) = (sum c_C B, sum c_K B, sum c_F f); F has shape (n,)
-        or (n, nt) for time-vectorised coefficients (the matrices need scalar ones)."""
-        C = np.tensordot(co.c_C, self.matrices, axes=(0, 0))
-        K = np.tensordot(co.c_K, self.matrices, axes=(0, 0))
+    def combine_sparse(self, co: BaseCoefficients) -> tuple[sp.csr_matrix, sp.csr_matrix,
+                                                            np.ndarray]:
+        """(C_base, K_base, F_base) with the matrices sparse (scalar coefficients)."""
+        C, K = (_sum_terms(c, self.sparse_matrices) for c in (co.c_C, co.c_K))
+        zero = sp.csr_matrix((self.n_dof, self.n_dof))
         F = np.tensordot(self.vectors, co.c_F, axes=(0, 0))
-        return C, K, F
+        return (zero if C is None else C), (zero if K is None else K), F
+
+    def combine(self, co: BaseCoefficients) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(C_base, K_base, F_base) = (sum c_C B, sum c_K B, sum c_F f), the matrices
+        dense; F has shape (n,) or (n, nt) for time-vectorised coefficients (the matrices
+        need scalar ones)."""
+        C, K, F = self.combine_sparse(co)
+        return C.toarray(), K.toarray(), F
 
 
 # ---------------------------------------------------------------------------------------
@@ -277,7 +300,7 @@ def coefficient_polynomial(state: BaseState, speed: float, variable: str
             base_coefficient_derivatives(st0, speed)[variable], c2)
 
 
-def _sum_terms(weights: np.ndarray, arrays: np.ndarray) -> np.ndarray | None:
+def _sum_terms(weights: np.ndarray, arrays: Sequence[Any]) -> Any:
     """sum_i weights_i arrays_i over the nonzero weights only; None if all are zero."""
     out = None
     for c, A in zip(np.asarray(weights, dtype=float), arrays, strict=True):
@@ -286,10 +309,22 @@ def _sum_terms(weights: np.ndarray, arrays: np.ndarray) -> np.ndarray | None:
     return out
 
 
-def _add(a: np.ndarray | None, b: np.ndarray | None) -> np.ndarray | None:
+def _add(a: Any, b: Any) -> Any:
+    """a + b, None for zero; dense if either is dense (never an np.matrix)."""
     if a is None:
         return b
-    return a if b is None else a + b
+    if b is None:
+        return a
+    if sp.issparse(a) != sp.issparse(b):
+        a, b = (x.toarray() if sp.issparse(x) else x for x in (a, b))
+    return a + b
+
+
+def _uniform(terms: tuple) -> tuple:
+    """The matrix terms all sparse, or all dense if one of them is dense."""
+    if all(t is None or sp.issparse(t) for t in terms):
+        return terms
+    return tuple(t.toarray() if sp.issparse(t) else t for t in terms)
 
 
 class PolynomialTerms:
@@ -297,27 +332,38 @@ class PolynomialTerms:
 
         D(p) = sum_j p^j D_j,  K(p) = sum_j p^j K_j,  F(p) = sum_j p^j F_j   (j = 0, 1, 2)
 
-    with ``None`` for a zero term. Evaluating costs one scaled add per nonzero term of
-    degree >= 1 (no tensordot over the basis); a quantity with no such term is returned
-    as the same array object at every p (so that callers can tell it is constant, as the
-    condensation's band scan does), a zero one and a constant one's derivative as the
-    shared ``zero`` (``zero_vector``). Treat the returned arrays as read-only.
+    with ``None`` for a zero term; the matrix terms are stored as given (scipy.sparse from
+    the rotor and the base basis; dense arrays are accepted). ``damping(p)``,
+    ``stiffness(p)`` and their derivatives return dense arrays (built on request: one
+    scaled add per nonzero term of degree >= 1); a quantity with no such term is the same
+    array object at every p (so that callers can tell it is constant, as the condensation's
+    band scan does), a zero one and a constant one's derivative the shared ``zero``
+    (``zero_vector``). ``sparse_damping(p)`` etc. give CSR without a dense n x n array and
+    :meth:`banded` the band-storage form of the HB solvers. Treat the returned arrays as
+    read-only.
     """
 
     def __init__(self, n: int, D: tuple = (), K: tuple = (), F: tuple = ()) -> None:
         self.n = n
         self.D, self.K, self.F = (tuple(t) + (None,) * (3 - len(t)) for t in (D, K, F))
-        self.zero = np.zeros((n, n))
+        self.D, self.K = _uniform(self.D), _uniform(self.K)
         self.zero_vector = np.zeros(n)
+        self._dense: dict[int, tuple[Any, np.ndarray]] = {}
+
+    @cached_property
+    def zero(self) -> np.ndarray:
+        """The shared dense n x n zero (built on first use)."""
+        return np.zeros((self.n, self.n))
 
     @classmethod
     def of_base(cls, basis: BaseBasis, state: BaseState, speed: float, variable: str
                 ) -> PolynomialTerms:
         """C_base, K_base, F_base of the base state as polynomials in ``variable``
-        (:func:`coefficient_polynomial`), only the nonzero coefficients combined."""
+        (:func:`coefficient_polynomial`), only the nonzero coefficients combined (sparse)."""
         cos = coefficient_polynomial(state, speed, variable)
-        return cls(basis.n_dof, tuple(_sum_terms(c.c_C, basis.matrices) for c in cos),
-                   tuple(_sum_terms(c.c_K, basis.matrices) for c in cos),
+        mats = basis.sparse_matrices
+        return cls(basis.n_dof, tuple(_sum_terms(c.c_C, mats) for c in cos),
+                   tuple(_sum_terms(c.c_K, mats) for c in cos),
                    tuple(_sum_terms(c.c_F, basis.vectors) for c in cos))
 
     def plus(self, D: tuple = (), K: tuple = ()) -> PolynomialTerms:
@@ -328,59 +374,107 @@ class PolynomialTerms:
             return tuple(_add(y, x) for x, y in zip(a, b, strict=True))
         return PolynomialTerms(self.n, add(self.D, D), add(self.K, K), self.F)
 
+    def constant(self, p: float) -> PolynomialTerms:
+        """The polynomials frozen at p (degree 0: D(p), K(p), F(p))."""
+        return PolynomialTerms(self.n, (self._value(self.D, p),), (self._value(self.K, p),),
+                               (self._value(self.F, p),))
+
+    def banded(self, M: Any, band: tuple[int, int] | None = None) -> BandedLinearPart:
+        """(M, D(p), K(p)) in band storage (:class:`rotorsfd.model.sparse.BandedLinearPart`,
+        the band read from the patterns unless given)."""
+        return BandedLinearPart(M, self.D, self.K, band)
+
     @staticmethod
-    def _value(terms: tuple, p: float, zero: np.ndarray) -> np.ndarray:
+    def _value(terms: tuple, p: float) -> Any:
         out = terms[0]
         if terms[1] is not None:
             out = p * terms[1] if out is None else out + p * terms[1]
         if terms[2] is not None:
             out = (p * p) * terms[2] if out is None else out + (p * p) * terms[2]
-        return zero if out is None else out
+        return out
 
     @staticmethod
-    def _slope(terms: tuple, p: float, zero: np.ndarray) -> np.ndarray:
+    def _slope(terms: tuple, p: float) -> Any:
         if terms[2] is None:
-            return zero if terms[1] is None else terms[1]
+            return terms[1]
         out = (2.0 * p) * terms[2]
         return out if terms[1] is None else terms[1] + out
 
+    def _as_dense(self, a: Any) -> np.ndarray:
+        """Dense form of a value: the shared zero for None, the array itself if dense, a
+        sparse stored term's dense form built once (the same object at every call)."""
+        if a is None:
+            return self.zero
+        if not sp.issparse(a):
+            return a
+        hit = self._dense.get(id(a))
+        if hit is not None and hit[0] is a:
+            return hit[1]
+        out = a.toarray()
+        if any(a is t for t in self.D + self.K):
+            self._dense[id(a)] = (a, out)
+        return out
+
+    def _as_sparse(self, a: Any) -> sp.csr_matrix:
+        return sp.csr_matrix((self.n, self.n)) if a is None else as_csr(a)
+
     def damping(self, p: float) -> np.ndarray:
-        return self._value(self.D, p, self.zero)
+        return self._as_dense(self._value(self.D, p))
 
     def stiffness(self, p: float) -> np.ndarray:
-        return self._value(self.K, p, self.zero)
+        return self._as_dense(self._value(self.K, p))
 
     def load(self, p: float) -> np.ndarray:
-        return self._value(self.F, p, self.zero_vector)
+        out = self._value(self.F, p)
+        return self.zero_vector if out is None else out
 
     def ddamping(self, p: float) -> np.ndarray:
-        return self._slope(self.D, p, self.zero)
+        return self._as_dense(self._slope(self.D, p))
 
     def dstiffness(self, p: float) -> np.ndarray:
-        return self._slope(self.K, p, self.zero)
+        return self._as_dense(self._slope(self.K, p))
 
     def dload(self, p: float) -> np.ndarray:
-        return self._slope(self.F, p, self.zero_vector)
+        out = self._slope(self.F, p)
+        return self.zero_vector if out is None else out
+
+    def sparse_damping(self, p: float) -> sp.csr_matrix:
+        """D(p) as CSR."""
+        return self._as_sparse(self._value(self.D, p))
+
+    def sparse_stiffness(self, p: float) -> sp.csr_matrix:
+        """K(p) as CSR."""
+        return self._as_sparse(self._value(self.K, p))
 
 
 def base_basis(rotor) -> BaseBasis:
-    """Assemble the 12 constant matrices and 8 vectors of a rotor (shaft, disks, masses)."""
+    """Assemble the 12 constant matrices (sparse) and 8 vectors of a rotor (shaft, disks,
+    masses)."""
+    imported = getattr(rotor, "imported_base_basis", None)   # a rotor given by matrices
+    if imported is not None:
+        return imported()
     n = rotor.n_dof
-    mats = np.zeros((12, n, n))
+    blocks: list[list] = [[] for _ in MATRIX_NAMES]
     vecs = np.zeros((8, n))
-    for i, el in enumerate(rotor.shaft_elements):
-        idx = np.arange(4 * i, 4 * i + 8)
-        me, ve = shaft_element_basis(el, float(rotor.element_x[i]))
-        mats[:, idx[:, None], idx[None, :]] += me
-        vecs[:, idx] += ve
+    ne = len(rotor.shaft_elements)
+    idx = 4 * np.arange(ne)[:, None] + np.arange(8)[None, :]        # (ne, 8)
+    local = [shaft_element_basis(el, float(rotor.element_x[i]))
+             for i, el in enumerate(rotor.shaft_elements)]
+    me = np.array([m for m, _ in local])                              # (ne, 12, 8, 8)
+    ve = np.array([v for _, v in local])                              # (ne, 8, 8)
+    for j, b in enumerate(blocks):
+        b.append((idx, me[:, j]))
+    for j in range(8):
+        np.add.at(vecs[j], idx, ve[:, j])
     lumped = [(d.node, d.mass, d.polar_inertia, d.diametral_inertia) for d in rotor.disks]
     lumped += [(p.node, p.mass, 0.0, 0.0) for p in getattr(rotor, "point_masses", ())]
     for node, m, ip, idi in lumped:
         idx = dofs.node_dofs(node)
         me, ve = disk_basis(m, ip, idi, float(rotor.node_x[node - 1]))
-        mats[:, idx[:, None], idx[None, :]] += me
+        for b, mb in zip(blocks, me, strict=True):
+            b.append((idx, mb))
         vecs[:, idx] += ve
-    return BaseBasis(mats, vecs)
+    return BaseBasis([assemble(n, b) for b in blocks], vecs)
 
 
 def assemble_base(rotor, state: BaseState, speed: float,
@@ -394,9 +488,12 @@ def base_static_deflection(rotor, state: BaseState, speed: float = 0.0,
                            force: np.ndarray | None = None,
                            basis: BaseBasis | None = None) -> np.ndarray:
     """Static offset under constant base motion: solve (K + K_base) q = F_base (+ force)."""
-    _, K_b, F_b = assemble_base(rotor, state, speed, basis)
+    basis = base_basis(rotor) if basis is None else basis
+    _, K_b, F_b = basis.combine_sparse(base_coefficients(state, speed))
     rhs = F_b if force is None else F_b + np.asarray(force, dtype=float)
-    return np.linalg.solve(rotor.K + K_b, rhs)
+    from scipy.sparse.linalg import spsolve
+
+    return spsolve(sp.csc_matrix(rotor.K_csr + K_b), rhs)
 
 
 class MovingBaseRotor:
@@ -418,12 +515,18 @@ class MovingBaseRotor:
         if self._terms is None:
             r = self.rotor
             self._terms = PolynomialTerms.of_base(self.basis, self.state, 0.0, "speed").plus(
-                D=(r.C, r.G), K=(r.K,))
+                D=(r.C_csr, r.G_csr), K=(r.K_csr,))
         return self._terms
 
     def matrices(self, speed: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         t = self.terms
         return self.rotor.M, t.damping(speed), t.stiffness(speed)
+
+    def sparse_matrices(self, speed: float) -> tuple[sp.csr_matrix, sp.csr_matrix,
+                                                      sp.csr_matrix]:
+        """(M, D, K) at ``speed`` as CSR (no dense n x n array)."""
+        t = self.terms
+        return self.rotor.M_csr, t.sparse_damping(speed), t.sparse_stiffness(speed)
 
     def force(self, speed: float) -> np.ndarray:
         return self.terms.load(speed).copy()

@@ -1,7 +1,9 @@
 """Structural (non-rotating) damping models of the rotor.
 
 Both act on the assembled, supported, non-rotating rotor (M, K including the support
-stiffness) and return a symmetric damping matrix added to C.
+stiffness, dense or scipy.sparse) and return a symmetric damping matrix added to C:
+Rayleigh damping keeps the band (sparse in, sparse out); modal damping is a full matrix
+(dense).
 """
 
 from __future__ import annotations
@@ -10,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg
+import scipy.sparse as sp
 
 from rotorsfd.errors import ConfigError
 
@@ -21,8 +24,8 @@ class RayleighDamping:
     alpha: float
     beta: float
 
-    def matrix(self, mass: np.ndarray, stiffness: np.ndarray) -> np.ndarray:
-        """C_s = alpha M + beta K."""
+    def matrix(self, mass, stiffness):
+        """C_s = alpha M + beta K (sparse for sparse M, K)."""
         return self.alpha * mass + self.beta * stiffness
 
 
@@ -42,7 +45,9 @@ class ModalDamping:
             raise ConfigError("damping.ratio", self.ratio, "must be >= 0")
 
     def matrix(self, mass: np.ndarray, stiffness: np.ndarray) -> np.ndarray:
-        """C_s = M Phi diag(2 zeta w_r) Phi^T M."""
+        """C_s = M Phi diag(2 zeta w_r) Phi^T M (dense)."""
+        mass, stiffness = (a.toarray() if sp.issparse(a) else np.asarray(a, dtype=float)
+                           for a in (mass, stiffness))
         k_sym = 0.5 * (stiffness + stiffness.T)
         w2, phi = scipy.linalg.eigh(k_sym, mass)
         w = np.sqrt(np.clip(w2, 0.0, None))

@@ -8,11 +8,12 @@ order of :mod:`rotorsfd.model.dofs`. Element ``i`` (0-based in the list) joins n
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
+from functools import cached_property
 
 import numpy as np
 
 from rotorsfd.errors import ConfigError
-from rotorsfd.model import dofs
+from rotorsfd.model import dofs, sparse
 from rotorsfd.model.damping import ModalDamping, RayleighDamping
 from rotorsfd.model.disk import Disk, PointMass
 from rotorsfd.model.shaft import ShaftElement
@@ -20,7 +21,9 @@ from rotorsfd.model.supports import LinearSupport
 
 
 class Rotor:
-    """Finite-element rotor with global float matrices ``M, K, C, G`` (n_dof x n_dof).
+    """Finite-element rotor with global float matrices ``M, K, C, G`` (n_dof x n_dof),
+    stored sparse (``M_csr, K_csr, C_csr, G_csr``, scipy CSR, half bandwidth 7: see
+    :mod:`rotorsfd.model.sparse`); the dense ``M, K, C, G`` are built on first use.
 
     ``C`` = support damping + structural damping (``damping.matrix(M, K)``, computed on the
     supported non-rotating rotor); ``G`` is skew-symmetric and multiplies the speed.
@@ -64,32 +67,58 @@ class Rotor:
         return np.arange(4 * index, 4 * index + 8)
 
     def _assemble(self) -> None:
+        """M, K, G, C as CSR from the element blocks (:func:`rotorsfd.model.sparse.assemble`,
+        no dense n x n array); the dense M, K, C, G are built from them on first use."""
         n = self.n_dof
-        M, K, G, C = (np.zeros((n, n)) for _ in range(4))
-        for i, el in enumerate(self.shaft_elements):
-            idx = np.ix_(self.element_dofs(i), self.element_dofs(i))
-            M[idx] += el.mass_matrix()
-            K[idx] += el.stiffness_matrix()
-            G[idx] += el.gyroscopic_matrix()
+        ne = len(self.shaft_elements)
+        idx = 4 * np.arange(ne)[:, None] + np.arange(8)[None, :]    # element_dofs, stacked
+        els = self.shaft_elements
+        mass = [(idx, np.array([el.mass_matrix() for el in els]))]
+        stiff = [(idx, np.array([el.stiffness_matrix() for el in els]))]
+        gyro = [(idx, np.array([el.gyroscopic_matrix() for el in els]))]
+        damp: list = []
         for d in self.disks:
-            y, z, ty, tz = dofs.node_dofs(d.node)
-            M[y, y] += d.mass
-            M[z, z] += d.mass
-            M[ty, ty] += d.diametral_inertia
-            M[tz, tz] += d.diametral_inertia
-            G[ty, tz] += d.polar_inertia
-            G[tz, ty] -= d.polar_inertia
+            idx = dofs.node_dofs(d.node)
+            mass.append((idx, np.diag([d.mass, d.mass, d.diametral_inertia,
+                                       d.diametral_inertia])))
+            gyro.append((idx[2:], np.array([[0.0, d.polar_inertia],
+                                            [-d.polar_inertia, 0.0]])))
         for p in self.point_masses:
-            y, z = dofs.node_dofs(p.node)[:2]
-            M[y, y] += p.mass
-            M[z, z] += p.mass
+            mass.append((dofs.node_dofs(p.node)[:2], p.mass * np.eye(2)))
         for s in self.supports:
-            yz = np.ix_(dofs.node_dofs(s.node)[:2], dofs.node_dofs(s.node)[:2])
-            K[yz] += s.stiffness
-            C[yz] += s.damping
+            yz = dofs.node_dofs(s.node)[:2]
+            stiff.append((yz, s.stiffness))
+            damp.append((yz, s.damping))
+        self.M_csr = sparse.assemble(n, mass)
+        self.K_csr = sparse.assemble(n, stiff)
+        self.G_csr = sparse.assemble(n, gyro)
+        C = sparse.assemble(n, damp)
         if self.damping is not None:
-            C += self.damping.matrix(M, K)
-        self.M, self.K, self.C, self.G = M, K, C, G
+            C = sparse.as_csr(C + self.damping.matrix(self.M_csr, self.K_csr))
+        self.C_csr = C
+        #: (kl, ku) of M, C, G, K together (7, 7 for a beam rotor without modal damping)
+        self.band: tuple[int, int] = sparse.bandwidths(
+            (self.M_csr, self.K_csr, self.G_csr, self.C_csr))
+
+    @cached_property
+    def M(self) -> np.ndarray:
+        """Mass matrix, dense (built from ``M_csr`` on first use)."""
+        return self.M_csr.toarray()
+
+    @cached_property
+    def K(self) -> np.ndarray:
+        """Stiffness matrix (shaft + supports), dense (from ``K_csr``)."""
+        return self.K_csr.toarray()
+
+    @cached_property
+    def C(self) -> np.ndarray:
+        """Damping matrix (supports + structural damping), dense (from ``C_csr``)."""
+        return self.C_csr.toarray()
+
+    @cached_property
+    def G(self) -> np.ndarray:
+        """Gyroscopic matrix per unit speed (skew-symmetric), dense (from ``G_csr``)."""
+        return self.G_csr.toarray()
 
     # ---- protocol and helpers ---------------------------------------------------------
     def dof_index(self, node: int, direction: str) -> int:

@@ -17,6 +17,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+import scipy.sparse as sp
 
 from rotorsfd.elements.base import NonlinearElement
 from rotorsfd.elements.composite import ElementSet
@@ -143,15 +144,15 @@ class RotorSystem:
         par = find_parameter(parameter)
         if par.kind == "speed":
             if self.base.is_fixed and state is None:
-                return PolynomialTerms(self.n_dof, D=(r.C, r.G), K=(r.K,))
+                return PolynomialTerms(self.n_dof, D=(r.C_csr, r.G_csr), K=(r.K_csr,))
             return PolynomialTerms.of_base(self.basis, st, 0.0, "speed").plus(
-                D=(r.C, r.G), K=(r.K,))
+                D=(r.C_csr, r.G_csr), K=(r.K_csr,))
         if par.kind != "base_rate":
             raise ConfigError("parameter", parameter,
                               "linear terms are polynomial in the speed or a base rate")
         om = float(speed)
         return PolynomialTerms.of_base(self.basis, st, om, par.rate_name).plus(
-            D=(r.C + om * r.G,), K=(r.K,))
+            D=(r.C_csr + om * r.G_csr,), K=(r.K_csr,))
 
     def _speed_polynomial(self) -> PolynomialTerms:
         """linear_terms("speed") of the current base state, cached by that state."""
@@ -176,6 +177,12 @@ class RotorSystem:
         (read-only: a matrix free of the speed is the same array at every call)."""
         lin = self._speed_polynomial()
         return self.rotor.M, lin.damping(speed), lin.stiffness(speed)
+
+    def sparse_matrices(self, speed: float) -> tuple[sp.csr_matrix, sp.csr_matrix,
+                                                      sp.csr_matrix]:
+        """:meth:`matrices` as CSR (scipy.sparse), without a dense n x n array."""
+        lin = self._speed_polynomial()
+        return self.rotor.M_csr, lin.sparse_damping(speed), lin.sparse_stiffness(speed)
 
     def static_force(self, speed: float) -> np.ndarray:
         """Constant load F_base (base acceleration, gravity, gyroscopic moments) [N, N m]."""
@@ -212,7 +219,6 @@ class RotorSystem:
                               f"continuing in {parameter} needs a fixed speed > 0 [rad/s]")
         state0 = self.constant_base_state()
         r = self.rotor
-        basis = self.basis
         fixed_base = self.base.is_fixed and par.kind != "base_rate"
         U_ref = self.unbalances[0].magnitude if self.unbalances else 0.0
         if par.kind == "unbalance" and U_ref == 0.0:
@@ -244,24 +250,11 @@ class RotorSystem:
             else:
                 lin = self.linear_terms("speed", state=None if fixed_base else state0)
             if par.kind == "unbalance":   # the linear part is free of lam
-                const = (r.M, lin.damping(float(speed)), lin.stiffness(float(speed)))
-                lin = PolynomialTerms(self.n_dof, D=(const[1],), K=(const[2],),
-                                      F=(lin.load(float(speed)),))
-            last: list = [None, None, None]   # lam, matrices, dmatrices: same lam, same objects
-
-            def matrices(lam: float):
-                if last[0] != lam:
-                    last[0], last[1], last[2] = lam, None, None
-                if last[1] is None:
-                    last[1] = (r.M, lin.damping(lam), lin.stiffness(lam))
-                return last[1]
-
-            def dmatrices(lam: float):
-                if last[0] != lam:
-                    last[0], last[1], last[2] = lam, None, None
-                if last[2] is None:
-                    last[2] = (lin.zero, lin.ddamping(lam), lin.dstiffness(lam))
-                return last[2]
+                lin = lin.constant(float(speed))
+            # band storage of (M, D, K): the condensation reads it directly; dense arrays
+            # for the other callers are built on request
+            matrices = lin.banded(r.M_csr)
+            dmatrices = matrices.derivatives
 
             def base_load(lam: float) -> np.ndarray:
                 return lin.load(lam)
@@ -273,7 +266,7 @@ class RotorSystem:
                 om, st, _ = at(lam)
                 if fixed_base:
                     return r.M, r.C + om * r.G, r.K
-                C_b, K_b, _ = basis.combine(base_coefficients(st, om))
+                C_b, K_b, _ = self.basis.combine(base_coefficients(st, om))
                 return r.M, r.C + om * r.G + C_b, r.K + K_b
 
             def dmatrices(lam: float):
@@ -282,16 +275,16 @@ class RotorSystem:
                 dG = r.G if par.kind == "speed" else zero
                 if fixed_base:
                     return zero, dG, zero
-                dC_b, dK_b, _ = basis.combine(coefficient_derivative(om, st))
+                dC_b, dK_b, _ = self.basis.combine(coefficient_derivative(om, st))
                 return zero, dG + dC_b, dK_b
 
             def base_load(lam: float) -> np.ndarray:
                 om, st, _ = at(lam)
-                return basis.combine(base_coefficients(st, om))[2]
+                return self.basis.combine(base_coefficients(st, om))[2]
 
             def dbase_load(lam: float) -> np.ndarray:
                 om, st, _ = at(lam)
-                return basis.combine(coefficient_derivative(om, st))[2]
+                return self.basis.combine(coefficient_derivative(om, st))[2]
 
         def forcing(lam: float, H: int) -> np.ndarray:
             om, st, scale = at(lam)
