@@ -62,8 +62,10 @@ from rotorsfd.analyses.td_integration import (
     TimeDomainInputs,
     Trajectory,
     integrate_periods,
+    reduction_summary,
     scheme_options,
     time_domain_inputs,
+    with_reduction,
 )
 from rotorsfd.analyses.td_lyapunov import lyapunov_pair
 from rotorsfd.errors import ConfigError, ConvergenceError, ElementDomainError
@@ -226,7 +228,9 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
                    progress: bool = True, title: str | None = None,
                    step_check_periods: int | None = None,
                    step_tolerance: float | None = None,
-                   max_steps_per_period: int | None = None) -> SimulationResult:
+                   max_steps_per_period: int | None = None,
+                   reduction: str | None = None,
+                   reduction_cutoff: float | None = None) -> SimulationResult:
     """Integrate the nonlinear rotor at one speed and classify the motion.
 
     From a Config: ``[analysis.simulate]`` and ``[reference]``, keyword arguments override
@@ -246,6 +250,10 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
     integer, checked by one halving over the last ``step_check_periods`` (0: off).
     ``result.step_check`` (a :class:`StepControl`) holds the halvings and the achieved
     error; a step that fails the tolerance puts a warning in the summary.
+    ``reduction`` / ``reduction_cutoff`` (default ``[analysis.simulate]``, "auto" and 40):
+    the step on the Craig-Bampton model with the fixed-interface modes up to
+    ``reduction_cutoff`` x Omega (:func:`~rotorsfd.analyses.td_integration.with_reduction`);
+    the settings report the kept coordinates and the cutoff.
     """
     from rotorsfd.io.schema import SimulateAnalysis
 
@@ -360,6 +368,10 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
         q_init, v_init = displaced_state(n, disp), np.zeros(n)
     inputs = time_domain_inputs(system, speed,
                                 horizon=t_start + (n_per + n_ly + 1) * T)
+    cut = sim.reduction_cutoff if reduction_cutoff is None else float(reduction_cutoff)
+    tic_red = time.perf_counter()
+    inputs = with_reduction(inputs, reduction or sim.reduction, cut)
+    elapsed_reduction = time.perf_counter() - tic_red
     rd = [dofs.dof_index(nd, d) for nd in out_nodes for d in DIRECTIONS]
     clearance = system.length_scale
     primary = system.primary_node
@@ -372,7 +384,8 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
                 "record_periods": n_rec, "lyapunov_periods": n_ly,
                 "step_check_periods": n_chk, "initial_state": start,
                 "initial_displacement_m": disp, "start_time_s": t_start,
-                "time_varying_matrices": inputs.time_varying is not None}
+                "time_varying_matrices": inputs.time_varying is not None,
+                **reduction_summary(inputs, cut), "elapsed_reduction_s": elapsed_reduction}
     bar = _progress_bar(progress, n_per, "simulate")
     last = [0]
 

@@ -7,13 +7,18 @@ run.
 
 stepped by :func:`rotorsfd.timedomain.integrate` with ``dt = T / steps_per_period``,
 ``T = 2 pi / Omega``; Poincare points once per rotor period at ``t = t0 + k T``.
+
+With ``reduction = "auto"`` (:func:`with_reduction`) the step runs on the Craig-Bampton
+model of :mod:`rotorsfd.timedomain.reduced` (the nonlinear DOFs plus the fixed-interface
+modes up to ``omega_max = cutoff Omega``): states enter by its projector and the outputs
+(recorded DOFs, Poincare points, final state) come back as ``q = Psi p``.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -24,6 +29,7 @@ from rotorsfd.model.system import RotorSystem
 from rotorsfd.timedomain import Forcing, HarmonicLoad, TimeVaryingMatrices
 from rotorsfd.timedomain import newmark as nm
 from rotorsfd.timedomain.integrate import MESSAGES, initial_state, prepare, run
+from rotorsfd.timedomain.reduced import ReducedStep, reduce_step
 
 FIELD = "analysis.simulate"
 DIRECTIONS = ("y", "z")
@@ -46,11 +52,60 @@ class TimeDomainInputs:
     time_varying: TimeVaryingMatrices | None
     speed: float
     elements: ElementSet | None = None
+    reduction: ReducedStep | None = None
 
     @property
     def period(self) -> float:
         """Rotor period T = 2 pi / Omega [s]."""
         return 2.0 * math.pi / self.speed
+
+    @property
+    def n_dof(self) -> int:
+        """Physical DOFs."""
+        return self.M.shape[0]
+
+
+REDUCTIONS = ("auto", "none")
+REDUCTION_CUTOFF = 40.0
+"""Default cutoff of the reduced step, ``omega_max = REDUCTION_CUTOFF Omega``
+(``analysis.simulate.reduction_cutoff``; see :func:`with_reduction`)."""
+
+
+def with_reduction(inputs: TimeDomainInputs, reduction: str = "auto",
+                   cutoff: float = REDUCTION_CUTOFF) -> TimeDomainInputs:
+    """``inputs`` with the reduced step of ``reduction``: ``"auto"`` the Craig-Bampton
+    model on the nonlinear DOFs and the fixed-interface modes with
+    ``omega <= cutoff Omega`` when it has fewer coordinates than the model (and the
+    interior is restrained once the nonlinear DOFs are fixed), else the full step;
+    ``"none"`` the full step."""
+    if reduction not in REDUCTIONS:
+        raise ConfigError(f"{FIELD}.reduction", reduction, '"auto" or "none"')
+    if not cutoff > 0.0:
+        raise ConfigError(f"{FIELD}.reduction_cutoff", cutoff, "must be > 0")
+    if reduction == "none":
+        return replace(inputs, reduction=None)
+    try:
+        red = reduce_step(inputs.M, inputs.D, inputs.K, inputs.nl_dofs, inputs.forcing,
+                          inputs.time_varying, cutoff * inputs.speed)
+    except ConfigError:                 # a free interior: no Craig-Bampton model
+        return replace(inputs, reduction=None)
+    return replace(inputs, reduction=red if red.n_dof < inputs.n_dof else None)
+
+
+def reduction_summary(inputs: TimeDomainInputs, cutoff: float | None = None
+                      ) -> dict[str, Any]:
+    """What the run integrated, for the summary: the reduction, its cutoff, the kept
+    coordinates and the highest kept mode."""
+    red = inputs.reduction
+    if red is None:
+        return {"reduction": "none", "reduced_dof": inputs.n_dof,
+                "reduction_cutoff": cutoff, "reduction_omega_max_rad_s": None,
+                "reduction_modes": None}
+    top = float(red.model.omegas.max()) if red.n_modes else None
+    return {"reduction": "craig-bampton", "reduced_dof": red.n_dof,
+            "reduction_cutoff": red.omega_max / inputs.speed,
+            "reduction_omega_max_rad_s": red.omega_max, "reduction_modes": red.n_modes,
+            "reduction_highest_mode_rad_s": top}
 
 
 def _fold_constant(pairs: Sequence[tuple[Any, np.ndarray]], probe: np.ndarray
@@ -173,21 +228,46 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
     largest validity measure of the elements over the run (None if none has one),
     ``element_diagnostics`` every element's orbit diagnostics over the recorded periods
     (``eps_max_<name>``, :meth:`~rotorsfd.elements.ElementSet.diagnostics`).
+
+    With ``inputs.reduction`` the run steps the reduced coordinates ``p`` from
+    ``p0 = P q0``; every output (the columns of ``record_dofs``, the elements' DOFs, the
+    final state and the snapshot) is the physical ``Psi p`` of the rows it needs.
     """
     spp = int(steps_per_period)
     n_steps = spp * int(periods)
     dt = inputs.period / spp
-    ps = prepare(inputs.M, inputs.D, inputs.K, inputs.nl_dofs, inputs.kernel, inputs.params,
-                 inputs.forcing, dt, n_steps, t0=t0, time_varying=inputs.time_varying,
-                 **(method_options or {}))
+    red = inputs.reduction
+    rd = np.asarray(record_dofs, dtype=np.int64)
+    rows = np.concatenate([rd, inputs.nl_dofs]).astype(np.int64)  # physical rows kept
+    if red is None:
+        M, D, K, forcing, tv = inputs.M, inputs.D, inputs.K, inputs.forcing, \
+            inputs.time_varying
+        nl_step = inputs.nl_dofs
+        x0, xv0 = q0, v0
+        rec_all = rows
+
+        def out(x: np.ndarray, cols: np.ndarray | None = None) -> np.ndarray:
+            return x if cols is None else x[..., cols]
+    else:
+        M, D, K = red.model.M, red.model.D, red.model.K
+        forcing, tv, nl_step = red.forcing, red.time_varying, red.nl_dofs
+        x0, xv0 = red.reduce(q0), red.reduce(v0)
+        rec_all = np.arange(red.n_dof, dtype=np.int64)          # every reduced coordinate
+
+        def out(x: np.ndarray, cols: np.ndarray | None = None) -> np.ndarray:
+            return red.physical(x, None if cols is None else rows[cols])
+    ps = prepare(M, D, K, nl_step, inputs.kernel, inputs.params, forcing, dt, n_steps, t0=t0,
+                 time_varying=tv, **(method_options or {}))
+    r = ps.n_dof
     nl = ps.nl
     elements = inputs.elements
     limited = elements is not None and any(e.limit_label is not None for e in elements)
-    rd = np.asarray(record_dofs, dtype=np.int64)
-    rec_all = np.concatenate([rd, nl]).astype(np.int64)
+    c_rd = np.arange(rd.size)
+    c_nl = np.arange(rd.size, rows.size)
     rec_start = (periods - record_periods) * spp
     pc_start = (periods - poincare_periods + 1) * spp
-    state = initial_state(ps, q0, v0)
+    first_kept = min(rec_start, pc_start)
+    state = initial_state(ps, x0, xv0)
     chunk = max(1, chunk_periods or math.ceil(periods / 100))
     parts: dict[str, list[np.ndarray]] = {k: [] for k in ("t", "q", "v", "pt", "pq", "pv",
                                                           "qn", "vn")}
@@ -200,12 +280,16 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
         k = min(chunk, periods - done)
         if snap is not None and done < snap:
             k = min(k, snap - done)
-        status, smp, info = run(ps, state, k * spp, record_dofs=rec_all, record_every=1,
-                                record_start=0, poincare_every=spp, poincare_start=0,
-                                record_initial=(done == 0))
+        # a chunk before the kept windows records only the elements' DOFs (for the limit)
+        window = (done + k) * spp >= first_kept
+        rec = rec_all if window else (nl if limited else nl[:0])
+        status, smp, info = run(ps, state, k * spp, record_dofs=rec, record_every=1,
+                                record_start=0, poincare_every=spp if window else 0,
+                                poincare_start=0, record_initial=(done == 0))
         newton_max = max(newton_max, int(info[nm.I_NEWTON_MAX]))
-        if limited and smp["q"].shape[0]:
-            eps_max = max(eps_max, elements.limit(smp["q"][:, rd.size:]))
+        q_nl = out(smp["q"], c_nl) if window else smp["q"]
+        if limited and q_nl.shape[0]:
+            eps_max = max(eps_max, elements.limit(q_nl))
         if status != nm.OK:
             step = int(info[nm.I_STEP]) + 1
             t = ps.t0 + step * dt
@@ -213,34 +297,35 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
                      f"(step {step})")
             if status == nm.CONTACT and elements is not None:
                 m = nl.size
-                q_nl, v_nl = smp["fail"][:m], smp["fail"][m:2 * m]   # the last iterate
+                f_q, f_v = smp["fail"][:m], smp["fail"][m:2 * m]   # the last iterate
                 where += (": the step's Newton iterates left the element's force law "
                           "(state of the last iterate)")
-                err = elements.located_contact(q_nl, v_nl, where)
+                err = elements.located_contact(f_q, f_v, where)
                 err.time, err.period = t, step / spp
                 raise err
             raise ConvergenceError(f"time integration: {MESSAGES.get(status)} at {where}")
-        keep = smp["t"] >= ps.t0 + (rec_start - 0.5) * dt
-        parts["t"].append(smp["t"][keep])
-        parts["q"].append(smp["q"][keep, :rd.size])
-        parts["v"].append(smp["v"][keep, :rd.size])
-        parts["qn"].append(smp["q"][keep, rd.size:])
-        parts["vn"].append(smp["v"][keep, rd.size:])
-        keep = smp["pt"] >= ps.t0 + (pc_start - 0.5) * dt
-        parts["pt"].append(smp["pt"][keep])
-        parts["pq"].append(smp["pq"][keep, :rd.size])
-        parts["pv"].append(smp["pv"][keep, :rd.size])
         done += k
         if done == snap:
-            snapshot = (state.X[:ps.n_dof].copy(), state.X[ps.n_dof:2 * ps.n_dof].copy(),
+            snapshot = (out(state.X[:r]).copy(), out(state.X[r:2 * r]).copy(),
                         ps.t0 + state.step * dt)
         if progress is not None:
             progress(done)
-    n = ps.n_dof
+        if not window:
+            continue
+        keep = smp["t"] >= ps.t0 + (rec_start - 0.5) * dt
+        parts["t"].append(smp["t"][keep])
+        parts["q"].append(out(smp["q"][keep], c_rd))
+        parts["v"].append(out(smp["v"][keep], c_rd))
+        parts["qn"].append(q_nl[keep])
+        parts["vn"].append(out(smp["v"][keep], c_nl))
+        keep = smp["pt"] >= ps.t0 + (pc_start - 0.5) * dt
+        parts["pt"].append(smp["pt"][keep])
+        parts["pq"].append(out(smp["pq"][keep], c_rd))
+        parts["pv"].append(out(smp["pv"][keep], c_rd))
     cat = {k: np.concatenate(v) for k, v in parts.items()}
+    q_end, v_end = out(state.X[:r]).copy(), out(state.X[r:2 * r]).copy()
     return Trajectory(cat["t"], cat["q"], cat["v"], cat["pt"], cat["pq"], cat["pv"], rd,
-                      state.X[:n].copy(), state.X[n:2 * n].copy(), ps.t0 + state.step * dt,
+                      q_end, v_end, ps.t0 + state.step * dt,
                       eps_max if limited else None, newton_max, snapshot,
                       elements.diagnostics(cat["qn"], cat["vn"])
                       if elements is not None and len(elements) and cat["qn"].shape[0] else {})
-

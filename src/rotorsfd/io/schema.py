@@ -671,6 +671,18 @@ class SimulateAnalysis(Section):
         "only)", ge=0, le=10000000) = 20
     nodes: list[NODE] = Field([], description="output nodes (default: element and disk "
                                                       "nodes)")
+    reduction: Literal["auto", "none"] = Field(
+        "auto", description="the time step's model: \"auto\" steps the Craig-Bampton model "
+        "(the nonlinear elements' DOFs kept physical, their static constraint modes, the "
+        "static residuals of the loads and the fixed-interface modes up to "
+        "reduction_cutoff x the rotor speed; the full step if the model has no restrained "
+        "interior), \"none\" the full model; allowed: "
+        "\"auto\" or \"none\"")
+    reduction_cutoff: quantity("ratio", "highest kept fixed-interface mode of the reduced "
+                               "step, as a multiple of the rotor speed: 4 x the 10th "
+                               "harmonic, the highest of interest, by default (the paper "
+                               "rotor's settled orbit moves 7e-7 C from the full step's, "
+                               "benchmarks/README.md)", gt=1, le=1e6) = 40.0
 
     def fixed_speed(self, reference_speed: float) -> float | None:
         """The speed [rad/s] (None if neither speed nor speed_ratio is set)."""
