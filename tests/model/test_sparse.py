@@ -1,0 +1,160 @@
+"""Sparse/banded storage of the linear part (issue 17 item 2): the CSR assembly equals a
+dense scatter of the element matrices, the band is the structural 7, the band-storage
+condensation equals the dense LAPACK one to 1e-10 and the HB solution through the banded
+linear part equals the one through the dense "direct" assembly."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from rotorsfd.elements.sfd import SFDElement
+from rotorsfd.harmonic.condensation import CondensedHB, banded_band
+from rotorsfd.harmonic.periodic import solve_periodic
+from rotorsfd.model import Disk, LinearSupport, Material, Rotor, dofs, uniform_shaft
+from rotorsfd.model.base_motion import BaseMotion
+from rotorsfd.model.damping import RayleighDamping
+from rotorsfd.model.disk import PointMass
+from rotorsfd.model.sparse import (
+    HALF_BAND,
+    BandedLinearPart,
+    band_to_csr,
+    band_to_dense,
+    bandwidths,
+    to_band,
+)
+from rotorsfd.model.system import RotorSystem
+from rotorsfd.model.unbalance import Unbalance
+from rotorsfd.sfd import SFD
+
+STEEL = Material(7810.0, 211e9, 81.783e9)
+
+
+def rotor(n_elements: int = 12, damping=None) -> Rotor:
+    shaft = uniform_shaft(0.9, n_elements, 0.0, 0.03, STEEL)
+    mid = 1 + n_elements // 2
+    return Rotor(shaft, disks=[Disk.from_geometry(mid, 7810.0, 0.03, 0.12, 0.04)],
+                 point_masses=[PointMass(2, 0.8)],
+                 supports=[LinearSupport(1, 5e6, 4e6, 1e5, -2e5, 300.0, 200.0),
+                           LinearSupport.isotropic(n_elements + 1, 1e7, 150.0)],
+                 damping=damping)
+
+
+def dense_assembly(r: Rotor) -> tuple[np.ndarray, ...]:
+    """M, K, C, G by a dense scatter of the element matrices (the assembly of before)."""
+    n = r.n_dof
+    M, K, G, C = (np.zeros((n, n)) for _ in range(4))
+    for i, el in enumerate(r.shaft_elements):
+        ix = np.ix_(np.arange(4 * i, 4 * i + 8), np.arange(4 * i, 4 * i + 8))
+        M[ix] += el.mass_matrix()
+        K[ix] += el.stiffness_matrix()
+        G[ix] += el.gyroscopic_matrix()
+    for d in r.disks:
+        y, z, ty, tz = dofs.node_dofs(d.node)
+        M[[y, z, ty, tz], [y, z, ty, tz]] += [d.mass, d.mass, d.diametral_inertia,
+                                              d.diametral_inertia]
+        G[ty, tz] += d.polar_inertia
+        G[tz, ty] -= d.polar_inertia
+    for p in r.point_masses:
+        y, z = dofs.node_dofs(p.node)[:2]
+        M[y, y] += p.mass
+        M[z, z] += p.mass
+    for s in r.supports:
+        ix = np.ix_(dofs.node_dofs(s.node)[:2], dofs.node_dofs(s.node)[:2])
+        K[ix] += s.stiffness
+        C[ix] += s.damping
+    if r.damping is not None:
+        C += r.damping.matrix(M, K)
+    return M, K, C, G
+
+
+def test_sparse_assembly_equals_dense_scatter_and_band_is_structural() -> None:
+    r = rotor(damping=RayleighDamping(2.0, 1e-5))
+    for csr, dense, ref in zip((r.M_csr, r.K_csr, r.C_csr, r.G_csr), (r.M, r.K, r.C, r.G),
+                               dense_assembly(r), strict=True):
+        assert sp.issparse(csr)
+        np.testing.assert_allclose(csr.toarray(), ref, rtol=0, atol=1e-14 * np.abs(ref).max())
+        np.testing.assert_array_equal(dense, csr.toarray())
+    assert r.M is r.M and r.G is r.G          # dense forms built once
+    assert r.band == (HALF_BAND, HALF_BAND) == (7, 7)
+    # the base-motion patterns lie in the same band
+    system = RotorSystem(r, base=BaseMotion(wy=3.0))
+    assert bandwidths(system.basis.sparse_matrices) == (7, 7)
+    np.testing.assert_array_equal(system.basis.matrices[3],
+                                  system.basis.sparse_matrices[3].toarray())
+
+
+def test_band_storage_round_trip_and_outside_band() -> None:
+    rng = np.random.default_rng(3)
+    n, kl, ku = 11, 2, 3
+    A = rng.normal(size=(n, n))
+    i, j = np.indices((n, n))
+    A[(i - j > kl) | (j - i > ku)] = 0.0
+    ab = to_band(sp.csr_matrix(A), kl, ku)
+    assert ab.shape == (n, kl + ku + 1)
+    assert ab[4, ku + 5 - 4] == A[5, 4]
+    np.testing.assert_array_equal(band_to_dense(ab, kl, ku), A)
+    np.testing.assert_array_equal(band_to_csr(ab, kl, ku).toarray(), A)
+    np.testing.assert_array_equal(to_band(A, kl, ku), ab)
+    assert bandwidths([A]) == (kl, ku)
+    with pytest.raises(ValueError, match="outside the band"):
+        to_band(A, kl - 1, ku)
+
+
+def sfd_system(n_elements: int) -> RotorSystem:
+    sfd = SFD(viscosity=0.0051, radius=0.0262, length=0.017, clearance=0.127e-3)
+    r = rotor(n_elements)
+    return RotorSystem(r, [SFDElement("sfd", 1, sfd)],
+                       [Unbalance(1 + n_elements // 2, 2e-5, 0.3)])
+
+
+def test_banded_condensation_equals_dense_lapack() -> None:
+    """Ht, Pt and their lam-derivatives of the band-storage kernel against dense LAPACK
+    zgetrf/zgetrs of the same Zt_k (an independent factorisation), 1e-10 relative."""
+    problem = sfd_system(40).periodic_problem()
+    assert isinstance(problem.matrices, BandedLinearPart)
+    assert banded_band(problem.matrices) == (7, 7)
+    H, lam = 4, 700.0
+    banded = CondensedHB(problem, H, 32)
+    # the same problem with plain dense matrices: the condenser scans them (no band given)
+    dense = CondensedHB(dataclasses.replace(problem, matrices=lambda lam: problem.matrices(
+        lam)), H, 32)
+    xs = np.zeros((2 * H + 1, problem.m))
+    xs[1, 0] = xs[2, 1] = 3e-5
+    banded.set_shift(xs, lam)
+    dense.delta, dense._delta_real = banded.delta, banded._delta_real
+    assert np.abs(banded.delta).max() > 0.0
+    dense._band = (-1, -1)                      # dense LAPACK path
+    assert banded_band(dense.problem.matrices) is None
+    a, ref = banded.condense(lam), dense.condense(lam)
+    for x, y in ((a.Ht, ref.Ht), (a.Pt, ref.Pt), (a.dHt, ref.dHt), (a.dPt, ref.dPt),
+                 (a.u, ref.u)):
+        assert np.abs(x - y).max() <= 1e-10 * np.abs(y).max()
+
+
+def test_hb_solution_banded_equals_direct_assembly() -> None:
+    """One HB point through the banded linear part and through the dense reference
+    assembly (``assembly="direct"``): the same coefficients to 1e-10."""
+    system = sfd_system(40)
+    lam = 650.0
+    a = solve_periodic(system.periodic_problem(), lam, 3, tol=1e-12, condensed=True)
+    b = solve_periodic(system.periodic_problem(assembly="direct"), lam, 3, tol=1e-12,
+                       condensed=True)
+    assert np.abs(a.X - b.X).max() <= 1e-10 * np.abs(b.X).max()
+    assert np.abs(a.X).max() > 1e-6
+
+
+def test_banded_linear_part_dense_view_and_derivatives() -> None:
+    r = rotor(8)
+    part = BandedLinearPart(r.M_csr, (r.C_csr, r.G_csr), (r.K_csr,))
+    M, D, K = part(300.0)
+    np.testing.assert_allclose(D, r.C + 300.0 * r.G, rtol=0, atol=1e-13 * np.abs(r.G).max())
+    assert part(301.0)[0] is M and part(301.0)[2] is K     # constant: the same objects
+    dM, dD, dK = part.derivatives(301.0)
+    assert not dM.any() and not dK.any()
+    np.testing.assert_array_equal(dD, r.G)
+    Ds = part.sparse(300.0)[1]
+    np.testing.assert_array_equal(Ds.toarray(), D)
