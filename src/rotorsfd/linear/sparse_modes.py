@@ -17,7 +17,8 @@ ratio below ``sqrt(1 - 1 / COVER^2)`` (0.55) can be missed. Roots are then selec
 the dense path (:func:`rotorsfd.linear.modal.select_modes`), the rigid-body threshold taken
 on ``sqrt(max K_ii / M_ii)`` (a lower bound of max|lambda|, which the dense path uses).
 
-M, D, K come from ``system.matrices(speed)`` (dense today): their nonzero pattern is
+M, D, K come from ``system.sparse_matrices(speed)`` (CSR, no dense n x n array) when the
+system has it, else from ``system.matrices(speed)`` (dense): their nonzero pattern is
 extracted once per system at three speeds and stored sparse as the affine polynomial
 ``D(speed) = D0 + speed D1`` (same for M and K), checked at the third speed; a system that
 is not affine in the speed is re-extracted at every speed.
@@ -87,6 +88,13 @@ def _affine(s0: sp.csr_matrix, s1: sp.csr_matrix, s2: sp.csr_matrix, h: float
     return (s0, slope) if err <= AFFINE_RTOL * scale else None
 
 
+def _matrices(system: LinearDynamics, speed: float) -> tuple[Any, Any, Any]:
+    """(M, D, K) at ``speed``: the system's sparse ones when it has them
+    (``sparse_matrices``, e.g. :class:`~rotorsfd.model.system.RotorSystem`), else dense."""
+    sparse = getattr(system, "sparse_matrices", None)
+    return sparse(speed) if sparse is not None else system.matrices(speed)
+
+
 def _half_band(a: sp.spmatrix) -> int:
     coo = a.tocoo()
     return int(np.abs(coo.row - coo.col).max()) if coo.nnz else 0
@@ -107,7 +115,7 @@ class SparsePencil:
     def from_system(cls, system: LinearDynamics) -> SparsePencil:
         """Extract the pattern at speeds 0, h, 2h (h = SPEED_PROBE) once."""
         h = SPEED_PROBE
-        samples = [system.matrices(s) for s in (0.0, h, 2.0 * h)]
+        samples = [_matrices(system, s) for s in (0.0, h, 2.0 * h)]
         done: dict[int, sp.csr_matrix] = {}      # one conversion per distinct array
 
         def convert(a: Any) -> sp.csr_matrix:
@@ -140,7 +148,7 @@ class SparsePencil:
                  ) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
         """(M, D, K) of ``system`` (the one extracted) at ``speed``, sparse."""
         if self.terms is None:
-            return tuple(_sparse(x) for x in system.matrices(speed))  # type: ignore
+            return tuple(_sparse(x) for x in _matrices(system, speed))  # type: ignore
         return tuple(x0 + speed * x1 if x1.nnz else x0 for x0, x1 in self.terms)  # type: ignore
 
 

@@ -416,7 +416,10 @@ class PolynomialTerms:
         return out
 
     def _as_sparse(self, a: Any) -> sp.csr_matrix:
-        return sp.csr_matrix((self.n, self.n)) if a is None else as_csr(a)
+        """CSR form of a value (a stored CSR term itself: the same object at every call)."""
+        if a is None:
+            return sp.csr_matrix((self.n, self.n))
+        return a if sp.issparse(a) and a.format == "csr" else as_csr(a)
 
     def damping(self, p: float) -> np.ndarray:
         return self._as_dense(self._value(self.D, p))
