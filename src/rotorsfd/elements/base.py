@@ -46,6 +46,9 @@ class NonlinearElement(ABC):
 
     kind: ClassVar[str]
     limit_label: ClassVar[str | None] = None
+    #: inputs of the law that are not states and that an analysis may set or vary
+    #: (``"speed"``: the rotor speed of a journal bearing), see :meth:`with_parameter`
+    parameters: ClassVar[tuple[str, ...]] = ()
     #: key of :meth:`diagnostics` -> (long name, SI unit), for the results files
     diagnostic_info: ClassVar[dict[str, tuple[str, str]]] = {}
 
@@ -86,6 +89,17 @@ class NonlinearElement(ABC):
     @abstractmethod
     def kernel_params(self) -> FloatArray:
         """The kernel's float64 parameter vector (a fresh contiguous copy)."""
+
+    # ---- inputs that are not states ---------------------------------------------------
+    def with_parameter(self, name: str, value: float) -> NonlinearElement:
+        """A copy of the element with its input ``name`` (one of :attr:`parameters`) set to
+        ``value`` (SI); the same kernel, another parameter vector."""
+        raise KeyError(f"element {self.name!r} ({self.kind}) has no input {name!r}")
+
+    def dforce(self, q: FloatArray, v: FloatArray, name: str) -> FloatArray:
+        """``dF/dp (..., m)`` at fixed samples ``q, v (..., m)`` for the input ``p = name``
+        (exact)."""
+        raise KeyError(f"element {self.name!r} ({self.kind}) has no input {name!r}")
 
     # ---- validity, results --------------------------------------------------------------
     def limit(self, q: FloatArray) -> float:

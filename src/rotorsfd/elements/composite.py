@@ -119,6 +119,34 @@ class ElementSet:
         _, Jq, Jv = self.force_and_jacobian(q, v)
         return Jq, Jv
 
+    # ---- inputs that are not states ---------------------------------------------------
+    def depends_on(self, name: str) -> bool:
+        """True when an element's law has the input ``name`` (``"speed"``)."""
+        return any(name in e.parameters for e in self.elements)
+
+    def with_parameter(self, name: str, value: float) -> ElementSet:
+        """The set with the input ``name`` of every element that has it set to ``value``
+        (the same layout and composite kernel); ``self`` if none has it."""
+        if not self.depends_on(name):
+            return self
+        return ElementSet([e.with_parameter(name, value) if name in e.parameters else e
+                           for e in self.elements])
+
+    def at_speed(self, speed: float) -> ElementSet:
+        """The set at rotor speed ``speed`` [rad/s] (laws that depend on it set)."""
+        return self.with_parameter("speed", speed)
+
+    def dforce(self, q: FloatArray, v: FloatArray, name: str) -> FloatArray:
+        """``dF/dp (..., m)`` at fixed samples for the input ``p = name``: the sum over
+        the elements that have it (zero for the others)."""
+        q = np.asarray(q, dtype=np.float64)
+        v = np.asarray(v, dtype=np.float64)
+        out = np.zeros(q.shape)
+        for e, loc in zip(self.elements, self.local, strict=True):
+            if name in e.parameters:
+                out[..., loc] += e.dforce(q[..., loc], v[..., loc], name)
+        return out
+
     # ---- compiled form -----------------------------------------------------------------
     @property
     def kernel(self) -> Any:

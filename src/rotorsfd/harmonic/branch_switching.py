@@ -55,7 +55,9 @@ def period_doubled(problem: PeriodicProblem) -> PeriodicProblem:
         dfrequency=lambda lam: 0.5 * problem.dfrequency(lam),
         nl_force=problem.nl_force, nl_jacobian=problem.nl_jacobian,
         scaling=problem.scaling, nl_limit=problem.nl_limit,
-        name=f"{problem.name} (period 2)", nl_force_jacobian=problem.nl_force_jacobian)
+        name=f"{problem.name} (period 2)", nl_force_jacobian=problem.nl_force_jacobian,
+        nl_kernel=problem.nl_kernel, nl_kernel_params=problem.nl_kernel_params,
+        nl_at=problem.nl_at)
 
 
 def doubled_coefficients(X: ComplexArray, H2: int | None = None) -> ComplexArray:

@@ -13,7 +13,9 @@ and on the nonlinear DOFs (``Ht_k = S C_k`` the receptance, ``Pt_k = S u_k``)
 
 Exact derivatives: ``dR/dXs = I - Ht (dG/dXs + Delta)`` (real layout) and, with
 ``d(Zt^-1) = -Zt^-1 dZ Zt^-1``, ``dHt_k = -S Zt^-1 dZ_k C_k``,
-``dPt_k = S Zt^-1 (dF_k - dZ_k u_k)``, ``dR/dlam = -dPt - dHt (G + Delta Xs) - Ht dG/dlam``.
+``dPt_k = S Zt^-1 (dF_k - dZ_k u_k)``, ``dR/dlam = -dPt - dHt (G + Delta Xs) - Ht dG/dlam``
+(``dG/dlam``: through the frequency, plus the AFT of the force's own lam-derivative when
+it has one, :attr:`~rotorsfd.harmonic.problem.NonlinearLaw.dforce`).
 
 ``R = Ht R_schur`` with the Schur-complement (dynamic-stiffness) residual
 ``R_schur = (Ht^-1 - Delta) Xs - Ht^-1 Pt - G``, independent of Delta; it is the full
@@ -39,7 +41,7 @@ from rotorsfd.harmonic.aft_kernels import (
     project,
 )
 from rotorsfd.harmonic.fourier import aft_matrices, aliasing_error, to_complex, to_real
-from rotorsfd.harmonic.problem import PeriodicProblem
+from rotorsfd.harmonic.problem import NonlinearLaw, PeriodicProblem
 from rotorsfd.harmonic.residual import nonlinear_coefficients, nonlinear_samples, real_blocks
 
 FloatArray = NDArray[np.float64]
@@ -68,8 +70,11 @@ def _c_float(A: FloatArray) -> FloatArray:
 
 
 def _positive_diagonal(A: FloatArray) -> FloatArray:
-    """Diagonal matrix of the positive part of diag(A)."""
-    return np.diag(np.maximum(np.diag(A), 0.0))
+    """Diagonal matrix of the positive part of diag(A); where that is zero, the largest
+    magnitude in the row (a purely cross-coupled stiffness, such as a journal bearing's
+    at the bearing centre, still regularises the shift)."""
+    d = np.maximum(np.diag(A), 0.0)
+    return np.diag(np.where(d > 0.0, d, np.max(np.abs(A), axis=1)))
 
 
 def _bandwidth(*mats: FloatArray) -> tuple[int, int]:
@@ -101,12 +106,12 @@ def apply_blocks(A: ComplexArray, Y: FloatArray) -> FloatArray:
     return to_real(A @ to_complex(Y))
 
 
-def _kernel_status(problem: PeriodicProblem, status: int, q: FloatArray, v: FloatArray
+def _kernel_status(law: NonlinearLaw, status: int, q: FloatArray, v: FloatArray
                    ) -> None:
     """Raise for a nonzero status of a compiled AFT: sample status - 1 rejected by the
     kernel (the force law's own error, e.g. JournalContactError), or a non-finite force."""
     if status > 0:
-        problem.nl_force(q[status - 1], v[status - 1])
+        law.force(q[status - 1], v[status - 1])
         raise FloatingPointError(f"nonlinear kernel rejected the state q={q[status - 1]}, "
                                  f"v={v[status - 1]}")
     if status < 0:
@@ -142,7 +147,7 @@ class CondensedHB:
         w = p.frequency(lam)
         q = self.aft.E @ xs
         v = w * (self.aft.Ed @ xs)
-        dfq, dfv = p.nl_jacobian(q, v)
+        dfq, dfv = p.law(lam).jacobian(q, v)
         Kr = _positive_diagonal(-np.mean(dfq, axis=0))
         Cr = _positive_diagonal(-np.mean(dfv, axis=0))
         if not (np.all(np.isfinite(Kr)) and np.all(np.isfinite(Cr))):
@@ -307,14 +312,16 @@ class CondensedHB:
         dR = np.empty_like(xs)
         a = self.aft
         delta = np.ascontiguousarray(self.delta, dtype=complex)
+        law = p.law(lam)
         if self._kernel is not None:
-            status = condensed_residual(self._kernel, p.nl_kernel_params, xs, w, dw, a.E,
+            status = condensed_residual(self._kernel, law.kernel_params, xs, w, dw, a.E,
                                         a.Ed, a.P, delta, self._delta_real, cd.Ht, cd.Pt,
                                         dHt, dPt, jac, q, dq, v, f, dfq, dfv, G, dG, dGdw,
                                         R, J, dR)
-            _kernel_status(p, status, q, v)
+            _kernel_status(law, status, q, v)
         else:
-            nl = nonlinear_samples(p, a, xs, w, jac)
+            nl = nonlinear_samples(p, a, xs, w, jac, lam=lam)
+            q, v = a.E @ xs, w * nl[3]
             if not project(a.P, a.E, a.Ed, w, nl[0], nl[1], nl[2], nl[3], jac, G, dG, dGdw):
                 raise FloatingPointError("non-finite nonlinear force in AFT")
             condensed_assembly(xs, G, dG.reshape(nu, nu), dGdw, delta, self._delta_real,
@@ -322,6 +329,8 @@ class CondensedHB:
         self._last = (lam, xs.copy(), G)
         if not jac:
             return R, None, None
+        if with_dlam and law.dforce is not None:   # the force's own dependence on lam
+            dR += self.displacement_of(a.P @ law.dforce(q, v), lam)
         return R, J, dR.reshape(nu) if with_dlam else None
 
     def force_coefficients(self, xs: FloatArray, lam: float, N: int) -> FloatArray:
@@ -336,14 +345,15 @@ class CondensedHB:
                 return G
         w = p.frequency(lam)
         a = aft_matrices(H, N)
+        law = p.law(lam)
         if self._kernel is None:
-            return nonlinear_coefficients(p, a, xs, w, jac=False).G
+            return nonlinear_coefficients(p, a, xs, w, jac=False, lam=lam).G
         q, dq, v, f = (np.empty((N, p.m)) for _ in range(4))
         dfq, dfv = np.empty((N, p.m, p.m)), np.empty((N, p.m, p.m))
         G = np.empty_like(xs)
-        status = force_coefficients(self._kernel, p.nl_kernel_params, xs, w, a.E, a.Ed,
+        status = force_coefficients(self._kernel, law.kernel_params, xs, w, a.E, a.Ed,
                                     a.P, q, dq, v, f, dfq, dfv, G)
-        _kernel_status(p, status, q, v)
+        _kernel_status(law, status, q, v)
         return G
 
     def aliasing(self, xs: FloatArray, lam: float) -> float:
@@ -353,7 +363,7 @@ class CondensedHB:
         xs = np.ascontiguousarray(xs, dtype=float).reshape(2 * H + 1, p.m)
         G_N = self.last_G(xs, lam)
         if self._kernel is None or G_N is None:
-            return aliasing_error(p.nl_force, xs, p.frequency(lam), self.aft.N, G_N)
+            return aliasing_error(p.law(lam).force, xs, p.frequency(lam), self.aft.N, G_N)
         G2 = self.force_coefficients(xs, lam, 2 * self.aft.N)
         scale = max(float(np.max(np.abs(G2))), np.finfo(float).tiny)
         return float(np.max(np.abs(G2 - G_N))) / scale
@@ -399,7 +409,8 @@ class CondensedHB:
         cd = self.condense(lam, deriv=False)
         G = self.last_G(xs, lam)
         if G is None:
-            G = nonlinear_coefficients(p, self.aft, xs, p.frequency(lam), jac=False).G
+            G = nonlinear_coefficients(p, self.aft, xs, p.frequency(lam), jac=False,
+                                       lam=lam).G
         Gt = to_complex(G) + np.einsum("kij,kj->ki", self.delta, to_complex(xs))
         X = cd.u + np.einsum("knm,km->kn", cd.C, Gt)
         X[:, p.nl_dofs] = to_complex(xs)    # = the recovered values up to the residual

@@ -128,8 +128,8 @@ class HBSystem:
         xs = self.hb.nl_part(x)
         if isinstance(self.hb, CondensedHB):
             return self.hb.aliasing(xs, lam)
-        return aliasing_error(self.problem.nl_force, xs, self.problem.frequency(lam), self.N,
-                              self.hb.last_G(xs, lam))
+        return aliasing_error(self.problem.law(lam).force, xs, self.problem.frequency(lam),
+                              self.N, self.hb.last_G(xs, lam))
 
     def nl_tangent(self, t: FloatArray) -> FloatArray:
         """The tangent's components on the nonlinear DOFs and lam (the condensed layout)."""
@@ -148,7 +148,7 @@ class HBSystem:
         G = self.hb.last_G(xs, lam) if N == self.N else None
         if G is None:
             G = nonlinear_coefficients(self.problem, aft_matrices(self.H, N), xs,
-                                       self.problem.frequency(lam), jac=False).G
+                                       self.problem.frequency(lam), jac=False, lam=lam).G
         return G
 
     def residual_change(self, z: FloatArray, dG: FloatArray) -> float:
@@ -214,10 +214,10 @@ def _initial_guess(problem: PeriodicProblem, H: int, lam: float,
     X = cond.condense(lam, deriv=False).u.copy()
     if problem.nl_limit is not None:
         E = cond.aft.E
-        for _ in range(60):
-            if problem.limit(E @ to_real(X[:, problem.nl_dofs])) < 0.9:
+        for i in range(120):   # the harmonics first, then (an element carrying the static
+            if problem.limit(E @ to_real(X[:, problem.nl_dofs])) < 0.9:   # load) all
                 break
-            X[1:] *= 0.5
+            X[1 if i < 60 else 0:] *= 0.5
     return X
 
 
@@ -228,7 +228,7 @@ def hb_system(problem: PeriodicProblem, H: int, lam: float, X0: ComplexArray | N
     (from ``X0``, or the linearised response; N_f by the sampling rule if not given)."""
     Xg = _initial_guess(problem, H, lam, X0)
     xg = to_real(Xg)
-    N = n_samples or choose_n_samples(problem.nl_force, xg[:, problem.nl_dofs],
+    N = n_samples or choose_n_samples(problem.law(lam).force, xg[:, problem.nl_dofs],
                                       problem.frequency(lam))
     system = HBSystem(problem, H, N, condensed, lam, lam_scale, limit_max)
     if isinstance(system.hb, CondensedHB):
@@ -387,7 +387,8 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
     else:
         X_start = _initial_guess(problem, H, lam_start, X0)
         xs = to_real(X_start)[:, problem.nl_dofs]
-        N = n_samples or choose_n_samples(problem.nl_force, xs, problem.frequency(lam_start))
+        N = n_samples or choose_n_samples(problem.law(lam_start).force, xs,
+                                          problem.frequency(lam_start))
         t_prev, plane = convert_tangent(start_tangent, H, width), True
     if store_jacobians is None:
         store_jacobians = condensed
@@ -489,7 +490,7 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
             X_start, lam0, t_prev, N = state["X"], state["lam"], state["t"], state["N"]
             if N is None:   # the "grow" rule
                 xs = to_real(X_start)[:, problem.nl_dofs]
-                N = choose_n_samples(problem.nl_force, xs, problem.frequency(lam0),
+                N = choose_n_samples(problem.law(lam0).force, xs, problem.frequency(lam0),
                                      tol=alias_tol / 100, n_min=2 * system.N,
                                      n_max=n_samples_max)
         elif state["coarsen"]:

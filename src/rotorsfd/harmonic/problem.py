@@ -24,6 +24,24 @@ def _zero_limit(q_nl: FloatArray) -> float:
     return 0.0
 
 
+@dataclass(frozen=True)
+class NonlinearLaw:
+    """The nonlinear force law at one parameter value lam.
+
+    force(q_nl, v_nl) -> (..., m); jacobian(q_nl, v_nl) -> (dF/dq, dF/dv) (..., m, m);
+    force_jacobian -> all three, or None; kernel_params: the compiled kernel's parameter
+    vector at lam (None without a kernel); dforce(q_nl, v_nl) -> dF/dlam (..., m) at fixed
+    samples, None when the force does not depend on lam.
+    """
+
+    force: Callable[[FloatArray, FloatArray], FloatArray]
+    jacobian: Callable[[FloatArray, FloatArray], tuple[FloatArray, FloatArray]]
+    force_jacobian: Callable[[FloatArray, FloatArray],
+                             tuple[FloatArray, FloatArray, FloatArray]] | None = None
+    kernel_params: FloatArray | None = None
+    dforce: Callable[[FloatArray, FloatArray], FloatArray] | None = None
+
+
 @dataclass
 class PeriodicProblem:
     """Second-order system with a local nonlinearity, for HB-AFT and continuation.
@@ -53,6 +71,11 @@ class PeriodicProblem:
         one sample, nonzero on contact; e.g. ``SFD.numba_kernel``, ``SFD.kernel_params``).
         When given, the condensed HB evaluates the AFT in compiled loops with it; it must
         agree with nl_force / nl_jacobian (which still serve the other paths).
+    nl_at(lam) -> NonlinearLaw, optional: for a force that depends on lam itself (a journal
+        bearing's on the speed, a film's on its clearance), the law at lam with its exact
+        lam-derivative ``dforce``; solvers then ask :meth:`law` and the fixed fields above
+        are not used. ``dR/dlam`` gains ``-S^T dG/dlam|_x`` with ``dG/dlam`` the AFT of
+        ``dforce``.
     """
 
     n_dof: int
@@ -72,6 +95,7 @@ class PeriodicProblem:
                                 tuple[FloatArray, FloatArray, FloatArray]] | None = None
     nl_kernel: Any = None
     nl_kernel_params: FloatArray | None = None
+    nl_at: Callable[[float], NonlinearLaw] | None = None
 
     def __post_init__(self) -> None:
         self.nl_dofs = np.atleast_1d(np.asarray(self.nl_dofs, dtype=np.int64))
@@ -86,6 +110,23 @@ class PeriodicProblem:
         c = np.broadcast_to(np.asarray(self.scaling, dtype=float), (self.n_dof,))
         if not np.all(np.isfinite(c)) or np.any(c <= 0):
             raise ValueError(f"scaling must be positive and finite, got {self.scaling!r}")
+        self._fixed_law = NonlinearLaw(self.nl_force, self.nl_jacobian,
+                                       self.nl_force_jacobian, self.nl_kernel_params)
+        self._law_at: tuple[float, NonlinearLaw] | None = None
+
+    def law(self, lam: float) -> NonlinearLaw:
+        """The nonlinear force law at lam (the fixed fields unless ``nl_at`` is given; the
+        last value's law is reused)."""
+        if self.nl_at is None:
+            return self._fixed_law
+        if self._law_at is None or self._law_at[0] != lam:
+            self._law_at = (lam, self.nl_at(lam))
+        return self._law_at[1]
+
+    @property
+    def parametric(self) -> bool:
+        """True when the nonlinear force depends on lam (``nl_at`` given)."""
+        return self.nl_at is not None
 
     @property
     def m(self) -> int:

@@ -13,7 +13,8 @@ where ``G_k`` are the Fourier coefficients of ``F_nl(q_nl(t), q_nl'(t))`` comput
 Jacobians (exact):
 
 - ``dG/dx[a,i,b,j] = sum_n P[a,n] (dF/dq[n,i,j] E[n,b] + w dF/dv[n,i,j] Ed[n,b])``
-- ``dR_k/dlam = dZ_k X_k - dF_k - S^T dG_k/dw dw/dlam``, with
+- ``dR_k/dlam = dZ_k X_k - dF_k - S^T (dG_k/dw dw/dlam + P dF_nl/dlam)``, the last term
+  for a force that depends on lam itself (:attr:`NonlinearLaw.dforce`), with
   ``dZ_k = dK - (k w)^2 dM - 2 k^2 w w' M + i k (w' D + w dD)`` and
   ``dG/dw = P (dF/dv . dq/dtau)``.
 """
@@ -26,7 +27,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rotorsfd.harmonic.fourier import AFTMatrices, aft_matrices, to_complex, to_real
-from rotorsfd.harmonic.problem import PeriodicProblem
+from rotorsfd.harmonic.problem import NonlinearLaw, PeriodicProblem
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -42,24 +43,38 @@ class NonlinearCoefficients:
     q: FloatArray  # (N, m) displacement samples
 
 
+def law_at(problem: PeriodicProblem, lam: float | None) -> NonlinearLaw:
+    """The problem's force law at lam; lam may be omitted only when the law does not
+    depend on it."""
+    if lam is None:
+        if problem.parametric:
+            raise ValueError(f"the nonlinear force of {problem.name!r} depends on the "
+                             "parameter: pass lam")
+        return problem.law(0.0)
+    return problem.law(lam)
+
+
 def nonlinear_coefficients(problem: PeriodicProblem, aft: AFTMatrices, xs: FloatArray,
-                           w: float, jac: bool = True) -> NonlinearCoefficients:
-    """AFT: ``G = P F_nl(E xs, w Ed xs)`` and its exact derivatives (module docstring)."""
+                           w: float, jac: bool = True, lam: float | None = None
+                           ) -> NonlinearCoefficients:
+    """AFT: ``G = P F_nl(E xs, w Ed xs)`` and its exact derivatives (module docstring), with
+    the force law at lam (:meth:`PeriodicProblem.law`)."""
+    law = law_at(problem, lam)
     q = aft.E @ xs
     dq_tau = aft.Ed @ xs
     v = w * dq_tau
-    if jac and problem.nl_force_jacobian is not None:
-        f, dfq, dfv = problem.nl_force_jacobian(q, v)
+    if jac and law.force_jacobian is not None:
+        f, dfq, dfv = law.force_jacobian(q, v)
     else:
-        f = problem.nl_force(q, v)
+        f = law.force(q, v)
     f = np.asarray(f, dtype=float)
     if not np.all(np.isfinite(f)):
         raise FloatingPointError("non-finite nonlinear force in AFT")
     G = aft.P @ f
     if not jac:
         return NonlinearCoefficients(G, None, None, q)
-    if problem.nl_force_jacobian is None:
-        dfq, dfv = problem.nl_jacobian(q, v)
+    if law.force_jacobian is None:
+        dfq, dfv = law.jacobian(q, v)
     N, m = q.shape
     nh = aft.E.shape[1]
     T = dfq[..., None] * aft.E[:, None, None, :] + w * dfv[..., None] * aft.Ed[:, None, None, :]
@@ -69,19 +84,20 @@ def nonlinear_coefficients(problem: PeriodicProblem, aft: AFTMatrices, xs: Float
 
 
 def nonlinear_samples(problem: PeriodicProblem, aft: AFTMatrices, xs: FloatArray,
-                      w: float, jac: bool = True
+                      w: float, jac: bool = True, lam: float | None = None
                       ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """The force at the AFT samples by the problem's callables: ``(f (N, m), dF/dq,
+    """The force at the AFT samples by the law's callables at lam: ``(f (N, m), dF/dq,
     dF/dv (N, m, m), dq/dtau (N, m))``, C-contiguous (dF/dq, dF/dv of shape (1, m, m)
     and not computed when not jac)."""
+    law = law_at(problem, lam)
     dq_tau = aft.Ed @ xs
     q, v = aft.E @ xs, w * dq_tau
-    if jac and problem.nl_force_jacobian is not None:
-        f, dfq, dfv = problem.nl_force_jacobian(q, v)
+    if jac and law.force_jacobian is not None:
+        f, dfq, dfv = law.force_jacobian(q, v)
     else:
-        f = problem.nl_force(q, v)
+        f = law.force(q, v)
         if jac:
-            dfq, dfv = problem.nl_jacobian(q, v)
+            dfq, dfv = law.jacobian(q, v)
         else:
             dfq = dfv = np.zeros((1, problem.m, problem.m))
     c = np.ascontiguousarray
@@ -141,7 +157,7 @@ class FullHB:
         w = p.frequency(lam)
         Z = dynamic_stiffness(M, D, K, w, H)
         X = to_complex(x)
-        nl = nonlinear_coefficients(p, self.aft, x[:, s], w, jac)
+        nl = nonlinear_coefficients(p, self.aft, x[:, s], w, jac, lam=lam)
         self._last = (lam, x[:, s].copy(), nl.G)
         Rc = np.einsum("kij,kj->ki", Z, X) - p.forcing(lam, H)
         R = to_real(Rc)
@@ -154,6 +170,9 @@ class FullHB:
         dZ = dynamic_stiffness_derivative(p, lam, H)
         dR = to_real(np.einsum("kij,kj->ki", dZ, X) - p.dforcing(lam, H))
         dR[:, s] -= p.dfrequency(lam) * nl.dGdw
+        law = p.law(lam)
+        if law.dforce is not None:   # the force's own dependence on lam
+            dR[:, s] -= self.aft.P @ law.dforce(nl.q, w * (self.aft.Ed @ x[:, s]))
         nu = self.n_unknowns
         return R, J.reshape(nu, nu), dR.reshape(nu)
 

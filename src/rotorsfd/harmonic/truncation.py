@@ -169,7 +169,7 @@ def truncation_error(problem: PeriodicProblem, xs: FloatArray, lam: float, *,
     with_dlam = tangent is not None
     cd = hb.condense(lam, deriv=with_dlam)
     w = problem.frequency(lam)
-    nl = nonlinear_coefficients(problem, hb.aft, x_pad, w, jac=True)
+    nl = nonlinear_coefficients(problem, hb.aft, x_pad, w, jac=True, lam=lam)
     if not (np.all(np.isfinite(nl.G)) and np.all(np.isfinite(nl.dG))):
         raise FloatingPointError("non-finite nonlinear force in the truncation estimate")
     nu = (2 * He + 1) * m
@@ -180,6 +180,9 @@ def truncation_error(problem: PeriodicProblem, xs: FloatArray, lam: float, *,
         nl.dG.reshape(nu, nu)), np.ascontiguousarray(nl.dGdw), delta, real_blocks(delta),
         cd.Ht, cd.Pt, cd.dHt if with_dlam else zH, cd.dPt if with_dlam else zP,
         problem.dfrequency(lam) if with_dlam else 0.0, True, R, J, dR)
+    dforce = problem.law(lam).dforce
+    if with_dlam and dforce is not None:   # the force's own dependence on lam
+        dR += hb.displacement_of(hb.aft.P @ dforce(nl.q, w * (hb.aft.Ed @ x_pad)), lam)
     R[: 2 * H + 1] = 0.0            # the H equations' own remainder is not truncation
     c = np.tile(problem.dof_scale[problem.nl_dofs], 2 * He + 1)
     Js = J * (c[None, :] / c[:, None])

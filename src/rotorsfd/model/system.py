@@ -13,6 +13,7 @@ physics meets the solvers: it hands the harmonic-balance solver a
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
@@ -22,7 +23,7 @@ import scipy.sparse as sp
 from rotorsfd.elements.base import NonlinearElement
 from rotorsfd.elements.composite import ElementSet
 from rotorsfd.errors import ConfigError
-from rotorsfd.harmonic.problem import PeriodicProblem
+from rotorsfd.harmonic.problem import NonlinearLaw, PeriodicProblem
 from rotorsfd.model.base_motion import BaseMotion, BaseState, Constant
 from rotorsfd.model.base_terms import (
     BaseBasis,
@@ -319,13 +320,24 @@ class RotorSystem:
 
         el = self.elements
         limited = any(e.limit_label is not None for e in el)
+        nl_at = None
+        if par.kind != "speed":
+            el = el.at_speed(float(speed))
+        elif el.depends_on("speed"):   # a law of the speed itself: the law at each lam
+            nl_at = functools.partial(_law_at_speed, el)
+            el = el.at_speed(float("nan"))   # the fixed fields must not be used
         return PeriodicProblem(
             n_dof=self.n_dof, nl_dofs=self.nl_dofs, matrices=matrices, dmatrices=dmatrices,
             forcing=forcing, dforcing=dforcing, frequency=frequency, dfrequency=dfrequency,
             nl_force=el.force, nl_jacobian=el.jacobian, nl_force_jacobian=el.force_and_jacobian,
             nl_kernel=el.kernel, nl_kernel_params=el.kernel_params, scaling=self.dof_scale(),
             nl_limit=el.limit if limited else None,
-            name=f"rotor response in {parameter}")
+            name=f"rotor response in {parameter}", nl_at=nl_at)
+
+    def elements_at(self, speed: float) -> ElementSet:
+        """The nonlinear elements at rotor speed ``speed`` [rad/s] (a journal bearing's law
+        depends on it): what a run at one speed must use."""
+        return self.elements.at_speed(float(speed))
 
     def dof_scale(self) -> np.ndarray:
         """Per-DOF scale: the elements' length scale c (the smallest clearance; 1e-4 m
@@ -388,6 +400,13 @@ class RotorSystem:
             return self.periodic_problem(second, speed)
 
         return TwoParameterProblem(first, across, ("speed", second))
+
+
+def _law_at_speed(elements: ElementSet, speed: float) -> NonlinearLaw:
+    """The elements' force law at rotor speed ``speed``, with ``dF/dspeed``."""
+    el = elements.at_speed(float(speed))
+    return NonlinearLaw(el.force, el.jacobian, el.force_and_jacobian, el.kernel_params,
+                        functools.partial(el.dforce, name="speed"))
 
 
 def _time_varying(base: BaseMotion) -> tuple[str, str]:
