@@ -116,9 +116,10 @@ def test_config_two_sfds_and_bad_tables():
 
 
 @pytest.mark.parametrize(("change", "message"), [
-    ({"kind": "rubb"}, "elements.sfd.kind: got 'rubb'; allowed: 'sfd', 'rub'"),
+    ({"kind": "rubb"}, "elements.sfd.kind: got 'rubb'; allowed: 'sfd', 'rub', "
+                       "'journal_bearing'"),
     ({"kind": None}, "elements.sfd.kind: got nothing; required, the element's kind: "
-                     "'sfd', 'rub'"),
+                     "'sfd', 'rub', 'journal_bearing'"),
 ])
 def test_element_kind_errors_are_one_line(change, message):
     raw = read_toml(PAPER_TOML)
