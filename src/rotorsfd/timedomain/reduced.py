@@ -50,11 +50,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from rotorsfd.stability.reduction import ReducedModel, craig_bampton
 from rotorsfd.timedomain.forcing import Forcing, HarmonicLoad, TimeVaryingMatrices
+
+#: Models with more DOFs are projected with CSR matrices (O(nnz) products and solves).
+DENSE_MAX = 400
 
 
 def load_vectors(forcing: Forcing, time_varying: TimeVaryingMatrices | None,
@@ -68,36 +72,108 @@ def load_vectors(forcing: Forcing, time_varying: TimeVaryingMatrices | None,
     return [np.broadcast_to(np.asarray(f, dtype=float), (n,)) for f in out]
 
 
-def static_residuals(K: np.ndarray, M: np.ndarray, basis: np.ndarray, boundary: np.ndarray,
+def sparse_if_large(a: Any) -> Any:
+    """``a`` as CSR when the model is large (``> DENSE_MAX`` DOFs; its products and solves
+    then cost O(nnz), the beam matrices being banded), else as a dense array."""
+    import scipy.sparse as sp
+
+    if sp.issparse(a):
+        return a.tocsr() if a.shape[0] > DENSE_MAX else a.toarray()
+    a = np.asarray(a, dtype=float)
+    return sp.csr_matrix(a) if a.shape[0] > DENSE_MAX else a
+
+
+def interior_solve(K: Any, interior: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """``K_ii^-1 rhs`` (dense LU, or sparse LU of the CSR ``K``)."""
+    import scipy.sparse as sp
+
+    if sp.issparse(K):
+        from scipy.sparse.linalg import splu
+
+        return splu(sp.csc_matrix(K[interior][:, interior])).solve(rhs)
+    import scipy.linalg as sla
+
+    return sla.solve(K[np.ix_(interior, interior)], rhs)
+
+
+def static_residuals(K: Any, M: Any, basis: np.ndarray, boundary: np.ndarray,
                      loads: list[np.ndarray], drop: float = 1e-10) -> np.ndarray:
     """Columns ``x`` (n, j) of the load residuals of the module docstring: ``x_i =
     K_ii^-1 f_i``, mass-orthonormalised against the interior columns of ``basis`` and
-    each other (twice, Gram-Schmidt), ``x_b = 0``."""
-    import scipy.linalg as sla
-
+    each other (twice, Gram-Schmidt), ``x_b = 0``. ``K, M`` dense or CSR."""
     n = K.shape[0]
     b = np.asarray(boundary, dtype=np.intp).reshape(-1)
     i = np.setdiff1d(np.arange(n), b)
     loads = [f for f in loads if np.any(f[i] != 0.0)]
     if not loads or i.size == 0:
         return np.zeros((n, 0))
-    Ms = 0.5 * (M[np.ix_(i, i)] + M[np.ix_(i, i)].T)
-    X = sla.solve(K[np.ix_(i, i)], np.column_stack([f[i] for f in loads]))
-    kept = [basis[i, c] for c in range(b.size, basis.shape[1])]
-    kept = [c / math.sqrt(c @ Ms @ c) for c in kept]
-    out: list[np.ndarray] = []
+    Mii = M[i][:, i] if not isinstance(M, np.ndarray) else M[np.ix_(i, i)]
+    Ms = 0.5 * (Mii + Mii.T)
+    X = interior_solve(K, i, np.column_stack([f[i] for f in loads]))
+    kept = basis[i, b.size:]
+    if kept.shape[1]:
+        kept = kept / np.sqrt(np.einsum("ij,ij->j", kept, Ms @ kept))
+    out = np.zeros((i.size, 0))
     for x in X.T:
-        norm0 = math.sqrt(abs(x @ Ms @ x))
+        norm0 = math.sqrt(abs(x @ (Ms @ x)))
         for _ in range(2):
-            for c in kept + out:
-                x = x - c * (c @ Ms @ x)
-        norm = math.sqrt(abs(x @ Ms @ x))
+            for cols in (kept, out):
+                if cols.shape[1]:
+                    x = x - cols @ (cols.T @ (Ms @ x))
+        norm = math.sqrt(abs(x @ (Ms @ x)))
         if norm > drop * norm0:
-            out.append(x / norm)
-    cols = np.zeros((n, len(out)))
-    if out:
-        cols[i] = np.column_stack(out)
-    return cols
+            out = np.column_stack([out, x / norm])
+    res = np.zeros((n, out.shape[1]))
+    res[i] = out
+    return res
+
+
+def sparse_craig_bampton(M: Any, D: Any, K: Any, boundary: np.ndarray,
+                         omega_max: float) -> ReducedModel:
+    """:func:`~rotorsfd.stability.reduction.craig_bampton` (``omega_max`` form) of CSR
+    matrices without a dense n x n array: the constraint modes ``-K_ii^-1 K_ib`` by a
+    sparse LU, the fixed-interface modes ``K_ii^s phi = omega^2 M_ii^s phi`` with
+    ``omega <= omega_max`` by shift-invert Lanczos at 0 (ARPACK, the count doubled until
+    the highest found is above ``omega_max``), mass-normalised. (A stand-in until the
+    banded ``craig_bampton`` lands; tested equal to it.)"""
+    import scipy.sparse as sp
+    from scipy.sparse.linalg import eigsh, splu
+
+    from rotorsfd.errors import ConfigError
+
+    n = M.shape[0]
+    b = np.asarray(boundary, dtype=np.intp).reshape(-1)
+    i = np.setdiff1d(np.arange(n), b)
+    Kii = sp.csc_matrix(K[i][:, i])
+    try:
+        lu = splu(Kii)
+        phi_c = -lu.solve(np.asarray(K[i][:, b].toarray())) if b.size else \
+            np.zeros((i.size, 0))
+    except RuntimeError as exc:                   # "Factor is exactly singular"
+        raise ConfigError("K", "singular interior stiffness", "interior must be restrained "
+                          "once the boundary DOFs are fixed") from exc
+    Ks = sp.csc_matrix(0.5 * (Kii + Kii.T))
+    Mii = M[i][:, i]
+    Ms = sp.csc_matrix(0.5 * (Mii + Mii.T))
+    w2_max = float(omega_max) ** 2
+    k = min(16, i.size - 2)
+    while True:
+        w2, modes = eigsh(Ks, k, M=Ms, sigma=0.0, which="LM")
+        if w2.max() > w2_max or k >= i.size - 2:
+            break
+        k = min(2 * k, i.size - 2)
+    order = np.argsort(w2)
+    w2, modes = w2[order], modes[:, order]
+    keep = w2 <= w2_max
+    modes = modes[:, keep]
+    modes = modes / np.sqrt(np.einsum("ij,ij->j", modes, Ms @ modes))
+    m, nm = b.size, modes.shape[1]
+    psi = np.zeros((n, m + nm))
+    psi[b, :m] = np.eye(m)
+    psi[i, :m] = phi_c
+    psi[i, m:] = modes
+    return ReducedModel(psi.T @ (M @ psi), psi.T @ (D @ psi), psi.T @ (K @ psi), psi,
+                        np.arange(m), np.sqrt(np.clip(w2[keep], 0.0, None)))
 
 
 @dataclass(frozen=True)
@@ -153,9 +229,10 @@ class ReducedStep:
         return np.asarray(p, dtype=float) @ psi.T
 
 
-def state_projector(basis: np.ndarray, M: np.ndarray, boundary: np.ndarray) -> np.ndarray:
+def state_projector(basis: np.ndarray, M: Any, boundary: np.ndarray) -> np.ndarray:
     """``P`` (r, n) with ``p = P q`` (module docstring): the boundary DOFs taken as they
-    are, the interior projected mass-orthogonally on the modal columns of ``basis``."""
+    are, the interior projected mass-orthogonally on the modal columns of ``basis``
+    (``M`` dense or CSR)."""
     b = np.asarray(boundary, dtype=np.intp).reshape(-1)
     m = b.size
     n, r = basis.shape
@@ -164,7 +241,7 @@ def state_projector(basis: np.ndarray, M: np.ndarray, boundary: np.ndarray) -> n
     if r > m:
         phi = basis[:, m:]
         Ms = 0.5 * (M + M.T)
-        W = phi.T @ Ms                               # (k, n)
+        W = np.asarray((Ms @ phi).T)                 # (k, n), Ms symmetric
         G = W @ phi
         Pm = np.linalg.solve(G, W)
         Pm[:, b] -= Pm @ basis[:, :m]                # - G^-1 Phi^T M_s Psi_b (q_b)
@@ -181,21 +258,24 @@ def reduce_step(M: np.ndarray, D: np.ndarray, K: np.ndarray, nl_dofs: np.ndarray
     fixed."""
     if not omega_max > 0.0:
         raise ValueError(f"omega_max must be > 0, got {omega_max}")
-    M = np.asarray(M, dtype=float)
     nl = np.asarray(nl_dofs, dtype=np.int64).reshape(-1)
-    cb = craig_bampton(M, D, K, nl, omega_max=float(omega_max))
-    extra = static_residuals(np.asarray(K, float), M, cb.basis, nl,
-                             load_vectors(forcing, time_varying, M.shape[0]))
+    M, D, K = (sparse_if_large(a) for a in (M, D, K))
+    if isinstance(M, np.ndarray):
+        cb = craig_bampton(M, D, K, nl, omega_max=float(omega_max))
+    else:
+        cb = sparse_craig_bampton(M, D, K, nl, float(omega_max))
+    extra = static_residuals(K, M, cb.basis, nl, load_vectors(forcing, time_varying,
+                                                              M.shape[0]))
     psi = np.hstack([cb.basis, extra])
-    model = ReducedModel(psi.T @ (M @ psi), psi.T @ (np.asarray(D, float) @ psi),
-                         psi.T @ (np.asarray(K, float) @ psi), psi, cb.nl_dofs, cb.omegas)
+    model = ReducedModel(psi.T @ (M @ psi), psi.T @ (D @ psi), psi.T @ (K @ psi), psi,
+                         cb.nl_dofs, cb.omegas)
 
     def vec(v: np.ndarray | None) -> np.ndarray | None:
         return None if v is None else psi.T @ np.broadcast_to(np.asarray(v, float),
                                                                (psi.shape[0],))
 
     def mat(X: np.ndarray) -> np.ndarray:
-        return psi.T @ (np.asarray(X, dtype=float) @ psi)
+        return psi.T @ (sparse_if_large(X) @ psi)
 
     red_forcing = Forcing(
         omega=forcing.omega, constant=vec(forcing.constant),
