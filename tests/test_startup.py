@@ -5,6 +5,7 @@ rotorsfd module found importing one, from ``python -X importtime``)."""
 
 from __future__ import annotations
 
+import importlib
 import json
 import os
 import re
@@ -13,8 +14,11 @@ import sys
 
 import pytest
 
-#: packages that a config load or ``import rotorsfd.api`` must not import
+#: packages that a config load must not import (its model is built without them)
 HEAVY = ("numba", "matplotlib", "xarray")
+#: and that ``import rotorsfd.api`` must not import either: it imports what it re-exports
+#: on first use (``rotorsfd.api.LAZY``)
+API_HEAVY = (*HEAVY, "pint", "pydantic", "scipy")
 
 
 def _run(code: str, *flags: str) -> subprocess.CompletedProcess:
@@ -37,19 +41,36 @@ def importer_of(module: str, package: str) -> str:
     return next((name for d, name in rows[first:] if d < depth), module)
 
 
-def loaded_heavy(module: str) -> tuple[list[str], str]:
-    """The packages of :data:`HEAVY` that ``import module`` loads in a fresh interpreter,
-    and the module that imports the first of them."""
+def loaded_heavy(module: str, heavy: tuple[str, ...] = HEAVY) -> tuple[list[str], str]:
+    """The packages of ``heavy`` that ``import module`` loads in a fresh interpreter, and
+    the module that imports the first of them."""
     code = (f"import sys, json; import {module}; "
-            f"print(json.dumps([m for m in {HEAVY!r} if m in sys.modules]))")
+            f"print(json.dumps([m for m in {heavy!r} if m in sys.modules]))")
     loaded = json.loads(_run(code).stdout.strip().splitlines()[-1])
     return loaded, importer_of(module, loaded[0]) if loaded else ""
 
 
-@pytest.mark.parametrize("module", ["rotorsfd.io.config"])
-def test_loading_a_config_imports_no_numba_matplotlib_xarray(module):
-    loaded, importer = loaded_heavy(module)
+@pytest.mark.parametrize(("module", "heavy"), [
+    ("rotorsfd.io.config", HEAVY),           # what every command with a config loads
+    ("rotorsfd.analyses.checks", HEAVY),     # rotorsfd config check
+    ("rotorsfd.api", API_HEAVY),
+])
+def test_imports_load_no_heavy_package(module, heavy):
+    loaded, importer = loaded_heavy(module, heavy)
     assert loaded == [], f"import {module} loads {loaded} (the first one from {importer})"
+
+
+def test_the_api_names_resolve_on_first_use():
+    """Every lazily re-exported name of the API exists in its module (a renamed function
+    would otherwise fail only when a script asks for it)."""
+    from rotorsfd import api
+
+    for name in api.LAZY:
+        assert getattr(api, name) is getattr(importlib.import_module(api.LAZY[name]), name)
+    for name in api.__all__:
+        assert callable(getattr(api, name)), name
+    with pytest.raises(AttributeError, match="no attribute 'run_modall'"):
+        api.run_modall  # noqa: B018
 
 
 @pytest.mark.slow

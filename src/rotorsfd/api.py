@@ -11,23 +11,38 @@ object with its data, ``write(directory)`` (atomic files) and plot methods.
 
 from __future__ import annotations
 
+import importlib
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from rotorsfd.analyses.modal import (
-    ModalRunResult,
-    linear_system,
-    modal_speeds,
-    reference_speed,
-    run_modal,
-)
 from rotorsfd.errors import ConfigError
-from rotorsfd.io import atomic
-from rotorsfd.io.config import dump_config, get_path, load_config, show_config, with_values
-from rotorsfd.io.schema import Config
-from rotorsfd.model.build import build_elements, build_model, build_rotor, build_system
+
+if TYPE_CHECKING:
+    from rotorsfd.analyses.modal import (
+        ModalRunResult,
+        linear_system,
+        modal_speeds,
+        reference_speed,
+        run_modal,
+    )
+    from rotorsfd.io.config import dump_config, load_config, show_config, with_values
+    from rotorsfd.io.schema import Config
+    from rotorsfd.model.build import build_elements, build_model, build_rotor, build_system
+
+#: the names this module re-exports, by the module that defines them: imported on first
+#: use (PEP 562; deferred: pydantic, pint, numpy, scipy, numba), so that ``import
+#: rotorsfd.api`` costs a few milliseconds
+LAZY: dict[str, str] = {
+    **dict.fromkeys(("ModalRunResult", "linear_system", "modal_speeds", "reference_speed",
+                     "run_modal"), "rotorsfd.analyses.modal"),
+    **dict.fromkeys(("dump_config", "load_config", "show_config", "with_values"),
+                    "rotorsfd.io.config"),
+    "Config": "rotorsfd.io.schema",
+    **dict.fromkeys(("build_elements", "build_model", "build_rotor", "build_system"),
+                    "rotorsfd.model.build"),
+}
 
 __all__ = [
     "FitRunResult",
@@ -53,6 +68,20 @@ __all__ = [
     "show_config",
     "with_values",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    """The re-exported name ``name`` (:data:`LAZY`), imported on first use and kept."""
+    module = LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *LAZY})
 
 
 @dataclass(frozen=True)
@@ -81,6 +110,8 @@ class FitRunResult:
 
     def write(self, directory: str | Path) -> Path:
         """``fit.json``: fields, stiffnesses, critical speeds, targets, errors."""
+        from rotorsfd.io import atomic  # deferred: numpy
+
         f = self.fit
         return atomic.write_json(Path(directory) / "fit.json", {
             "fields": list(self.fields), "stiffnesses_N_per_m": list(f.stiffnesses),
@@ -95,6 +126,8 @@ def run_fit_supports(config: Config, fields: Sequence[str], targets: Sequence[fl
     ``elements.sfd.centring_stiffness``, ``rotor.supports[0].stiffness``) so that the lowest
     ``whirl`` critical speeds of the linear rotor are ``targets`` [rad/s] (as many fields as
     targets); the starting values are the configuration's."""
+    from rotorsfd.analyses.modal import linear_system
+    from rotorsfd.io.config import get_path, with_values
     from rotorsfd.io.schema import resolve_kind
     from rotorsfd.linear.fit import fit_support_stiffness
 
