@@ -201,20 +201,67 @@ class DampingConfig(Section):
         return self
 
 
+class MatricesConfig(Section):
+    """A linear rotor given by its matrices (a user's own FE model) in place of the shaft:
+    one .npz file, or Matrix Market files and a DOF map; paths relative to the config
+    file's folder (docs/interop.md)."""
+
+    file: Annotated[str | None, Field(description=".npz archive with the arrays M, K (C, G, "
+                                      "dof_node, dof_direction, node_x, base_matrices, "
+                                      "base_vectors optional); allowed: a file path")] = None
+    mass: Annotated[str | None, Field(description="Matrix Market file of M (instead of "
+                                      "file); allowed: a file path")] = None
+    stiffness: Annotated[str | None, Field(description="Matrix Market file of K; allowed: "
+                                           "a file path")] = None
+    damping: Annotated[str | None, Field(description="Matrix Market file of C (default "
+                                         "0); allowed: a file path")] = None
+    gyroscopic: Annotated[str | None, Field(description="Matrix Market file of G, the "
+                                            "gyroscopic matrix per unit speed (default 0); "
+                                            "allowed: a file path")] = None
+    dof_map: Annotated[str | None, Field(description="CSV file with the columns node, "
+                                         "direction (y, z, ty, tz, -ty, ...; x, tx dropped) "
+                                         "and optionally x, one line per matrix row "
+                                         "(default: the arrays of the .npz); allowed: a "
+                                         "file path")] = None
+    n_nodes: integer("number of nodes of the model (nodes 1..n_nodes, 4 DOFs each)", ge=2,
+                     le=100000)
+
+    @model_validator(mode="after")
+    def _one_form(self):
+        exactly_one_form(self, {"npz": ("file",),
+                                "matrix market": ("mass", "stiffness", "damping",
+                                                  "gyroscopic")},
+                         {"npz": ("file",), "matrix market": ("mass", "stiffness")})
+        if self.file is None and self.dof_map is None:
+            raise fail("dof_map", None, "Matrix Market files need a dof_map (CSV: node, "
+                       "direction per matrix row)")
+        return self
+
+
 class RotorConfig(Section):
     """The finite-element rotor. Nodes are numbered 1..N along x from ``x_start``."""
 
     x_start: quantity("length", "axial position of node 1") = 0.0
-    shaft: list[ShaftSectionConfig] = Field(min_length=1, description="shaft sections, "
-                                            "left to right")
+    shaft: list[ShaftSectionConfig] = Field([], description="shaft sections, left to "
+                                            "right (or give matrices)")
     disks: list[DiskConfig] = []
     point_masses: list[PointMassConfig] = []
     supports: list[SupportConfig] = []
     damping: DampingConfig = DampingConfig()
+    matrices: MatricesConfig | None = None
+
+    @model_validator(mode="after")
+    def _shaft_or_matrices(self):
+        if bool(self.shaft) == (self.matrices is not None):
+            raise fail("shaft", len(self.shaft), "give the shaft ([[rotor.shaft]] sections) "
+                       "or its matrices ([rotor.matrices]), exactly one")
+        return self
 
     @property
     def n_nodes(self) -> int:
-        """Number of nodes: total elements + 1."""
+        """Number of nodes: total elements + 1 (or the matrices' n_nodes)."""
+        if self.matrices is not None:
+            return self.matrices.n_nodes
         return sum(s.n_elements for s in self.shaft) + 1
 
 
@@ -740,7 +787,7 @@ class Config(Section):
 
     title: str = Field("", description="a one-line title")
     description: str = Field("", description="free text")
-    materials: dict[str, MaterialConfig] = Field(min_length=1,
+    materials: dict[str, MaterialConfig] = Field(default_factory=dict,
                                                  description="named materials")
     rotor: RotorConfig
     elements: dict[str, ElementTable] = Field(

@@ -50,8 +50,10 @@ def build_supports(config: Config) -> list[LinearSupport]:
     return out
 
 
-def build_rotor(config: Config) -> Rotor:
-    """The linear finite-element rotor (with the elements' linear parts)."""
+def build_rotor(config: Config, search_path: Path | None = None) -> Rotor:
+    """The linear finite-element rotor (with the elements' linear parts); a rotor given by
+    ``[rotor.matrices]`` reads them (paths relative to ``search_path``, the config file's
+    folder, else the working folder)."""
     r = config.rotor
     elements = []
     for s in r.shaft:
@@ -70,8 +72,14 @@ def build_rotor(config: Config) -> Rotor:
         damping = RayleighDamping(r.damping.alpha or 0.0, r.damping.beta or 0.0)
     elif r.damping.kind == "modal":
         damping = ModalDamping(r.damping.ratio)
+    point_masses = [PointMass(p.node, p.mass) for p in r.point_masses]
+    if r.matrices is not None:
+        from rotorsfd.interop.matrices import matrix_rotor
+
+        return matrix_rotor(config, search_path, disks, point_masses, build_supports(config),
+                            damping)
     return Rotor(elements, disks=disks,
-                 point_masses=[PointMass(p.node, p.mass) for p in r.point_masses],
+                 point_masses=point_masses,
                  supports=build_supports(config), damping=damping, x_start=r.x_start)
 
 
@@ -166,7 +174,8 @@ class Model:
 
 def build_model(config: Config, search_path: Path | None = None) -> Model:
     """Rotor, nonlinear elements, unbalances and base motion of ``config``."""
-    return Model(config=config, rotor=build_rotor(config), elements=build_elements(config),
+    return Model(config=config, rotor=build_rotor(config, search_path),
+                 elements=build_elements(config),
                  unbalances=build_unbalances(config),
                  base_motion=build_base_motion(config, search_path))
 

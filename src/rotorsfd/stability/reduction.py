@@ -54,37 +54,133 @@ def craig_bampton(M: ArrayLike, D: ArrayLike, K: ArrayLike, boundary_dofs: Array
     """Craig-Bampton model keeping ``boundary_dofs`` and fixed-interface modes.
 
     Modes kept: the ``n_modes`` lowest, or all with ``omega <= omega_max`` (if both are
-    given, the smaller set). At least one of them is required.
+    given, the smaller set). At least one of them is required. M, D, K dense or
+    scipy.sparse (then no dense n x n matrix is formed: :class:`FixedInterfaceBasis`).
     """
-    M = np.asarray(M, float)
-    D = np.asarray(D, float)
-    K = np.asarray(K, float)
-    n = M.shape[0]
-    b = np.asarray(boundary_dofs, dtype=np.intp).ravel()
     if n_modes is None and omega_max is None:
         raise ConfigError("n_modes/omega_max", None, "give at least one of them")
-    i = np.setdiff1d(np.arange(n), b)
-    Kii, Kib = K[np.ix_(i, i)], K[np.ix_(i, b)]
-    try:
-        phi_c = -np.linalg.solve(Kii, Kib)
-    except np.linalg.LinAlgError as exc:
-        raise ConfigError("K", "singular interior stiffness",
-                          "interior must be restrained once the boundary DOFs are fixed"
-                          ) from exc
-    Ks = 0.5 * (Kii + Kii.T)
-    Ms = 0.5 * (M[np.ix_(i, i)] + M[np.ix_(i, i)].T)
-    w2, modes = sla.eigh(Ks, Ms)
-    omegas = np.sqrt(np.clip(w2, 0.0, None))
-    keep = np.ones(omegas.size, bool)
-    if omega_max is not None:
-        keep &= omegas <= omega_max
-    if n_modes is not None:
-        keep &= np.arange(omegas.size) < n_modes
-    modes, omegas = modes[:, keep], omegas[keep]
-    m, k = b.size, modes.shape[1]
-    psi = np.zeros((n, m + k))
-    psi[b, :m] = np.eye(m)
-    psi[np.ix_(i, np.arange(m))] = phi_c
-    psi[np.ix_(i, np.arange(m, m + k))] = modes
-    return ReducedModel(psi.T @ M @ psi, psi.T @ D @ psi, psi.T @ K @ psi, psi,
-                        np.arange(m), omegas)
+    return FixedInterfaceBasis(M, K, boundary_dofs).reduce(D, n_modes, omega_max)
+
+
+class FixedInterfaceBasis:
+    """Craig-Bampton pieces of one (M, K): the constraint modes ``-K_ii^-1 K_ib`` and the
+    fixed-interface modes (module docstring), reused for any D.
+
+    Dense M, K (or at most ``rotorsfd.model.sparse.DENSE_MAX_DOF`` DOFs): every mode by
+    ``scipy.linalg.eigh``. Sparse (scipy.sparse) M, K of a larger model: the constraint
+    modes by one sparse LU of ``K_ii`` and only the modes asked for by shift-invert Lanczos
+    (``eigsh``, sigma = 0) on the symmetric parts, their number doubled until the highest
+    one found exceeds ``omega_max`` (or ``n_modes`` are found); the projections
+    ``Psi^T X Psi`` as sparse-times-(n x r) products. ``matches(M, K)`` tells whether a
+    basis is for these matrices (the same objects, or equal).
+    """
+
+    def __init__(self, M: ArrayLike, K: ArrayLike, boundary_dofs: ArrayLike) -> None:
+        import scipy.sparse as sp
+
+        from rotorsfd.model.sparse import DENSE_MAX_DOF
+
+        self.M, self.K = M, K
+        n = M.shape[0]
+        self.nl = np.asarray(boundary_dofs, dtype=np.intp).ravel()
+        self.i = i = np.setdiff1d(np.arange(n), self.nl)
+        self.sparse = sp.issparse(M) and sp.issparse(K) and n > DENSE_MAX_DOF
+        if not self.sparse:
+            Md = M.toarray() if sp.issparse(M) else np.asarray(M, float)
+            Kd = K.toarray() if sp.issparse(K) else np.asarray(K, float)
+            self.M, self.K = Md, Kd
+            try:
+                self.phi_c = -np.linalg.solve(Kd[np.ix_(i, i)], Kd[np.ix_(i, self.nl)])
+            except np.linalg.LinAlgError as exc:
+                raise _singular_interior() from exc
+            Ks = 0.5 * (Kd[np.ix_(i, i)] + Kd[np.ix_(i, i)].T)
+            Ms = 0.5 * (Md[np.ix_(i, i)] + Md[np.ix_(i, i)].T)
+            w2, self.modes = sla.eigh(Ks, Ms)
+            self.omegas = np.sqrt(np.clip(w2, 0.0, None))
+        else:
+            import scipy.sparse.linalg as spla
+
+            self.M, self.K = sp.csr_matrix(M), sp.csr_matrix(K)
+            Kii = self.K[i][:, i].tocsc()
+            try:
+                lu = spla.splu(Kii)
+            except RuntimeError as exc:
+                raise _singular_interior() from exc
+            self.phi_c = -lu.solve(self.K[i][:, self.nl].toarray())
+            Mii = self.M[i][:, i]
+            self._Ks = (0.5 * (Kii + Kii.T)).tocsc()
+            self._Ms = (0.5 * (Mii + Mii.T)).tocsc()
+            self.modes = np.zeros((i.size, 0))
+            self.omegas = np.zeros(0)
+            self._complete = False
+        self._models: dict[int, tuple[NDArray, NDArray, NDArray]] = {}
+
+    def matches(self, M: ArrayLike, K: ArrayLike) -> bool:
+        """Whether this basis is for (M, K): the same objects or equal entries."""
+        import scipy.sparse as sp
+
+        def same(a, b) -> bool:
+            if a is b:
+                return True
+            if sp.issparse(a) or sp.issparse(b):
+                a = a if sp.issparse(a) else sp.csr_matrix(np.asarray(a, float))
+                b = b if sp.issparse(b) else sp.csr_matrix(np.asarray(b, float))
+                return a.shape == b.shape and (a != b).nnz == 0
+            return np.array_equal(a, b)
+        return same(M, self.M) and same(K, self.K)
+
+    def _lowest(self, n_modes: int | None, omega_max: float | None) -> None:
+        """Sparse: make sure the modes asked for are computed (module docstring)."""
+        import scipy.sparse.linalg as spla
+
+        ni = self.i.size
+        while not self._complete:
+            have = self.omegas.size
+            if n_modes is not None and have >= n_modes:
+                return
+            if omega_max is not None and have and self.omegas[-1] > omega_max:
+                return
+            k = max(2 * have, 12, (n_modes or 0) + 2)
+            if k >= ni - 1:   # (nearly) all: the dense problem is no larger
+                w2, modes = sla.eigh(self._Ks.toarray(), self._Ms.toarray())
+                self._complete = True
+            else:
+                w2, modes = spla.eigsh(self._Ks, k=k, M=self._Ms, sigma=0.0, which="LM")
+                order = np.argsort(w2)
+                w2, modes = w2[order], modes[:, order]
+            self.omegas = np.sqrt(np.clip(w2, 0.0, None))
+            self.modes = modes
+
+    def reduce(self, D: ArrayLike, n_modes: int | None, omega_max: float | None
+               ) -> ReducedModel:
+        """The reduced model with damping D (dense or sparse) and the modes kept by
+        ``n_modes`` / ``omega_max`` (:func:`craig_bampton`)."""
+        import scipy.sparse as sp
+
+        if self.sparse:
+            self._lowest(n_modes, omega_max)
+        keep = np.ones(self.omegas.size, bool)
+        if omega_max is not None:
+            keep &= self.omegas <= omega_max
+        if n_modes is not None:
+            keep &= np.arange(self.omegas.size) < n_modes
+        k = int(keep.sum())  # modes are sorted: the kept set is the first k
+        if k not in self._models:
+            m, n = self.nl.size, self.M.shape[0]
+            psi = np.zeros((n, m + k))
+            psi[self.nl, :m] = np.eye(m)
+            psi[np.ix_(self.i, np.arange(m))] = self.phi_c
+            psi[np.ix_(self.i, np.arange(m, m + k))] = self.modes[:, :k]
+            if self.sparse:
+                self._models[k] = (psi, psi.T @ (self.M @ psi), psi.T @ (self.K @ psi))
+            else:
+                self._models[k] = (psi, psi.T @ self.M @ psi, psi.T @ self.K @ psi)
+        psi, Mr, Kr = self._models[k]
+        Dr = psi.T @ (D @ psi) if sp.issparse(D) else psi.T @ np.asarray(D, float) @ psi
+        return ReducedModel(np.asarray(Mr), np.asarray(Dr), np.asarray(Kr),
+                            psi, np.arange(self.nl.size), self.omegas[:k])
+
+
+def _singular_interior() -> ConfigError:
+    return ConfigError("K", "singular interior stiffness",
+                       "interior must be restrained once the boundary DOFs are fixed")
