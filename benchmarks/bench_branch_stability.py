@@ -46,8 +46,8 @@ def _response(config):
 @contextlib.contextmanager
 def numpy_monodromy() -> Iterator[None]:
     """``branch_stability`` with the numpy monodromy loop (``compiled=False``): the
-    analysis module's ``floquet_multipliers`` replaced for the duration."""
-    import rotorsfd.stability.branch_stability as bs
+    evaluator module's ``floquet_multipliers`` replaced for the duration."""
+    import rotorsfd.stability.floquet_evaluator as bs
 
     original = bs.floquet_multipliers
     bs.floquet_multipliers = functools.partial(original, compiled=False)
