@@ -8,9 +8,14 @@ centre; zero by default)::
     F = F_film(q - o, q'),   dF/dq = dF_film/dq (q - o, q'),   eps = |q - o| / C
 
 with ``F_film`` the short-bearing force of :class:`rotorsfd.model.sfd.SFD` (pi, 2 pi or
-Guembel film; derivation in ``docs/sfd.md``). The centring spring is linear and becomes a
-support of the rotor (:meth:`SFDConfig.linear_supports`). Static offset: the eccentric
-SFD of Zhao, Linnett and McLean (J. Vib. Acoust. 116, 1994) is the classic case.
+Guembel film; derivation in ``docs/sfd.md``) or, with ``film_length = "finite"``, the
+finite-length Reynolds film of :class:`rotorsfd.model.film_finite.FiniteSFD` (open ends
+or end seals of end-flow coefficient ``end_flow``). Diagnostics per orbit: the
+eccentricity, the peak film pressure, the cavitated arc and, with an oil density, the
+squeeze Reynolds number (:mod:`rotorsfd.model.film_diagnostics`). The centring spring
+is linear and becomes a support of the rotor (:meth:`SFDConfig.linear_supports`). Static
+offset: the eccentric SFD of Zhao, Linnett and McLean (J. Vib. Acoust. 116, 1994) is the
+classic case.
 """
 
 from __future__ import annotations
@@ -31,6 +36,7 @@ from rotorsfd.io.fields import (
     fail,
     given_fields,
     in_range,
+    integer,
     quantity,
     range_text,
 )
@@ -38,6 +44,7 @@ from rotorsfd.model.dofs import dof_index
 from rotorsfd.model.supports import LinearSupport
 
 if TYPE_CHECKING:
+    from rotorsfd.model.film_finite import FiniteSFD
     from rotorsfd.model.sfd import SFD
 
 __all__ = ["SFD_RATIO_BOUNDS", "SFDConfig", "SFDElement"]
@@ -51,15 +58,39 @@ class SFDElement(NonlinearElement):
     limit_label = "eps"
     diagnostic_info: ClassVar[dict[str, tuple[str, str]]] = {
         "eps_max": ("largest eccentricity ratio |q - o| / C over the period", "1")}
+    #: The film's quantities (``film_report``), and the squeeze Reynolds number (density).
+    FILM_INFO: ClassVar[dict[str, tuple[str, str]]] = {
+        "p_max": ("peak film pressure over the period (relative to the cavity pressure)",
+                  "Pa"),
+        "p_min": ("lowest pressure of the uncavitated film over the period (a supply "
+                  "pressure above -p_min keeps the film whole)", "Pa"),
+        "cavitated_arc": ("largest arc at mid-land where the uncavitated film pressure is "
+                          "below the cavity pressure", "rad")}
+    REYNOLDS_INFO: ClassVar[dict[str, tuple[str, str]]] = {
+        "squeeze_reynolds": ("squeeze Reynolds number rho omega C^2 / mu of the orbit", "1")}
 
-    def __init__(self, name: str, node: int, film: SFD,
-                 offset: tuple[float, float] = (0.0, 0.0)) -> None:
+    def __init__(self, name: str, node: int, film: SFD | FiniteSFD,
+                 offset: tuple[float, float] = (0.0, 0.0), density: float | None = None,
+                 film_report: bool | None = None) -> None:
         super().__init__(name, [dof_index(node, "y"), dof_index(node, "z")],
                          film.clearance, nodes=(node,))
         self.node = int(node)
         self.film = film
+        self.finite = hasattr(film, "pressure")  # FiniteSFD: its parameters hold o
         self.offset = np.array([float(offset[0]), float(offset[1])])
-        self._params = np.concatenate([film.kernel_params, self.offset])
+        self.density = None if density is None else float(density)
+        if self.finite:
+            from rotorsfd.model.film_finite_kernels import P_OFFSET_Y, P_OFFSET_Z
+
+            self._params = film.kernel_params
+            self._params[P_OFFSET_Y], self._params[P_OFFSET_Z] = self.offset
+        else:
+            self._params = np.concatenate([film.kernel_params, self.offset])
+        #: report p_max, p_min, cavitated_arc (default: for the finite film only)
+        self.film_report = self.finite if film_report is None else bool(film_report)
+        self.diagnostic_info = {**type(self).diagnostic_info,
+                                **(self.FILM_INFO if self.film_report else {}),
+                                **(self.REYNOLDS_INFO if self.density is not None else {})}
 
     @property
     def clearance(self) -> float:
@@ -80,14 +111,20 @@ class SFDElement(NonlinearElement):
 
     @property
     def kernel(self):
-        """The compiled law, :func:`rotorsfd.elements.sfd_kernel.sfd_element_kernel`."""
+        """The compiled law, :func:`rotorsfd.elements.sfd_kernel.sfd_element_kernel` (finite
+        film: :func:`rotorsfd.model.film_finite_kernels.finite_kernel`)."""
+        if self.finite:
+            from rotorsfd.model.film_finite_kernels import finite_kernel  # deferred: numba
+
+            return finite_kernel
         from rotorsfd.elements.sfd_kernel import sfd_element_kernel  # deferred: numba
 
         return sfd_element_kernel
 
     @property
     def kernel_params(self) -> FloatArray:
-        """``[mu, R, L, C, eps_max, film code, o_y, o_z]``."""
+        """``[mu, R, L, C, eps_max, film code, o_y, o_z]`` (finite film: the layout of
+        :mod:`rotorsfd.model.film_finite_kernels`)."""
         return self._params.copy()
 
     def eccentricity(self, q: FloatArray) -> FloatArray:
@@ -101,8 +138,18 @@ class SFDElement(NonlinearElement):
         return float(np.max(self.eccentricity(q), initial=0.0))
 
     def diagnostics(self, q: FloatArray, v: FloatArray) -> dict[str, float]:
-        """``eps_max``: the largest eccentricity ratio over the orbit."""
-        return {"eps_max": self.limit(q)}
+        """``eps_max``, the largest eccentricity ratio over the orbit, and the film's
+        pressures and squeeze Reynolds number as :attr:`diagnostic_info` lists them
+        (:func:`rotorsfd.model.film_diagnostics.film_diagnostics`)."""
+        out = {"eps_max": self.limit(q)}
+        if len(self.diagnostic_info) > 1:
+            from rotorsfd.model.film_diagnostics import film_diagnostics
+
+            q = np.asarray(q, dtype=float).reshape(-1, 2)
+            film = film_diagnostics(self.film, q - self.offset,
+                                    np.asarray(v, dtype=float).reshape(-1, 2), self.density)
+            out.update({k: film[k] for k in self.diagnostic_info if k in film})
+        return out
 
     def contact_error(self, q: FloatArray, v: FloatArray, where: str = "") -> Exception:
         y, z = float(q[0] - self.offset[0]), float(q[1] - self.offset[1])
@@ -111,8 +158,9 @@ class SFDElement(NonlinearElement):
                                        f", {where}" if where else ""))
 
     def describe(self) -> str:
-        return (f"SFD {self.name!r} at node {self.node} ({self.film.cavitation} film, "
-                f"C = {self.clearance:.4g} m)")
+        length = "finite-length " if self.finite else ""
+        return (f"SFD {self.name!r} at node {self.node} ({length}{self.film.cavitation} "
+                f"film, C = {self.clearance:.4g} m)")
 
 
 #: Ranges of the SFD ratios, also applied when a ratio is derived from the other fields.
@@ -151,6 +199,24 @@ class SFDConfig(Section):
     offset_y: quantity("length", "static offset of the housing centre from the centring "
                        "spring's neutral position, y") = 0.0
     offset_z: quantity("length", "static offset of the housing centre, z") = 0.0
+    film_length: Literal["short", "finite"] = Field(
+        "short", description="film model along the land: 'short' (short-bearing closed "
+                             "forms, the paper's) or 'finite' (Reynolds equation on a "
+                             "(theta, axial) grid, open or sealed ends)")
+    end_flow: quantity("ratio", "end-flow coefficient of each end seal, beta = 6 mu L c_e "
+                       "/ C^3 with c_e the seal's flow per unit circumference and "
+                       "pressure (finite film only; omit for open ends, 0 for a sealed "
+                       "land)", ge=0, optional=True) = None
+    grid_theta: integer("theta nodes of the finite film's grid (a multiple of 4)", ge=16,
+                        le=1024) = 48
+    grid_axial: integer("axial intervals of the finite film's half land (even)", ge=2,
+                        le=64) = 4
+    density: quantity("density", "oil density rho (for the squeeze Reynolds number "
+                      "rho omega C^2 / mu in the results)", gt=0, optional=True) = None
+    film_report: bool | None = Field(
+        None, description="report the peak film pressure p_max, the lowest uncavitated "
+                          "pressure p_min and the cavitated arc per orbit in the results "
+                          "(default: true for the finite film, false for the short film)")
 
     @model_validator(mode="after")
     def _geometry(self):
@@ -170,7 +236,22 @@ class SFDConfig(Section):
                        f"{self.resolved_radius:.6g} m; the clearance must be smaller "
                        "than the journal radius")
         self._derivedin_range()
+        self._film_fields()
         return self
+
+    def _film_fields(self) -> None:
+        """The finite film's fields: only with ``film_length = "finite"``, grid sizes
+        the scheme takes."""
+        if self.film_length == "short":
+            for name in ("end_flow", "grid_theta", "grid_axial"):
+                if getattr(self, name) != type(self).model_fields[name].default:
+                    raise fail(name, getattr(self, name),
+                               "is a field of the finite film: set film_length = "
+                               "\"finite\" or remove it")
+        if self.grid_theta % 4:
+            raise fail("grid_theta", self.grid_theta, "must be a multiple of 4")
+        if self.grid_axial % 2:
+            raise fail("grid_axial", self.grid_axial, "must be even")
 
     def _derivedin_range(self) -> None:
         """A derived value (the third of C, C/R, R; L or L/D) within the range its own
@@ -218,8 +299,13 @@ class SFDConfig(Section):
     def derived_text(self) -> str:
         """The derived geometry, for ``config show`` and ``config check``."""
         c, r, length = self.resolved_clearance, self.resolved_radius, self.resolved_length
-        return (f"C = {c:.6g} m, R = {r:.6g} m, L = {length:.6g} m, C/R = {c / r:.6g}, "
+        text = (f"C = {c:.6g} m, R = {r:.6g} m, L = {length:.6g} m, C/R = {c / r:.6g}, "
                 f"L/D = {length / (2 * r):.6g}")
+        if self.film_length == "finite":
+            ends = "open ends" if self.end_flow is None else f"end_flow = {self.end_flow:g}"
+            text += (f"; finite film, {ends}, grid {self.grid_theta} x {self.grid_axial} "
+                     "(theta x half land)")
+        return text
 
     def linear_supports(self) -> list[LinearSupport]:
         """The centring spring: an isotropic linear support at the SFD node (none if it has
@@ -231,11 +317,20 @@ class SFDConfig(Section):
 
     def build(self, name: str) -> SFDElement:
         """The element of this table, named ``name``."""
-        from rotorsfd.model.sfd import SFD  # deferred: numba (the film's kernels)
+        geometry = (self.viscosity, self.resolved_radius, self.resolved_length,
+                    self.resolved_clearance)
+        if self.film_length == "finite":
+            from rotorsfd.model.film_finite import FiniteSFD
 
-        film = SFD(self.viscosity, self.resolved_radius, self.resolved_length,
-                   self.resolved_clearance, cavitation=self.cavitation)
-        return SFDElement(name, self.node, film, (self.offset_y, self.offset_z))
+            film = FiniteSFD(*geometry, cavitation=self.cavitation,
+                             end_flow=math.inf if self.end_flow is None else self.end_flow,
+                             n_theta=self.grid_theta, n_axial=self.grid_axial)
+        else:
+            from rotorsfd.model.sfd import SFD  # deferred: numba (the film's kernels)
+
+            film = SFD(*geometry, cavitation=self.cavitation)
+        return SFDElement(name, self.node, film, (self.offset_y, self.offset_z),
+                          density=self.density, film_report=self.film_report)
 
 
 register(SFDConfig)
