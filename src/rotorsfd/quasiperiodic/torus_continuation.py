@@ -1,0 +1,259 @@
+"""Tori by two-frequency HB-AFT: one point (:func:`solve_torus`) and branches in a parameter
+by the generic pseudo arc-length continuation (:func:`continue_torus`).
+
+Scaling as in :mod:`rotorsfd.harmonic.periodic`: Newton unknowns ``xs / c`` (c the
+nonlinear DOFs' length scales, e.g. the SFD clearance) and ``lam / lam_scale``; the
+condensed residual (a length) over c; a point is converged when the 2-norm of the scaled
+extended residual is <= tol. The elements' validity measure (an SFD's eccentricity ratio)
+must stay below ``limit_max`` at every grid point of the torus: a step that crosses it is
+halved, and the branch ends there with the corrector's message, as a periodic branch does.
+The grid N1 x N2 is chosen at the first point (:func:`~rotorsfd.quasiperiodic.
+torus_fourier.choose_grid`) and kept; the sampling error of every point (the change of
+the force coefficients when N1 or N2 doubles) is stored and the message warns when it
+exceeds ``alias_tol``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rotorsfd.continuation.arclength import ArcLengthOptions, arclength
+from rotorsfd.continuation.newton import newton_extended
+from rotorsfd.errors import ConvergenceError
+from rotorsfd.harmonic.fourier import to_real
+from rotorsfd.quasiperiodic.torus_fourier import (
+    TorusLattice,
+    choose_grid,
+    grid_aliasing,
+    synthesize,
+)
+from rotorsfd.quasiperiodic.torus_linear import TorusProblem
+from rotorsfd.quasiperiodic.torus_residual import TorusHB, torus_force
+
+FloatArray = NDArray[np.float64]
+ComplexArray = NDArray[np.complex128]
+
+
+class TorusSystem:
+    """Scaled continuation system ``z = (xs / c, lam / lam_scale)`` around :class:`TorusHB`
+    (the :class:`~rotorsfd.continuation.newton.ContinuationSystem` protocol)."""
+
+    def __init__(self, problem: TorusProblem, lattice: TorusLattice, grid: tuple[int, int],
+                 lam_scale: float, limit_max: float = 1.0) -> None:
+        self.problem, self.lattice, self.grid = problem, lattice, tuple(grid)
+        self.hb = TorusHB(problem, lattice, *grid)
+        self.n = self.hb.n_unknowns
+        self.lam_scale = float(lam_scale)
+        self.limit_max = limit_max
+        self.cx = np.tile(problem.dof_scale[problem.nl_dofs], lattice.n_real)
+
+    def to_z(self, xs: FloatArray, lam: float) -> FloatArray:
+        return np.append(np.ravel(xs) / self.cx, lam / self.lam_scale)
+
+    def from_z(self, z: FloatArray) -> tuple[FloatArray, float]:
+        xs = (z[:-1] * self.cx).reshape(self.lattice.n_real, self.problem.m)
+        return xs, float(z[-1]) * self.lam_scale
+
+    def evaluate(self, z: FloatArray) -> tuple[FloatArray, FloatArray]:
+        xs, lam = self.from_z(z)
+        R, J, dR = self.hb.residual(xs, lam, jac=True)
+        Jz = np.empty((self.n, self.n + 1))
+        Jz[:, :-1] = J * (self.cx[None, :] / self.cx[:, None])
+        Jz[:, -1] = dR * (self.lam_scale / self.cx)
+        return R.ravel() / self.cx, Jz
+
+    def admissible(self, z: FloatArray) -> bool:
+        if self.problem.elements is None or not self.problem.m:
+            return True
+        xs, _ = self.from_z(z)
+        val = self.problem.limit(self.hb.aft.sample(xs))
+        return bool(np.isfinite(val) and val < self.limit_max)
+
+    def coefficients(self, z: FloatArray) -> ComplexArray:
+        xs, lam = self.from_z(z)
+        return self.hb.coefficients(xs, lam)
+
+    def aliasing(self, z: FloatArray) -> float:
+        """Sampling error: the larger relative change of the retained force coefficients
+        when N1 or N2 doubles (0 without elements)."""
+        if not self.problem.m:
+            return 0.0
+        xs, lam = self.from_z(z)
+        w = self.lattice.frequencies(*self.problem.frequencies(lam))
+        force = self.problem.elements.force
+        return max(grid_aliasing(force, self.lattice, xs, w, *self.grid, axis=a)
+                   for a in (0, 1))
+
+
+def initial_guess(problem: TorusProblem, lattice: TorusLattice, lam: float,
+                  X0: ComplexArray | None, grid: tuple[int, int]) -> FloatArray:
+    """Nonlinear-DOF unknowns (n_real, m) to start from: X0's (all DOFs, (nk, n)), or
+    the linear response with the elements replaced by their linearisation at rest,
+    halved until the validity measure is below 0.9."""
+    if X0 is not None:
+        return to_real(np.asarray(X0)[:, problem.nl_dofs])
+    hb = TorusHB(problem, lattice, *grid)
+    zero = np.zeros((lattice.n_real, problem.m))
+    hb.set_shift(zero, lam)
+    G = torus_force(problem, hb.aft, zero, lam, jac=False).G
+    cond = hb.condenser.condense(lam, deriv=False)
+    X = hb.condenser.recover(cond, zero, G)
+    xs = to_real(X[:, problem.nl_dofs])
+    for _ in range(60):
+        if problem.limit(hb.aft.sample(xs)) < 0.9:
+            break
+        xs = 0.5 * xs
+    return xs
+
+
+def torus_system(problem: TorusProblem, lattice: TorusLattice, lam: float,
+                 X0: ComplexArray | None, grid: tuple[int, int] | None, lam_scale: float,
+                 limit_max: float, alias_tol: float) -> tuple[TorusSystem, FloatArray]:
+    """The scaled system at lam (grid by :func:`choose_grid` at the start if not given,
+    shift Delta set there) and its first unknowns."""
+    start_grid = grid or (2 * lattice.H1 + 2, 2 * lattice.h(0) + 2)
+    xs = initial_guess(problem, lattice, lam, X0, start_grid)
+    if grid is None:
+        if problem.m:
+            w = lattice.frequencies(*problem.frequencies(lam))
+            grid = choose_grid(problem.elements.force, lattice, xs, w, tol=alias_tol)
+        else:
+            grid = lattice.min_grid()
+    system = TorusSystem(problem, lattice, grid, lam_scale, limit_max)
+    system.hb.set_shift(xs, lam)
+    return system, system.to_z(xs, lam)
+
+
+@dataclass
+class TorusSolution:
+    """One torus: one-sided coefficients X (nk, n) on the lattice's half lattice."""
+
+    lam: float
+    X: ComplexArray
+    omega: float
+    wb: float
+    lattice: TorusLattice
+    grid: tuple[int, int]
+    iterations: int
+    residual_norm: float
+    aliasing: float
+
+    def time_series(self, t: FloatArray) -> FloatArray:
+        """q(t) (nt, n) on the torus started at phases (0, 0)."""
+        return synthesize(self.lattice, self.X, self.omega, self.wb, t)
+
+
+def solve_torus(problem: TorusProblem, lam: float, lattice: TorusLattice,
+                X0: ComplexArray | None = None, *, grid: tuple[int, int] | None = None,
+                tol: float = 1e-8, max_iter: int = 50, limit_max: float = 1.0,
+                alias_tol: float = 1e-8) -> TorusSolution:
+    """The torus at fixed lam by Newton on the condensed equations (ConvergenceError on
+    failure, saying where and why)."""
+    system, z0 = torus_system(problem, lattice, lam, X0, grid, max(abs(lam), 1.0),
+                              limit_max, alias_tol)
+    e = np.zeros(system.n + 1)
+    e[-1] = 1.0
+    if system.n:
+        res = newton_extended(system, z0, e, float(z0[-1]), tol, max_iter)
+        if not res.converged:
+            raise ConvergenceError(f"{problem.name}: no torus at lam={lam:.8g} "
+                                   f"({lattice}, grid {system.grid}): {res.message}")
+        z, it, norm = res.z, res.iterations, res.norm
+    else:
+        z, it, norm = z0, 0, 0.0
+    om, wb = problem.frequencies(lam)
+    return TorusSolution(lam, system.coefficients(z), om, wb, lattice, system.grid, it,
+                         norm, system.aliasing(z))
+
+
+@dataclass
+class TorusBranch:
+    """A branch of tori: ``lam`` (n_points,), ``X`` (n_points, nk, n) one-sided
+    coefficients, ``omega`` and ``wb`` the two base frequencies at each point, the arc
+    length ``s``, tangents, Newton iterations, the sampling error per point, the outcome."""
+
+    lam: FloatArray
+    X: ComplexArray
+    omega: FloatArray
+    wb: FloatArray
+    lattice: TorusLattice
+    grid: tuple[int, int]
+    s: FloatArray
+    tangents: FloatArray
+    iterations: NDArray[np.int64]
+    aliasing: FloatArray
+    limit: FloatArray
+    success: bool
+    message: str
+    info: dict = field(default_factory=dict)
+
+    @property
+    def n_points(self) -> int:
+        return int(self.lam.size)
+
+    def amplitude(self, dof: int, k1: int, k2: int) -> FloatArray:
+        """|X_(k1, k2)| of one DOF along the branch (half peak-to-peak of that line)."""
+        return np.abs(self.X[:, self.lattice.index(k1, k2), dof])
+
+    def time_series(self, index: int, t: FloatArray) -> FloatArray:
+        """q(t) (nt, n) at point ``index``, torus phases (0, 0) at t = 0."""
+        return synthesize(self.lattice, self.X[index], self.omega[index], self.wb[index], t)
+
+
+def continue_torus(problem: TorusProblem, lam_start: float, lam_end: float,
+                   lattice: TorusLattice, X0: ComplexArray | None = None, *,
+                   grid: tuple[int, int] | None = None, tol: float = 1e-6,
+                   ds: float = 0.01, ds_min: float = 1e-6, ds_max: float = 0.05,
+                   max_iter: int = 8, max_points: int = 500, max_angle_deg: float = 20.0,
+                   lam_scale: float | None = None, limit_max: float = 1.0,
+                   alias_tol: float = 1e-6,
+                   callback: Callable[[int, float, ComplexArray], bool | None] | None = None
+                   ) -> TorusBranch:
+    """Branch of tori from lam_start towards lam_end by pseudo arc-length
+    (:func:`~rotorsfd.continuation.arclength.arclength`; steps in the scaled unknowns,
+    module docstring). ``callback(index, lam, X) -> stop``. The branch ends with
+    ``success = False`` and the continuation's message where the corrector fails (the
+    validity limit of an element, no convergence) or the branch turns back; raises
+    ConvergenceError only if the first point cannot be found."""
+    scale = lam_scale or (abs(lam_end - lam_start) or max(abs(lam_start), 1.0))
+    system, z0 = torus_system(problem, lattice, lam_start, X0, grid, scale, limit_max,
+                              1e-2 * alias_tol)
+    e = np.zeros(system.n + 1)
+    e[-1] = 1.0
+    first = newton_extended(system, z0, e, float(z0[-1]), tol, 50)
+    if not first.converged:
+        raise ConvergenceError(f"{problem.name}: no torus at lam={lam_start:.8g} "
+                               f"({lattice}, grid {system.grid}): {first.message}")
+    out: dict[str, list] = {k: [] for k in ("lam", "X", "om", "wb", "t", "it", "ds", "al",
+                                            "lim")}
+
+    def on_point(z: FloatArray, t: FloatArray, J: FloatArray, it: int, step: float) -> bool:
+        xs, lam = system.from_z(z)
+        X = system.coefficients(z)
+        om, wb = problem.frequencies(lam)
+        lim = problem.limit(system.hb.aft.sample(xs)) if problem.m else 0.0
+        for key, val in zip(out, (lam, X, om, wb, t, it, step, system.aliasing(z), lim),
+                            strict=True):
+            out[key].append(val)
+        return bool(callback(len(out["lam"]) - 1, lam, X)) if callback else False
+
+    opts = ArcLengthOptions(ds=ds, ds_min=ds_min, ds_max=ds_max, tol=tol, max_iter=max_iter,
+                            max_points=max_points, max_angle=float(np.radians(max_angle_deg)))
+    status = arclength(system, first.z, first.J, lam_end / scale, on_point, opts,
+                       lam_physical=lambda v: v * scale)
+    al = np.array(out["al"])
+    msg = status.message
+    if al.size and al.max() > alias_tol:
+        msg += (f"; warning: sampling error up to {al.max():.2g} on the grid "
+                f"{system.grid[0]} x {system.grid[1]}: pass a finer grid")
+    return TorusBranch(
+        lam=np.array(out["lam"]), X=np.array(out["X"]), omega=np.array(out["om"]),
+        wb=np.array(out["wb"]), lattice=lattice, grid=system.grid,
+        s=np.cumsum(out["ds"]), tangents=np.array(out["t"]),
+        iterations=np.array(out["it"], dtype=np.int64), aliasing=al,
+        limit=np.array(out["lim"]), success=status.success, message=msg,
+        info={"lam_scale": scale, "tol": tol, "limit_max": limit_max})
