@@ -49,6 +49,9 @@ REGISTRY: dict[str, tuple[str, str]] = {
                     "checked bifurcations) vs fixed H = 3, M = 400", "bench_convergence:run"),
     "scale": ("first critical speed and modal of a stepped rotor, 80-2560 elements: sparse "
               "shift-invert vs the dense eig path", "bench_scale:run"),
+    "scale-timedomain": ("500 periods x 200 steps of the stepped rotor, 80-1280 elements: "
+                         "reduced (Craig-Bampton) step vs the full dense step",
+                         "bench_scale_timedomain:run"),
     "elements": ("nonlinear elements: one SFD through the element interface vs the previous "
                  "path; cost against 1, 2, 4, 8 elements", "bench_elements:run"),
 }

@@ -8,7 +8,10 @@ Omega~ = 0.8 (a stable period-1 point), every node displaced 1 um at t = 0, as
 
 1. Ours: 2000 periods x 200 steps (average acceleration, Newton on the SFD DOFs),
    median of the repeats, after the first call (compilation or cache load: see
-   ``coldstart``); SFD DOFs recorded every step.
+   ``coldstart``); SFD DOFs recorded every step. Beside it the reduced step of
+   ``rotorsfd simulate`` (``reduction = "auto"``: Craig-Bampton on the SFD DOFs, the
+   fixed-interface modes up to 40 Omega and the load residuals; the reduction timed with
+   the run) and its last period's SFD orbit against the full step's.
 2. Accuracy: from the end state, ``n_short`` periods by ours at 200 steps a period and by
    ours at 4000 (the reference); error = largest relative error of the last period's
    amplitudes (max radial excursion at the SFD, half peak-to-peak y at the disk).
@@ -136,6 +139,8 @@ def run(quick: bool = False, repeat: int = 3) -> list[Row]:
                 repeat=repeat, note=f"Newton {r.newton_iterations_mean:.2f} it/step",
                 extra={"elapsed_loop_s": r.elapsed})]
 
+    rows.append(reduced_row(inp, P, q0, rec, r, t_ours, repeat, case))
+
     # accuracy from the end state
     qs, vs = r.q_final.copy(), r.v_final.copy()
     T = inp.forcing.period
@@ -174,6 +179,37 @@ def run(quick: bool = False, repeat: int = 3) -> list[Row]:
                                "short_wall_s": wall}))
     rows += ross_rows(system, inp, quick, repeat)
     return rows
+
+
+def reduced_row(inp, P: int, q0, rec: list[int], full, t_full: float, repeat: int,
+                case: str) -> Row:
+    """The reduced step (``reduction = "auto"``, cutoff 40 Omega) as ``rotorsfd simulate``
+    runs it (``with_reduction`` + ``integrate_periods``, timed together), beside the full
+    step; the last period's SFD orbit against the full run's, in C."""
+    from rotorsfd.analyses.td_integration import integrate_periods, with_reduction
+
+    def reduced():
+        t = time.perf_counter()
+        ri = with_reduction(inp)
+        t_red = time.perf_counter() - t
+        return ri, t_red, integrate_periods(
+            ri, q0, 0.0, steps_per_period=200, periods=P, record_dofs=rec, record_periods=1,
+            poincare_periods=min(100, P))
+
+    reduced()  # first call (numba dispatch of the reduced sizes)
+    t_red, _, (ri, t_reduce, tr) = median_time(reduced, repeat)
+    red = ri.reduction
+    C = 1.27e-4
+    diff = float(np.max(np.abs(tr.q[:, :2] - full.q[-tr.q.shape[0]:, :2]))) / C
+    amp = float(np.max(np.hypot(tr.q[:, 0], tr.q[:, 1]))) / C
+    return Row("timedomain", case, "ours: reduced step (Craig-Bampton, cutoff 40 Omega)",
+               t_red, ratio=t_red / t_full, ref="ours", repeat=repeat,
+               note=(f"{red.n_dof} of {inp.n_dof} coordinates ({red.n_modes} modes up to "
+                     f"{red.model.omegas.max() / inp.speed:.1f} Omega, {red.n_residuals} "
+                     f"load residuals), reduction {t_reduce * 1e3:.1f} ms; last period's SFD "
+                     f"orbit {diff:.1e} C from the full step's (radius {amp:.3f} C)"),
+               extra={"reduced_dof": red.n_dof, "modes": red.n_modes,
+                      "reduce_s": t_reduce, "difference_C": diff})
 
 
 # ---- step control: "auto" beside the fixed T/200 ------------------------------------------
