@@ -138,7 +138,7 @@ def time_domain_inputs(system: RotorSystem, speed: float, *,
         raise ConfigError(f"{FIELD}.speed", speed, "the rotor speed must be > 0 rad/s")
     r = system.rotor
     nl = system.nl_dofs
-    el = system.elements
+    el = system.elements_at(speed)   # a law of the speed (journal bearing) set to it
     kernel, params = (el.kernel, el.kernel_params) if len(el) else (None, None)
     if system.base.is_constant:
         M, D, K = system.matrices(speed)
