@@ -158,3 +158,22 @@ def test_banded_linear_part_dense_view_and_derivatives() -> None:
     np.testing.assert_array_equal(dD, r.G)
     Ds = part.sparse(300.0)[1]
     np.testing.assert_array_equal(Ds.toarray(), D)
+
+
+def test_modal_damping_keeps_the_dense_path_with_the_same_results() -> None:
+    """A full modal damping matrix has no band: the HB problem gets dense storage
+    (DenseLinearPart) and the same solution as the direct assembly."""
+    from rotorsfd.model.base_terms import DenseLinearPart
+    from rotorsfd.model.damping import ModalDamping
+
+    sfd = SFD(viscosity=0.0051, radius=0.0262, length=0.017, clearance=0.127e-3)
+    system = RotorSystem(rotor(12, ModalDamping(0.02)), [SFDElement("sfd", 1, sfd)],
+                         [Unbalance(7, 2e-5, 0.3)])
+    assert system.rotor.band[0] > 3 * HALF_BAND
+    problem = system.periodic_problem()
+    assert isinstance(problem.matrices, DenseLinearPart)
+    assert banded_band(problem.matrices) is None
+    a = solve_periodic(problem, 650.0, 3, tol=1e-12, condensed=True)
+    b = solve_periodic(system.periodic_problem(assembly="direct"), 650.0, 3, tol=1e-12,
+                       condensed=True)
+    assert np.abs(a.X - b.X).max() <= 1e-10 * np.abs(b.X).max()

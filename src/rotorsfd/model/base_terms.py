@@ -56,7 +56,7 @@ import scipy.sparse as sp
 
 from rotorsfd.model import dofs
 from rotorsfd.model.base_motion import BaseState
-from rotorsfd.model.sparse import BandedLinearPart, as_csr, assemble
+from rotorsfd.model.sparse import BandedLinearPart, as_csr, assemble, bandwidths
 
 MATRIX_NAMES: tuple[str, ...] = (
     "T11", "T22", "TS", "TJ", "P11", "P22", "PS", "PJ", "D11", "D22", "DS", "DJ",
@@ -384,6 +384,16 @@ class PolynomialTerms:
         the band read from the patterns unless given)."""
         return BandedLinearPart(M, self.D, self.K, band)
 
+    def linear_part(self, M: Any) -> BandedLinearPart | DenseLinearPart:
+        """The ``matrices`` callable of an HB problem: :meth:`banded` when the band is
+        narrow enough for the banded condensation to pay off (``3 (kl + ku + 1) < n``, the
+        beam rotor's 7 + 7 + 1 from 46 DOFs on), else :class:`DenseLinearPart` (a full
+        modal damping matrix)."""
+        kl, ku = bandwidths((M, *self.D, *self.K))
+        if 3 * (kl + ku + 1) < self.n:
+            return self.banded(M, (kl, ku))
+        return DenseLinearPart(M, self)
+
     @staticmethod
     def _value(terms: tuple, p: float) -> Any:
         out = terms[0]
@@ -448,6 +458,34 @@ class PolynomialTerms:
     def sparse_stiffness(self, p: float) -> sp.csr_matrix:
         """K(p) as CSR."""
         return self._as_sparse(self._value(self.K, p))
+
+
+class DenseLinearPart:
+    """``matrices(lam) -> (M, D(lam), K(lam))`` dense from :class:`PolynomialTerms` (the
+    same objects for the same lam, and for constant ones at every lam); ``derivatives``
+    is the matching ``dmatrices``."""
+
+    def __init__(self, M: Any, terms: PolynomialTerms) -> None:
+        self.M = M.toarray() if sp.issparse(M) else np.asarray(M, dtype=float)
+        self.terms = terms
+        self._last: list = [None, None, None]
+
+    def __call__(self, lam: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        last = self._last
+        if last[0] != lam:
+            last[0], last[1], last[2] = lam, None, None
+        if last[1] is None:
+            last[1] = (self.M, self.terms.damping(lam), self.terms.stiffness(lam))
+        return last[1]
+
+    def derivatives(self, lam: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        last = self._last
+        if last[0] != lam:
+            last[0], last[1], last[2] = lam, None, None
+        if last[2] is None:
+            t = self.terms
+            last[2] = (t.zero, t.ddamping(lam), t.dstiffness(lam))
+        return last[2]
 
 
 def base_basis(rotor) -> BaseBasis:

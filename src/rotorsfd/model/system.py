@@ -253,8 +253,8 @@ class RotorSystem:
             if par.kind == "unbalance":   # the linear part is free of lam
                 lin = lin.constant(float(speed))
             # band storage of (M, D, K): the condensation reads it directly; dense arrays
-            # for the other callers are built on request
-            matrices = lin.banded(r.M_csr)
+            # for the other callers are built on request (dense storage for a wide band)
+            matrices = lin.linear_part(r.M_csr)
             dmatrices = matrices.derivatives
 
             def base_load(lam: float) -> np.ndarray:
