@@ -184,13 +184,13 @@ def run_monodromy(quick: bool = False, repeat: int = 3) -> list[Row]:
 
 def chart_axes(n: int) -> tuple[tuple[str, np.ndarray], tuple[str, np.ndarray]]:
     """The Figure 6 config's axes, resampled to n x n."""
-    from rotorsfd.analyses.stability_chart import _axis_from_config
+    from rotorsfd.analyses.stability_chart import axis_from_config
     from rotorsfd.io.config import load_config
 
     cfg = load_config(FIG6)
     axes = []
     for name in ("x", "y"):
-        a = _axis_from_config(cfg, name)
+        a = axis_from_config(cfg, name)
         axes.append((a.path, np.linspace(a.values[0], a.values[-1], n)))
     return axes[0], axes[1]
 

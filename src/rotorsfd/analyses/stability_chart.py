@@ -25,27 +25,39 @@ undamped modes of ``(K + constant base terms, M)``: by default every mode below
 ``MODE_CUTOFF`` times the highest of (2 w_b, Omega) over the grid (at least
 ``MIN_MODES``), which holds the combination resonances ``omega_i + omega_j = k w_b``
 with ``k <= 2`` that the chart can show.
+
+The parts: :mod:`.stability_chart_rates` (the base rates as functions of the chart
+parameters), :mod:`.stability_chart_ltp` (the LTP system of a rotor and its modal
+basis), :mod:`.stability_chart_result` (the result, its files and plot); this module
+checks the axes and runs the grid.
 """
 
 from __future__ import annotations
 
 import sys
-import threading
 from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import scipy.linalg as sla
 from numpy.typing import NDArray
 
+from rotorsfd.analyses.stability_chart_ltp import MODE_CUTOFF, modal_basis, rotor_ltp_system
+from rotorsfd.analyses.stability_chart_rates import (
+    RATE_FIELDS,
+    RATE_UNITS,
+    ROTATIONS,
+    ChartParams,
+    RateSpec,
+    coefficient_target,
+    rate_specs_from_config,
+    rate_specs_from_motion,
+)
+from rotorsfd.analyses.stability_chart_result import ChartAxis, ChartResult
 from rotorsfd.errors import ConfigError
-from rotorsfd.io.schema import split_path
-from rotorsfd.model.base_motion import BaseMotion, BaseState, Harmonic
-from rotorsfd.model.base_terms import MATRIX_NAMES, base_basis, base_coefficients
-from rotorsfd.stability.chart import LTPSystem, StabilityChart, stability_chart
+from rotorsfd.model.base_motion import BaseState
+from rotorsfd.stability.chart import StabilityChart, stability_chart
 from rotorsfd.stability.floquet import STABILITY_TOL
 
 if TYPE_CHECKING:
@@ -53,316 +65,8 @@ if TYPE_CHECKING:
     from rotorsfd.model.rotor import Rotor
     from rotorsfd.model.system import RotorSystem
 
-ROTATIONS: tuple[str, ...] = ("rolling", "pitching", "yawing")
-RATE_FIELDS: tuple[str, ...] = ("value", "amplitude", "angle_amplitude", "frequency", "phase")
-_UNITS = {"value": "rad/s", "amplitude": "rad/s", "angle_amplitude": "rad",
-          "frequency": "rad/s", "phase": "rad"}
-MODE_CUTOFF: float = 3.0
-MIN_MODES: int = 4
-_PROBE_T = np.sqrt(2.0) * np.arange(1, 8)[:, None] / 3.7  # irrational sample times [s]
 
-
-# ---------------------------------------------------------------------------------------
-# base rates as functions of the chart parameters
-# ---------------------------------------------------------------------------------------
-@dataclass(frozen=True)
-class RateSpec:
-    """One base rotation rate: ``law`` off / constant / harmonic and its fields (SI).
-
-    ``amplitude`` is the rate amplitude; if None (or if an axis sets the angle
-    amplitude), ``angle_amplitude * frequency``.
-    """
-
-    law: str = "off"
-    value: float = 0.0
-    amplitude: float | None = None
-    angle_amplitude: float | None = None
-    frequency: float = 0.0
-    phase: float = 0.0
-
-    def law_at(self, values: dict[str, Any]) -> Harmonic:
-        """The rate as a :class:`Harmonic` law whose fields may be arrays (``values``:
-        field -> value overriding this spec)."""
-        get = {f: values.get(f, getattr(self, f)) for f in RATE_FIELDS}
-        if self.law == "off":
-            return Harmonic(0.0, 0.0)
-        if self.law == "constant":
-            return Harmonic(0.0, 0.0, 0.0, get["value"])
-        freq = get["frequency"]
-        if "angle_amplitude" not in values and (self.amplitude is not None
-                                                or "amplitude" in values):
-            amp = get["amplitude"]
-        else:
-            a0 = get["angle_amplitude"]
-            amp = (0.0 if a0 is None else a0) * freq
-        return Harmonic(amp, freq, _or0(get["phase"]), _or0(get["value"]))
-
-
-def _or0(v: Any) -> Any:
-    return 0.0 if v is None else v
-
-
-def rate_specs_from_config(config: Config) -> tuple[RateSpec, RateSpec, RateSpec]:
-    """The three rotation rates of ``[base]``; ConfigError for a callable law."""
-    out = []
-    for name in ROTATIONS:
-        c = getattr(config.base, name)
-        if c.law == "callable":
-            raise ConfigError(f"base.{name}.law", c.law, "a stability chart needs 'off', "
-                              "'constant' or 'harmonic' base rates (a known period)")
-        out.append(RateSpec(c.law, c.value or 0.0, c.amplitude, c.angle_amplitude,
-                            c.frequency or 0.0, c.phase or 0.0))
-    return tuple(out)  # type: ignore[return-value]
-
-
-def rate_specs_from_motion(motion: BaseMotion | None) -> tuple[RateSpec, RateSpec, RateSpec]:
-    """The three rotation rates of a :class:`BaseMotion` (harmonic laws keep their rate
-    amplitude); ValueError for other laws."""
-    if motion is None:
-        return RateSpec(), RateSpec(), RateSpec()
-    out = []
-    for name, law in zip(ROTATIONS, motion.rotation, strict=True):
-        if law.kind == "off":
-            out.append(RateSpec())
-        elif law.kind == "constant":
-            out.append(RateSpec("constant", float(law.c)))
-        elif law.kind == "harmonic":
-            out.append(RateSpec("harmonic", law.mean, law.amplitude, None, law.frequency,
-                                law.phase))
-        else:
-            raise ValueError(f"base {name} law {law.kind!r}: a stability chart needs off, "
-                             "constant or harmonic rates")
-    return tuple(out)  # type: ignore[return-value]
-
-
-def coefficient_target(path: str) -> tuple[int, str] | None:
-    """``(-1, 'speed')`` for ``speed``, ``(component, field)`` for a base-rate field,
-    None for any other (structural) path."""
-    path = path.strip()
-    if path == "speed":
-        return -1, "speed"
-    try:
-        parts = split_path(path)
-    except ValueError:
-        return None
-    if len(parts) == 3 and parts[0] == "base" and parts[1] in ROTATIONS \
-            and parts[2] in RATE_FIELDS:
-        return ROTATIONS.index(str(parts[1])), str(parts[2])
-    return None
-
-
-@dataclass(frozen=True)
-class _Params:
-    """Maps the chart parameters (p1, p2) to the speed and the three rate laws."""
-
-    specs: tuple[RateSpec, ...]
-    speed: float | None
-    p1: tuple[int, str] | None = None   # what p1 is (None: unused)
-    p2: tuple[int, str] | None = None
-
-    def resolve(self, p1: Any, p2: Any) -> tuple[Any, list[Harmonic]]:
-        over: list[dict[str, Any]] = [{}, {}, {}]
-        speed = self.speed
-        for target, value in ((self.p1, p1), (self.p2, p2)):
-            if target is None:
-                continue
-            comp, name = target
-            if comp < 0:
-                speed = value
-            else:
-                over[comp][name] = value
-        return speed, [s.law_at(o) for s, o in zip(self.specs, over, strict=True)]
-
-    def period(self, p1: Any, p2: Any) -> NDArray:
-        """``2 pi / w_b`` (``2 pi / Omega`` without a harmonic rate), broadcast."""
-        speed, laws = self.resolve(p1, p2)
-        freqs = [np.asarray(law.frequency, float) for law, s in zip(laws, self.specs,
-                                                                      strict=True)
-                 if s.law == "harmonic"]
-        shape = np.broadcast_shapes(np.shape(p1), np.shape(p2))
-        w = np.broadcast_to(freqs[0] if freqs else np.asarray(speed, float), shape)
-        return 2.0 * np.pi / w
-
-    def coefficients(self, t: NDArray, p1: Any, p2: Any) -> tuple[NDArray, NDArray]:
-        """``(c_C, c_K)`` (12, *t.shape) of the base matrices at times t."""
-        speed, laws = self.resolve(p1, p2)
-        shape = np.broadcast_shapes(np.shape(t), np.shape(p1), np.shape(p2))
-        w = np.array([np.broadcast_to(law.value(t), shape) for law in laws])
-        dw = np.array([np.broadcast_to(law.d1(t), shape) for law in laws])
-        state = BaseState(w=w, dw=dw, a0=np.zeros_like(w))
-        c0 = base_coefficients(state, 0.0)
-        c1 = base_coefficients(state, 1.0)
-        om = np.asarray(speed, float)
-        return c0.c_C + om * (c1.c_C - c0.c_C), c0.c_K + om * (c1.c_K - c0.c_K)
-
-
-class _CoefficientCache:
-    """Per-thread cache of the last ``_Params.coefficients`` call (every term of a grid
-    row asks for the same arrays)."""
-
-    def __init__(self, params: _Params) -> None:
-        self.params = params
-        self.local = threading.local()
-
-    def get(self, t: NDArray, p1: Any, p2: Any) -> tuple[NDArray, NDArray]:
-        key = (t.shape, t.tobytes(), np.asarray(p1).tobytes(), np.asarray(p2).tobytes())
-        if getattr(self.local, "key", None) != key:
-            self.local.value = self.params.coefficients(t, p1, p2)
-            self.local.key = key
-        return self.local.value
-
-    def term(self, which: int, i: int) -> Callable[[NDArray, Any, Any], NDArray]:
-        return lambda t, p1, p2: self.get(np.asarray(t, float), p1, p2)[which][i]
-
-
-# ---------------------------------------------------------------------------------------
-# the LTP system of a rotor
-# ---------------------------------------------------------------------------------------
-def rotor_ltp_system(rotor: Rotor, params: _Params, p1_probe: NDArray, p2_probe: NDArray
-                     ) -> LTPSystem:
-    """The LTPSystem of ``rotor`` under the base rates of ``params``.
-
-    Base terms whose coefficient is zero at every probe point (``p1_probe`` x
-    ``p2_probe`` x a few times) are dropped; those constant there are folded into the
-    constant matrices.
-    """
-    basis = base_basis(rotor)
-    cache = _CoefficientCache(params)
-    M = np.asarray(rotor.M, float)
-    D0 = np.asarray(rotor.C, float).copy()
-    K0 = np.asarray(rotor.K, float).copy()
-    d_terms: list[tuple[NDArray, Any]] = []
-    k_terms: list[tuple[NDArray, Any]] = []
-    speed_is_axis = (params.p1 is not None and params.p1[0] < 0) or \
-        (params.p2 is not None and params.p2[0] < 0)
-    if speed_is_axis:
-        which = 1 if params.p1 is not None and params.p1[0] < 0 else 2
-        d_terms.append((np.asarray(rotor.G, float),
-                        (lambda t, a, b: a + 0.0 * t) if which == 1 else
-                        (lambda t, a, b: b + 0.0 * t)))
-    else:
-        D0 += float(params.speed) * np.asarray(rotor.G, float)
-    probes = [params.coefficients(_PROBE_T, float(a), np.asarray(p2_probe)[None, :])
-              for a in np.atleast_1d(p1_probe)]
-    for which, (const, terms) in enumerate(((D0, d_terms), (K0, k_terms))):
-        values = np.concatenate([p[which].reshape(12, -1) for p in probes], axis=1)
-        for i in range(len(MATRIX_NAMES)):
-            v = values[i]
-            if np.all(v == 0.0):
-                continue
-            if np.all(v == v[0]):
-                const += v[0] * basis.matrices[i]
-            else:
-                terms.append((basis.matrices[i], cache.term(which, i)))
-    return LTPSystem(M, [(D0, None), *d_terms], [(K0, None), *k_terms], params.period)
-
-
-def modal_basis(system: LTPSystem, cutoff: float, n_modes: int | None = None) -> NDArray:
-    """Lowest undamped modes of (constant K, M): ``n_modes`` of them, or all below
-    ``cutoff`` [rad/s] (at least MIN_MODES, degenerate partners kept together)."""
-    K0 = sum((np.asarray(K) for K, c in system.K_terms if c is None), np.zeros_like(system.M))
-    K0 = 0.5 * (K0 + K0.T)
-    lam, V = sla.eigh(K0, 0.5 * (system.M + system.M.T))
-    if n_modes is None:
-        w = np.sqrt(np.abs(lam))
-        n_modes = max(min(MIN_MODES, w.size), int(np.sum(w < cutoff)))
-        while n_modes < w.size and abs(w[n_modes] - w[n_modes - 1]) <= 1e-6 * w[n_modes]:
-            n_modes += 1
-    return V[:, :n_modes]
-
-
-# ---------------------------------------------------------------------------------------
-# result
-# ---------------------------------------------------------------------------------------
-@dataclass(frozen=True)
-class ChartAxis:
-    """A chart axis: the parameter path, its values (SI) and units."""
-
-    path: str
-    values: NDArray[np.float64]
-    units: str
-
-    @property
-    def name(self) -> str:
-        """Dimension name (the path with '.' and brackets as '_')."""
-        from rotorsfd.studies.grid import slug
-
-        return slug(self.path)
-
-
-@dataclass
-class ChartResult:
-    """The stability chart: ``chart.max_abs[i, j]`` at ``(x.values[i], y.values[j])``."""
-
-    chart: StabilityChart
-    x: ChartAxis
-    y: ChartAxis
-    speed: float | None
-    natural_frequencies: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
-    title: str = ""
-    config_toml: str = ""       # the resolved configuration it was run from, if any
-
-    FILES = ("chart.nc", "chart.png")
-
-    @property
-    def stable(self) -> NDArray[np.bool_]:
-        return self.chart.stable
-
-    def to_dataset(self) -> Any:
-        """xarray Dataset: max_abs_multiplier, stable, critical multiplier, axes with units,
-        the base-frame natural frequencies at the chart speed (constant part)."""
-        ds = self.chart.to_dataset()
-        for ax in (self.x, self.y):
-            ds[ax.name].attrs.update(units=ax.units, long_name=ax.path)
-        ds["max_abs_multiplier"].attrs.update(units="1", long_name="max |Floquet multiplier|")
-        ds["stable"].attrs.update(long_name=f"1 if max |mu| <= 1 + {self.chart.tol:g}")
-        ds["natural_frequency"] = ("mode", self.natural_frequencies)
-        ds["natural_frequency"].attrs.update(
-            units="rad/s", long_name="damped natural frequencies of the constant part "
-            "(base rates at their mean) at the chart speed")
-        from rotorsfd import __version__
-
-        ds.attrs.update(title=self.title, x=self.x.path, y=self.y.path,
-                        speed_rad_s=float("nan") if self.speed is None else self.speed,
-                        rotorsfd_version=__version__)
-        if self.config_toml:
-            ds.attrs["config_toml"] = self.config_toml
-        return ds
-
-    def plot(self, ax: Any = None) -> Any:
-        """Unstable points shaded by max |mu|, stable white, the boundary max |mu| =
-        1 + tol as a line (:func:`plot_chart`); returns the Axes."""
-        return plot_chart(self, ax)
-
-    def write(self, directory: str | Path) -> dict[str, Path]:
-        """``chart.nc`` and ``chart.png`` written atomically into ``directory``."""
-        from matplotlib.figure import Figure
-
-        from rotorsfd.io import atomic
-
-        out = Path(directory)
-        paths = {name: out / name for name in self.FILES}
-        atomic.write_netcdf(self.to_dataset(), paths["chart.nc"])
-        fig = Figure(figsize=(7.4, 5.6), layout="constrained")
-        self.plot(fig.add_subplot())
-        atomic.save_figure(fig, paths["chart.png"], dpi=130)
-        return paths
-
-    def summary(self) -> str:
-        """Points, unstable share and the largest multiplier."""
-        ch = self.chart
-        n_bad = int((~ch.stable).sum())
-        i, j = np.unravel_index(int(np.argmax(ch.max_abs)), ch.max_abs.shape)
-        return (f"stability chart {self.x.path} x {self.y.path}: {ch.max_abs.size} points, "
-                f"{n_bad} unstable; max |mu| = {ch.max_abs[i, j]:.6g} at "
-                f"{self.x.path} = {self.x.values[i]:.6g} {self.x.units}, "
-                f"{self.y.path} = {self.y.values[j]:.6g} {self.y.units}")
-
-
-# ---------------------------------------------------------------------------------------
-# driver
-# ---------------------------------------------------------------------------------------
-def _axis_from_config(config: Config, name: str) -> ChartAxis:
+def axis_from_config(config: Config, name: str) -> ChartAxis:
     from rotorsfd.io.schema import axis_values, resolve_kind
     from rotorsfd.io.units import KINDS
 
@@ -459,7 +163,7 @@ def run_stability_chart(config_or_system: Config | RotorSystem, *,
                 raise ValueError(f"axis {ax[0]!r}: from a RotorSystem only 'speed' and "
                                  f"base.<rotation>.<{'|'.join(RATE_FIELDS)}> are possible")
             t = coefficient_target(ax[0])
-            units = "rad/s" if t is None or t[0] < 0 else _UNITS[t[1]]
+            units = "rad/s" if t is None or t[0] < 0 else RATE_UNITS[t[1]]
             axes.append(ChartAxis(ax[0].strip(), np.asarray(ax[1], float).ravel(), units))
         xa, ya = axes
         intervals = n_intervals or 400
@@ -471,9 +175,9 @@ def run_stability_chart(config_or_system: Config | RotorSystem, *,
         sc = config.analysis.stability_chart
         specs = rate_specs_from_config(config)
         xa = (_with_units(config, x, "x") if x is not None
-              else _axis_from_config(config, "x"))
+              else axis_from_config(config, "x"))
         ya = (_with_units(config, y, "y") if y is not None
-              else _axis_from_config(config, "y"))
+              else axis_from_config(config, "y"))
         speed = sc.speed if speed is None else speed
         intervals = n_intervals or sc.intervals
         title = config.title
@@ -513,7 +217,7 @@ def run_stability_chart(config_or_system: Config | RotorSystem, *,
     def add(index: tuple[Any, Any], structural: dict[str, float], p1_t, p2_t,
             p1: NDArray, p2: NDArray) -> None:
         def run() -> StabilityChart:
-            params = _Params(specs, speed, p1_t, p2_t)
+            params = ChartParams(specs, speed, p1_t, p2_t)
             ltp = rotor_ltp_system(rotor_at(structural), params, p1, p2)
             basis = modal_basis(ltp, cutoff, n_modes)
             return stability_chart(ltp, p1, p2, n_intervals=intervals, basis=basis, tol=tol)
@@ -521,7 +225,7 @@ def run_stability_chart(config_or_system: Config | RotorSystem, *,
         tasks.append((index, run))
 
     if tx is not None and ty is not None:
-        params = _Params(specs, speed, tx, ty)
+        params = ChartParams(specs, speed, tx, ty)
         ltp = rotor_ltp_system(rotor0, params, xa.values, ya.values)
         basis = modal_basis(ltp, cutoff, n_modes)
         for i, v in enumerate(xa.values):
@@ -587,32 +291,9 @@ def _with_units(config: Config, axis: tuple[str, Sequence[float]], name: str) ->
     return ChartAxis(path, np.asarray(axis[1], float).ravel(), KINDS[kind].unit)
 
 
-def plot_chart(result: ChartResult, ax: Any = None) -> Any:
-    """Figure 6 style (:func:`rotorsfd.plots.chart.chart_axes`): unstable points shaded by
-    max |mu| (white: stable), the boundary max |mu| = 1 + tol in black, islands ringed, the
-    axes in words with their units, the title (wrapped, never cut) saying what the grid
-    shows; returns the Axes."""
-    from rotorsfd.plots.chart import chart_axes
-
-    if ax is None:
-        from matplotlib.figure import Figure
-
-        ax = Figure(figsize=(7.4, 5.6), layout="constrained").add_subplot()
-    return chart_axes(ax, result.x.values, result.y.values, result.chart.max_abs,
-                      x_label=f"{result.x.path} [{result.x.units}]",
-                      y_label=f"{result.y.path} [{result.y.units}]", tol=result.chart.tol,
-                      speed=result.speed, title=result.title or "Stability chart")
-
-
 __all__ = [
     "ChartAxis",
     "ChartResult",
-    "RateSpec",
-    "coefficient_target",
-    "modal_basis",
-    "plot_chart",
-    "rate_specs_from_config",
-    "rate_specs_from_motion",
-    "rotor_ltp_system",
+    "axis_from_config",
     "run_stability_chart",
 ]

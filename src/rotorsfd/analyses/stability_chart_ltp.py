@@ -1,0 +1,89 @@
+"""The linear time-periodic (LTP) system of a rotor under base rotation, and the modal
+basis of its monodromy, for the stability chart.
+
+The linear rotor (film off, supports and centring spring on) in the base frame::
+
+    M q'' + (C + Omega G + sum_i c_i(t) B_i) q' + (K + sum_i k_i(t) B_i) q = f(t)
+
+with the 12 constant base matrices ``B_i`` of :func:`rotorsfd.model.base_terms.base_basis`
+and their coefficients from :class:`rotorsfd.analyses.stability_chart_rates.ChartParams`.
+The forcing f does not change the stability and is left out. The Galerkin basis is the
+lowest undamped modes of ``(K + constant base terms, M)``: every mode below a cutoff (the
+chart takes ``MODE_CUTOFF`` times the highest of 2 w_b and Omega over the grid), at
+least ``MIN_MODES``, which holds the combination resonances ``omega_i + omega_j = k w_b``
+with ``k <= 2`` that the chart can show.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import scipy.linalg as sla
+from numpy.typing import NDArray
+
+from rotorsfd.analyses.stability_chart_rates import ChartParams, CoefficientCache
+from rotorsfd.model.base_terms import MATRIX_NAMES, base_basis
+from rotorsfd.stability.chart import LTPSystem
+
+if TYPE_CHECKING:
+    from rotorsfd.model.rotor import Rotor
+
+__all__ = ["MIN_MODES", "MODE_CUTOFF", "modal_basis", "rotor_ltp_system"]
+
+MODE_CUTOFF: float = 3.0
+MIN_MODES: int = 4
+_PROBE_T = np.sqrt(2.0) * np.arange(1, 8)[:, None] / 3.7  # irrational sample times [s]
+
+
+def rotor_ltp_system(rotor: Rotor, params: ChartParams, p1_probe: NDArray, p2_probe: NDArray
+                     ) -> LTPSystem:
+    """The LTPSystem of ``rotor`` under the base rates of ``params``.
+
+    Base terms whose coefficient is zero at every probe point (``p1_probe`` x
+    ``p2_probe`` x a few times) are dropped; those constant there are folded into the
+    constant matrices.
+    """
+    basis = base_basis(rotor)
+    cache = CoefficientCache(params)
+    M = np.asarray(rotor.M, float)
+    D0 = np.asarray(rotor.C, float).copy()
+    K0 = np.asarray(rotor.K, float).copy()
+    d_terms: list[tuple[NDArray, Any]] = []
+    k_terms: list[tuple[NDArray, Any]] = []
+    speed_is_axis = (params.p1 is not None and params.p1[0] < 0) or \
+        (params.p2 is not None and params.p2[0] < 0)
+    if speed_is_axis:
+        which = 1 if params.p1 is not None and params.p1[0] < 0 else 2
+        d_terms.append((np.asarray(rotor.G, float),
+                        (lambda t, a, b: a + 0.0 * t) if which == 1 else
+                        (lambda t, a, b: b + 0.0 * t)))
+    else:
+        D0 += float(params.speed) * np.asarray(rotor.G, float)
+    probes = [params.coefficients(_PROBE_T, float(a), np.asarray(p2_probe)[None, :])
+              for a in np.atleast_1d(p1_probe)]
+    for which, (const, terms) in enumerate(((D0, d_terms), (K0, k_terms))):
+        values = np.concatenate([p[which].reshape(12, -1) for p in probes], axis=1)
+        for i in range(len(MATRIX_NAMES)):
+            v = values[i]
+            if np.all(v == 0.0):
+                continue
+            if np.all(v == v[0]):
+                const += v[0] * basis.matrices[i]
+            else:
+                terms.append((basis.matrices[i], cache.term(which, i)))
+    return LTPSystem(M, [(D0, None), *d_terms], [(K0, None), *k_terms], params.period)
+
+
+def modal_basis(system: LTPSystem, cutoff: float, n_modes: int | None = None) -> NDArray:
+    """Lowest undamped modes of (constant K, M): ``n_modes`` of them, or all below
+    ``cutoff`` [rad/s] (at least MIN_MODES, degenerate partners kept together)."""
+    K0 = sum((np.asarray(K) for K, c in system.K_terms if c is None), np.zeros_like(system.M))
+    K0 = 0.5 * (K0 + K0.T)
+    lam, V = sla.eigh(K0, 0.5 * (system.M + system.M.T))
+    if n_modes is None:
+        w = np.sqrt(np.abs(lam))
+        n_modes = max(min(MIN_MODES, w.size), int(np.sum(w < cutoff)))
+        while n_modes < w.size and abs(w[n_modes] - w[n_modes - 1]) <= 1e-6 * w[n_modes]:
+            n_modes += 1
+    return V[:, :n_modes]

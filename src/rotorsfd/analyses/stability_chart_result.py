@@ -1,0 +1,117 @@
+"""The result of a stability chart: its axes, the max |Floquet multiplier| over the grid,
+the files (``chart.nc``, ``chart.png``) and the Figure 6 style plot."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rotorsfd.stability.chart import StabilityChart
+
+__all__ = ["ChartAxis", "ChartResult", "plot_chart"]
+
+
+@dataclass(frozen=True)
+class ChartAxis:
+    """A chart axis: the parameter path, its values (SI) and units."""
+
+    path: str
+    values: NDArray[np.float64]
+    units: str
+
+    @property
+    def name(self) -> str:
+        """Dimension name (the path with '.' and brackets as '_')."""
+        from rotorsfd.studies.grid import slug
+
+        return slug(self.path)
+
+
+@dataclass
+class ChartResult:
+    """The stability chart: ``chart.max_abs[i, j]`` at ``(x.values[i], y.values[j])``."""
+
+    chart: StabilityChart
+    x: ChartAxis
+    y: ChartAxis
+    speed: float | None
+    natural_frequencies: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    title: str = ""
+    config_toml: str = ""       # the resolved configuration it was run from, if any
+
+    FILES = ("chart.nc", "chart.png")
+
+    @property
+    def stable(self) -> NDArray[np.bool_]:
+        return self.chart.stable
+
+    def to_dataset(self) -> Any:
+        """xarray Dataset: max_abs_multiplier, stable, critical multiplier, axes with units,
+        the base-frame natural frequencies at the chart speed (constant part)."""
+        ds = self.chart.to_dataset()
+        for ax in (self.x, self.y):
+            ds[ax.name].attrs.update(units=ax.units, long_name=ax.path)
+        ds["max_abs_multiplier"].attrs.update(units="1", long_name="max |Floquet multiplier|")
+        ds["stable"].attrs.update(long_name=f"1 if max |mu| <= 1 + {self.chart.tol:g}")
+        ds["natural_frequency"] = ("mode", self.natural_frequencies)
+        ds["natural_frequency"].attrs.update(
+            units="rad/s", long_name="damped natural frequencies of the constant part "
+            "(base rates at their mean) at the chart speed")
+        from rotorsfd import __version__
+
+        ds.attrs.update(title=self.title, x=self.x.path, y=self.y.path,
+                        speed_rad_s=float("nan") if self.speed is None else self.speed,
+                        rotorsfd_version=__version__)
+        if self.config_toml:
+            ds.attrs["config_toml"] = self.config_toml
+        return ds
+
+    def plot(self, ax: Any = None) -> Any:
+        """Unstable points shaded by max |mu|, stable white, the boundary max |mu| =
+        1 + tol as a line (:func:`plot_chart`); returns the Axes."""
+        return plot_chart(self, ax)
+
+    def write(self, directory: str | Path) -> dict[str, Path]:
+        """``chart.nc`` and ``chart.png`` written atomically into ``directory``."""
+        from matplotlib.figure import Figure
+
+        from rotorsfd.io import atomic
+
+        out = Path(directory)
+        paths = {name: out / name for name in self.FILES}
+        atomic.write_netcdf(self.to_dataset(), paths["chart.nc"])
+        fig = Figure(figsize=(7.4, 5.6), layout="constrained")
+        self.plot(fig.add_subplot())
+        atomic.save_figure(fig, paths["chart.png"], dpi=130)
+        return paths
+
+    def summary(self) -> str:
+        """Points, unstable share and the largest multiplier."""
+        ch = self.chart
+        n_bad = int((~ch.stable).sum())
+        i, j = np.unravel_index(int(np.argmax(ch.max_abs)), ch.max_abs.shape)
+        return (f"stability chart {self.x.path} x {self.y.path}: {ch.max_abs.size} points, "
+                f"{n_bad} unstable; max |mu| = {ch.max_abs[i, j]:.6g} at "
+                f"{self.x.path} = {self.x.values[i]:.6g} {self.x.units}, "
+                f"{self.y.path} = {self.y.values[j]:.6g} {self.y.units}")
+
+
+def plot_chart(result: ChartResult, ax: Any = None) -> Any:
+    """Figure 6 style (:func:`rotorsfd.plots.chart.chart_axes`): unstable points shaded by
+    max |mu| (white: stable), the boundary max |mu| = 1 + tol in black, islands ringed, the
+    axes in words with their units, the title (wrapped, never cut) saying what the grid
+    shows; returns the Axes."""
+    from rotorsfd.plots.chart import chart_axes
+
+    if ax is None:
+        from matplotlib.figure import Figure
+
+        ax = Figure(figsize=(7.4, 5.6), layout="constrained").add_subplot()
+    return chart_axes(ax, result.x.values, result.y.values, result.chart.max_abs,
+                      x_label=f"{result.x.path} [{result.x.units}]",
+                      y_label=f"{result.y.path} [{result.y.units}]", tol=result.chart.tol,
+                      speed=result.speed, title=result.title or "Stability chart")
