@@ -54,6 +54,8 @@ REGISTRY: dict[str, tuple[str, str]] = {
                          "bench_scale_timedomain:run"),
     "elements": ("nonlinear elements: one SFD through the element interface vs the previous "
                  "path; cost against 1, 2, 4, 8 elements", "bench_elements:run"),
+    "film": ("squeeze film models: force + Jacobian per sample, short vs finite-length film; "
+             "the paper rotor's branch with each", "bench_film:run"),
 }
 
 
