@@ -21,6 +21,11 @@ of its eig solves (counted on the same grid and root finder) times one dense eig
 at that size (<= ``DENSE_MAX`` elements), or extrapolated as (2n)^3 beyond. ``--quick``:
 80 and 160 elements, one dense eig at 80, no baseline estimate (no time asserted). The full
 run writes ``benchmarks/scale.png`` (time against DOF, log-log, with the exponents).
+
+Then the nonlinear rows (:func:`hb_rows`, issue 17 item 2; ``--hb`` runs only them): an
+HB point at every size against the scipy.sparse + splu baseline, with the exponents, and
+at 1280 elements the 56-point branch, the branch with the stability of every point and
+the peak memory of each workload (:mod:`benchmarks.scale_hb`).
 """
 
 from __future__ import annotations
@@ -50,6 +55,7 @@ HUB_MASS = 1.5                  # [kg]
 SIZES = (80, 160, 320, 640, 1280, 2560)
 QUICK_SIZES = (80, 160)
 DENSE_MAX = 160                 # largest mesh of the dense baseline (80 s at 160 elements)
+TARGET_SIZE = 1280              # the size of the issue's HB targets (5124 DOF)
 
 
 def node_at(unit: int, n_elements: int) -> int:
@@ -298,11 +304,82 @@ def run(quick: bool = False, repeat: int = 3) -> list[Row]:
         x, y = np.array(sorted(dense_eval.items()), float).T
         rows.append(Row("scale", f"fit over elements {list(map(int, x))}",
                         "dense eig per speed: exponent p", exponent(x, y), unit=""))
+    return rows + hb_rows(quick, repeat)
+
+
+def hb_rows(quick: bool = False, repeat: int = 3) -> list[Row]:
+    """HB point / 56-point branch / branch with stability / peak memory, banded against
+    the scipy.sparse + splu baseline (:mod:`benchmarks.scale_hb`): the point at every size
+    (exponent fitted), the branch, stability and memory at TARGET_SIZE. ``--quick``: 80
+    and 160 elements, the branch, stability (checked against FloquetEvaluator) and the
+    memory of branch + stability at 160, no baseline branch."""
+    from benchmarks import scale_hb as S
+
+    sizes = QUICK_SIZES if quick else SIZES
+    target = QUICK_SIZES[-1] if quick else TARGET_SIZE
+    rows: list[Row] = []
+    fits: dict[str, list[tuple[int, float]]] = {}
+    for n in sizes:
+        system, problem, w1, opts = S.build(n)
+        case = f"{n} elements ({system.n_dof} DOF), HB H={S.H}"
+        S.point(problem, w1)                                   # warm-up (kernels, caches)
+        t_ours, c_ours, a = S.timed(lambda p=problem, w=w1: S.point(p, w), repeat)
+        with S.splu_baseline():
+            S.point(problem, w1)
+            t_splu, c_splu, b = S.timed(lambda p=problem, w=w1: S.point(p, w), repeat)
+        diff = float(np.abs(a.X - b.X).max() / np.abs(b.X).max())
+        for key, v in (("HB point, banded", t_ours), ("HB point, banded (CPU)", c_ours),
+                       ("HB point, scipy.sparse + splu", t_splu),
+                       ("HB point, scipy.sparse + splu (CPU)", c_splu)):
+            fits.setdefault(key, []).append((n, v))
+        rows += [Row("scale", case, "HB point (banded)", t_ours, repeat=repeat, ratio=1.0,
+                     ref="banded", note=f"CPU {c_ours * 1e3:.1f} ms; Omega = 0.8 w1, tol "
+                                        f"1e-10, {a.iterations} iter., half band "
+                                        f"{problem.matrices.band}"),
+                 Row("scale", case, "HB point: scipy.sparse + splu per harmonic", t_splu,
+                     repeat=repeat, ratio=t_splu / t_ours, ref="banded",
+                     note=f"CPU {c_splu * 1e3:.1f} ms; max |dX|/|X| = {diff:.1e}")]
+        if n != target:
+            continue
+        t_br, c_br, br = S.timed(lambda p=problem, w=w1, o=opts: S.branch(p, w, o), 1)
+        t_st, c_st, mu = S.timed(lambda p=problem, b=br: S.stability(p, b), 1)
+        rows.append(Row("scale", case, f"{br.n_points}-point branch (banded)", t_br, ratio=1.0,
+                        ref="banded", note=f"CPU {c_br:.2f} s; Omega/w1 0.5-"
+                                           f"{br.lam[-1] / w1:.3f}, adaptive H, "
+                                           f"{c_br / br.n_points * 1e3:.0f} ms CPU/point"))
+        if not quick:
+            with S.splu_baseline():
+                t_brs, c_brs, brs = S.timed(
+                    lambda p=problem, w=w1, o=opts: S.branch(p, w, o), 1)
+            rows.append(Row("scale", case, f"{brs.n_points}-point branch: scipy.sparse + "
+                            "splu", t_brs, ratio=t_brs / t_br, ref="banded",
+                            note=f"CPU {c_brs:.2f} s"))
+        rows += [Row("scale", case, "branch + stability of every point (banded, sparse CB)",
+                     t_br + t_st, ratio=1.0, ref="banded",
+                     note=f"CPU {c_br + c_st:.2f} s (Floquet {c_st:.2f} s), M = "
+                          f"{S.N_INTERVALS}, max |mu| {mu.max():.6f}")]
+        if n == sizes[0] or quick:
+            err = S.stability_check(problem, br, mu, br.n_points // 2)
+            rows[-1].note += f"; vs FloquetEvaluator (dense basis) {err:.1e}"
+        loads = (("point", "HB point"), ("branch", "branch"),
+                 ("stability", "branch + stability"),
+                 ("point-splu", "HB point, scipy.sparse + splu"))
+        for workload, label in loads[2:3] if quick else loads:
+            rows.append(Row("scale", case, f"peak memory: {label}", S.peak_memory(n, workload),
+                            unit="GiB", note="fresh process: build + workload"))
+    for name, data in fits.items():
+        x, y = np.array(data, float).T
+        rows.append(Row("scale", f"fit over elements {list(map(int, x))}",
+                        f"{name}: exponent p (time ~ elements^p)", exponent(x, y), unit="",
+                        note=f"{y[-1] / y[0]:.3g}x from {int(x[0])} to {int(x[-1])}",
+                        extra={"elements": x.tolist(), "seconds": y.tolist()}))
     return rows
 
 
 if __name__ == "__main__":
     from benchmarks.__main__ import fmt_value
 
-    for r in run(quick="--quick" in sys.argv, repeat=1 if "--quick" in sys.argv else 3):
+    quick = "--quick" in sys.argv
+    bench = hb_rows if "--hb" in sys.argv else run
+    for r in bench(quick=quick, repeat=1 if quick else 3):
         print(f"{r.case} | {r.method}: {fmt_value(r)}  {r.note}")
