@@ -8,9 +8,11 @@ extended residual is <= tol. The elements' validity measure (an SFD's eccentrici
 must stay below ``limit_max`` at every grid point of the torus: a step that crosses it is
 halved, and the branch ends there with the corrector's message, as a periodic branch does.
 The grid N1 x N2 is chosen at the first point (:func:`~rotorsfd.quasiperiodic.
-torus_fourier.choose_grid`) and kept; the sampling error of every point (the change of
-the force coefficients when N1 or N2 doubles) is stored and the message warns when it
-exceeds ``alias_tol``.
+torus_fourier.choose_grid`); the sampling error of every point (the relative change of the
+force coefficients when N1 or N2 doubles) is measured, and where it exceeds ``alias_tol``
+in a direction that direction's N doubles and the point is solved again (the grid only
+grows along a branch). The error is stored per point; the message warns if it stayed above
+``alias_tol`` at ``grid_max``.
 """
 
 from __future__ import annotations
@@ -80,13 +82,17 @@ class TorusSystem:
     def aliasing(self, z: FloatArray) -> float:
         """Sampling error: the larger relative change of the retained force coefficients
         when N1 or N2 doubles (0 without elements)."""
+        return max(self.aliasing_axes(z))
+
+    def aliasing_axes(self, z: FloatArray) -> tuple[float, float]:
+        """The sampling error of each torus direction (N1, N2 doubled in turn)."""
         if not self.problem.m:
-            return 0.0
+            return 0.0, 0.0
         xs, lam = self.from_z(z)
         w = self.lattice.frequencies(*self.problem.frequencies(lam))
         force = self.problem.elements.force
-        return max(grid_aliasing(force, self.lattice, xs, w, *self.grid, axis=a)
-                   for a in (0, 1))
+        e = [grid_aliasing(force, self.lattice, xs, w, *self.grid, axis=a) for a in (0, 1)]
+        return e[0], e[1]
 
 
 def initial_guess(problem: TorusProblem, lattice: TorusLattice, lam: float,
@@ -210,7 +216,7 @@ def continue_torus(problem: TorusProblem, lam_start: float, lam_end: float,
                    ds: float = 0.01, ds_min: float = 1e-6, ds_max: float = 0.05,
                    max_iter: int = 8, max_points: int = 500, max_angle_deg: float = 20.0,
                    lam_scale: float | None = None, limit_max: float = 1.0,
-                   alias_tol: float = 1e-6,
+                   alias_tol: float = 1e-6, grid_max: int = 512,
                    callback: Callable[[int, float, ComplexArray], bool | None] | None = None
                    ) -> TorusBranch:
     """Branch of tori from lam_start towards lam_end by pseudo arc-length
@@ -218,7 +224,12 @@ def continue_torus(problem: TorusProblem, lam_start: float, lam_end: float,
     module docstring). ``callback(index, lam, X) -> stop``. The branch ends with
     ``success = False`` and the continuation's message where the corrector fails (the
     validity limit of an element, no convergence) or the branch turns back; raises
-    ConvergenceError only if the first point cannot be found."""
+    ConvergenceError only if the first point cannot be found.
+
+    The grid: ``grid`` or the rule's at the first point (with ``alias_tol / 100``); where
+    the sampling error of a point exceeds ``alias_tol`` in a direction, N of that
+    direction doubles (up to ``grid_max``) and the point is solved again before the
+    branch goes on."""
     scale = lam_scale or (abs(lam_end - lam_start) or max(abs(lam_start), 1.0))
     system, z0 = torus_system(problem, lattice, lam_start, X0, grid, scale, limit_max,
                               1e-2 * alias_tol)
@@ -230,21 +241,52 @@ def continue_torus(problem: TorusProblem, lam_start: float, lam_end: float,
                                f"({lattice}, grid {system.grid}): {first.message}")
     out: dict[str, list] = {k: [] for k in ("lam", "X", "om", "wb", "t", "it", "ds", "al",
                                             "lim")}
+    state: dict = {"refine": None, "carry": 0.0}
 
     def on_point(z: FloatArray, t: FloatArray, J: FloatArray, it: int, step: float) -> bool:
+        err = system.aliasing_axes(z)
+        finer = tuple(N * 2 if e > alias_tol and N < grid_max else N
+                      for e, N in zip(err, system.grid, strict=True))
+        if finer != system.grid:            # resample this point on a finer grid
+            state["refine"] = (z, t, finer, step)
+            return True
         xs, lam = system.from_z(z)
-        X = system.coefficients(z)
         om, wb = problem.frequencies(lam)
         lim = problem.limit(system.hb.aft.sample(xs)) if problem.m else 0.0
-        for key, val in zip(out, (lam, X, om, wb, t, it, step, system.aliasing(z), lim),
-                            strict=True):
+        step = step or state["carry"]
+        state["carry"] = 0.0
+        vals = (lam, system.coefficients(z), om, wb, t, it, step, max(err), lim)
+        for key, val in zip(out, vals, strict=True):
             out[key].append(val)
-        return bool(callback(len(out["lam"]) - 1, lam, X)) if callback else False
+        return bool(callback(len(out["lam"]) - 1, lam, vals[1])) if callback else False
 
     opts = ArcLengthOptions(ds=ds, ds_min=ds_min, ds_max=ds_max, tol=tol, max_iter=max_iter,
                             max_points=max_points, max_angle=float(np.radians(max_angle_deg)))
-    status = arclength(system, first.z, first.J, lam_end / scale, on_point, opts,
-                       lam_physical=lambda v: v * scale)
+    z, J, t_prev = first.z, first.J, None
+    while True:
+        opts.max_points = max(1, max_points - len(out["lam"]))
+        status = arclength(system, z, J, lam_end / scale, on_point, opts,
+                           lam_physical=lambda v: v * scale, t_prev=t_prev,
+                           lam_start=lam_start / scale)
+        if state["refine"] is None:
+            break
+        z_old, t_prev, finer, step = state["refine"]
+        state["refine"], state["carry"] = None, step
+        lam = system.from_z(z_old)[1]
+        old = system
+        system = TorusSystem(problem, lattice, finer, scale, limit_max)
+        system.hb.condenser = old.hb.condenser      # the same shift, the same operators
+        system.hb.condenser.problem = problem
+        e = np.zeros(system.n + 1)
+        e[-1] = 1.0
+        again = newton_extended(system, z_old, e, float(z_old[-1]), tol, 20)
+        if not again.converged:
+            status.success = False
+            status.message = (f"re-solve on the grid {finer[0]} x {finer[1]} (sampling "
+                              f"error) failed at lam={lam:.8g}: {again.message}")
+            break
+        z, J = again.z, again.J
+        opts.ds = status.ds or opts.ds
     al = np.array(out["al"])
     msg = status.message
     if al.size and al.max() > alias_tol:
@@ -256,4 +298,5 @@ def continue_torus(problem: TorusProblem, lam_start: float, lam_end: float,
         s=np.cumsum(out["ds"]), tangents=np.array(out["t"]),
         iterations=np.array(out["it"], dtype=np.int64), aliasing=al,
         limit=np.array(out["lim"]), success=status.success, message=msg,
-        info={"lam_scale": scale, "tol": tol, "limit_max": limit_max})
+        info={"lam_scale": scale, "tol": tol, "limit_max": limit_max,
+              "alias_tol": alias_tol})

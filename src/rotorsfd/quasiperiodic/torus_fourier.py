@@ -31,7 +31,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 import numpy as np
 from numpy.typing import NDArray
@@ -97,6 +97,9 @@ class TorusLattice:
     def block(self, k1: int) -> NDArray[np.int64]:
         """Harmonic positions of column k1 in the order k2 = -h..h; for k1 = 0 the
         negative k2 are the conjugates (-1 - position, see :func:`block_vectors`)."""
+        return _block(self, k1)
+
+    def _block(self, k1: int) -> NDArray[np.int64]:
         h = self.h(k1)
         if k1 == 0:
             return np.array([-1 - self.index(0, -j) if j < 0 else self.index(0, j)
@@ -106,6 +109,11 @@ class TorusLattice:
     def min_grid(self) -> tuple[int, int]:
         """Smallest alias-free grid for the retained harmonics (P E = I): 2H1+1, 2h+1."""
         return 2 * self.H1 + 1, 2 * self.h(0) + 1
+
+
+@lru_cache(maxsize=256)
+def _block(lattice: TorusLattice, k1: int) -> NDArray[np.int64]:
+    return lattice._block(k1)
 
 
 def block_vectors(lattice: TorusLattice, X: ComplexArray) -> list[ComplexArray]:
@@ -143,6 +151,7 @@ def from_blocks(lattice: TorusLattice, cols: list[ComplexArray]) -> ComplexArray
     return X
 
 
+@lru_cache(maxsize=256)
 def block_real_maps(lattice: TorusLattice, k1: int) -> tuple[ComplexArray, ComplexArray]:
     """``(T, U)``: the column k1 (complex, over k2 = -h..h) of a real-layout vector x is
     ``T x``, and ``x = Re(U col)`` on that column's real indices
@@ -171,6 +180,7 @@ def block_real_maps(lattice: TorusLattice, k1: int) -> tuple[ComplexArray, Compl
     return T, U
 
 
+@lru_cache(maxsize=256)
 def block_real_indices(lattice: TorusLattice, k1: int) -> NDArray[np.int64]:
     """Real-layout indices (per DOF) of column k1, ascending."""
     pos = lattice.block(k1)
