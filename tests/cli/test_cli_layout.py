@@ -60,6 +60,7 @@ def test_help_lists_the_commands_in_workflow_order(capsys):
     assert cli.main(["--help"]) == 0
     text = capsys.readouterr().out
     order = ["config", "modal", "fit-supports", "response", "static", "sweep", "simulate",
-             "bifurcation-diagram", "stability-chart", "fold-curve", "paper"]
+             "bifurcation-diagram", "stability-chart", "fold-curve", "paper", "import-ross",
+             "export-matrices"]
     listed = re.findall(r"^ {4}(\S+)", text, flags=re.M)
     assert listed == order

@@ -211,3 +211,21 @@ def test_config_forms_one_line(rotor, pattern):
                                 "poisson_ratio": 0.3}}, "rotor": rotor}
     with pytest.raises(ConfigError, match=pattern):
         config_from_dict(data)
+
+
+def test_cli_export_matrices(tmp_path, capsys):
+    from rotorsfd import cli
+
+    target = tmp_path / "paper.npz"
+    assert cli.main(["export-matrices", str(PAPER), "-o", str(target)]) == 0
+    assert "paper.toml" in capsys.readouterr().out
+    assert cli.main(["config", "check", str(tmp_path / "paper.toml")]) == 0
+    assert "21 nodes, given by matrices (paper.npz)" in capsys.readouterr().out
+    assert cli.main(["export-matrices", str(PAPER), "-o", str(tmp_path / "m"),
+                     "--format", "mtx"]) == 0
+    assert sorted(p.name for p in (tmp_path / "m").iterdir()) == [
+        "C.mtx", "G.mtx", "K.mtx", "M.mtx", "dof_map.csv"]
+    assert cli.main(["modal", str(tmp_path / "m.toml"), "-o", str(tmp_path / "out"),
+                     "-q"]) == 0
+    rows = (tmp_path / "out" / "critical_speeds.csv").read_text().splitlines()
+    assert [round(float(r.split(",")[2]), 1) for r in rows[1:3]] == [811.3, 2784.6]

@@ -160,3 +160,22 @@ def test_import_ross_file(rs, rx, tmp_path):
     np.testing.assert_allclose(build_rotor(config).K, ref.K, rtol=1e-13)
     with pytest.raises(ConfigError, match=r"ROSS rotor file: got '.*missing\.toml'; no such"):
         rx.import_ross(tmp_path / "missing.toml")
+
+
+def test_cli_import_ross(rs, tmp_path, capsys):
+    from rotorsfd import cli
+
+    path = tmp_path / "ross_rotor.toml"
+    rs.rotor_example().save(path)
+    assert cli.main(["import-ross", str(path), "-o", str(tmp_path / "my.toml")]) == 0
+    assert "wrote" in capsys.readouterr().out
+    assert load_config(tmp_path / "my.toml").rotor.n_nodes == 7
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        rs.compressor_example().save(tmp_path / "compressor.toml")
+    assert cli.main(["import-ross", str(tmp_path / "compressor.toml"), "-o",
+                     str(tmp_path / "c.toml"), "--merge-layers"]) == 2
+    assert "speed-dependent" in capsys.readouterr().err
+    assert cli.main(["import-ross", str(tmp_path / "compressor.toml"), "-o",
+                     str(tmp_path / "c.toml"), "--merge-layers", "--speed", "9000 rpm"]) == 0
+    assert load_config(tmp_path / "c.toml").rotor.n_nodes == 56

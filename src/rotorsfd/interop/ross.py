@@ -66,10 +66,10 @@ def require_ross() -> Any:
 
 def load_ross(path: str | Path) -> Any:
     """``ross.Rotor.load(path)``; ConfigError naming the file if ROSS cannot read it."""
-    ross = require_ross()
     p = Path(path)
     if not p.is_file():
         raise ConfigError("ROSS rotor file", str(path), "no such file")
+    ross = require_ross()
     try:
         return ross.Rotor.load(p)
     except Exception as exc:  # ROSS raises whatever its TOML reader meets

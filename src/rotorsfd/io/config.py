@@ -404,9 +404,12 @@ def dump_config(config: Config) -> dict[str, Any]:
 
 def derived_values(config: Config) -> dict[str, str]:
     """Quantities derived from the configuration, shown as comments by ``config show``."""
+    m = config.rotor.matrices
     out = {"rotor": f"{config.rotor.n_nodes} nodes, "
                     f"{sum(s.n_elements for s in config.rotor.shaft)} shaft elements, "
-                    f"length {sum(s.length for s in config.rotor.shaft):.6g} m"}
+                    f"length {sum(s.length for s in config.rotor.shaft):.6g} m"
+           if m is None else f"{config.rotor.n_nodes} nodes, given by matrices "
+                             f"({m.file or m.mass})"}
     for name, table in config.elements.items():
         text = table.derived_text() if hasattr(table, "derived_text") else ""
         if text:
