@@ -87,6 +87,11 @@ MAX_POINTS = 60
 #: Step limiter of the check's continuation (the nonlinear element's validity measure, e.g.
 #: the SFD eccentricity ratio): short of contact, where the force is unbounded.
 LIMIT_MAX = 0.99
+#: Arc-length tolerance (relative to the bracket) of a turning point located on the
+#: check's piece: lam(s) is stationary there, so the located lam is exact to about
+#: ``curvature x (FOLD_RTOL x bracket)^2``, far below the check's rtol (1e-10, the
+#: default of ``locate_branch_fold``, cost two to three more HB re-solves per fold).
+FOLD_RTOL = 1e-6
 
 
 def _matches(kind: str, other: str) -> bool:
@@ -169,7 +174,8 @@ class _Piece:
         """The turning points of the piece, located on the HB equations alone."""
         if self._folds is None:
             local = self.local()
-            self._folds = [locate_branch_fold(local, int(i)) for i in local.folds()]
+            self._folds = [locate_branch_fold(local, int(i), rtol=FOLD_RTOL)
+                           for i in local.folds()]
         return self._folds
 
     def stability(self, options: StabilityOptions) -> BranchStability:
@@ -244,9 +250,9 @@ def _check_one(b: Bifurcation, piece: _Piece, opts: StabilityOptions, c: CheckOp
             f"at lam = {lam_c:.9g} ({shift:.1e} relative)")
     if not ok:
         text += f", more than {c.rtol:g}: not converged, raise H and the intervals"
-    if turning:   # the exchange of stability there: one multiplier at +1
+    if turning:   # the exchange of stability there: one multiplier at +1, at M_c fixed
         try:
-            mu = FloquetEvaluator(piece.problem, opts)(
+            mu = FloquetEvaluator(piece.problem, dataclasses.replace(opts, interval_tol=None))(
                 lam_c, found[k].X).multipliers
             d = float(np.min(np.abs(mu - 1.0))) if mu.size else np.inf
             text += f"; the multiplier nearest +1 there is {d:.1e} from it"
