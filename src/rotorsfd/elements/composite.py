@@ -124,9 +124,15 @@ class ElementSet:
         """True when an element's law has the input ``name`` (``"speed"``)."""
         return any(name in e.parameters for e in self.elements)
 
-    def with_parameter(self, name: str, value: float) -> ElementSet:
-        """The set with the input ``name`` of every element that has it set to ``value``
-        (the same layout and composite kernel); ``self`` if none has it."""
+    def with_parameter(self, name: str, value: float, element: str | None = None
+                       ) -> ElementSet:
+        """The set with the input ``name`` set to ``value`` in every element that has it,
+        or in the element named ``element`` only (the same layout and composite kernel);
+        ``self`` if none has it."""
+        if element is not None:
+            self[element]   # KeyError for an unknown name
+            return ElementSet([e.with_parameter(name, value) if e.name == element else e
+                               for e in self.elements])
         if not self.depends_on(name):
             return self
         return ElementSet([e.with_parameter(name, value) if name in e.parameters else e
@@ -136,14 +142,15 @@ class ElementSet:
         """The set at rotor speed ``speed`` [rad/s] (laws that depend on it set)."""
         return self.with_parameter("speed", speed)
 
-    def dforce(self, q: FloatArray, v: FloatArray, name: str) -> FloatArray:
+    def dforce(self, q: FloatArray, v: FloatArray, name: str, element: str | None = None
+               ) -> FloatArray:
         """``dF/dp (..., m)`` at fixed samples for the input ``p = name``: the sum over
-        the elements that have it (zero for the others)."""
+        the elements that have it, or of the element named ``element`` only."""
         q = np.asarray(q, dtype=np.float64)
         v = np.asarray(v, dtype=np.float64)
         out = np.zeros(q.shape)
         for e, loc in zip(self.elements, self.local, strict=True):
-            if name in e.parameters:
+            if (e.name == element) if element is not None else name in e.parameters:
                 out[..., loc] += e.dforce(q[..., loc], v[..., loc], name)
         return out
 

@@ -28,7 +28,7 @@ from pydantic import Field, model_validator
 
 from rotorsfd.elements.base import FloatArray, NonlinearElement
 from rotorsfd.elements.registry import register
-from rotorsfd.errors import JournalContactError
+from rotorsfd.errors import ConfigError, JournalContactError
 from rotorsfd.io.fields import (
     NODE,
     Section,
@@ -156,6 +156,53 @@ class SFDElement(NonlinearElement):
         return JournalContactError(math.hypot(y, z) / self.clearance, y, z, float(v[0]),
                                    float(v[1]), where=f"SFD {self.name!r}" + (
                                        f", {where}" if where else ""))
+
+    # ---- the table's fields as continuation parameters ---------------------------------
+    #: fields of the table a continuation may vary (those the table gives)
+    parameters: ClassVar[tuple[str, ...]] = (
+        "clearance_ratio", "clearance", "radius", "length", "length_to_diameter",
+        "viscosity")
+
+    def with_parameter(self, name: str, value: float) -> SFDElement:
+        """The element of the same table with the field ``name`` set to ``value`` (SI),
+        the table's other given fields held (C/R at fixed C moves R and, with L/D given,
+        L: the paper's section 4.3)."""
+        table = self._table(name)
+        raw = table.model_dump(exclude_none=True) | {name: float(value)}
+        return type(table).model_validate(raw).build(self.name)
+
+    def dforce(self, q: FloatArray, v: FloatArray, name: str) -> FloatArray:
+        """``dF/dp`` of a field ``p`` of the table, exact: the short film scales as
+        ``F ~ mu R L^3`` and, from ``F(s q, s v; s C) = F / s^2`` (``q`` from the housing
+        centre), ``dF/dC = -(2 F + dF/dq (q - o) + dF/dv v) / C``; the chain rule through
+        the table's geometry (:meth:`SFDConfig.geometry_derivative`)."""
+        table = self._table(name)
+        if self.finite:
+            raise ConfigError(f"elements.{self.name}.{name}", None, "continuation in a "
+                              "field of the finite-length film is not supported yet "
+                              "(film_length = 'short' only)")
+        dR, dL, dC, dmu = table.geometry_derivative(name)
+        q = np.asarray(q, dtype=np.float64)
+        v = np.asarray(v, dtype=np.float64)
+        F, Jq, Jv = self.force_and_jacobian(q, v)
+        f = self.film
+        dFdC = -(2.0 * F + np.einsum("...ij,...j->...i", Jq, q - self.offset)
+                 + np.einsum("...ij,...j->...i", Jv, v)) / f.clearance
+        return F * (dR / f.radius + 3.0 * dL / f.length + dmu / f.viscosity) + dFdC * dC
+
+    def _table(self, name: str) -> SFDConfig:
+        table = getattr(self, "table", None)
+        if table is None or name not in self.parameters:
+            return super().with_parameter(name, 0.0)   # raises: no such input
+        if name != "viscosity" and getattr(table, name) is None:
+            C, R, L = table.resolved_clearance, table.resolved_radius, table.resolved_length
+            derived = {"clearance": C, "radius": R, "length": L, "clearance_ratio": C / R,
+                       "length_to_diameter": L / (2 * R)}[name]
+            raise ConfigError(f"elements.{self.name}.{name}", derived, "is derived from the "
+                              "table's other fields: continue in a field the table gives ("
+                              + ", ".join(n for n in self.parameters
+                                          if getattr(table, n) is not None) + ")")
+        return table
 
     def describe(self) -> str:
         length = "finite-length " if self.finite else ""
@@ -329,8 +376,37 @@ class SFDConfig(Section):
             from rotorsfd.model.sfd import SFD  # deferred: numba (the film's kernels)
 
             film = SFD(*geometry, cavitation=self.cavitation)
-        return SFDElement(name, self.node, film, (self.offset_y, self.offset_z),
-                          density=self.density, film_report=self.film_report)
+        element = SFDElement(name, self.node, film, (self.offset_y, self.offset_z),
+                             density=self.density, film_report=self.film_report)
+        element.table = self   # its fields as continuation parameters
+        return element
+
+    def geometry_derivative(self, field: str) -> tuple[float, float, float, float]:
+        """``d(R, L, C, mu)/d(field)`` with the table's other given fields held: C/R at fixed
+        C gives ``R = C / (C/R)``, L/D gives ``L = (L/D) 2 R``, and so on."""
+        if field == "viscosity":
+            return 0.0, 0.0, 0.0, 1.0
+        C, R = self.resolved_clearance, self.resolved_radius
+        given = set(given_fields(self, ("clearance", "clearance_ratio", "radius")))
+        dC = dR = 0.0
+        if given == {"clearance", "clearance_ratio"}:        # R = C / cr
+            if field == "clearance":
+                dC, dR = 1.0, R / C
+            elif field == "clearance_ratio":
+                dR = -R / self.clearance_ratio
+        elif given == {"clearance", "radius"}:
+            dC, dR = (float(field == "clearance"), float(field == "radius"))
+        else:                                                 # C = cr R
+            if field == "clearance_ratio":
+                dC = R
+            elif field == "radius":
+                dC, dR = C / R, 1.0
+        if self.length is not None:
+            dL = float(field == "length")
+        else:
+            dL = 2.0 * self.length_to_diameter * dR + (
+                2.0 * R if field == "length_to_diameter" else 0.0)
+        return dR, dL, dC, 0.0
 
 
 register(SFDConfig)

@@ -9,7 +9,11 @@ with exact derivatives (:meth:`rotorsfd.model.system.RotorSystem.periodic_proble
 - ``"base_rate"``: a constant base rotation rate ``w_b[axis]`` at a fixed speed; the base
   matrices and loads are quadratic in it, the unbalance's base-rotation terms follow it;
 - ``"unbalance"``: the magnitude of the first unbalance (the others scaled with it); only
-  the unbalance force depends on it, linearly.
+  the unbalance force depends on it, linearly;
+- ``"element"``: a field of one nonlinear element's table at a fixed speed,
+  ``elements.<name>.<field>`` (an SFD's ``clearance_ratio`` or ``length``: the paper's
+  section 4.3 varies C/R); only that element's force depends on it, through the element's
+  exact ``dforce`` (:meth:`rotorsfd.elements.base.NonlinearElement.with_parameter`).
 
 A new parameter of one of these kinds is one entry of :data:`PARAMETERS`; a new kind also
 needs its derivatives in ``periodic_problem``.
@@ -36,6 +40,8 @@ class Parameter:
     description: str
     paths: tuple[str, ...]
     axis: int | None = None
+    element: str | None = None
+    field: str | None = None
 
     @property
     def path(self) -> str:
@@ -67,6 +73,24 @@ PARAMETERS: dict[str, Parameter] = {p.name: p for p in (
 )}
 
 
+#: element fields that a continuation may vary, and their SI units
+ELEMENT_FIELDS: dict[str, str] = {
+    "clearance_ratio": "1", "clearance": "m", "radius": "m", "length": "m",
+    "length_to_diameter": "1", "viscosity": "Pa*s"}
+
+
+def element_parameter(path: str) -> Parameter | None:
+    """The ``"element"`` parameter of a path ``elements.<name>.<field>`` (None if the path
+    is not of that form); whether the element has the field is checked where the system
+    applies it."""
+    parts = path.split(".")
+    if len(parts) != 3 or parts[0] != "elements" or parts[2] not in ELEMENT_FIELDS:
+        return None
+    return Parameter(path, "element", ELEMENT_FIELDS[parts[2]],
+                     f"{parts[2]} of element {parts[1]!r} at fixed speed", (path,),
+                     element=parts[1], field=parts[2])
+
+
 def find_parameter(name_or_path: str, field: str = "parameter") -> Parameter:
     """The parameter named ``name_or_path`` or selected by that config path; ConfigError
     naming ``field`` otherwise."""
@@ -76,6 +100,10 @@ def find_parameter(name_or_path: str, field: str = "parameter") -> Parameter:
     for p in PARAMETERS.values():
         if key in p.paths:
             return p
-    allowed = ", ".join(p.path for p in PARAMETERS.values())
+    element = element_parameter(key)
+    if element is not None:
+        return element
+    allowed = ", ".join(p.path for p in PARAMETERS.values()) + ", elements.<name>.<" \
+        + "|".join(ELEMENT_FIELDS) + ">"
     raise ConfigError(field, name_or_path,
                       f"must be one of {allowed} (continuation with exact derivatives)")

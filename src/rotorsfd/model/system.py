@@ -230,6 +230,8 @@ class RotorSystem:
             """(speed, base state, unbalance scale) at parameter value lam."""
             if par.kind == "speed":
                 return lam, state0, 1.0
+            if par.kind == "element":
+                return float(speed), state0, 1.0
             if par.kind == "base_rate":
                 w = np.array(state0.w, dtype=float)
                 w[par.axis] = lam
@@ -250,7 +252,7 @@ class RotorSystem:
                 lin = self.linear_terms(par.name, speed, state0)
             else:
                 lin = self.linear_terms("speed", state=None if fixed_base else state0)
-            if par.kind == "unbalance":   # the linear part is free of lam
+            if par.kind in ("unbalance", "element"):   # the linear part is free of lam
                 lin = lin.constant(float(speed))
             # band storage of (M, D, K): the condensation reads it directly; dense arrays
             # for the other callers are built on request (dense storage for a wide band)
@@ -302,7 +304,7 @@ class RotorSystem:
             dF = np.zeros((H + 1, self.n_dof), dtype=complex)
             if not fixed_base:
                 dF[0] = dbase_load(lam)
-            if H >= 1 and self.unbalances:
+            if H >= 1 and self.unbalances and par.kind != "element":
                 if par.kind == "unbalance":
                     Fc, Fs = unbalance_harmonics(self.unbalances, r, om, st)
                     dF[1] = (Fc - 1j * Fs) / U_ref
@@ -321,7 +323,11 @@ class RotorSystem:
         el = self.elements
         limited = any(e.limit_label is not None for e in el)
         nl_at = None
-        if par.kind != "speed":
+        if par.kind == "element":   # the element's law at each lam, with dF/dlam
+            el = el.at_speed(float(speed))
+            self._check_element_parameter(par)
+            nl_at = functools.partial(_law_at_element_value, el, par)
+        elif par.kind != "speed":
             el = el.at_speed(float(speed))
         elif el.depends_on("speed"):   # a law of the speed itself: the law at each lam
             nl_at = functools.partial(_law_at_speed, el)
@@ -333,6 +339,19 @@ class RotorSystem:
             nl_kernel=el.kernel, nl_kernel_params=el.kernel_params, scaling=self.dof_scale(),
             nl_limit=el.limit if limited else None,
             name=f"rotor response in {parameter}", nl_at=nl_at)
+
+    def _check_element_parameter(self, par) -> None:
+        """ConfigError unless the element of an ``"element"`` parameter exists and has the
+        field as an input."""
+        names = [e.name for e in self.elements]
+        if par.element not in names:
+            raise ConfigError("parameter", par.name, "names no element; the elements are "
+                              + ", ".join(names))
+        e = self.elements[par.element]
+        if par.field not in e.parameters:
+            raise ConfigError("parameter", par.name, f"{e.describe()} has no field "
+                              f"{par.field!r} to continue in (it has: "
+                              + (", ".join(e.parameters) or "none") + ")")
 
     def elements_at(self, speed: float) -> ElementSet:
         """The nonlinear elements at rotor speed ``speed`` [rad/s] (a journal bearing's law
@@ -363,7 +382,11 @@ class RotorSystem:
         [rad/s], or the first unbalance's magnitude [kg m] (the others scaled with it, as
         in :meth:`periodic_problem`). The copy shares the base-motion basis."""
         par = find_parameter(parameter)
-        if par.kind == "base_rate":
+        if par.kind == "element":
+            self._check_element_parameter(par)
+            out = RotorSystem(self.rotor, self.elements.with_parameter(
+                par.field, value, element=par.element), self.unbalances, self.base)
+        elif par.kind == "base_rate":
             out = self.with_base_rate(par.name, value)
         elif par.kind == "unbalance":
             if not self.unbalances or self.unbalances[0].magnitude == 0.0:
@@ -387,10 +410,12 @@ class RotorSystem:
         from rotorsfd.continuation.folds import TwoParameterProblem
 
         self.constant_base_state()
-        if second not in PARAMETERS or PARAMETERS[second].kind == "speed":
+        par = find_parameter(second)
+        if par.kind == "speed":
             raise ConfigError("parameter", second, "must be one of " + ", ".join(
-                p for p in PARAMETERS if PARAMETERS[p].kind != "speed"))
-        if PARAMETERS[second].kind == "base_rate" or not self.base.is_fixed:
+                p for p in PARAMETERS if PARAMETERS[p].kind != "speed")
+                + ", elements.<name>.<field>")
+        if par.kind == "base_rate" or not self.base.is_fixed:
             _ = self.basis   # built once, shared by every copy
 
         def first(value: float) -> PeriodicProblem:
@@ -407,6 +432,14 @@ def _law_at_speed(elements: ElementSet, speed: float) -> NonlinearLaw:
     el = elements.at_speed(float(speed))
     return NonlinearLaw(el.force, el.jacobian, el.force_and_jacobian, el.kernel_params,
                         functools.partial(el.dforce, name="speed"))
+
+
+def _law_at_element_value(elements: ElementSet, par, value: float) -> NonlinearLaw:
+    """The elements' force law with the field ``par.field`` of element ``par.element`` at
+    ``value``, with ``dF/dvalue``."""
+    el = elements.with_parameter(par.field, float(value), element=par.element)
+    return NonlinearLaw(el.force, el.jacobian, el.force_and_jacobian, el.kernel_params,
+                        functools.partial(el.dforce, name=par.field, element=par.element))
 
 
 def _time_varying(base: BaseMotion) -> tuple[str, str]:
