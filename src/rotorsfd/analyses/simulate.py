@@ -64,6 +64,7 @@ from rotorsfd.analyses.td_integration import (
     integrate_periods,
     reduction_summary,
     scheme_options,
+    stepped_system,
     time_domain_inputs,
     with_reduction,
 )
@@ -422,8 +423,10 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
     tic_ly = time.perf_counter()
     if n_ly > 0:
         try:
-            pair = lyapunov_pair(inputs, (traj.q_final, traj.v_final, traj.t_final),
-                                 steps_per_period=spp, periods=n_ly)
+            # on the model the run stepped (the reduced one with "auto")
+            ly_inputs, ly_state = stepped_system(inputs, (traj.q_final, traj.v_final,
+                                                          traj.t_final))
+            pair = lyapunov_pair(ly_inputs, ly_state, steps_per_period=spp, periods=n_ly)
             lyap, lyap_full = pair.reduced, pair.full
             settings["lyapunov_modes_kept"] = pair.n_modes
             settings["lyapunov_omega_max_rad_s"] = pair.omega_max

@@ -92,6 +92,22 @@ def with_reduction(inputs: TimeDomainInputs, reduction: str = "auto",
     return replace(inputs, reduction=red if red.n_dof < inputs.n_dof else None)
 
 
+def stepped_system(inputs: TimeDomainInputs, state: tuple[np.ndarray, np.ndarray, float]
+                   ) -> tuple[TimeDomainInputs, tuple[np.ndarray, np.ndarray, float]]:
+    """The model the step integrates and a physical ``state = (q, v, t)`` in its
+    coordinates: with a reduction the Craig-Bampton model as plain inputs (nonlinear DOFs
+    ``0..m-1``) and ``(P q, P v, t)``; without, ``inputs`` and ``state`` themselves. For
+    analyses that integrate the stepped model directly (the Lyapunov run)."""
+    red = inputs.reduction
+    if red is None:
+        return inputs, state
+    q, v, t = state
+    plain = TimeDomainInputs(red.model.M, red.model.D, red.model.K, red.nl_dofs,
+                             inputs.kernel, inputs.params, red.forcing, red.time_varying,
+                             inputs.speed, inputs.elements)
+    return plain, (red.reduce(q), red.reduce(v), t)
+
+
 def reduction_summary(inputs: TimeDomainInputs, cutoff: float | None = None
                       ) -> dict[str, Any]:
     """What the run integrated, for the summary: the reduction, its cutoff, the kept
