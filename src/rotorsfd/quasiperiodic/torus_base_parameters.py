@@ -1,0 +1,130 @@
+"""The torus problem continued in a parameter of the harmonic base law: the base frequency
+w_b, or the amplitude of one base law.
+
+On the torus the base state is a function of ``theta2 = w_b t``: a rate
+``w = mean + A sin(theta2 + phi)`` with ``w' = A w_b cos(theta2 + phi)``, a translation
+``x0 = A sin(theta2 + phi)`` with ``v0 = A w_b cos``, ``v0' = -A w_b^2 sin``. Every
+coefficient of the linear terms (``model/base_terms.py``: w, w^2, products of rates, w',
+``a0 = v0' + w x v0``) and of the unbalance force (``model/unbalance.py``) is therefore a
+polynomial of degree <= 4 in w_b and in any one amplitude A (degree 2 in practice; with
+the angle amplitude held, A = A0 w_b adds one degree per rate). The problem is built at
+five values of the parameter by :func:`~rotorsfd.quasiperiodic.torus_system.torus_problem`
+and its Fourier coefficients interpolated by the polynomial of degree 4 through them:
+exact (to round-off) at every value, with the exact derivative.
+
+Parameters: ``"base.frequency"`` (lam = w_b [rad/s], every harmonic law moved together;
+``hold="angle"`` keeps the rotation laws' angle amplitudes A / w_b, ``"rate"`` their rate
+amplitudes; translations keep their displacement amplitudes) and
+``"base.<component>.amplitude"`` (lam = that law's amplitude: a rate [rad/s] for rolling,
+pitching, yawing, a displacement [m] for x, y, z).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from rotorsfd.errors import ConfigError
+from rotorsfd.model.base_motion import BaseMotion
+from rotorsfd.model.system import RotorSystem
+from rotorsfd.quasiperiodic.torus_fourier import TorusLattice
+from rotorsfd.quasiperiodic.torus_linear import TorusProblem
+from rotorsfd.quasiperiodic.torus_system import base_frequency, torus_problem
+
+COMPONENTS = ("x", "y", "z", "rolling", "pitching", "yawing")
+#: the five nodes of the interpolation, relative to the parameter's value in the system
+NODES = np.array([0.6, 0.8, 1.0, 1.2, 1.4])
+HOLDS = ("angle", "rate")
+
+
+def base_parameter_value(system: RotorSystem, parameter: str) -> float:
+    """The parameter's value in ``system`` (ConfigError for an unknown one)."""
+    if parameter == "base.frequency":
+        return base_frequency(system)
+    law = _law(system.base, parameter)
+    return float(law.amplitude)
+
+
+def _law(base: BaseMotion, parameter: str):
+    parts = parameter.split(".")
+    if len(parts) != 3 or parts[0] != "base" or parts[1] not in COMPONENTS \
+            or parts[2] != "amplitude":
+        raise ConfigError("parameter", parameter, "must be base.frequency or "
+                          "base.<x|y|z|rolling|pitching|yawing>.amplitude")
+    law = (*base.translation, *base.rotation)[COMPONENTS.index(parts[1])]
+    if law.kind != "harmonic":
+        raise ConfigError(f"base.{parts[1]}.law", law.kind,
+                          "continuing in its amplitude needs a harmonic law")
+    return law
+
+
+def with_base_value(system: RotorSystem, parameter: str, value: float,
+                    hold: str = "angle") -> RotorSystem:
+    """A copy of ``system`` with the base parameter set to ``value`` (module docstring)."""
+    if hold not in HOLDS:
+        raise ConfigError("hold", hold, "must be 'angle' or 'rate'")
+    laws = list((*system.base.translation, *system.base.rotation))
+    if parameter == "base.frequency":
+        w0 = base_frequency(system)
+        for i, law in enumerate(laws):
+            if law.kind == "harmonic" and not law.is_constant:
+                amp = law.amplitude
+                if i >= 3 and hold == "angle":
+                    amp = amp * value / w0
+                laws[i] = dataclasses.replace(law, frequency=float(value), amplitude=amp)
+    else:
+        i = COMPONENTS.index(parameter.split(".")[1])
+        laws[i] = dataclasses.replace(_law(system.base, parameter), amplitude=float(value))
+    base = BaseMotion(*laws, gravity=system.base.gravity)
+    return RotorSystem(system.rotor, system.elements, system.unbalances, base)
+
+
+def base_parameter_problem(system: RotorSystem, parameter: str, speed: float,
+                           hold: str = "angle") -> TorusProblem:
+    """The torus problem at the fixed ``speed`` [rad/s] continued in the base parameter
+    (lam in its SI unit), by the exact degree-4 interpolation of the module docstring."""
+    if not speed > 0:
+        raise ConfigError("speed", speed, f"continuing in {parameter} needs a speed > 0")
+    lam0 = base_parameter_value(system, parameter)
+    if lam0 == 0.0:
+        raise ConfigError(parameter, 0.0, "continuing needs a nonzero starting value")
+    nodes = lam0 * NODES
+    probs = [torus_problem(with_base_value(system, parameter, v, hold)) for v in nodes]
+    mats = [p.coefficients(speed) for p in probs]
+    bw = max(D.shape[0] for D, _ in mats)
+
+    def pad(A: np.ndarray) -> np.ndarray:
+        return np.pad(A, [(0, bw - A.shape[0]), (0, 0), (0, 0)])
+
+    V = np.vander(nodes, 5, increasing=True)
+    Dc = np.linalg.solve(V, np.array([pad(D) for D, _ in mats]).reshape(5, -1))
+    Kc = np.linalg.solve(V, np.array([pad(K) for _, K in mats]).reshape(5, -1))
+    shape = (bw, system.n_dof, system.n_dof)
+    Dc, Kc = Dc.reshape(5, *shape), Kc.reshape(5, *shape)
+    powers = np.arange(5)
+    loads: dict[TorusLattice, np.ndarray] = {}
+
+    def poly(c: np.ndarray, lam: float, d: int) -> np.ndarray:
+        w = powers * lam ** np.maximum(powers - 1, 0) if d else lam ** powers
+        return np.tensordot(w, c, axes=(0, 0))
+
+    def load(lattice: TorusLattice) -> np.ndarray:
+        if lattice not in loads:
+            F = np.array([p.forcing(speed, lattice) for p in probs])
+            loads[lattice] = np.linalg.solve(V, F.reshape(5, -1)).reshape(5, *F.shape[1:])
+        return loads[lattice]
+
+    is_frequency = parameter == "base.frequency"
+    w_b = base_frequency(system)
+    return TorusProblem(
+        n_dof=system.n_dof, nl_dofs=system.nl_dofs, M=system.rotor.M,
+        coefficients=lambda lam: (poly(Dc, lam, 0), poly(Kc, lam, 0)),
+        dcoefficients=lambda lam: (poly(Dc, lam, 1), poly(Kc, lam, 1)),
+        forcing=lambda lam, lattice: poly(load(lattice), lam, 0),
+        dforcing=lambda lam, lattice: poly(load(lattice), lam, 1),
+        frequencies=lambda lam: (float(speed), float(lam) if is_frequency else w_b),
+        dfrequencies=lambda lam: (0.0, 1.0 if is_frequency else 0.0),
+        elements=probs[0].elements, scaling=system.dof_scale(),
+        name=f"rotor torus in {parameter}",
+        info={"base_frequency": w_b, "parameter": parameter, "hold": hold})
