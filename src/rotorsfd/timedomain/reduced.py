@@ -21,12 +21,13 @@ unchanged (``Psi[nl, :m] = I``, ``Psi[nl, m:] = 0``), so ``Psi^T`` maps it onto 
 
 The constraint modes make the static response to the nonlinear (boundary) forces exact;
 loads on interior DOFs (unbalance, gravity, base terms) would keep only their kept-mode
-part. So the basis is augmented by their static residuals (modal truncation augmentation,
-Dickens, Nefske & Wang 1997): for each load vector ``f``, ``x_i = K_ii^-1 f_i`` on the
-interior (zero at the boundary), made mass-orthogonal to the kept modes and to the
-residuals before it, and dropped when nothing is left (``<= 1e-10`` of its norm). With
-``x`` in the span the reduced static solution of ``K q = f + F_b`` is the exact one
-(Galerkin with the exact solution in the span), for every combination of the loads.
+part. So the basis is augmented by their static residuals (modal truncation augmentation:
+Dickens, Nakagawa & Wittbrodt, Comput. Struct. 62, 985-998, 1997): for each load vector
+``f``, ``x_i = K_ii^-1 f_i`` on the interior (zero at the boundary), made mass-orthogonal
+to the kept modes and to the residuals before it, and dropped when nothing is left
+(``<= 1e-10`` of its norm). With ``x`` in the span the reduced static solution of
+``K q = f + F_b`` is the exact one (Galerkin with the exact solution in the span), for
+every combination of the loads.
 
 A physical state enters by the projection that keeps ``q_b`` exactly::
 
@@ -61,10 +62,9 @@ from rotorsfd.timedomain.forcing import Forcing, HarmonicLoad, TimeVaryingMatric
 DENSE_MAX = 400
 
 
-def load_vectors(forcing: Forcing, time_varying: TimeVaryingMatrices | None,
-                 n: int) -> list[np.ndarray]:
+def load_vectors(forcing: Forcing, n: int) -> list[np.ndarray]:
     """The constant arrays of the external load: the constant part, every harmonic's
-    cos/sin vector, every series vector."""
+    cos/sin vector, every series vector (the moving base's loads among them)."""
     out = [] if forcing.constant is None else [forcing.constant]
     for h in forcing.harmonics:
         out += [h.cos] + ([] if h.sin is None else [h.sin])
@@ -264,8 +264,7 @@ def reduce_step(M: np.ndarray, D: np.ndarray, K: np.ndarray, nl_dofs: np.ndarray
         cb = craig_bampton(M, D, K, nl, omega_max=float(omega_max))
     else:
         cb = sparse_craig_bampton(M, D, K, nl, float(omega_max))
-    extra = static_residuals(K, M, cb.basis, nl, load_vectors(forcing, time_varying,
-                                                              M.shape[0]))
+    extra = static_residuals(K, M, cb.basis, nl, load_vectors(forcing, M.shape[0]))
     psi = np.hstack([cb.basis, extra])
     model = ReducedModel(psi.T @ (M @ psi), psi.T @ (D @ psi), psi.T @ (K @ psi), psi,
                          cb.nl_dofs, cb.omegas)
