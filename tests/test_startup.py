@@ -93,3 +93,37 @@ print(json.dumps([before, "numba" in sys.modules, F.tolist(), e.force(q, v).toli
     before, after, f_kernel, f_numpy = json.loads(p.stdout.strip().splitlines()[-1])
     assert (before, after) == (False, True)
     assert f_kernel == pytest.approx(f_numpy, rel=1e-12)
+
+
+def test_paper_asks_the_cases_for_figures_only_with_case_plots(monkeypatch, tmp_path):
+    """run_cases passes ``plots`` to every runner (False unless asked), in this process."""
+    from rotorsfd.paper import run
+    from rotorsfd.paper.cases import CASES
+
+    asked = []
+
+    def runner(case, config, out, plots=False):
+        asked.append((case.name, out, plots))
+        return {}, {}
+
+    monkeypatch.setattr(run, "RUNNERS", {**run.RUNNERS, "modal": runner})
+    for plots in (False, True):
+        run.run_cases([CASES["modal"]], quick=True, out=tmp_path, workers=1,
+                      progress=False, **({"plots": True} if plots else {}))
+    assert asked == [("modal", tmp_path / "modal", False), ("modal", tmp_path / "modal", True)]
+
+
+@pytest.mark.slow
+def test_paper_cases_write_their_own_figures_only_when_asked(tmp_path):
+    """``rotorsfd paper`` draws the paper's figures from the cases' numbers; each
+    analysis' own figures (here the Campbell diagram) are written only with ``plots``,
+    its data files always."""
+    from rotorsfd.paper.cases import CASES
+    from rotorsfd.paper.run import run_case
+
+    for plots in (False, True):
+        o = run_case(CASES["modal"], quick=True, out=tmp_path / str(plots), plots=plots)
+        assert o.status == "ok", o.message
+        files = {p.name for p in (tmp_path / str(plots) / "modal").iterdir()}
+        assert {"critical_speeds.csv", "campbell.csv"} <= files
+        assert ("campbell.png" in files) is plots

@@ -205,7 +205,7 @@ def test_paper_fold_curve_case_figure_titled(tmp_path, monkeypatch):
     monkeypatch.setattr(atomic, "save_figure", keep)
     c = CASES["fig19-u144"]
     o = run_case(replace(c, options={**c.options, "range": [0.0, 2.0], "harmonics": 3}),
-                 out=tmp_path)
+                 out=tmp_path, plots=True)
     assert o.status == "ok", o.message
     assert (tmp_path / "fig19-u144" / "fold_curve.png").exists()
     words = _words(saved["fold_curve.png"])

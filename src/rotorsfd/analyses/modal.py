@@ -122,15 +122,18 @@ class ModalRunResult:
         return campbell_axes(ax, c.speeds, c.frequencies, c.whirl, critical=crit,
                              title=title)
 
-    def write(self, directory: str | Path) -> dict[str, Path]:
+    def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
         """Write ``critical_speeds.csv`` (mode, whirl, speed_rad_s), ``campbell.csv`` and
-        ``campbell.png`` atomically into ``directory`` (created if missing)."""
+        (if ``plots``) ``campbell.png`` atomically into ``directory`` (created if
+        missing)."""
         out = Path(directory)
         paths = {name: out / name for name in self.FILES}
         atomic.write_csv(paths["critical_speeds.csv"], ("mode", "whirl", "speed_rad_s"),
                          self.critical_speeds_rows())
         with atomic.atomic_path(paths["campbell.csv"]) as tmp:
             self.campbell.to_csv(tmp)
+        if not plots:
+            return {k: v for k, v in paths.items() if k != "campbell.png"}
         fig = self.plot().figure
         atomic.save_figure(fig, paths["campbell.png"], dpi=120)
         return paths

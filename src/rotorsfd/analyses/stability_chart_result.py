@@ -75,15 +75,18 @@ class ChartResult:
         1 + tol as a line (:func:`plot_chart`); returns the Axes."""
         return plot_chart(self, ax)
 
-    def write(self, directory: str | Path) -> dict[str, Path]:
-        """``chart.nc`` and ``chart.png`` written atomically into ``directory``."""
-        from matplotlib.figure import Figure
-
+    def write(self, directory: str | Path, plot: bool = True) -> dict[str, Path]:
+        """``chart.nc`` and (if ``plot``) ``chart.png`` written atomically into
+        ``directory``."""
         from rotorsfd.io import atomic
 
         out = Path(directory)
         paths = {name: out / name for name in self.FILES}
         atomic.write_netcdf(self.to_dataset(), paths["chart.nc"])
+        if not plot:
+            return {"chart.nc": paths["chart.nc"]}
+        from matplotlib.figure import Figure  # deferred: matplotlib
+
         fig = Figure(figsize=(7.4, 5.6), layout="constrained")
         self.plot(fig.add_subplot())
         atomic.save_figure(fig, paths["chart.png"], dpi=130)

@@ -145,32 +145,35 @@ def load_case_config(case: Case, examples: Path | None = None, quick: bool = Fal
     return config.model_copy(update={"title": case_title(case, config.title)})
 
 
-def _modal(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
+def _modal(case: Case, config: Any, out: Path | None,
+           plots: bool = False) -> tuple[dict, dict]:
     from rotorsfd.analyses.modal import run_modal
 
     r = run_modal(config)
     if out is not None:
-        r.write(out)
+        r.write(out, plots=plots)
     n = {f"crit{c.mode}": float(c.speed_rad_s) for c in r.critical_speeds}
     return n, {}
 
 
-def _response(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
+def _response(case: Case, config: Any, out: Path | None,
+              plots: bool = False) -> tuple[dict, dict]:
     from rotorsfd.analyses.response import run_response
 
     r = run_response(config, progress=False)
     if out is not None:
-        r.write(out)
+        r.write(out, plots=plots)
     return response_numbers(r, case.options.get("orbits", ()))
 
 
-def _simulate(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
+def _simulate(case: Case, config: Any, out: Path | None,
+              plots: bool = False) -> tuple[dict, dict]:
     from rotorsfd.analyses.simulate import run_simulation
 
     r = run_simulation(config, speed_ratio=case.options.get("speed_ratio"), progress=False,
                        lyapunov_periods=0)
     if out is not None:
-        r.write(out)
+        r.write(out, plots=plots)
     ev = r.motion.evidence if r.motion is not None else {}
     n = {"motion": r.motion_name, "n_distinct_poincare": ev.get("n_distinct_poincare"),
          "max_eccentricity": r.max_eccentricity, **_td_numbers(r)}
@@ -203,7 +206,8 @@ def _td_data(r: Any, keep_periods: int = 20) -> dict[str, Any]:
             "steps": int(r.settings["steps_per_period"])}
 
 
-def _isola(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
+def _isola(case: Case, config: Any, out: Path | None,
+           plots: bool = False) -> tuple[dict, dict]:
     """A coexisting attractor and its isola (Figure 23 / Table 3 diagnosis):
     (a) the time domain at ``find_steps`` steps per period (the paper's T/200) from the HB
     orbit shifted by ``hb_phase`` of the period, which at that step lands near a second
@@ -295,7 +299,8 @@ def _isola(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
     return n, data
 
 
-def _fold_curve(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
+def _fold_curve(case: Case, config: Any, out: Path | None,
+                plots: bool = False) -> tuple[dict, dict]:
     from rotorsfd.analyses.fold_curve import run_fold_curve
 
     lo, hi = case.options["range"]
@@ -305,7 +310,8 @@ def _fold_curve(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
         from rotorsfd.io import atomic
 
         f.write(out, plot=False)
-        atomic.save_figure(f.plot(title=config.title), out / "fold_curve.png", dpi=120)
+        if plots:
+            atomic.save_figure(f.plot(title=config.title), out / "fold_curve.png", dpi=120)
     grid = np.linspace(lo, hi, 201)
     w = f.unstable_width(grid)
     n = {"end_rate": f.bistability_end, "width0": float(f.unstable_width([lo])[0]),
@@ -317,7 +323,8 @@ def _fold_curve(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
     return n, {"rate": grid, "width": w}
 
 
-def _width_sweep(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
+def _width_sweep(case: Case, config: Any, out: Path | None,
+                 plots: bool = False) -> tuple[dict, dict]:
     from rotorsfd.analyses.response import run_response
     from rotorsfd.io.config import with_values
 
@@ -345,27 +352,32 @@ def _width_sweep(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]
     return n, {"rate": np.array(values), "width": w}
 
 
-def _chart(case: Case, config: Any, out: Path | None) -> tuple[dict, dict]:
+def _chart(case: Case, config: Any, out: Path | None,
+           plots: bool = False) -> tuple[dict, dict]:
     from rotorsfd.analyses.stability_chart import run_stability_chart
 
     r = run_stability_chart(config, workers=1, progress=False)
     if out is not None:
-        r.write(out)
+        r.write(out, plot=plots)
     n = {"unstable_fraction": float((~r.stable).mean())}
     return n, {"x": r.x.values, "y": r.y.values, "max_abs": r.chart.max_abs,
                "x_label": f"{r.x.path} [{r.x.units}]", "y_label": f"{r.y.path} [{r.y.units}]",
                "tol": float(r.chart.tol), "speed": r.speed}
 
 
-RUNNERS: dict[str, Callable[[Case, Any, Path | None], tuple[dict, dict]]] = {
+#: kind -> runner ``(case, config, out, plots)``: the case's results files into ``out``
+#: (None: none), with the analysis' own figures only if ``plots`` (the report draws the
+#: paper's figures from the numbers; the analyses' figures cost more than their runs)
+RUNNERS: dict[str, Callable[..., tuple[dict, dict]]] = {
     "modal": _modal, "response": _response, "simulate": _simulate,
     "fold-curve": _fold_curve, "width-sweep": _width_sweep, "chart": _chart,
     "isola": _isola}
 
 
 def run_case(case: Case, examples: Path | None = None, quick: bool = False,
-             out: Path | None = None) -> Outcome:
-    """Run one case; results files into ``out/<case>`` when ``out`` is given."""
+             out: Path | None = None, plots: bool = False) -> Outcome:
+    """Run one case; results files into ``out/<case>`` when ``out`` is given, with the
+    analysis' own figures (``response_*.png``, ...) if ``plots``."""
     from rotorsfd.errors import RotorsfdError
 
     t0 = time.perf_counter()
@@ -373,7 +385,7 @@ def run_case(case: Case, examples: Path | None = None, quick: bool = False,
     try:
         config = load_case_config(case, examples, quick)
         numbers, data = RUNNERS[case.kind](case, config, None if out is None
-                                           else out / case.name)
+                                           else out / case.name, plots)
     except RotorsfdError as exc:
         return Outcome(case.name, "failed", " ".join(str(exc).split()),
                        time.perf_counter() - t0)
@@ -391,9 +403,9 @@ def _worker_init() -> None:
 
 def run_cases(cases: Sequence[Case], *, examples: Path | None = None, quick: bool = False,
               out: Path | None = None, workers: int | None = None,
-              progress: bool = True) -> dict[str, Outcome]:
+              progress: bool = True, plots: bool = False) -> dict[str, Outcome]:
     """Run ``cases`` (longest first) in ``workers`` processes (default: the CPUs, at most
-    2; 1: in this process) with a tqdm bar on stderr."""
+    2; 1: in this process) with a tqdm bar on stderr; ``plots``: see :func:`run_case`."""
     from tqdm import tqdm
 
     examples = examples or examples_dir()
@@ -406,11 +418,12 @@ def run_cases(cases: Sequence[Case], *, examples: Path | None = None, quick: boo
         if workers == 1:
             for c in order:
                 bar.set_postfix_str(c.name)
-                results[c.name] = run_case(c, examples, quick, out)
+                results[c.name] = run_case(c, examples, quick, out, plots)
                 bar.update()
         else:
             with ProcessPoolExecutor(workers, initializer=_worker_init) as pool:
-                futures = {pool.submit(run_case, c, examples, quick, out): c for c in order}
+                futures = {pool.submit(run_case, c, examples, quick, out, plots): c
+                           for c in order}
                 for f in as_completed(futures):
                     o = f.result()
                     results[o.name] = o
@@ -446,9 +459,11 @@ class PaperResult:
 
 def run_paper(output: str | Path, figures: Sequence[str] | None = None, *,
               quick: bool = False, workers: int | None = None, progress: bool = True,
-              examples: Path | None = None) -> PaperResult:
+              examples: Path | None = None, case_plots: bool = False) -> PaperResult:
     """Run the cases of ``figures`` (all by default; ``quick``: Figure 7 only, shorter
-    settings), draw the figures and write the report into ``output``."""
+    settings), draw the figures and write the report into ``output``; the cases' results
+    files go to ``output/cases/<case>``, with each analysis' own figures only if
+    ``case_plots``."""
     import io
 
     from rotorsfd.paper.cases import select
@@ -459,7 +474,7 @@ def run_paper(output: str | Path, figures: Sequence[str] | None = None, *,
     out = Path(output)
     specs, cases = select(list(figures or []), quick)
     outcomes = run_cases(cases, examples=examples, quick=quick, out=out / "cases",
-                         workers=workers, progress=progress)
+                         workers=workers, progress=progress, plots=case_plots)
     pngs: dict[str, bytes] = {}
     for spec in specs:
         fig = draw(spec, outcomes)
