@@ -229,3 +229,21 @@ def test_cli_export_matrices(tmp_path, capsys):
                      "-q"]) == 0
     rows = (tmp_path / "out" / "critical_speeds.csv").read_text().splitlines()
     assert [round(float(r.split(",")[2]), 1) for r in rows[1:3]] == [811.3, 2784.6]
+
+
+@pytest.mark.slow
+def test_stability_chart_on_exported_matrices(tmp_path, monkeypatch):
+    """The Figure 6 example (harmonic pitching: the base terms from the .npz) gives the
+    same chart on its exported matrices, run from another folder."""
+    from rotorsfd.analyses.stability_chart import run_stability_chart
+
+    example = PAPER.parent / "fig6_duchemin_pitching.toml"
+    small = ["analysis.stability_chart.intervals=60", "analysis.stability_chart.x.n=2",
+             "analysis.stability_chart.y.n=3"]
+    config = load_config(example, small)
+    toml = write_export(config, tmp_path / "fig6.npz")[-1]
+    monkeypatch.chdir(PAPER.parent)
+    a = run_stability_chart(config)
+    b = run_stability_chart(load_config(toml), search_path=toml.parent)
+    assert a.chart.max_abs.shape == (2, 3)
+    np.testing.assert_allclose(b.chart.max_abs, a.chart.max_abs, rtol=1e-9)

@@ -185,7 +185,7 @@ def run_stability_chart(config_or_system: Config | RotorSystem, *,
         for i in (0, -1):
             with_values(config, {a.path: float(a.values[i]) for a in (xa, ya)
                                  if a.path != "speed"})
-        rotor0 = build_rotor(config)
+        rotor0 = build_rotor(config, search_path)
     _check_axes(xa, ya, specs, where)
     tx, ty = coefficient_target(xa.path), coefficient_target(ya.path)
     if speed is None and (tx is None or tx[0] >= 0) and (ty is None or ty[0] >= 0):
@@ -209,7 +209,7 @@ def run_stability_chart(config_or_system: Config | RotorSystem, *,
         from rotorsfd.model.build import build_rotor
 
         assert config is not None
-        return build_rotor(with_values(config, values))
+        return build_rotor(with_values(config, values), search_path)
 
     # tasks: (index into the grid: a row, a column or a point, callable -> its chart)
     tasks: list[tuple[tuple[Any, Any], Callable[[], StabilityChart]]] = []
