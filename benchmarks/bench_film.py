@@ -4,13 +4,15 @@ figure of ``docs/sfd.md`` comparing the models on one damper.
 
 1. ``per sample``: the compiled kernel of one sample (force and exact Jacobian) in a
    compiled loop over 512 states (eps uniform in [0, 0.9], random velocities), for the
-   short film and the finite film on grids 32 x 2, 48 x 4 (the default), 64 x 8 and
-   128 x 8 (theta nodes x axial intervals of the half land), pi and Guembel films; the
-   ratio is to the short film's time in the same run.
+   short film, the finite film's eps table (pi film, default grid) and the finite film's
+   grid solver on grids 32 x 2, 48 x 4 (the default), 64 x 8 and 128 x 8 (theta nodes x
+   axial intervals of the half land), pi and Guembel films; the ratio is to the short
+   film's time in the same run.
 2. ``branch``: the paper rotor (examples/paper_rotor.toml, L/D = 0.325, pi film) at the
    Table 1 unbalance, HB continuation over Omega~ 0.5-1.6 with ``[analysis.response]``'s
-   options, H = 3, short film vs the finite film with open ends (default grid): time, the
-   fold speeds and the largest eccentricity ratio along the branch. Skipped by ``--quick``.
+   options, H = 3, short film vs the finite film with open ends (default grid, eps
+   table, and the grid solver at every sample): time, the fold speeds and the largest
+   eccentricity ratio along the branch. Skipped by ``--quick``.
 
 Figure: ``python -m benchmarks.bench_film --figure docs/sfd_models.png``.
 Run: ``python -m benchmarks --only film``.
@@ -70,9 +72,11 @@ def per_sample_rows(quick: bool, repeat: int) -> list[Row]:
     rows: list[Row] = []
     for model in ("pi", "guembel"):
         films: dict[str, Any] = {"short": SFD.from_ratios(MU, C, CR, LD, cavitation=model)}
+        if model != "guembel":
+            films["finite 48 x 4, eps table"] = FiniteSFD.from_ratios(MU, C, CR, LD, model)
         for n, m in (QUICK_GRIDS if quick else GRIDS):
-            films[f"finite {n} x {m}"] = FiniteSFD.from_ratios(MU, C, CR, LD, model,
-                                                               n_theta=n, n_axial=m)
+            films[f"finite {n} x {m}, solver"] = FiniteSFD.from_ratios(
+                MU, C, CR, LD, model, n_theta=n, n_axial=m, table=False)
         calls = {}
         for name, film in films.items():
             kernel, params = film.numba_kernel, film.kernel_params
@@ -110,10 +114,11 @@ def branch_summary(film_length: str, overrides: list[str] | None = None
 
 def branch_rows(repeat: int) -> list[Row]:
     """Part 2: the paper rotor's branch, short vs finite film (first calls compile)."""
-    for film in ("short", "finite"):
-        branch_summary(film)  # warm-up
-    res = interleaved({f: lambda f=f: branch_summary(f) for f in ("short", "finite")},
-                      repeat)
+    cases = {"short": ("short", []), "finite, eps table": ("finite", []),
+             "finite, solver": ("finite", ["elements.sfd.film_table=false"])}
+    for film, ov in cases.values():
+        branch_summary(film, ov)  # warm-up
+    res = interleaved({k: lambda c=c: branch_summary(*c) for k, c in cases.items()}, repeat)
     rows = []
     for name, (t, times, s) in res.items():
         rows.append(Row("film", "paper rotor (L/D = 0.325, pi film), HB branch Omega~ "

@@ -18,7 +18,8 @@ LD = 0.325
 
 
 def finite(cavitation: str = "pi", ld: float = LD, **kw) -> FiniteSFD:
-    return FiniteSFD.from_ratios(MU, C, CR, ld, cavitation, **kw)
+    """The grid solver at every sample (the eps table: test_finite_film_jacobian.py)."""
+    return FiniteSFD.from_ratios(MU, C, CR, ld, cavitation, **{"table": False} | kw)
 
 
 def state(eps: float, psi: float = 0.7, vy: float = 0.02, vz: float = -0.03):

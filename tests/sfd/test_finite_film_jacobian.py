@@ -28,13 +28,17 @@ def central_differences(film: FiniteSFD, y: float, z: float, vy: float, vz: floa
     return J[:, :2], J[:, 2:]
 
 
-@pytest.mark.parametrize("model", ["pi", "none", "guembel"])
+@pytest.mark.parametrize("model, table", [("pi", False), ("pi", True), ("none", False),
+                                          ("none", True), ("guembel", False)])
 @pytest.mark.parametrize("end_flow", [math.inf, 0.5])
-def test_jacobian_against_central_differences(model: str, end_flow: float) -> None:
+def test_jacobian_against_central_differences(model: str, table: bool, end_flow: float
+                                              ) -> None:
     """Relative to the Jacobian's size: the differences carry O(h^2) truncation and
     roundoff ~1e-10/h; a Guembel sample whose step crosses a node's sign change would
-    show a kink (none in these states: the worst sample is reported on failure)."""
-    film = FiniteSFD.from_ratios(MU, C, CR, 0.325, model, end_flow=end_flow)
+    show a kink (none in these states: the worst sample is reported on failure). With the
+    eps table the Jacobian is the exact derivative of the interpolated force."""
+    film = FiniteSFD.from_ratios(MU, C, CR, 0.325, model, end_flow=end_flow, table=table)
+    assert film.tabulated == table
     y, z, vy, vz = random_states(12, 7, 0.05, 0.9)
     for i in range(y.size):
         _, jq, jv = film.force_and_jacobian(y[i], z[i], vy[i], vz[i])
@@ -73,3 +77,21 @@ def test_kernel_with_offset_equals_the_api(model: str) -> None:
     assert kernel(np.array([0.2 * C + 0.9995 * C, -0.1 * C]), np.zeros(2), params, f, jq,
                   jv) == 1
     assert np.all(f == 7.0)
+
+
+@pytest.mark.parametrize("model", ["pi", "none"])
+@pytest.mark.parametrize("end_flow", [math.inf, 0.0])
+def test_eps_table_error_bound(model: str, end_flow: float) -> None:
+    """The table's error, measured at every interval's midpoint when it is built, is below
+    1e-5 (M) and 1e-4 (dM/deps); on random states the tabulated force is within 1e-6 of the
+    grid solver, the velocity Jacobian too, and dF/dq within 1e-3 (its psi term divides
+    the table's error by e: largest near the centre)."""
+    tab = FiniteSFD.from_ratios(MU, C, CR, 0.325, model, end_flow=end_flow)
+    ref = FiniteSFD.from_ratios(MU, C, CR, 0.325, model, end_flow=end_flow, table=False)
+    assert tab.table_error[0] < 1e-5 and tab.table_error[1] < 1e-4
+    y, z, vy, vz = random_states(100, 17, 0.0, 0.99)
+    F, dq, dv = tab.force_and_jacobian(y, z, vy, vz)
+    F0, dq0, dv0 = ref.force_and_jacobian(y, z, vy, vz)
+    for a, b, tol in ((F, F0, 1e-6), (dv, dv0, 1e-6), (dq, dq0, 1e-3)):
+        scale = np.abs(b).reshape(100, -1).max(axis=1)
+        assert np.all(np.abs(a - b).reshape(100, -1).max(axis=1) <= tol * scale)

@@ -258,6 +258,11 @@ class SFDConfig(Section):
                         le=1024) = 48
     grid_axial: integer("axial intervals of the finite film's half land (even)", ge=2,
                         le=64) = 4
+    film_table: bool = Field(
+        True, description="finite pi or 2 pi film: tabulate it over eps when built (256 "
+                          "nodes, cubic Hermite, its error against the grid solver "
+                          "measured) instead of solving the grid at every sample; the "
+                          "Guembel film is always solved")
     density: quantity("density", "oil density rho (for the squeeze Reynolds number "
                       "rho omega C^2 / mu in the results)", gt=0, optional=True) = None
     film_report: bool | None = Field(
@@ -290,7 +295,7 @@ class SFDConfig(Section):
         """The finite film's fields: only with ``film_length = "finite"``, grid sizes
         the scheme takes."""
         if self.film_length == "short":
-            for name in ("end_flow", "grid_theta", "grid_axial"):
+            for name in ("end_flow", "grid_theta", "grid_axial", "film_table"):
                 if getattr(self, name) != type(self).model_fields[name].default:
                     raise fail(name, getattr(self, name),
                                "is a field of the finite film: set film_length = "
@@ -351,7 +356,8 @@ class SFDConfig(Section):
         if self.film_length == "finite":
             ends = "open ends" if self.end_flow is None else f"end_flow = {self.end_flow:g}"
             text += (f"; finite film, {ends}, grid {self.grid_theta} x {self.grid_axial} "
-                     "(theta x half land)")
+                     "(theta x half land)" + (", tabulated over eps" if self.film_table
+                                              and self.cavitation != "guembel" else ""))
         return text
 
     def linear_supports(self) -> list[LinearSupport]:
@@ -371,7 +377,8 @@ class SFDConfig(Section):
 
             film = FiniteSFD(*geometry, cavitation=self.cavitation,
                              end_flow=math.inf if self.end_flow is None else self.end_flow,
-                             n_theta=self.grid_theta, n_axial=self.grid_axial)
+                             n_theta=self.grid_theta, n_axial=self.grid_axial,
+                             table=self.film_table)
         else:
             from rotorsfd.model.sfd import SFD  # deferred: numba (the film's kernels)
 

@@ -28,6 +28,7 @@ from rotorsfd.model.film_finite_solver import (
     film_coefficients,
     solve,
 )
+from rotorsfd.model.film_finite_table import hermite_matrices
 
 #: Cavitation model codes (the short film's): pi film (arc theta in [pi, 2 pi]), 2 pi film,
 #: Guembel clamp (p = max(p_full, 0) node by node).
@@ -35,13 +36,15 @@ CAVITATION_CODES: dict[str, int] = {"pi": 0, "none": 1, "guembel": 2}
 PI_FILM, FULL_FILM, GUEMBEL = 0, 1, 2
 
 #: Layout of the parameter vector (the element appends nothing: the housing offset is here).
+#: ``P_TABLE_N``: nodes of the eps table of :mod:`rotorsfd.model.film_finite_table` (0:
+#: none, solve at every sample); the table follows from ``N_PARAMS`` on.
 (P_VISCOSITY, P_RADIUS, P_LENGTH, P_CLEARANCE, P_EPS_MAX, P_CODE, P_N_THETA, P_N_AXIAL,
- P_END_FLOW, P_OFFSET_Y, P_OFFSET_Z) = range(11)
-N_PARAMS = 11
+ P_END_FLOW, P_OFFSET_Y, P_OFFSET_Z, P_TABLE_N) = range(12)
+N_PARAMS = 12
 
 #: A sealed end (beta = 0) is solved with this end-flow coefficient: the constant pressure
 #: mode is then fixed by the zero net end flow; the force changes by O(beta) relative.
-BETA_SEALED = 1e-9
+BETA_SEALED = 1e-7
 
 
 @njit(cache=True)
@@ -150,11 +153,10 @@ def guembel_sums(pi_: np.ndarray, dpi: np.ndarray, wr: float, wt: float, wz: np.
 
 
 @njit(cache=True)
-def finite_sample(y: float, z: float, vy: float, vz: float, params: np.ndarray,
-                  F: np.ndarray, dFdq: np.ndarray, dFdv: np.ndarray) -> int:
-    """Force and exact Jacobian of the discrete film at ``q = (y, z)`` (relative to the
-    housing centre), ``v = (vy, vz)``; returns 0, or 1 if ``eps >= eps_max`` or the state
-    is not finite (outputs then untouched)."""
+def film_sums(eps: float, wr: float, wt: float, params: np.ndarray
+              ) -> tuple[float, float, float, float, float, float, float, float]:
+    """``(G, M, dG/deps)`` of the discrete film in the frame of the line of centres:
+    ``G = kappa sum W chi p m`` (2,), ``M = dG/dw`` (2, 2, row-major), ``dG/deps`` (2,)."""
     mu = params[P_VISCOSITY]
     rad = params[P_RADIUS]
     length = params[P_LENGTH]
@@ -162,26 +164,18 @@ def finite_sample(y: float, z: float, vy: float, vz: float, params: np.ndarray,
     code = int(params[P_CODE])
     n = int(params[P_N_THETA])
     m = int(params[P_N_AXIAL])
-    beta = params[P_END_FLOW]
-    e = math.hypot(y, z)
-    eps = e / clr
-    if not (eps < params[P_EPS_MAX]) or not (math.isfinite(vy) and math.isfinite(vz)):
-        return 1
-    cp, sp = (y / e, z / e) if e > 0.0 else (1.0, 0.0)
-    wr = cp * vy + sp * vz
-    wt_ = -sp * vy + cp * vz
     lam = (0.5 * length / rad) ** 2
-    pi_, dpi = basis_fields(eps, lam, n, m, beta, True)
+    pi_, dpi = basis_fields(eps, lam, n, m, params[P_END_FLOW], True)
     nb = pi_.shape[1]
     wth, wz = quadrature_weights(n, m, nb, code)
     kappa = 3.0 * mu * rad * length ** 3 / clr ** 3
     dth = 2.0 * math.pi / n
     if code == GUEMBEL:
-        g0, g1, m00, m01, m10, m11, d0, d1 = guembel_sums(pi_, dpi, wr, wt_, wz)
+        g0, g1, m00, m01, m10, m11, d0, d1 = guembel_sums(pi_, dpi, wr, wt, wz)
     else:
-        g0 = g1 = 0.0  # G = sum W chi p m
-        m00 = m01 = m10 = m11 = 0.0  # M_ab = dG_a / dw_b
-        d0 = d1 = 0.0  # dG/deps
+        g0 = g1 = 0.0
+        m00 = m01 = m10 = m11 = 0.0
+        d0 = d1 = 0.0
         for i in range(n):
             if wth[i] == 0.0:
                 continue
@@ -191,25 +185,27 @@ def finite_sample(y: float, z: float, vy: float, vz: float, params: np.ndarray,
                 w = wth[i] * wz[j]
                 if w == 0.0:
                     continue
-                p = wr * pi_[i, j, 0] + wt_ * pi_[i, j, 1]
+                p = wr * pi_[i, j, 0] + wt * pi_[i, j, 1]
                 g0 += w * p * ct
                 g1 += w * p * st
                 m00 += w * pi_[i, j, 0] * ct
                 m01 += w * pi_[i, j, 1] * ct
                 m10 += w * pi_[i, j, 0] * st
                 m11 += w * pi_[i, j, 1] * st
-                dp = wr * dpi[i, j, 0] + wt_ * dpi[i, j, 1]
+                dp = wr * dpi[i, j, 0] + wt * dpi[i, j, 1]
                 d0 += w * dp * ct
                 d1 += w * dp * st
-    g0 *= kappa
-    g1 *= kappa
-    m00 *= kappa
-    m01 *= kappa
-    m10 *= kappa
-    m11 *= kappa
-    d0 *= kappa
-    d1 *= kappa
-    # F = Rot G, Rot = [[cp, -sp], [sp, cp]];  dF/dv = Rot M Rot^T
+    return (kappa * g0, kappa * g1, kappa * m00, kappa * m01, kappa * m10, kappa * m11,
+            kappa * d0, kappa * d1)
+
+
+@njit(cache=True)
+def rotate_out(cp: float, sp: float, e: float, clr: float, wr: float, wt: float,
+               g0: float, g1: float, m00: float, m01: float, m10: float, m11: float,
+               d0: float, d1: float, F: np.ndarray, dFdq: np.ndarray, dFdv: np.ndarray
+               ) -> None:
+    """``F = Rot G``, ``dF/dv = Rot M Rot^T``, ``dF/dq = Rot dG/deps e_r^T / C + Rot (J G -
+    M J w) e_t^T / e`` (the psi term left out at ``e = 0``)."""
     F[0] = cp * g0 - sp * g1
     F[1] = sp * g0 + cp * g1
     r00 = cp * m00 - sp * m10
@@ -220,20 +216,52 @@ def finite_sample(y: float, z: float, vy: float, vz: float, params: np.ndarray,
     dFdv[0, 1] = r00 * sp + r01 * cp
     dFdv[1, 0] = r10 * cp - r11 * sp
     dFdv[1, 1] = r10 * sp + r11 * cp
-    # dF/dq = Rot dG/deps e_r^T / C + Rot (J G - M J w) e_t^T / e
     fr0 = (cp * d0 - sp * d1) / clr
     fr1 = (sp * d0 + cp * d1) / clr
     ft0 = ft1 = 0.0
     if e > 0.0:
         # J G = (-g1, g0); J w = (-wt, wr)
-        u0 = -g1 - (m00 * (-wt_) + m01 * wr)
-        u1 = g0 - (m10 * (-wt_) + m11 * wr)
+        u0 = -g1 - (m00 * (-wt) + m01 * wr)
+        u1 = g0 - (m10 * (-wt) + m11 * wr)
         ft0 = (cp * u0 - sp * u1) / e
         ft1 = (sp * u0 + cp * u1) / e
     dFdq[0, 0] = fr0 * cp - ft0 * sp
     dFdq[0, 1] = fr0 * sp + ft0 * cp
     dFdq[1, 0] = fr1 * cp - ft1 * sp
     dFdq[1, 1] = fr1 * sp + ft1 * cp
+
+
+@njit(cache=True)
+def table_matrices(eps: float, params: np.ndarray
+                   ) -> tuple[float, float, float, float, float, float, float, float]:
+    """``(M, dM/deps)`` from the eps table stored after ``N_PARAMS``."""
+    return hermite_matrices(eps, params[P_EPS_MAX], params, N_PARAMS, int(params[P_TABLE_N]))
+
+
+@njit(cache=True)
+def finite_sample(y: float, z: float, vy: float, vz: float, params: np.ndarray,
+                  F: np.ndarray, dFdq: np.ndarray, dFdv: np.ndarray) -> int:
+    """Force and exact Jacobian of the discrete film at ``q = (y, z)`` (relative to the
+    housing centre), ``v = (vy, vz)``; returns 0, or 1 if ``eps >= eps_max`` or the state
+    is not finite (outputs then untouched). With an eps table in the parameters (pi and
+    2 pi films) ``M(eps)`` and ``dM/deps`` come from the table, ``G = M w``."""
+    clr = params[P_CLEARANCE]
+    e = math.hypot(y, z)
+    eps = e / clr
+    if not (eps < params[P_EPS_MAX]) or not (math.isfinite(vy) and math.isfinite(vz)):
+        return 1
+    cp, sp = (y / e, z / e) if e > 0.0 else (1.0, 0.0)
+    wr = cp * vy + sp * vz
+    wt = -sp * vy + cp * vz
+    if params[P_TABLE_N] > 0.0:
+        m00, m01, m10, m11, dm00, dm01, dm10, dm11 = table_matrices(eps, params)
+        g0 = m00 * wr + m01 * wt
+        g1 = m10 * wr + m11 * wt
+        d0 = dm00 * wr + dm01 * wt
+        d1 = dm10 * wr + dm11 * wt
+    else:
+        g0, g1, m00, m01, m10, m11, d0, d1 = film_sums(eps, wr, wt, params)
+    rotate_out(cp, sp, e, clr, wr, wt, g0, g1, m00, m01, m10, m11, d0, d1, F, dFdq, dFdv)
     return 0
 
 
