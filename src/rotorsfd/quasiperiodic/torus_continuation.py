@@ -7,12 +7,14 @@ condensed residual (a length) over c; a point is converged when the 2-norm of th
 extended residual is <= tol. The elements' validity measure (an SFD's eccentricity ratio)
 must stay below ``limit_max`` at every grid point of the torus: a step that crosses it is
 halved, and the branch ends there with the corrector's message, as a periodic branch does.
-The grid N1 x N2 is chosen at the first point (:func:`~rotorsfd.quasiperiodic.
-torus_fourier.choose_grid`); the sampling error of every point (the relative change of the
-force coefficients when N1 or N2 doubles) is measured, and where it exceeds ``alias_tol``
-in a direction that direction's N doubles and the point is solved again (the grid only
-grows along a branch). The error is stored per point; the message warns if it stayed above
-``alias_tol`` at ``grid_max``.
+The grid N1 x N2 starts at the one-dimensional floor per direction
+(``default_min_samples(H1) x default_min_samples(H2)``). The sampling error of every point
+is measured in the units of the Newton test, as the periodic "adaptive" rule does: the
+change of the scaled condensed residual ``|Ht (G_2N - G_N)| / c`` when N1 or N2 doubles;
+where it exceeds ``alias_tol`` (default: the Newton tolerance) in a direction, that
+direction's N doubles and the point is solved again (the grid only grows along a branch).
+The error is stored per point; the message warns if it stayed above ``alias_tol`` at
+``grid_max``. A given ``grid`` is used as it is.
 """
 
 from __future__ import annotations
@@ -26,11 +28,10 @@ from numpy.typing import NDArray
 from rotorsfd.continuation.arclength import ArcLengthOptions, arclength
 from rotorsfd.continuation.newton import newton_extended
 from rotorsfd.errors import ConvergenceError
-from rotorsfd.harmonic.fourier import to_real
+from rotorsfd.harmonic.fourier import default_min_samples, to_real
 from rotorsfd.quasiperiodic.torus_fourier import (
+    TorusAFT,
     TorusLattice,
-    choose_grid,
-    grid_aliasing,
     synthesize,
 )
 from rotorsfd.quasiperiodic.torus_linear import TorusProblem
@@ -80,19 +81,43 @@ class TorusSystem:
         return self.hb.coefficients(xs, lam)
 
     def aliasing(self, z: FloatArray) -> float:
-        """Sampling error: the larger relative change of the retained force coefficients
-        when N1 or N2 doubles (0 without elements)."""
+        """Sampling error at z: the larger of :meth:`aliasing_axes`."""
         return max(self.aliasing_axes(z))
 
-    def aliasing_axes(self, z: FloatArray) -> tuple[float, float]:
-        """The sampling error of each torus direction (N1, N2 doubled in turn)."""
+    def aliasing_axes(self, z: FloatArray, grid: tuple[int, int] | None = None
+                      ) -> tuple[float, float]:
+        """Sampling error of each torus direction on ``grid`` (default: this one), in the
+        units of the Newton test: ``|Ht (G_2N - G_N)|_2 / c`` when N1 (N2) doubles, the
+        change of the scaled condensed residual (0 without elements)."""
         if not self.problem.m:
             return 0.0, 0.0
         xs, lam = self.from_z(z)
-        w = self.lattice.frequencies(*self.problem.frequencies(lam))
-        force = self.problem.elements.force
-        e = [grid_aliasing(force, self.lattice, xs, w, *self.grid, axis=a) for a in (0, 1)]
+        N1, N2 = grid or self.grid
+        Ht = self.hb.condenser.condense(lam, deriv=False).Ht
+        G = [torus_force(self.problem, TorusAFT(self.lattice, *g), xs, lam, jac=False).G
+             for g in ((N1, N2), (2 * N1, N2), (N1, 2 * N2))]
+        e = [float(np.linalg.norm(Ht @ (Gd - G[0]).ravel() / self.cx)) for Gd in G[1:]]
         return e[0], e[1]
+
+    def finer_grid(self, z: FloatArray, tol: float, n_max: int) -> tuple[int, int]:
+        """This grid with N1 and N2 doubled while their sampling error at z exceeds tol
+        (up to n_max per direction)."""
+        grid = self.grid
+        for _ in range(8):
+            err = self.aliasing_axes(z, grid)
+            finer = tuple(N * 2 if e > tol and N < n_max else N
+                          for e, N in zip(err, grid, strict=True))
+            if finer == grid:
+                break
+            grid = finer
+        return grid
+
+    def with_grid(self, grid: tuple[int, int]) -> TorusSystem:
+        """The same system on another grid (sharing the condensed linear operators)."""
+        other = TorusSystem(self.problem, self.lattice, grid, self.lam_scale,
+                            self.limit_max)
+        other.hb.condenser = self.hb.condenser
+        return other
 
 
 def initial_guess(problem: TorusProblem, lattice: TorusLattice, lam: float,
@@ -118,17 +143,13 @@ def initial_guess(problem: TorusProblem, lattice: TorusLattice, lam: float,
 
 def torus_system(problem: TorusProblem, lattice: TorusLattice, lam: float,
                  X0: ComplexArray | None, grid: tuple[int, int] | None, lam_scale: float,
-                 limit_max: float, alias_tol: float) -> tuple[TorusSystem, FloatArray]:
-    """The scaled system at lam (grid by :func:`choose_grid` at the start if not given,
-    shift Delta set there) and its first unknowns."""
-    start_grid = grid or (2 * lattice.H1 + 2, 2 * lattice.h(0) + 2)
-    xs = initial_guess(problem, lattice, lam, X0, start_grid)
+                 limit_max: float) -> tuple[TorusSystem, FloatArray]:
+    """The scaled system at lam on ``grid`` (default: ``default_min_samples`` of H1 and
+    of h(0), the one-dimensional floor per direction), its shift Delta set at the first
+    unknowns, and those unknowns."""
     if grid is None:
-        if problem.m:
-            w = lattice.frequencies(*problem.frequencies(lam))
-            grid = choose_grid(problem.elements.force, lattice, xs, w, tol=alias_tol)
-        else:
-            grid = lattice.min_grid()
+        grid = (default_min_samples(lattice.H1), default_min_samples(lattice.h(0)))
+    xs = initial_guess(problem, lattice, lam, X0, grid)
     system = TorusSystem(problem, lattice, grid, lam_scale, limit_max)
     system.hb.set_shift(xs, lam)
     return system, system.to_z(xs, lam)
@@ -156,21 +177,27 @@ class TorusSolution:
 def solve_torus(problem: TorusProblem, lam: float, lattice: TorusLattice,
                 X0: ComplexArray | None = None, *, grid: tuple[int, int] | None = None,
                 tol: float = 1e-8, max_iter: int = 50, limit_max: float = 1.0,
-                alias_tol: float = 1e-8) -> TorusSolution:
+                alias_tol: float | None = None, grid_max: int = 512) -> TorusSolution:
     """The torus at fixed lam by Newton on the condensed equations (ConvergenceError on
-    failure, saying where and why)."""
-    system, z0 = torus_system(problem, lattice, lam, X0, grid, max(abs(lam), 1.0),
-                              limit_max, alias_tol)
+    failure, saying where and why). Without ``grid`` the solution is refined: N1, N2
+    double while their sampling error exceeds ``alias_tol`` (default tol) and the torus
+    is solved again."""
+    system, z = torus_system(problem, lattice, lam, X0, grid, max(abs(lam), 1.0),
+                             limit_max)
     e = np.zeros(system.n + 1)
     e[-1] = 1.0
-    if system.n:
-        res = newton_extended(system, z0, e, float(z0[-1]), tol, max_iter)
+    it, norm = 0, 0.0
+    for _ in range(8 if system.n else 0):
+        res = newton_extended(system, z, e, float(z[-1]), tol, max_iter)
         if not res.converged:
             raise ConvergenceError(f"{problem.name}: no torus at lam={lam:.8g} "
                                    f"({lattice}, grid {system.grid}): {res.message}")
-        z, it, norm = res.z, res.iterations, res.norm
-    else:
-        z, it, norm = z0, 0, 0.0
+        z, it, norm = res.z, it + res.iterations, res.norm
+        finer = system.grid if grid else system.finer_grid(
+            z, tol if alias_tol is None else alias_tol, grid_max)
+        if finer == system.grid:
+            break
+        system = system.with_grid(finer)
     om, wb = problem.frequencies(lam)
     return TorusSolution(lam, system.coefficients(z), om, wb, lattice, system.grid, it,
                          norm, system.aliasing(z))
@@ -216,7 +243,7 @@ def continue_torus(problem: TorusProblem, lam_start: float, lam_end: float,
                    ds: float = 0.01, ds_min: float = 1e-6, ds_max: float = 0.05,
                    max_iter: int = 8, max_points: int = 500, max_angle_deg: float = 20.0,
                    lam_scale: float | None = None, limit_max: float = 1.0,
-                   alias_tol: float = 1e-6, grid_max: int = 512,
+                   alias_tol: float | None = None, grid_max: int = 512,
                    callback: Callable[[int, float, ComplexArray], bool | None] | None = None
                    ) -> TorusBranch:
     """Branch of tori from lam_start towards lam_end by pseudo arc-length
@@ -226,13 +253,11 @@ def continue_torus(problem: TorusProblem, lam_start: float, lam_end: float,
     validity limit of an element, no convergence) or the branch turns back; raises
     ConvergenceError only if the first point cannot be found.
 
-    The grid: ``grid`` or the rule's at the first point (with ``alias_tol / 100``); where
-    the sampling error of a point exceeds ``alias_tol`` in a direction, N of that
-    direction doubles (up to ``grid_max``) and the point is solved again before the
-    branch goes on."""
+    The grid: ``grid`` as given, or adapted (module docstring; ``alias_tol`` default
+    tol)."""
     scale = lam_scale or (abs(lam_end - lam_start) or max(abs(lam_start), 1.0))
-    system, z0 = torus_system(problem, lattice, lam_start, X0, grid, scale, limit_max,
-                              1e-2 * alias_tol)
+    alias_tol = tol if alias_tol is None else alias_tol
+    system, z0 = torus_system(problem, lattice, lam_start, X0, grid, scale, limit_max)
     e = np.zeros(system.n + 1)
     e[-1] = 1.0
     first = newton_extended(system, z0, e, float(z0[-1]), tol, 50)
@@ -247,7 +272,7 @@ def continue_torus(problem: TorusProblem, lam_start: float, lam_end: float,
         err = system.aliasing_axes(z)
         finer = tuple(N * 2 if e > alias_tol and N < grid_max else N
                       for e, N in zip(err, system.grid, strict=True))
-        if finer != system.grid:            # resample this point on a finer grid
+        if finer != system.grid and grid is None:     # solve this point on a finer grid
             state["refine"] = (z, t, finer, step)
             return True
         xs, lam = system.from_z(z)
@@ -273,10 +298,7 @@ def continue_torus(problem: TorusProblem, lam_start: float, lam_end: float,
         z_old, t_prev, finer, step = state["refine"]
         state["refine"], state["carry"] = None, step
         lam = system.from_z(z_old)[1]
-        old = system
-        system = TorusSystem(problem, lattice, finer, scale, limit_max)
-        system.hb.condenser = old.hb.condenser      # the same shift, the same operators
-        system.hb.condenser.problem = problem
+        system = system.with_grid(finer)
         e = np.zeros(system.n + 1)
         e[-1] = 1.0
         again = newton_extended(system, z_old, e, float(z_old[-1]), tol, 20)
