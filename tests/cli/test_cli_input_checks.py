@@ -125,10 +125,6 @@ def test_good_output_folder_check_leaves_nothing(tmp_path, monkeypatch, capsys):
     (["--parameter", "speed", "--from", "0", "--to", "1"],
      "rotorsfd: error: --parameter: got 'speed'; must differ from the speed (the "
      "saddle-nodes are those of the speed response)"),
-    (["--parameter", "elements.sfd.viscosity", "--from", "0", "--to", "1"],
-     "rotorsfd: error: --parameter: got 'elements.sfd.viscosity'; must be one of speed, "
-     "base.rolling.value, base.pitching.value, base.yawing.value, unbalance[0].magnitude "
-     "(continuation with exact derivatives)"),
 ])
 def test_fold_curve_range_checked_before_work(tmp_path, monkeypatch, capsys, argv, line):
     from rotorsfd import api

@@ -66,7 +66,7 @@ def test_failed_points_recorded_and_rest_complete(config, tmp_path):
     status = ds["status"].values
     assert status.tolist() == [[0, 0], [0, 0], [2, 2]]
     assert ds["status"].attrs["flag_meanings"] == "ok incomplete failed pending"
-    assert str(ds["message"].values[2, 0]).startswith("ConvergenceError: synthetic failure")
+    assert str(ds["message"].values[2, 0]).startswith("synthetic failure")
     assert ds["message"].values[0, 0] == ""
     total = ds["total"].values
     np.testing.assert_array_equal(total[:2], [[0.00404, 0.00405], [0.00504, 0.00505]])
@@ -79,7 +79,7 @@ def test_failed_points_recorded_and_rest_complete(config, tmp_path):
     assert lines[0] == ("elements_sfd_clearance_ratio,unbalance_0_magnitude_kg_m,point_id,status,"
                         "message,total,echo_0,echo_1,even,label")
     assert lines[1].startswith("0.004,4e-05,000000,ok,,0.00404,0.004,4e-05,")
-    assert lines[5].startswith("0.006,4e-05,000004,failed,ConvergenceError")
+    assert lines[5].startswith("0.006,4e-05,000004,failed,synthetic failure: 0.006 > 0.0055")
     assert lines[5].endswith(",,,,,")                          # empty = missing
     manifest = json.loads((tmp_path / "sweep.json").read_text())
     assert manifest["complete"] is True and manifest["counts"]["failed"] == 2

@@ -39,7 +39,7 @@ from numpy.typing import NDArray
 
 from rotorsfd.analyses.modal import first_critical
 from rotorsfd.continuation.branch import Branch, BranchPoint
-from rotorsfd.errors import ConfigError
+from rotorsfd.errors import ConfigError, ConvergenceError
 from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.model.system import RotorSystem
 
@@ -55,6 +55,7 @@ from rotorsfd.analyses.response_result import (
     ResponseResult,
     StabilityHook,
     column_slug,
+    start_failure,
     system_parameter,
 )
 from rotorsfd.harmonic.synthesis import max_radius, orbit_samples
@@ -189,7 +190,11 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
             branch, orbit_info = _branch_from_orbit(problem, sys_param, from_orbit, H,
                                                     start, stop, hook, closure_tol, opts)
         else:
-            branch = continue_periodic(problem, start, stop, H, X0, callback=hook, **opts)
+            try:
+                branch = continue_periodic(problem, start, stop, H, X0, callback=hook, **opts)
+            except ConvergenceError as exc:   # only the first point raises
+                raise ConvergenceError(start_failure(system, path, start, float(ref),
+                                                     opts.get("limit_max"), str(exc))) from None
     finally:
         bar.close()
     result = ResponseResult(branch, system, float(ref), tuple(out_nodes),

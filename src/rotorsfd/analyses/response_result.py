@@ -61,6 +61,45 @@ def _failure_words(solver: str) -> str:
     return ""
 
 
+def start_failure(system: RotorSystem, parameter: str, value: float, reference_speed: float,
+                  limit_max: float | None, solver: str,
+                  where: str = "the start of the range") -> str:
+    """Why no periodic response was found at a branch's first point, in the user's terms
+    (where, which limit or field, what to change), the solver's text in brackets."""
+    name = system_parameter(parameter)
+    if name == "speed":
+        at = f"Omega~ = {value / reference_speed:.5g} ({value:.6g} rad/s)"
+        first = f"{FIELD}.speed_range.start"
+    else:
+        unit = PARAMETER_UNITS[name]
+        at = f"{parameter} = {value:.6g}" + ("" if unit == "1" else f" {unit}")
+        first = f"{FIELD}.parameter_range"
+    if "limit reached" in solver:
+        limited = [e for e in system.elements if e.limit_label is not None]
+        names = " or ".join(e.describe() for e in limited) or "an element"
+        label = limited[0].limit_label if len(limited) == 1 else "its validity measure"
+        bound = "" if limit_max is None else f" = {limit_max:g}"
+        reason = (f"every Newton step from the linear response took {names} past "
+                  f"{label}{bound}, the limit set by {FIELD}.max_eccentricity (the response "
+                  f"there is too large for the element: start where it is smaller "
+                  f"({first}), reduce the forcing, or raise max_eccentricity, up to 0.999)")
+    elif "no convergence" in solver:
+        reason = (f"Newton did not converge in {FIELD}.max_iterations iterations (raise "
+                  f"it, or start where the response is closer to the linear one ({first}))")
+    elif "singular" in solver:
+        reason = ("the harmonic-balance equations are singular there (an undamped "
+                  f"resonance of the linear rotor?): move {first}")
+    else:
+        reason = (f"the element forces could not be evaluated near the linear response "
+                  f"(move {first})")
+    return f"no periodic response at {where}, {at}: {reason} [solver: {one_line(solver)}]"
+
+
+def one_line(text: str) -> str:
+    """``text`` with its whitespace runs (newlines too) as single spaces."""
+    return " ".join(text.split())
+
+
 def system_parameter(path: str) -> str:
     """RotorSystem parameter of a config path ('base.pitching.value' -> 'base.pitching');
     ConfigError naming ``analysis.response.parameter`` for anything else."""

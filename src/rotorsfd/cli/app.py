@@ -5,7 +5,8 @@ Exit status: 0 success; 2 bad input (config, ``--set``, arguments, an output fol
 cannot be written: one line naming the field, before any work); 1 any other rotorsfd error
 (numerical failure) or a file that cannot be written (one line); 130 interrupted (the
 output folder keeps ``INCOMPLETE.txt``); 141 stdout closed early (``| head``), silently.
-``--debug`` adds the traceback. Every error line starts with ``rotorsfd: error: ``.
+``--debug`` adds the traceback, ``--verbose`` the solver's account of a failure (see
+:mod:`~rotorsfd.cli.output`). Every error line starts with ``rotorsfd: error: ``.
 """
 
 from __future__ import annotations
@@ -18,8 +19,8 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from rotorsfd.cli.output import PREFIX, one_line, print_warning
-from rotorsfd.cli.registry import Command, UsageError, build_parser
+from rotorsfd.cli.output import PREFIX, one_line, print_warning, user_text
+from rotorsfd.cli.registry import Command, UsageError, build_parser, unrecognized
 from rotorsfd.errors import ConfigError, RotorsfdError
 from rotorsfd.interrupt import Interrupted
 
@@ -40,7 +41,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     single_threaded_blas()
     parser = build_parser()
     try:
-        args = parser.parse_args(argv)
+        args, extra = parser.parse_known_args(argv)
+        if extra:
+            raise unrecognized(args, extra)
     except UsageError as exc:
         print(f"{PREFIX}{one_line(exc)}", file=sys.stderr)
         return 2
@@ -48,6 +51,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return int(exc.code or 0)
     spec: Command = args._command
     debug = bool(getattr(args, "debug", False))
+    verbose = bool(getattr(args, "verbose", False))
     try:
         config = None
         if spec.config:
@@ -55,6 +59,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             from rotorsfd import api
 
             config = api.load_config(args.config, args.overrides)
+        if spec.check is not None:
+            spec.check(args, config)
         check_output(getattr(args, "output", None))
         if spec.config and spec.output:
             print_config_warnings(config, Path(args.config).parent)
@@ -62,9 +68,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         sys.stdout.flush()  # a closed pipe fails here, not at the interpreter's exit
         return status
     except ConfigError as exc:
-        return report(exc, 2, debug)
+        return report(exc, 2, debug, verbose=verbose)
     except RotorsfdError as exc:
-        return report(exc, 1, debug)
+        return report(exc, 1, debug, verbose=verbose)
     except Interrupted as exc:
         print(f"rotorsfd: interrupted: {exc.kept}", file=sys.stderr)
         return 130
@@ -78,7 +84,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return report(exc, 1, debug)
     except Exception as exc:
         return report(exc, 1, debug, f"internal error ({type(exc).__name__}), please "
-                      "report it; run with --debug for the traceback: ")
+                      "report it; run with --debug for the traceback: ", verbose=True)
 
 
 def run_marked(spec: Command, args: argparse.Namespace, config: Any) -> int:
@@ -105,11 +111,13 @@ def run_marked(spec: Command, args: argparse.Namespace, config: Any) -> int:
     return status
 
 
-def report(exc: BaseException, status: int, debug: bool, prefix: str = "") -> int:
-    """Print the error on one line (the traceback first with ``--debug``); ``status``."""
+def report(exc: BaseException, status: int, debug: bool, prefix: str = "", *,
+           verbose: bool = True) -> int:
+    """Print the error on one line (the traceback first with ``--debug``; the solver's
+    account only when ``verbose``); return ``status``."""
     if debug:
         traceback.print_exc()
-    print(f"{PREFIX}{prefix}{one_line(exc)}", file=sys.stderr)
+    print(f"{PREFIX}{prefix}{user_text(exc, verbose or debug)}", file=sys.stderr)
     return status
 
 

@@ -33,6 +33,6 @@ def bifurcation_diagram(args: argparse.Namespace, config: Any) -> int:
     paths = result.write(args.output)
     for p in result.contacts:
         print_error(f"{p.direction} sweep: speed {p.speed:.6g} rad/s failed "
-                    f"({p.contact}); the sweep went on")
-    print_written(result, paths, args.quiet)
+                    f"({p.contact}); the sweep went on", args.verbose)
+    print_written(result, paths, args.quiet, args.verbose)
     return 0 if result.success else 1

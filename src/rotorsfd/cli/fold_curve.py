@@ -49,6 +49,11 @@ def fold_range(config: Any, parameter: str, start: str, stop: str) -> tuple[floa
     return values[0], values[1]
 
 
+def check_fold_curve(args: argparse.Namespace, config: Any) -> None:
+    """``--parameter``, ``--from`` and ``--to`` (see :func:`fold_range`)."""
+    fold_range(config, args.parameter, args.start, args.stop)
+
+
 @command("fold-curve", "two-parameter continuation of the saddle-nodes of the speed "
          "response ([analysis.response] speeds and H) in a second parameter: "
          "fold_curve.csv, fold_curve.json, fold_curve.png (Omega~ of the folds and the "
@@ -64,7 +69,8 @@ def fold_range(config: Any, parameter: str, start: str, stop: str) -> tuple[floa
                     arg("--to", dest="stop", required=True, metavar="VALUE",
                         help="end value, e.g. '10 rad/s'"),
                     arg("--harmonics", type=options.integer(1), metavar="H",
-                        help="override H")])
+                        help="override H")],
+         check=check_fold_curve)
 def fold_curve(args: argparse.Namespace, config: Any) -> int:
     """Continue the fold curve; exit 1 (after writing) if it stopped early."""
     from rotorsfd import api  # deferred: numpy, scipy, numba (keeps --help fast)
@@ -75,7 +81,7 @@ def fold_curve(args: argparse.Namespace, config: Any) -> int:
                                 harmonics=args.harmonics)
     paths = result.write(args.output)
     if not result.success:
-        print_error(f"fold curve stopped early: {result.message}")
+        print_error(f"fold curve stopped early: {result.message}", args.verbose)
         return 1
-    print_written(result, paths, args.quiet)
+    print_written(result, paths, args.quiet, args.verbose)
     return 0

@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from rotorsfd.cli import options
+from rotorsfd.cli.output import print_summary
 from rotorsfd.cli.registry import arg, command
 
 
@@ -22,7 +23,7 @@ def modal(args: argparse.Namespace, config: Any) -> int:
                            progress=not args.quiet)
     paths = result.write(args.output)
     if not args.quiet:
-        print(result.summary())
+        print_summary(result.summary(), args.verbose)
         if len(result.critical_speeds) < config.analysis.modal.n_critical:
             print(f"note: {len(result.critical_speeds)} of "
                   f"{config.analysis.modal.n_critical} critical speeds found below "
@@ -51,5 +52,5 @@ def fit_supports(args: argparse.Namespace, config: Any) -> int:
     if args.output is not None:
         result.write(args.output)
     if not args.quiet:
-        print(result.summary())
+        print_summary(result.summary(), args.verbose)
     return 0 if result.fit.exact else 1

@@ -6,6 +6,7 @@ import argparse
 from typing import Any
 
 from rotorsfd.cli import options
+from rotorsfd.cli.output import print_summary
 from rotorsfd.cli.registry import arg, command
 from rotorsfd.errors import ConfigError
 
@@ -32,6 +33,6 @@ def paper(args: argparse.Namespace, config: Any) -> int:
         raise ConfigError("--figure", bad[0] if bad else ", ".join(args.figure),
                           exc.args[0]) from None
     if not args.quiet:
-        print(result.summary())
+        print_summary(result.summary(), args.verbose)
         print(f"wrote {result.paths['report.md']}, {result.paths['report.html']}")
     return 0

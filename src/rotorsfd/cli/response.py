@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from rotorsfd.cli import options
-from rotorsfd.cli.output import print_error, print_written
+from rotorsfd.cli.output import print_error, print_summary, print_written
 from rotorsfd.cli.registry import arg, command
 from rotorsfd.interrupt import Interrupted, StopRequest
 
@@ -24,12 +24,12 @@ from rotorsfd.interrupt import Interrupted, StopRequest
                         help="start the branch on the last period of a time-domain orbit "
                              "(rotorsfd simulate output), Newton-corrected at its speed, "
                              "and continue it both ways over the speed range, stopping "
-                             "when it closes on itself (an isola)")])
+                             "when it closes on itself (an isola)")],
+         check=lambda args, config: options.check_exists("--from-orbit", args.from_orbit))
 def response(args: argparse.Namespace, config: Any) -> int:
     """Continue the branch and write it; exit 1 (after writing) if it stopped early."""
     from rotorsfd import api  # deferred: numpy, scipy, numba (keeps --help fast)
 
-    options.check_exists("--from-orbit", args.from_orbit)
     with StopRequest("the current point") as stop:
         result = api.run_response(config, search_path=Path(args.config).parent,
                                   progress=not args.quiet, from_orbit=args.from_orbit,
@@ -37,15 +37,15 @@ def response(args: argparse.Namespace, config: Any) -> int:
     paths = result.write(args.output, multipliers_at=args.multipliers_at)
     if stop.requested:
         if not args.quiet:  # the branch's own last line would say "stopped by the callback"
-            print("\n".join(line for line in result.summary().splitlines()
-                            if "stopped by the callback" not in line))
+            print_summary("\n".join(line for line in result.summary().splitlines()
+                                    if "stopped by the callback" not in line), args.verbose)
             print("wrote " + ", ".join(str(p) for p in paths.values()))
         raise Interrupted(f"the {result.branch.n_points} points computed before Ctrl-C "
                           f"({branch_end(result)}) are written to {args.output}")
     if not result.success:
-        print_error(result.message)
+        print_error(result.message, args.verbose)
         return 1
-    print_written(result, paths, args.quiet)
+    print_written(result, paths, args.quiet, args.verbose)
     return 0
 
 

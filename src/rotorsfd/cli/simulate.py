@@ -12,6 +12,16 @@ from rotorsfd.cli.registry import arg, command
 from rotorsfd.errors import ConfigError
 
 
+def check_simulate(args: argparse.Namespace, config: Any) -> None:
+    """The options against each other, and the initial state's file."""
+    if args.speed is not None and args.speed_ratio is not None:
+        raise ConfigError("--speed/--speed-ratio", (args.speed, args.speed_ratio),
+                          "give --speed or --speed-ratio, not both")
+    if args.hb_phase and not args.from_hb:
+        raise ConfigError("--hb-phase", args.hb_phase, "needs --from-hb")
+    options.check_exists("--initial-state", args.initial_state)
+
+
 @command("simulate", "time integration at one speed ([analysis.simulate]): timeseries.nc, "
          "poincare.csv, summary.json (motion: period-n, quasi-periodic or chaotic, with the "
          "evidence), simulation.png and orbit/phase/poincare/spectrum.png; journal contact: "
@@ -34,17 +44,12 @@ from rotorsfd.errors import ConfigError
                         help="last periods kept in timeseries.nc (default: poincare_periods)"),
                     arg("--lyapunov-periods", type=options.integer(0), metavar="N",
                         help="periods of the Lyapunov run (default: min(100, periods); "
-                             "0: none)")])
+                             "0: none)")],
+         check=check_simulate)
 def simulate(args: argparse.Namespace, config: Any) -> int:
-    """Check the options against each other, integrate, write and print the summary."""
+    """Integrate, write and print the summary."""
     from rotorsfd import api  # deferred: numpy, scipy, numba (keeps --help fast)
 
-    if args.speed is not None and args.speed_ratio is not None:
-        raise ConfigError("--speed/--speed-ratio", (args.speed, args.speed_ratio),
-                          "give --speed or --speed-ratio, not both")
-    if args.hb_phase and not args.from_hb:
-        raise ConfigError("--hb-phase", args.hb_phase, "needs --from-hb")
-    options.check_exists("--initial-state", args.initial_state)
     result = api.run_simulation(config, args.speed, speed_ratio=args.speed_ratio,
                                 search_path=Path(args.config).parent,
                                 from_hb=args.from_hb, hb_phase=args.hb_phase,
@@ -53,5 +58,5 @@ def simulate(args: argparse.Namespace, config: Any) -> int:
                                 lyapunov_periods=args.lyapunov_periods,
                                 progress=not args.quiet)
     paths = result.write(args.output)
-    print_written(result, paths, args.quiet)
+    print_written(result, paths, args.quiet, args.verbose)
     return 0

@@ -25,5 +25,5 @@ def stability_chart(args: argparse.Namespace, config: Any) -> int:
                                      search_path=Path(args.config).parent,
                                      progress=not args.quiet)
     paths = result.write(args.output)
-    print_written(result, paths, args.quiet)
+    print_written(result, paths, args.quiet, args.verbose)
     return 0

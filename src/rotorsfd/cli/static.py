@@ -6,6 +6,7 @@ import argparse
 from pathlib import Path
 from typing import Any
 
+from rotorsfd.cli.output import print_summary
 from rotorsfd.cli.registry import command
 
 
@@ -19,6 +20,6 @@ def static(args: argparse.Namespace, config: Any) -> int:
     result = api.run_static(config, search_path=Path(args.config).parent)
     path = result.write(args.output)
     if not args.quiet:
-        print(result.summary())
+        print_summary(result.summary(), args.verbose)
         print(f"wrote {path}")
     return 0

@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from rotorsfd.cli import options
+from rotorsfd.cli.output import print_summary
 from rotorsfd.cli.registry import arg, command
 from rotorsfd.interrupt import Interrupted
 
@@ -44,6 +45,6 @@ def sweep(args: argparse.Namespace, config: Any) -> int:
         raise Interrupted(f"partial results written to {args.output} (finished points "
                           "kept; continue with --resume)") from None
     if not args.quiet:
-        print(result.summary())
+        print_summary(result.summary(), args.verbose)
         print(f"wrote {args.output / 'sweep.nc'}, {args.output / 'summary.csv'}")
     return 0 if result.complete else 1

@@ -344,8 +344,10 @@ _TYPES = {
 
 
 def to_config_error(exc: ValidationError, data: Any) -> ConfigError:
-    """The first pydantic error as one ConfigError: dotted field, value, what is allowed."""
-    err = exc.errors()[0]
+    """The first pydantic error as one ConfigError: dotted field, value, what is allowed
+    (an unknown key first: it is often the misspelling of a missing one)."""
+    errors = exc.errors()
+    err = next((e for e in errors if e["type"] == "extra_forbidden"), errors[0])
     loc = _without_tags(err["loc"], data)
     ctx = err.get("ctx") or {}
     kind = err["type"]

@@ -9,7 +9,7 @@ A record (JSON object)::
     key       hash of base config + task + values (a record with another key is stale)
     task      the task spec
     status    "ok" | "incomplete" (valid partial data) | "failed" (no data)
-    message   why (failed: "ConvergenceError: ..."), "" when ok
+    message   why (failed: the error's text), "" when ok
     scalars   {name: number | string | bool | null}      (null: missing)
     arrays    {name: {"dims": [...], "dtype": "float64" | "int8" | ... | "str",
                       "data": nested lists}}

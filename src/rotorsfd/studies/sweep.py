@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from rotorsfd.errors import ConfigError
+from rotorsfd.errors import ConfigError, RotorsfdError
 from rotorsfd.io import atomic
 from rotorsfd.io.config import dump_config, with_values
 from rotorsfd.io.schema import Config
@@ -59,6 +59,15 @@ def _one_line(text: str) -> str:
     return " ".join(str(text).split())
 
 
+def failure_text(exc: BaseException) -> str:
+    """A failed point's message: a rotorsfd error's own text (in the user's terms, the
+    solver's account in brackets), any other exception as an internal error with its
+    type."""
+    if isinstance(exc, RotorsfdError):
+        return _one_line(exc)
+    return _one_line(f"internal error ({type(exc).__name__}): {exc}")
+
+
 # ---- one grid point (runs on a worker) -----------------------------------------------------
 
 
@@ -78,8 +87,7 @@ def execute_point(task: Task, config: Config, point: GridPoint, key: str) -> dic
                       scalars={k: check_scalar(k, v) for k, v in out.scalars.items()},
                       arrays={k: encode_array(a.dims, a.data) for k, a in out.arrays.items()})
     except Exception as exc:
-        record.update(status="failed", message=_one_line(f"{type(exc).__name__}: {exc}"),
-                      scalars={}, arrays={})
+        record.update(status="failed", message=failure_text(exc), scalars={}, arrays={})
     record["elapsed_s"] = time.perf_counter() - t0
     return record
 
@@ -351,6 +359,7 @@ def run_sweep(config: Config, axes: Grid | Mapping[str, Sequence[Any]] | None = 
     grid = resolve_grid(config, axes)
     if task is None or isinstance(task, str):
         task = make_task(task or config.analysis.sweep.task, search_path=search_path)
+    _check_some_point_valid(config, list(grid.points()))  # before the folder is made
     store = PointStore(directory)
     with store.lock():
         return _run(config, grid, task, store, Path(directory), executor, workers,

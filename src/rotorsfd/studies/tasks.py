@@ -29,6 +29,7 @@ Kinds (``make_task("name:key=value,...")``):
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 import time
@@ -402,10 +403,18 @@ def make_task(spec: str, *, search_path: str | os.PathLike[str] | None = None) -
     for item in filter(None, (s.strip() for s in rest.split(","))):
         key, sep, value = item.partition("=")
         if not sep:
-            raise ConfigError("--task", spec, "options are key=value, comma separated")
+            raise ConfigError("--task", spec, "expected NAME:KEY=VALUE,... (options are "
+                              "key=value, comma separated)")
         opts[key.strip()] = _option(value.strip())
     if name in ("response", "simulate", "stability-chart") and search_path is not None:
         opts.setdefault("search_path", str(search_path))
+    kind = TASKS[name]
+    known = [f.name for f in dataclasses.fields(kind) if f.name != "search_path"] \
+        if dataclasses.is_dataclass(kind) else None
+    for key in opts if known is not None else ():
+        if key not in known and key != "search_path":
+            raise ConfigError("--task", spec, f"the {name} task has no option {key!r}; it "
+                              "takes " + (", ".join(known) if known else "no options"))
     try:
         return TASKS[name](**opts)
     except TypeError as exc:
