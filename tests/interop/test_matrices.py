@@ -247,3 +247,19 @@ def test_stability_chart_on_exported_matrices(tmp_path, monkeypatch):
     b = run_stability_chart(load_config(toml), search_path=toml.parent)
     assert a.chart.max_abs.shape == (2, 3)
     np.testing.assert_allclose(b.chart.max_abs, a.chart.max_abs, rtol=1e-9)
+
+
+@pytest.mark.slow
+def test_simulation_same_after_import(tmp_path):
+    """Time integration on the imported matrices: the same orbit at the journal and at the
+    disk (the disk stays an output node of the exported config)."""
+    over = ["unbalance[0].magnitude=144.02 g*mm", "analysis.simulate.periods=40",
+            "analysis.simulate.poincare_periods=10", "analysis.simulate.steps_per_period=200",
+            "analysis.simulate.step_check_periods=0", "analysis.simulate.speed_ratio=1.0"]
+    config, toml, imported = _exported(tmp_path, over)
+    a = api.run_simulation(config, progress=False)
+    b = api.run_simulation(imported, search_path=toml.parent, progress=False)
+    assert a.nodes == b.nodes == (1, 8)
+    qa, qb = np.asarray(a.q), np.asarray(b.q)
+    assert np.abs(qb - qa).max() <= 1e-9 * np.abs(qa).max()
+    assert a.motion_name == b.motion_name == "period-1"

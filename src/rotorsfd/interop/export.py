@@ -53,8 +53,13 @@ def _bytes_npz(**arrays: np.ndarray) -> bytes:
 
 def matrices_config(config: Config, matrices: dict[str, Any]) -> dict[str, Any]:
     """The TOML-like dict of ``config`` with its rotor replaced by ``[rotor.matrices]``
-    (keeping ``[rotor.damping]``); the fields the configuration set, in SI."""
+    (keeping ``[rotor.damping]``); the fields the configuration set, in SI, and the
+    output nodes it had by default (its disks' and elements')."""
     data = config.model_dump(mode="json", exclude_unset=True, exclude_none=True)
+    for section in ("response", "simulate"):   # the default output nodes name the disks
+        if not getattr(config.analysis, section).nodes:
+            table = data.setdefault("analysis", {}).setdefault(section, {})
+            table["nodes"] = config.output_nodes(section)
     data["materials"] = {}
     data["rotor"] = {"matrices": matrices, "damping": data.get("rotor", {}).get("damping", {})}
     return data
