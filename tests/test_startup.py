@@ -127,3 +127,16 @@ def test_paper_cases_write_their_own_figures_only_when_asked(tmp_path):
         files = {p.name for p in (tmp_path / str(plots) / "modal").iterdir()}
         assert {"critical_speeds.csv", "campbell.csv"} <= files
         assert ("campbell.png" in files) is plots
+
+
+def test_units_without_a_writable_cache_folder():
+    """The unit registry is built from pint's on-disk cache of its definitions; where the
+    cache folder cannot be made, it is built without it, with the same conversions."""
+    code = ("from rotorsfd.io.units import to_si; "
+            "print(to_si('5 mil', 'length'), to_si('10 Hz', 'angular_velocity'))")
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "XDG_CACHE_HOME": "/proc/no-such-dir"}
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                       env=env, timeout=120, check=True)
+    length, rate = (float(x) for x in p.stdout.split())
+    assert length == pytest.approx(5 * 25.4e-6, rel=1e-14)
+    assert rate == pytest.approx(20 * 3.141592653589793, rel=1e-14)

@@ -13,11 +13,14 @@ A string without units (``"1e7"``) is taken as SI, like a bare number.
 from __future__ import annotations
 
 import math
+import pickle
 import re
 from dataclasses import dataclass
 from functools import cache
+from typing import TYPE_CHECKING
 
-import pint
+if TYPE_CHECKING:
+    import pint
 
 
 @dataclass(frozen=True)
@@ -62,8 +65,15 @@ _HERTZ = re.compile(r"hertz$")
 
 @cache
 def _registry() -> pint.UnitRegistry:
-    """The unit registry, built once on first use (it takes ~0.2 s)."""
-    return pint.UnitRegistry()
+    """The unit registry, built once on first use from pint's on-disk cache of its parsed
+    definitions (``~/.cache/pint``: 0.05 s instead of 0.45 s to parse them), or without
+    it where that folder cannot be written."""
+    import pint  # deferred: pint (and dask, which pint imports when installed)
+
+    try:
+        return pint.UnitRegistry(cache_folder=":auto:")
+    except (OSError, EOFError, pickle.UnpicklingError):  # unwritable or damaged cache
+        return pint.UnitRegistry()
 
 
 class UnitError(ValueError):
@@ -77,6 +87,8 @@ def parse_quantity(text: str) -> pint.Quantity:
         q = _registry().Quantity(cleaned)
     except Exception as exc:  # pint raises many error types for bad strings
         raise UnitError(f"cannot read {text!r} as a number with units ({exc})") from None
+    import pint  # deferred: pint (loaded by _registry already)
+
     if not isinstance(q, pint.Quantity):  # a bare number string like "3"
         q = _registry().Quantity(float(q))
     return q
