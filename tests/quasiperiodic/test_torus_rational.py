@@ -6,14 +6,11 @@ on harmonic 2 and the heave load on harmonic 1."""
 
 from __future__ import annotations
 
-import dataclasses
-
 import numpy as np
 import pytest
-from torus_models import small_system
+from torus_models import heave_common_period_problem, small_system
 
 from rotorsfd.harmonic.periodic import solve_periodic
-from rotorsfd.model.system import RotorSystem
 from rotorsfd.quasiperiodic import TorusLattice, solve_torus, torus_problem
 
 C = 1.27e-4        # the SFD clearance [m]
@@ -23,28 +20,12 @@ HEAVE, W_B, OMEGA = 3e-5, 350.0, 700.0
 @pytest.mark.slow   # about 6 s on a loaded 2-core machine (the periodic HB's kernels load)
 def test_rational_torus_is_the_periodic_orbit(tmp_path):
     """Heave z0 = A sin(w_b t) loads the rotor with F_base = A w_b^2 sin(w_b t) fz
-    (fz = int rho A N_z dx: a_z = -A w_b^2 sin): F_1 = -i A w_b^2 fz at w0 = w_b. The
-    torus (box H1 = 6, H2 = 3) and the periodic HB (H = 24) give the same journal orbit
-    to 1e-6 C over the common period; the orbit reaches 0.05-0.5 C."""
+    (torus_models.heave_common_period_problem). The torus (box H1 = 6, H2 = 3) and the
+    periodic HB (H = 24) give the same journal orbit to 1e-6 C over the common period;
+    the orbit reaches 0.05-0.5 C."""
     base = f'z = {{ law = "harmonic", frequency = "{W_B} rad/s", amplitude = "{HEAVE} m" }}'
     system = small_system(tmp_path, base, unbalance="100 g*mm")
-    fixed = RotorSystem(system.rotor, system.elements, system.unbalances)
-    spin = fixed.periodic_problem("speed")
-    fz = system.basis.vector("fz")
-
-    def forcing(lam: float, H: int) -> np.ndarray:
-        F = np.zeros((H + 1, system.n_dof), dtype=complex)
-        F[1] = -1j * HEAVE * W_B**2 * fz
-        F[2] = spin.forcing(lam, 1)[1]
-        return F
-
-    def dforcing(lam: float, H: int) -> np.ndarray:
-        F = np.zeros((H + 1, system.n_dof), dtype=complex)
-        F[2] = spin.dforcing(lam, 1)[1]
-        return F
-
-    common = dataclasses.replace(spin, forcing=forcing, dforcing=dforcing,
-                                 frequency=lambda lam: lam / 2, dfrequency=lambda lam: 0.5)
+    common = heave_common_period_problem(system, HEAVE, W_B)
     periodic = solve_periodic(common, OMEGA, 24, tol=1e-10)
     t = np.linspace(0.0, 2 * np.pi / W_B, 61)
     q_periodic = (np.exp(1j * np.outer(t, np.arange(25) * OMEGA / 2)) @ periodic.X).real

@@ -31,3 +31,32 @@ def small_system(tmp_path: Path, base: str, unbalance: str = "50 g*mm",
     path = tmp_path / "rotor.toml"
     path.write_text(text)
     return build_system(load_config(path))
+
+
+def heave_common_period_problem(system: RotorSystem, heave: float, w_b: float):
+    """The periodic HB problem of ``system`` (SFD rotor, unbalance, harmonic heave
+    ``z0 = heave sin(w_b t)``, gravity off) at a speed Omega = 2 w_b, on the common
+    fundamental w0 = Omega / 2: the unbalance on harmonic 2 and the heave load
+    ``F_base = heave w_b^2 sin(w_b t) fz`` (a_z = -heave w_b^2 sin, fz = int rho A N_z dx)
+    on harmonic 1, ``F_1 = -i heave w_b^2 fz``; the linear part is the fixed rotor's."""
+    import dataclasses
+
+    import numpy as np
+
+    fixed = RotorSystem(system.rotor, system.elements, system.unbalances)
+    spin = fixed.periodic_problem("speed")
+    fz = system.basis.vector("fz")
+
+    def forcing(lam: float, H: int) -> np.ndarray:
+        F = np.zeros((H + 1, system.n_dof), dtype=complex)
+        F[1] = -1j * heave * w_b**2 * fz
+        F[2] = spin.forcing(lam, 1)[1]
+        return F
+
+    def dforcing(lam: float, H: int) -> np.ndarray:
+        F = np.zeros((H + 1, system.n_dof), dtype=complex)
+        F[2] = spin.dforcing(lam, 1)[1]
+        return F
+
+    return dataclasses.replace(spin, forcing=forcing, dforcing=dforcing,
+                               frequency=lambda lam: lam / 2, dfrequency=lambda lam: 0.5)
