@@ -7,6 +7,7 @@ assembly of C_base(t), K_base(t), F_base(t) and F_mu(t)) over the common period 
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from scipy.linalg import expm
 from torus_models import small_system
 
@@ -53,13 +54,15 @@ def magnus_periodic(inputs, period: float, steps: int, every: int):
     return np.arange(len(kept)) * every * h, q
 
 
-def test_linear_torus_equals_the_floquet_periodic_solution(tmp_path):
+@pytest.mark.parametrize("lattice", [TorusLattice(1, 8), TorusLattice(6, 6, "diamond")])
+def test_linear_torus_equals_the_floquet_periodic_solution(tmp_path, lattice):
     """The small rotor with a damped linear support instead of the SFD, under harmonic
-    pitching (w_b = 300 rad/s, 0.1 rad) at Omega = 600 rad/s: the torus (H1 = 1, H2 = 8)
-    sampled in time = the Magnus periodic solution (1e-6 of the largest displacement;
-    Magnus at 400 steps is within about 1e-7 of its limit)."""
+    pitching (w_b = 300 rad/s, 0.1 rad) at Omega = 600 rad/s: the torus (the box H1 = 1,
+    H2 = 8, or the diamond |k1| + |k2| <= 6) sampled in time = the Magnus periodic
+    solution (1e-6 of the largest displacement; Magnus at 400 steps is within about 1e-7
+    of its limit)."""
     system = small_system(tmp_path, PITCHING, linear=True)
-    sol = solve_torus(torus_problem(system), 600.0, TorusLattice(1, 8))
+    sol = solve_torus(torus_problem(system), 600.0, lattice)
     inputs = time_domain_inputs(system, 600.0)
     assert inputs.time_varying is not None
     t, q_ref = magnus_periodic(inputs, 2 * np.pi / 300.0, 400, 20)
