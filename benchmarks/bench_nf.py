@@ -59,7 +59,7 @@ def distance_to_4096(problem, branch, n_ref: int = 4096) -> float:
     samples on the plane through z normal to the branch tangent (tol 1e-10)."""
     from rotorsfd.continuation.newton import newton_extended
     from rotorsfd.harmonic.fourier import to_real
-    from rotorsfd.harmonic.periodic import HBSystem
+    from rotorsfd.harmonic.hb_system import HBSystem
 
     worst = 0.0
     for i in range(branch.n_points):

@@ -25,7 +25,8 @@ import pytest
 
 from rotorsfd.continuation.newton import newton_extended
 from rotorsfd.harmonic.fourier import aft_matrices, default_min_samples, to_real
-from rotorsfd.harmonic.periodic import HBSystem, continue_periodic
+from rotorsfd.harmonic.hb_system import HBSystem
+from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.io.config import load_config
 from rotorsfd.model.build import build_model
 from rotorsfd.model.system import RotorSystem

@@ -30,7 +30,8 @@ from rotorsfd.continuation.branch import Branch
 from rotorsfd.continuation.newton import newton_extended, tangent
 from rotorsfd.errors import ConvergenceError
 from rotorsfd.harmonic.fourier import to_real
-from rotorsfd.harmonic.periodic import continue_periodic, hb_system
+from rotorsfd.harmonic.hb_system import hb_system
+from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.harmonic.problem import PeriodicProblem
 
 ComplexArray = NDArray[np.complex128]
