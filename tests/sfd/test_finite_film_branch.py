@@ -16,13 +16,21 @@ W1, C = 811.3, 1.27e-4
 
 
 def branch(*overrides: str) -> tuple[np.ndarray, float]:
-    """Fold speeds (Omega / W1) and the largest SFD eccentricity ratio along the branch."""
+    """Fold speeds (Omega / W1) and the largest SFD eccentricity ratio along the branch;
+    with the finite film the results table carries the film's diagnostics."""
     config = load_config(PAPER, ["unbalance[0].magnitude=144.02 g*mm", "analysis.response."
                                  "harmonics=3", "analysis.stability.enabled=false",
                                  *overrides])
     result = run_response(config, progress=False)
     br = result.branch
     assert result.success and br.lam[-1] == pytest.approx(1.6 * W1)
+    if "elements.sfd.film_length=finite" in overrides:
+        table = result.table()
+        p_max, p_min = np.asarray(table["p_max_sfd"]), np.asarray(table["p_min_sfd"])
+        arc = np.asarray(table["cavitated_arc_sfd"])
+        assert np.all(p_max > 0) and np.all(p_min < 0) and np.all(np.isfinite(p_max))
+        assert np.all((arc > 2.5) & (arc < 2 * np.pi))  # near pi: a near-circular whirl
+        assert p_max.max() > 1e5  # the peak film pressure at the largest orbit [Pa]
     eps = max(np.hypot(*br.time_series(i, 64)[1][:, br.nl_dofs[:2]].T).max()
               for i in range(br.n_points)) / C
     return br.lam[br.folds()] / W1, eps
