@@ -179,3 +179,24 @@ def test_sparse_craig_bampton_equals_the_dense_one(paper) -> None:
         return lam[np.lexsort((lam.real, lam.imag))]
 
     np.testing.assert_allclose(roots(sparse), roots(dense), rtol=1e-9)
+
+
+def test_free_interior_falls_back_to_the_full_step(paper) -> None:
+    """An interior DOF with no stiffness once the nonlinear DOFs are fixed (exactly zero,
+    or 1e-20 of the others: a mechanism) has no Craig-Bampton model, so "auto" steps the
+    full model; with it stiff, the same model is reduced (3 stiff modes dropped)."""
+    from dataclasses import replace
+
+    from rotorsfd.timedomain import Forcing, HarmonicLoad
+
+    inp = paper[1]
+    forcing = Forcing(omega=100.0, harmonics=[HarmonicLoad(1.0, np.eye(6)[0])])
+    for k2, reduced in ((0.0, False), (1e-20, False), (1e4, True)):
+        K = np.diag([1e6, 1e6, k2, 1e8, 1e8, 1e8])
+        small = replace(inp, M=np.eye(6), D=1e-3 * np.eye(6), K=K,
+                        nl_dofs=np.array([0, 1]), forcing=forcing, time_varying=None,
+                        speed=100.0)
+        red = with_reduction(small, "auto", 40.0).reduction
+        assert (red is not None) == reduced, k2
+        if reduced:
+            assert red.n_dof == 3 and red.n_modes == 1

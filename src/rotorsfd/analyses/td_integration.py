@@ -76,7 +76,8 @@ def with_reduction(inputs: TimeDomainInputs, reduction: str = "auto",
     """``inputs`` with the reduced step of ``reduction``: ``"auto"`` the Craig-Bampton
     model on the nonlinear DOFs and the fixed-interface modes with
     ``omega <= cutoff Omega`` when it has fewer coordinates than the model (and the
-    interior is restrained once the nonlinear DOFs are fixed), else the full step;
+    interior is restrained once the nonlinear DOFs are fixed: no fixed-interface mode
+    below ``1e-6`` of the cutoff), else the full step;
     ``"none"`` the full step."""
     if reduction not in REDUCTIONS:
         raise ConfigError(f"{FIELD}.reduction", reduction, '"auto" or "none"')
@@ -87,9 +88,13 @@ def with_reduction(inputs: TimeDomainInputs, reduction: str = "auto",
     try:
         red = reduce_step(inputs.M, inputs.D, inputs.K, inputs.nl_dofs, inputs.forcing,
                           inputs.time_varying, cutoff * inputs.speed)
-    except ConfigError:                 # a free interior: no Craig-Bampton model
+    except (ConfigError, np.linalg.LinAlgError):  # a free interior: no Craig-Bampton model
         return replace(inputs, reduction=None)
-    return replace(inputs, reduction=red if red.n_dof < inputs.n_dof else None)
+    omegas = red.model.omegas
+    mechanism = (omegas.size and omegas[0] < 1e-6 * red.omega_max) or not np.all(
+        np.isfinite(red.basis))                        # a (nearly) free interior
+    useful = red.n_dof < inputs.n_dof and not mechanism
+    return replace(inputs, reduction=red if useful else None)
 
 
 def stepped_system(inputs: TimeDomainInputs, state: tuple[np.ndarray, np.ndarray, float]
