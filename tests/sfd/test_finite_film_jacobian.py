@@ -29,7 +29,8 @@ def central_differences(film: FiniteSFD, y: float, z: float, vy: float, vz: floa
 
 
 @pytest.mark.parametrize("model, table", [("pi", False), ("pi", True), ("none", False),
-                                          ("none", True), ("guembel", False)])
+                                          ("none", True), ("guembel", False),
+                                          ("guembel", True)])
 @pytest.mark.parametrize("end_flow", [math.inf, 0.5])
 def test_jacobian_against_central_differences(model: str, table: bool, end_flow: float
                                               ) -> None:
@@ -79,16 +80,18 @@ def test_kernel_with_offset_equals_the_api(model: str) -> None:
     assert np.all(f == 7.0)
 
 
-@pytest.mark.parametrize("model", ["pi", "none"])
+@pytest.mark.parametrize("model", ["pi", "none", "guembel"])
 @pytest.mark.parametrize("end_flow", [math.inf, 0.0])
 def test_eps_table_error_bound(model: str, end_flow: float) -> None:
     """The table's error, measured at every interval's midpoint when it is built, is below
-    1e-5 (M) and 1e-4 (dM/deps); on random states the tabulated force is within 1e-6 of the
-    grid solver, the velocity Jacobian too, and dF/dq within 1e-3 (its psi term divides
-    the table's error by e: largest near the centre)."""
+    1e-5 (M; Guembel: the fields, 2e-5) and 1e-4 (dM/deps); on random states the
+    tabulated force is within 1e-6 of the grid solver, the velocity Jacobian too, and
+    dF/dq within 1e-3 (its psi term divides the table's error by e: largest near the
+    centre)."""
     tab = FiniteSFD.from_ratios(MU, C, CR, 0.325, model, end_flow=end_flow)
     ref = FiniteSFD.from_ratios(MU, C, CR, 0.325, model, end_flow=end_flow, table=False)
-    assert tab.table_error[0] < 1e-5 and tab.table_error[1] < 1e-4
+    bound = 2e-5 if model == "guembel" else 1e-5
+    assert tab.table_error[0] < bound and tab.table_error[1] < 1e-4
     y, z, vy, vz = random_states(100, 17, 0.0, 0.99)
     F, dq, dv = tab.force_and_jacobian(y, z, vy, vz)
     F0, dq0, dv0 = ref.force_and_jacobian(y, z, vy, vz)

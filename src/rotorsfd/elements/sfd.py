@@ -259,10 +259,9 @@ class SFDConfig(Section):
     grid_axial: integer("axial intervals of the finite film's half land (even)", ge=2,
                         le=64) = 4
     film_table: bool = Field(
-        True, description="finite pi or 2 pi film: tabulate it over eps when built (256 "
-                          "nodes, cubic Hermite, its error against the grid solver "
-                          "measured) instead of solving the grid at every sample; the "
-                          "Guembel film is always solved")
+        True, description="finite film: tabulate it over eps when built (256 nodes, cubic "
+                          "Hermite, its error against the grid solver measured) instead "
+                          "of solving the grid at every sample")
     density: quantity("density", "oil density rho (for the squeeze Reynolds number "
                       "rho omega C^2 / mu in the results)", gt=0, optional=True) = None
     film_report: bool | None = Field(
@@ -357,7 +356,7 @@ class SFDConfig(Section):
             ends = "open ends" if self.end_flow is None else f"end_flow = {self.end_flow:g}"
             text += (f"; finite film, {ends}, grid {self.grid_theta} x {self.grid_axial} "
                      "(theta x half land)" + (", tabulated over eps" if self.film_table
-                                              and self.cavitation != "guembel" else ""))
+                                              else ""))
         return text
 
     def linear_supports(self) -> list[LinearSupport]:

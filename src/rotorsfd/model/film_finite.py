@@ -51,11 +51,11 @@ operator differentiated, two more solves of the same factorisation)::
 exact for the discrete force (the Guembel force is piecewise linear in ``v`` between sign
 changes of a node; at ``e = 0`` the ``psi`` term is left out, as the short pi film does).
 
-**Table.** For the pi and 2 pi films ``G = M(eps) w``: with ``table = True`` (default)
-``M`` and ``dM/deps`` are tabulated over eps when the film is built and interpolated
-(:mod:`rotorsfd.model.film_finite_table`), its error against the solver measured at
-every interval's midpoint (:attr:`FiniteSFD.table_error`); the Guembel film is solved at
-every sample.
+**Table.** With ``table = True`` (default) the film is tabulated over eps when it is
+built and interpolated (:mod:`rotorsfd.model.film_finite_table`), its error against the
+solver measured at every interval's midpoint (:attr:`FiniteSFD.table_error`): for the
+pi and 2 pi films ``G = M(eps) w``, so ``M`` and ``dM/deps``; for the Guembel film the
+two basis fields, clamped per sample.
 Scheme and solver: :mod:`rotorsfd.model.film_finite_kernels`; derivation and measured
 accuracy: ``docs/sfd.md``.
 """
@@ -102,47 +102,6 @@ def centred_damping_ratio(length_to_diameter: float, end_flow: float = math.inf)
     return 3.0 * (1.0 / lam - a_sinh / s)
 
 
-def _with_table(params: np.ndarray) -> tuple[np.ndarray, tuple[float, float]]:
-    """``params`` with the eps table appended, and the table's measured error
-    ``(M, dM/deps)`` at the midpoints of its intervals."""
-    from rotorsfd.model.film_finite_kernels import (
-        N_PARAMS,
-        P_EPS_MAX,
-        P_TABLE_N,
-        film_sums,
-        table_matrices,
-    )
-    from rotorsfd.model.film_finite_table import TABLE_NODES, table_eps
-
-    n = TABLE_NODES
-    eps_max = params[P_EPS_MAX]
-
-    def exact(eps: float) -> tuple[np.ndarray, np.ndarray]:
-        _, _, *m, d0, d1 = film_sums(eps, 1.0, 0.0, params)
-        _, _, _, _, _, _, e0, e1 = film_sums(eps, 0.0, 1.0, params)
-        return np.array(m), np.array([d0, e0, d1, e1])
-
-    eps, deps_dt = table_eps(n, eps_max)
-    data = np.empty((n, 8))
-    for k in range(n):
-        m, dm = exact(eps[k])
-        c = (1.0 - eps[k]) * (1.0 + eps[k])
-        scale = c**2.5
-        data[k, :4] = scale * m
-        data[k, 4:] = (scale * dm - 5.0 * eps[k] * c**1.5 * m) * deps_dt[k]
-    out = np.concatenate([params[:N_PARAMS], data.ravel()])
-    out[P_TABLE_N] = n
-    t_mid = (np.arange(n - 1) + 0.5) / (n - 1)
-    err_m = err_d = 0.0
-    for eps_k in eps_max * (1.0 - (1.0 - t_mid) ** 2):
-        m, dm = exact(eps_k)
-        got = np.array(table_matrices(eps_k, out))
-        err_m = max(err_m, float(np.abs(got[:4] - m).max() / np.abs(m).max()))
-        err_d = max(err_d, float(np.abs(got[4:] - dm).max()
-                                 / max(np.abs(dm).max(), np.abs(m).max())))
-    return out, (err_m, err_d)
-
-
 class FiniteSFD:
     """Finite-length squeeze film damper (module doc) with the API of
     :class:`rotorsfd.model.sfd.SFD`.
@@ -162,7 +121,7 @@ class FiniteSFD:
     eps_max
         Contact limit on ``eps``, as :class:`~rotorsfd.model.sfd.SFD`.
     table
-        Tabulate the pi and 2 pi films over eps (module doc); ignored for Guembel.
+        Tabulate the film over eps (module doc).
     """
 
     def __init__(self, viscosity: float, radius: float, length: float, clearance: float,
@@ -216,8 +175,11 @@ class FiniteSFD:
         #: largest relative error of the table's M and dM/deps at the intervals'
         #: midpoints against the solver (0 without a table)
         self.table_error = (0.0, 0.0)
-        if table and cavitation != "guembel":
-            self._params, self.table_error = _with_table(params)
+        if table:
+            from rotorsfd.model.film_finite_build import field_table, matrix_table
+
+            build = field_table if cavitation == "guembel" else matrix_table
+            self._params, self.table_error = build(params)
 
     @property
     def tabulated(self) -> bool:

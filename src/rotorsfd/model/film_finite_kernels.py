@@ -28,7 +28,7 @@ from rotorsfd.model.film_finite_solver import (
     film_coefficients,
     solve,
 )
-from rotorsfd.model.film_finite_table import hermite_matrices
+from rotorsfd.model.film_finite_table import hermite_fields, hermite_matrices
 
 #: Cavitation model codes (the short film's): pi film (arc theta in [pi, 2 pi]), 2 pi film,
 #: Guembel clamp (p = max(p_full, 0) node by node).
@@ -239,12 +239,32 @@ def table_matrices(eps: float, params: np.ndarray
 
 
 @njit(cache=True)
+def table_guembel_sums(eps: float, wr: float, wt: float, params: np.ndarray
+                       ) -> tuple[float, float, float, float, float, float, float, float]:
+    """The Guembel film's ``(G, M, dG/deps)`` on the fields of the eps table."""
+    n = int(params[P_N_THETA])
+    m = int(params[P_N_AXIAL])
+    nb = m if math.isinf(params[P_END_FLOW]) else m + 1
+    pi_ = np.empty((n, nb, 2))
+    dpi = np.empty((n, nb, 2))
+    hermite_fields(eps, params[P_EPS_MAX], params, N_PARAMS, int(params[P_TABLE_N]), pi_,
+                   dpi)
+    _, wz = quadrature_weights(n, m, nb, GUEMBEL)
+    kappa = 3.0 * params[P_VISCOSITY] * params[P_RADIUS] * params[P_LENGTH] ** 3 \
+        / params[P_CLEARANCE] ** 3
+    g0, g1, m00, m01, m10, m11, d0, d1 = guembel_sums(pi_, dpi, wr, wt, wz)
+    return (kappa * g0, kappa * g1, kappa * m00, kappa * m01, kappa * m10, kappa * m11,
+            kappa * d0, kappa * d1)
+
+
+@njit(cache=True)
 def finite_sample(y: float, z: float, vy: float, vz: float, params: np.ndarray,
                   F: np.ndarray, dFdq: np.ndarray, dFdv: np.ndarray) -> int:
     """Force and exact Jacobian of the discrete film at ``q = (y, z)`` (relative to the
     housing centre), ``v = (vy, vz)``; returns 0, or 1 if ``eps >= eps_max`` or the state
-    is not finite (outputs then untouched). With an eps table in the parameters (pi and
-    2 pi films) ``M(eps)`` and ``dM/deps`` come from the table, ``G = M w``."""
+    is not finite (outputs then untouched). With an eps table in the parameters:
+    ``M(eps)`` and ``dM/deps`` from it, ``G = M w`` (pi and 2 pi films), or the basis
+    fields from it (Guembel)."""
     clr = params[P_CLEARANCE]
     e = math.hypot(y, z)
     eps = e / clr
@@ -253,7 +273,9 @@ def finite_sample(y: float, z: float, vy: float, vz: float, params: np.ndarray,
     cp, sp = (y / e, z / e) if e > 0.0 else (1.0, 0.0)
     wr = cp * vy + sp * vz
     wt = -sp * vy + cp * vz
-    if params[P_TABLE_N] > 0.0:
+    if params[P_TABLE_N] > 0.0 and int(params[P_CODE]) == GUEMBEL:
+        g0, g1, m00, m01, m10, m11, d0, d1 = table_guembel_sums(eps, wr, wt, params)
+    elif params[P_TABLE_N] > 0.0:
         m00, m01, m10, m11, dm00, dm01, dm10, dm11 = table_matrices(eps, params)
         g0 = m00 * wr + m01 * wt
         g1 = m10 * wr + m11 * wt

@@ -1,4 +1,4 @@
-"""Tabulated surrogate of the finite pi and 2 pi films over the eccentricity ratio.
+"""Tabulated surrogate of the finite film over the eccentricity ratio.
 
 For these films the force is linear in the velocity, ``G = M(eps) w`` in the frame of the
 line of centres (:mod:`rotorsfd.model.film_finite`), so the discrete film at any state is
@@ -15,6 +15,10 @@ HB, Floquet and time stepping see a consistent force and Jacobian. Its error aga
 solver is measured when the table is built (at every interval's midpoint:
 :attr:`rotorsfd.model.film_finite.FiniteSFD.table_error`). Per node 8 numbers:
 ``Y`` (m00, m01, m10, m11) then ``dY/dt``.
+
+The Guembel film's clamp depends on the direction of ``w``, so its table holds the two
+basis fields themselves (``Y = (1 - eps^2)^3 Pi`` on the grid, then ``dY/dt``; the clamp
+and its sums are then applied to the interpolated fields, exactly as to solved ones).
 """
 
 from __future__ import annotations
@@ -24,7 +28,7 @@ import math
 import numpy as np
 from numba import njit
 
-__all__ = ["TABLE_NODES", "hermite_matrices", "table_eps"]
+__all__ = ["TABLE_NODES", "hermite_fields", "hermite_matrices", "table_eps"]
 
 #: Default number of table nodes (measured midpoint error ~4e-6 in M, 2e-5 in dM/deps).
 TABLE_NODES = 256
@@ -66,3 +70,36 @@ def hermite_matrices(eps: float, eps_max: float, table: np.ndarray, start: int, 
         out[r] = mval
         out[4 + r] = (dy - dlog * y) / scale
     return out[0], out[1], out[2], out[3], out[4], out[5], out[6], out[7]
+
+
+@njit(cache=True)
+def hermite_fields(eps: float, eps_max: float, table: np.ndarray, start: int, n: int,
+                   pi_: np.ndarray, dpi: np.ndarray) -> None:
+    """The basis fields ``Pi`` and ``dPi/deps`` (each ``(n_theta, nb, 2)``, written into
+    ``pi_, dpi``) from a field table: per node ``Y = (1 - eps^2)^3 Pi`` then ``dY/dt``
+    (the Guembel film, whose clamp needs the fields, not only ``M``)."""
+    size = pi_.size
+    t = 1.0 - math.sqrt(max(1.0 - eps / eps_max, 0.0))
+    h = 1.0 / (n - 1)
+    k = min(int(t / h), n - 2)
+    s = (t - k * h) / h
+    s2 = s * s
+    s3 = s2 * s
+    h00, h10, h01, h11 = 2 * s3 - 3 * s2 + 1, s3 - 2 * s2 + s, -2 * s3 + 3 * s2, s3 - s2
+    g00, g10 = (6 * s2 - 6 * s) / h, 3 * s2 - 4 * s + 1
+    g01, g11 = (-6 * s2 + 6 * s) / h, 3 * s2 - 2 * s
+    deps_dt = 2.0 * eps_max * (1.0 - t)
+    c = (1.0 - eps) * (1.0 + eps)
+    scale = c * c * c
+    dlog = -6.0 * eps / c
+    a = start + 2 * size * k
+    b = a + 2 * size
+    flat = pi_.reshape(size)
+    dflat = dpi.reshape(size)
+    for r in range(size):
+        y = h00 * table[a + r] + h10 * h * table[a + size + r] + h01 * table[b + r] \
+            + h11 * h * table[b + size + r]
+        dy = (g00 * table[a + r] + g10 * table[a + size + r] + g01 * table[b + r]
+              + g11 * table[b + size + r]) / deps_dt
+        flat[r] = y / scale
+        dflat[r] = (dy - dlog * y) / scale
