@@ -140,3 +140,41 @@ def test_units_without_a_writable_cache_folder():
     length, rate = (float(x) for x in p.stdout.split())
     assert length == pytest.approx(5 * 25.4e-6, rel=1e-14)
     assert rate == pytest.approx(20 * 3.141592653589793, rel=1e-14)
+
+
+def _in_fresh_cache(code: str, cache_dir) -> str:
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "NUMBA_CACHE_DIR": str(cache_dir)}
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,
+                       timeout=600, check=True)
+    return p.stdout + p.stderr
+
+
+def test_a_cold_kernel_cache_is_announced(tmp_path):
+    """With an empty numba cache every kernel module of the response is cold and the
+    first run says it compiles; the same check reads this checkout's cache as numba
+    does (a module is warm once one of its kernels was cached)."""
+    out = _in_fresh_cache(
+        "from rotorsfd.kernel_cache import cold_modules, compile_notice\n"
+        "print(cold_modules('response'))\n"
+        "assert compile_notice('response')\n", tmp_path)
+    assert "'rotorsfd.harmonic.aft_kernels', 'rotorsfd.harmonic.banded'" in out
+    assert "compiling the numerical kernels once (aft_kernels, banded, sfd_kernels, " \
+           "monodromy_kernels; about 30 s, cached for later runs) ..." in out
+
+
+@pytest.mark.slow
+def test_a_module_is_warm_once_its_kernel_ran(tmp_path):
+    """After one SFD kernel call (compiled into the empty cache) its module is cached
+    and the others are still cold."""
+    out = _in_fresh_cache(
+        "import numpy as np\n"
+        "from rotorsfd.kernel_cache import cold_modules, module_cached\n"
+        "from rotorsfd.model.sfd import SFD\n"
+        "assert module_cached('rotorsfd.model.sfd_kernels') is False\n"
+        "s = SFD.from_ratios(0.0051, 1.27e-4, 0.00485, 0.325)\n"
+        "F, a, b = np.empty(2), np.empty((2, 2)), np.empty((2, 2))\n"
+        "s.numba_kernel(np.array([3e-5, -2e-5]), np.array([0.01, 0.02]), s.kernel_params,"
+        " F, a, b)\n"
+        "print(module_cached('rotorsfd.model.sfd_kernels'), cold_modules('simulate'))\n",
+        tmp_path)
+    assert "True ['rotorsfd.timedomain.newmark']" in out

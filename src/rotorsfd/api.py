@@ -120,6 +120,15 @@ class FitRunResult:
             "message": f.message, "overrides": self.overrides()})
 
 
+def announce_compilation(analysis: str, kwargs: dict[str, Any]) -> None:
+    """The progress line of a first run (``compiling the numerical kernels once ...`` on
+    stderr, :func:`rotorsfd.kernel_cache.compile_notice`) unless ``progress=False``."""
+    if kwargs.get("progress", True):
+        from rotorsfd.kernel_cache import compile_notice  # deferred: numba
+
+        compile_notice(analysis)
+
+
 def run_fit_supports(config: Config, fields: Sequence[str], targets: Sequence[float],
                      whirl: str = "forward") -> FitRunResult:
     """Fit the stiffness fields at dotted paths ``fields`` (e.g.
@@ -158,6 +167,7 @@ def run_response(config: Any, **kwargs: Any) -> Any:
     :func:`rotorsfd.analyses.response.run_response`."""
     from rotorsfd.analyses.response import run_response as _run
 
+    announce_compilation("response", kwargs)
     return _run(config, **kwargs)
 
 
@@ -174,6 +184,7 @@ def run_simulation(config: Any, speed: float | None = None, **kwargs: Any) -> An
     :func:`rotorsfd.analyses.simulate.run_simulation`."""
     from rotorsfd.analyses.simulate import run_simulation as _run
 
+    announce_compilation("simulate", kwargs)
     return _run(config, speed, **kwargs)
 
 
@@ -182,6 +193,7 @@ def run_bifurcation_diagram(config: Any, **kwargs: Any) -> Any:
     :func:`rotorsfd.analyses.bifurcation_diagram.run_bifurcation_diagram`."""
     from rotorsfd.analyses.bifurcation_diagram import run_bifurcation_diagram as _run
 
+    announce_compilation("bifurcation_diagram", kwargs)
     return _run(config, **kwargs)
 
 
@@ -208,4 +220,5 @@ def run_paper(output: Any, figures: Sequence[str] | None = None, **kwargs: Any) 
     :func:`rotorsfd.paper.run.run_paper`."""
     from rotorsfd.paper.run import run_paper as _run
 
+    announce_compilation("response" if kwargs.get("quick") else "paper", kwargs)
     return _run(output, figures, **kwargs)
