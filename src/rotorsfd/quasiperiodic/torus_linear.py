@@ -22,15 +22,16 @@ truncation are dropped from the coupling (the truncation).
 **Condensation.** As in :mod:`rotorsfd.harmonic.condensation`, a fixed fictitious
 spring/damper ``Delta_k = K_r + i omega_k^* C_r`` on the nonlinear DOFs (omega^* the
 frequencies when it was set) is added to both sides, and with ``Zt = Z + S^T Delta S`` per
-block (one dense complex LU of the whole k1 block: exact, since the harmonics of one block
-couple; a banded solve is for later)
+block (one complex LU of the whole k1 block: exact, since the harmonics of one block
+couple)
 
     X = u + C (G + Delta Xs),   u = Zt^{-1} F,   C = Zt^{-1} S^T,
     R(Xs, lam) = Xs - Pt - Ht (G(Xs) + Delta Xs) = 0,   Ht = S C,  Pt = S u,
 
 so the receptance ``Ht`` couples the k2 harmonics of one k1 at the nonlinear DOFs: the
 condensed unknowns are those of the nonlinear DOFs only, as in the periodic case, at the
-price of a solve of size ``n (2h + 1)`` per block instead of n per harmonic. Exact
+price of a solve of size ``n (2h + 1)`` per block instead of n per harmonic (banded when
+the rotor's matrices are: :class:`ColumnSolver`). Exact
 derivatives: ``dHt = -S Zt^{-1} dZ C``, ``dPt = S Zt^{-1} (dF - dZ u)``.
 """
 
@@ -42,7 +43,7 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.linalg import lu_factor, lu_solve
+from scipy.linalg import get_lapack_funcs, lu_factor, lu_solve
 
 from rotorsfd.harmonic.fourier import to_complex
 from rotorsfd.harmonic.residual import real_blocks
@@ -119,19 +120,21 @@ def column_operator(problem: TorusProblem, lattice: TorusLattice, k1: int, lam: 
         dom, dwb = problem.dfrequencies(lam)
         dw = k1 * dom + np.arange(-h, h + 1) * dwb
         dZ = np.zeros_like(Z)
-    for r in range(p):
-        for c in range(max(0, r - b), min(p, r + b + 1)):
-            j = r - c
-            Dj = D[j] if j >= 0 else np.conj(D[-j])
-            Kj = K[j] if j >= 0 else np.conj(K[-j])
-            Z[r, :, c, :] = Kj + 1j * w[c] * Dj
-            if deriv:
-                dDj = dD[j] if j >= 0 else np.conj(dD[-j])
-                dKj = dK[j] if j >= 0 else np.conj(dK[-j])
-                dZ[r, :, c, :] = dKj + 1j * (dw[c] * Dj + w[c] * dDj)
-        Z[r, :, r, :] -= w[r] ** 2 * problem.M
+    for j in range(-min(b, p - 1), min(b, p - 1) + 1):   # Z[r, :, r - j, :]
+        rr = np.arange(max(0, j), min(p, p + j))
+        cc = rr - j
+        Dj = D[j] if j >= 0 else np.conj(D[-j])
+        Kj = K[j] if j >= 0 else np.conj(K[-j])
+        Z[rr, :, cc, :] = Kj[None] + 1j * w[cc, None, None] * Dj[None]
         if deriv:
-            dZ[r, :, r, :] -= 2 * w[r] * dw[r] * problem.M
+            dDj = dD[j] if j >= 0 else np.conj(dD[-j])
+            dKj = dK[j] if j >= 0 else np.conj(dK[-j])
+            dZ[rr, :, cc, :] = dKj[None] + 1j * (dw[cc, None, None] * Dj[None]
+                                                 + w[cc, None, None] * dDj[None])
+    diag = np.arange(p)
+    Z[diag, :, diag, :] -= (w**2)[:, None, None] * problem.M[None]
+    if deriv:
+        dZ[diag, :, diag, :] -= (2 * w * dw)[:, None, None] * problem.M[None]
     shape = (p * n, p * n)
     return Z.reshape(shape), (dZ.reshape(shape) if deriv else None)
 
@@ -147,6 +150,44 @@ def complex_to_real(lattice: TorusLattice, k1: int, A: ComplexArray, width: int
     idx = block_real_indices(lattice, k1)
     g = (idx[:, None] * width + np.arange(width)[None, :]).ravel()
     return g, R
+
+
+class ColumnSolver:
+    """LU of a column block Z (p n, p n), rows ordered (k2, DOF). Reordered DOF-major
+    (index d p + r) the block is banded when the rotor's matrices are: with ``dof_band``
+    the half bandwidth of M, D_j, K_j (FE: a few DOFs), that of the reordered block is
+    ``dof_band p + p - 1``; then LAPACK's banded LU (gbtrf/gbtrs), else a dense LU."""
+
+    def __init__(self, Z: ComplexArray, p: int, n: int, dof_band: int) -> None:
+        self.perm = (np.arange(n)[:, None] + n * np.arange(p)[None, :]).ravel()
+        N = p * n
+        A = Z.reshape(p, n, p, n).transpose(1, 0, 3, 2).reshape(N, N)   # = Z[perm][:, perm]
+        # entries (d, r), (e, c) with |d - e| <= dof_band: |i - j| <= dof_band p + p - 1
+        kl = ku = min(dof_band * p + p - 1, N - 1)
+        self.banded = kl + ku < N // 4
+        if not self.banded:
+            self.lu = lu_factor(Z, check_finite=False)
+            return
+        gbtrf, self._gbtrs = get_lapack_funcs(("gbtrf", "gbtrs"), (A,))
+        ab = np.zeros((2 * kl + ku + 1, N), dtype=complex)
+        for d in range(-ku, kl + 1):              # ab[kl + ku + i - j, j] = A[i, j]
+            diag = np.diagonal(A, -d)
+            if d >= 0:
+                ab[kl + ku + d, : N - d] = diag
+            else:
+                ab[kl + ku + d, -d:] = diag
+        self.lu, self.piv, info = gbtrf(ab, kl, ku)
+        if info > 0:
+            raise np.linalg.LinAlgError("singular torus column operator")
+        self.kl, self.ku = kl, ku
+        self.inverse = np.argsort(self.perm)
+
+    def solve(self, b: ComplexArray) -> ComplexArray:
+        """Z^-1 b for b (p n, c)."""
+        if not self.banded:
+            return lu_solve(self.lu, b, check_finite=False)
+        x, _ = self._gbtrs(self.lu, self.kl, self.ku, b[self.perm], self.piv)
+        return x[self.inverse]
 
 
 @dataclass
@@ -210,6 +251,10 @@ class TorusCondenser:
         dHt = np.zeros_like(Ht) if deriv else None
         dPt = np.zeros_like(Pt) if deriv else None
         us, Cs = [], []
+        D, K = p_.coefficients(lam)
+        pattern = np.abs(p_.M) + np.abs(D).sum(axis=0) + np.abs(K).sum(axis=0)
+        r_, c_ = np.nonzero(pattern)
+        band = int(np.abs(r_ - c_).max(initial=0))      # the shift is diagonal
         for k1 in range(lat.H1 + 1):
             Z, dZ = column_operator(p_, lat, k1, lam, deriv)
             p = 2 * lat.h(k1) + 1
@@ -218,11 +263,11 @@ class TorusCondenser:
                 dl = self.delta(k1)
                 for r in range(p):
                     Z[np.ix_(r * n + s, r * n + s)] += dl[r]
-            lu = lu_factor(Z, check_finite=False)
+            lu = ColumnSolver(Z, p, n, band)
             rhs = np.zeros((p * n, p * m + 1), dtype=complex)
             rhs[rows, np.arange(p * m)] = 1.0
             rhs[:, -1] = F[k1].ravel()
-            sol = lu_solve(lu, rhs, check_finite=False)
+            sol = lu.solve(rhs)
             C, u = sol[:, :-1], sol[:, -1]
             us.append(u)
             Cs.append(C)
@@ -235,7 +280,7 @@ class TorusCondenser:
             if not deriv:
                 continue
             rhs2 = np.concatenate([dZ @ C, (dF[k1].ravel() - dZ @ u)[:, None]], axis=1)
-            sol2 = lu_solve(lu, rhs2, check_finite=False)[rows]
+            sol2 = lu.solve(rhs2)[rows]
             dPt[idx] = (U @ sol2[:, -1].reshape(p, m)).real
             if m:
                 g, R = complex_to_real(lat, k1, -sol2[:, :-1], m)
