@@ -72,19 +72,24 @@ def test_unsupported_parameter_exits_2(tmp_path, capsys):
     assert "analysis.response.parameter" in err and "base.pitching.value" in err
 
 
-def test_contact_stops_branch_exit_1(tmp_path, capsys):
-    """A huge unbalance drives the journal to the eccentricity limit: exit 1, one line,
-    the points so far written, no NaN anywhere."""
+def test_contact_ends_branch_as_a_result(tmp_path, capsys):
+    """A huge unbalance drives the journal to the eccentricity limit: the branch up to
+    there is a result (issue 22 item 3): exit 0, one warning line naming where and why
+    (the solver's account only with --verbose), ``ended = "limit"`` in branch.nc, the
+    points written, no NaN anywhere."""
     config = small_rotor_toml(tmp_path / "small.toml", unbalance="2000 g*mm")
     out = tmp_path / "out"
     status = main(["response", str(config), "-o", str(out), "--quiet"])
     err = capsys.readouterr().err
-    assert status == 1
-    assert err.count("\n") == 1 and err.startswith("rotorsfd: error: ")
-    assert "limit" in err and "lam=" in err
-    # the element and the field that ended the branch, in the user's terms, first
+    assert status == 0
+    assert err.count("\n") == 1 and err.startswith("rotorsfd: warning: response branch ended")
+    assert "lam=" not in err
+    # the element and the field that ended the branch, in the user's terms
     assert "points at Omega~ = " in err and ": SFD 'sfd' at node 1 (pi film, C = 0.000127 m) " \
         "reached eps = 0.95" in err and "analysis.response.max_eccentricity = 0.95" in err
+    assert main(["response", str(config), "-o", str(tmp_path / "v"), "-q", "-v"]) == 0
+    verbose = capsys.readouterr().err
+    assert verbose.startswith(err.strip()) and "[solver: " in verbose and "lam=" in verbose
     text = (out / "branch.csv").read_text()
     assert "nan" not in text.lower() and "inf" not in text.lower()
     rows = list(csv.DictReader(text.splitlines()))
@@ -93,6 +98,8 @@ def test_contact_stops_branch_exit_1(tmp_path, capsys):
     assert max(float(r["defl_1"]) for r in rows) < 1.0
     ds = read_branch(out / "branch.nc")
     assert ds.attrs["success"] == 0 and "limit" in ds.attrs["message"]
+    assert ds.attrs["ended"] == "limit" and ds.attrs["outcome"] == err.strip().split(
+        "warning: ", 1)[1] + verbose.strip()[len(err.strip()):]
     for name, var in {**ds.data_vars, **ds.coords}.items():
         if np.issubdtype(var.dtype, np.number):
             assert np.all(np.isfinite(var.values)), name

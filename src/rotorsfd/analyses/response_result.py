@@ -141,6 +141,20 @@ class ResponseResult:
         return bool(self.branch.success)
 
     @property
+    def ended(self) -> str:
+        """How the branch ended: ``"range"`` (at the end of its range, or closed on
+        itself), ``"limit"`` (an element reached its validity limit,
+        ``analysis.response.max_eccentricity``: the branch is a result up to there),
+        ``"stopped"`` (on request, e.g. Ctrl-C) or ``"failed"`` (a numerical failure: no
+        converged point beyond the last even at the smallest step, ``max_points``)."""
+        b = self.branch
+        if str(b.message).startswith("stopped by the callback"):
+            return "stopped"
+        if b.success:
+            return "range"
+        return "limit" if self.limit_text() else "failed"
+
+    @property
     def message(self) -> str:
         """The outcome in the user's terms: where the branch ended and why, with the
         solver's own text in brackets when it stopped early."""
@@ -149,6 +163,8 @@ class ResponseResult:
             return str(b.message)
         last = (f"Omega~ = {b.frequency[-1] / self.reference_speed:.5g}" if self.is_speed
                 else f"{self.parameter} = {b.lam[-1]:.6g} {self.parameter_units}")
+        if self.ended == "stopped":
+            return f"response branch stopped on request after {b.n_points} points at {last}"
         if b.success:     # the continuation's warnings (e.g. the truncation error) kept
             solver = str(b.message)
             at = solver.find("; warning")
@@ -291,7 +307,8 @@ class ResponseResult:
                  "output_nodes":
                  np.asarray(self.nodes, dtype=np.int32), "output_directions":
                  " ".join(self.directions), "rotorsfd_version": __version__,
-                 "elapsed_s": float(self.elapsed)}
+                 "elapsed_s": float(self.elapsed), "ended": self.ended,
+                 "outcome": self.message}
         if self.speed is not None:
             attrs["fixed_speed_rad_s"] = float(self.speed)
         ds = branch_dataset(
@@ -487,5 +504,7 @@ class ResponseResult:
             lines.append(f"unstable points: {int(np.sum(~self.stable))} of {b.n_points}")
         for row in self.bifurcations or ():
             lines.append(self._bifurcation_line(row))
-        lines.append(("ok: " if self.success else "FAILED: ") + self.message)
+        ended = self.ended
+        lines.append({"range": "ok: ", "limit": "ended at a validity limit: ",
+                      "stopped": "stopped: "}.get(ended, "FAILED: ") + self.message)
         return "\n".join(lines)

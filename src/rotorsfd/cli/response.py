@@ -8,14 +8,16 @@ from pathlib import Path
 from typing import Any
 
 from rotorsfd.cli import options
-from rotorsfd.cli.output import print_error, print_summary, print_written
+from rotorsfd.cli.output import print_error, print_summary, print_warning, print_written
 from rotorsfd.cli.registry import arg, command
 from rotorsfd.interrupt import Interrupted, StopRequest
 
 
 @command("response", "periodic response by harmonic balance and arc-length continuation "
-         "([analysis.response]): branch.nc, branch.csv, response plots; exit 1 if the "
-         "branch stops early (the points so far are written)", output=True, quiet=True,
+         "([analysis.response]): branch.nc, branch.csv, response plots; a branch that "
+         "ends at an element's validity limit is a result (a warning line); exit 1 if it "
+         "stops early for a numerical reason (the points so far are written)",
+         output=True, quiet=True,
          arguments=[arg("--multipliers-at", type=options.ratio, default=None, metavar="X",
                         help="multipliers.png at the point nearest this speed ratio "
                              "Omega/Omega_ref (the parameter in SI for a non-speed branch); "
@@ -36,12 +38,16 @@ def response(args: argparse.Namespace, config: Any) -> int:
                                   callback=stop)
     paths = result.write(args.output, multipliers_at=args.multipliers_at)
     if stop.requested:
-        if not args.quiet:  # the branch's own last line would say "stopped by the callback"
+        if not args.quiet:  # the branch's own last line would say "stopped on request"
             print_summary("\n".join(line for line in result.summary().splitlines()
-                                    if "stopped by the callback" not in line), args.verbose)
+                                    if not line.startswith("stopped: ")), args.verbose)
             print("wrote " + ", ".join(str(p) for p in paths.values()))
         raise Interrupted(f"the {result.branch.n_points} points computed before Ctrl-C "
                           f"({branch_end(result)}) are written to {args.output}")
+    if result.ended == "limit":   # a result up to the limit: exit 0, and say where and why
+        print_written(result, paths, args.quiet, args.verbose)
+        print_warning(result.message, args.verbose)
+        return 0
     if not result.success:
         print_error(result.message, args.verbose)
         return 1

@@ -13,9 +13,11 @@ points: ``sweep.nc`` pads them and stores the length as ``n_<dim>``).
 Kinds (``make_task("name:key=value,...")``):
 
 - ``response``: a continuation branch (:func:`rotorsfd.analyses.response.run_response`)
-  with stability; summary: bifurcation counts by type, unstable intervals and their total
-  width (in Omega~ when the parameter is the speed: the paper's Figure 19 quantity), the
-  peak r~ per output node and where it occurs.
+  with stability; ``ok`` when it reaches the end of its range or ends at an element's
+  validity limit (``ended``: ``range``, ``limit``; ``incomplete`` when it stops early:
+  ``stopped``, ``failed``); summary: how it ended, bifurcation counts by type, unstable
+  intervals and their total width (in Omega~ when the parameter is the speed: the paper's
+  Figure 19 quantity), the peak r~ per output node and where it occurs.
 - ``simulate``: a time integration (:func:`rotorsfd.analyses.simulate.run_simulation`);
   summary: motion class, max eccentricity, Lyapunov exponent, max r~ per node; Poincare
   points of the SFD node.
@@ -218,7 +220,7 @@ class ResponseTask:
 def response_output(result: Any) -> PointOutput:
     """Summary scalars and per-point arrays of a ResponseResult (its documented fields:
     branch, reference_speed, nodes, is_speed, parameter, stable, max_multiplier,
-    bifurcations, deflection(node), success, message)."""
+    bifurcations, deflection(node), success, message, and ``ended`` if it has one)."""
     branch = result.branch
     if branch.n_points == 0:
         raise ConvergenceError(f"no converged point: {result.message}")
@@ -264,9 +266,12 @@ def response_output(result: Any) -> PointOutput:
         if has_stability:
             sc[f"peak_stable_{node}"] = bool(result.stable[i])
         arrays[f"branch_defl_{node}"] = ArrayOut(("branch_point",), r)
-    status = "ok" if result.success else "incomplete"
-    message = "" if result.success else " ".join(str(result.message).split())
-    if not has_stability and result.success:
+    # a branch that ends at a validity limit is a result (issue 22 item 3)
+    ended = getattr(result, "ended", "range" if result.success else "failed")
+    sc["ended"] = ended
+    status = "ok" if ended in ("range", "limit") else "incomplete"
+    message = "" if ended == "range" else " ".join(str(result.message).split())
+    if not has_stability and ended == "range":
         message = "no stability data (analysis.stability)"
     return PointOutput(sc, arrays, status, message)
 
