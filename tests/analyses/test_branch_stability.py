@@ -239,3 +239,19 @@ def test_rotor_secondary_hopf_located_and_confirmed_by_hill(tmp_path):
         r.branch.lam[j], r.branch.X[j])
     assert hill.crossing_type == "secondary-hopf"
     assert abs(hill.max_abs - row["max_multiplier"]) < 1e-4
+
+
+def test_split_modules_keep_the_names_importable_from_branch_stability():
+    """The options, the evaluator and the result live in their own modules (one job each);
+    ``rotorsfd.stability.branch_stability`` still exports the same objects."""
+    import rotorsfd.stability.branch_stability as bs
+    from rotorsfd.stability import branch_options, branch_result, floquet_evaluator
+
+    for module in (branch_options, branch_result, floquet_evaluator):
+        for name in bs.__all__:
+            if hasattr(module, name):
+                assert getattr(bs, name) is getattr(module, name), name
+    assert set(bs.__all__) <= set(dir(bs))
+    assert bs.FloquetEvaluator is floquet_evaluator.FloquetEvaluator
+    assert bs.StabilityOptions is branch_options.StabilityOptions
+    assert bs.BranchStability is branch_result.BranchStability
