@@ -127,8 +127,6 @@ def torus_problem(system: RotorSystem, parameter: str = "speed",
     K0[0] += r.K
     Fb0 = np.einsum("ij,ia->ja", pad(cF0), basis.vectors)   # (bw, n) two-sided c_j
     Fb1 = np.einsum("ij,ia->ja", pad(cF1), basis.vectors)
-    if system.base.is_fixed:
-        Fb0[:] = Fb1[:] = 0.0
     ub = unbalance_polynomial(system, w_b)
     U_ref = system.unbalances[0].magnitude if system.unbalances else 0.0
     if parameter == "unbalance" and U_ref == 0.0:
