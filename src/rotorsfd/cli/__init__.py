@@ -14,14 +14,17 @@ Adding a command is one new module with its handler and one import line below::
         from rotorsfd import api  # deferred: numpy, scipy (keeps --help fast)
 
         result = api.run_x(config, progress=not args.quiet)
-        print_written(result, result.write(args.output), args.quiet)
+        print_written(result, result.write(args.output), args.quiet, args.verbose)
         return 0
 
 The registry adds ``CONFIG`` and ``--set`` (``config=True``, the config is loaded and
 checked before the handler runs), ``-o DIR`` (``output=True``, checked writable, marked
 ``INCOMPLETE.txt`` while the handler runs), ``--quiet`` (``quiet=True``) and ``--debug``,
-and turns errors into exit statuses (see :mod:`~rotorsfd.cli.app`). Import heavy modules
-inside the handler (with a comment) so that ``rotorsfd --help`` stays fast.
+runs ``check(args, config)`` (``check=``: options that are bad together, input files
+that do not exist) before the output folder, the warnings and the work, and turns errors
+into exit statuses (see :mod:`~rotorsfd.cli.app`); ``--verbose`` adds the solver's account
+to messages (:mod:`~rotorsfd.cli.output`). Import heavy modules inside the handler (with a
+comment) so that ``rotorsfd --help`` stays fast.
 """
 
 from __future__ import annotations
