@@ -1,7 +1,8 @@
 """Cold start: ``rotorsfd --help`` and the first call of each compiled kernel, each in a
 fresh interpreter (so that import and JIT compilation or cache loading are measured).
 
-- ``rotorsfd --help``: wall time of the console script (subprocess), median of 5.
+- ``rotorsfd --help`` and ``rotorsfd config check examples/paper_rotor.toml``: wall time
+  of the console script (subprocess), median of 5.
 - ``import rotorsfd.io.config`` (what loading a config costs) and ``import rotorsfd.api``:
   wall and CPU time of the import in a fresh interpreter, median of 5, with the number of
   modules loaded and whether numba, matplotlib, xarray, dask or pint are among them (the
@@ -74,13 +75,14 @@ print(json.dumps({"setup_s": t1 - t0, "first_s": t2 - t1, "second_s": t3 - t2}))
 """
 
 
-def cli_help(n: int) -> list[float]:
+def cli_help(n: int, *args: str) -> list[float]:
+    """Wall times of ``n`` runs of ``rotorsfd ARGS`` (default ``--help``)."""
     exe = shutil.which("rotorsfd") or str(Path(sys.executable).parent / "rotorsfd")
     times = []
     for _ in range(n):
         t0 = time.perf_counter()
-        subprocess.run([exe, "--help"], cwd=ROOT, capture_output=True, check=True,
-                       timeout=120)
+        subprocess.run([exe, *(args or ("--help",))], cwd=ROOT, capture_output=True,
+                       check=True, timeout=120)
         times.append(time.perf_counter() - t0)
     return times
 
@@ -130,6 +132,11 @@ def run(quick: bool = False, repeat: int = 3) -> list[Row]:
     rows = [Row("coldstart", "CLI (subprocess wall time)", "rotorsfd --help", t_help,
                 repeat=n, ratio=t_help / bare, ref="bare python",
                 note=f"bare 'python -c pass' {bare * 1e3:.0f} ms")]
+    t_check = statistics.median(cli_help(n, "config", "check", "examples/paper_rotor.toml"))
+    rows.append(Row("coldstart", "CLI (subprocess wall time)",
+                    "rotorsfd config check examples/paper_rotor.toml", t_check, repeat=n,
+                    ratio=t_check / bare, ref="bare python",
+                    note="loads the config and builds the model (numba for the SFD film)"))
     rows += import_rows(n, bare)
     variants = [("cache on", False)] + ([] if quick else [("empty cache: compile", True)])
     for name, code in KERNELS.items():

@@ -54,6 +54,7 @@ def loaded_heavy(module: str, heavy: tuple[str, ...] = HEAVY) -> tuple[list[str]
     ("rotorsfd.io.config", HEAVY),           # what every command with a config loads
     ("rotorsfd.analyses.checks", HEAVY),     # rotorsfd config check
     ("rotorsfd.api", API_HEAVY),
+    ("rotorsfd.model.base_motion", (*HEAVY, "scipy.integrate")),  # every model build
 ])
 def test_imports_load_no_heavy_package(module, heavy):
     loaded, importer = loaded_heavy(module, heavy)

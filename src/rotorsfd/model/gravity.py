@@ -23,7 +23,6 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from rotorsfd.errors import ConfigError
 
@@ -75,6 +74,8 @@ def rotate_constant_rate(g0: np.ndarray, w: np.ndarray, t: np.ndarray) -> np.nda
 
 
 def _integrate(g0: np.ndarray, rates: Callable[[np.ndarray], np.ndarray], t_end: float):
+    from scipy.integrate import solve_ivp  # deferred: scipy.integrate (0.7 s to import)
+
     def rhs(t: float, g: np.ndarray) -> np.ndarray:
         return -np.cross(rates(np.asarray(t)), g)
 
