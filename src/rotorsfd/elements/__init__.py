@@ -2,7 +2,9 @@
 
 :class:`NonlinearElement` is the interface, :class:`ElementSet` the composite the solvers
 see, :data:`KINDS` the registered kinds (each module below registers its config model on
-import; a new kind is one module and one line here).
+import; a new kind is its module, ``<kind>.py``, with the element class and the config
+model and no numba, its compiled kernel in ``<kind>_kernel.py``, imported where the
+element's ``kernel`` is first asked for, and one line here: docs/elements.md).
 """
 
 from rotorsfd.elements import sfd  # noqa: F401  (registers "sfd")
