@@ -64,9 +64,9 @@ def test_bad_response_value_exits_2(tmp_path, capsys, override, field):
 def test_unsupported_parameter_exits_2(tmp_path, capsys):
     config = small_rotor_toml(tmp_path / "small.toml")
     status = main(["response", str(config), "-o", str(tmp_path / "bad"), "--quiet",
-                   "--set", "analysis.response.parameter=elements.sfd.viscosity",
+                   "--set", "analysis.response.parameter=materials.steel.density",
                    "--set", "analysis.response.speed_ratio=1.0",
-                   "--set", "analysis.response.parameter_range=['0.005 Pa*s', '0.01 Pa*s']"])
+                   "--set", "analysis.response.parameter_range=['7000 kg/m^3', '8000 kg/m^3']"])
     err = capsys.readouterr().err
     assert status == 2 and err.count("\n") == 1
     assert "analysis.response.parameter" in err and "base.pitching.value" in err
