@@ -47,6 +47,7 @@ from rotorsfd.analyses.simulate import (
     time_domain_inputs,
 )
 from rotorsfd.analyses.step_control import integrate_controlled
+from rotorsfd.analyses.td_integration import with_reduction
 from rotorsfd.errors import ConfigError, ConvergenceError, ElementDomainError, RotorsfdError
 from rotorsfd.model import dofs
 from rotorsfd.model.system import RotorSystem
@@ -349,8 +350,9 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
                 q0, v0, origin = fresh(d, speed, start_state == "hb" or restart)
                 state = (q0, v0)
             bar.set_postfix_str(f"{d} {speed / ref if ref else speed:.4g}")
-            inputs = time_domain_inputs(system, speed,
-                                        horizon=(settle + rec + 1) * 2 * math.pi / speed)
+            inputs = with_reduction(time_domain_inputs(
+                system, speed, horizon=(settle + rec + 1) * 2 * math.pi / speed),
+                sim.reduction, sim.reduction_cutoff)
             try:
                 run_ = integrate_controlled(
                     inputs, state[0], state[1], steps_per_period=spp, periods=settle + rec,
