@@ -29,7 +29,15 @@ from rotorsfd.harmonic.synthesis import max_radius, orbit_samples
 FloatArray = NDArray[np.float64]
 
 #: SI unit of every continuation parameter (:data:`rotorsfd.model.parameters.PARAMETERS`).
-PARAMETER_UNITS = {p.name: p.unit for p in PARAMETERS.values()}
+class ParameterUnits(dict):
+    """Parameter name -> SI unit; names outside the registry's entries (an element's field,
+    ``elements.<name>.<field>``) are looked up by :func:`find_parameter`."""
+
+    def __missing__(self, key: str) -> str:
+        return find_parameter(key).unit
+
+
+PARAMETER_UNITS = ParameterUnits({p.name: p.unit for p in PARAMETERS.values()})
 FIELD = "analysis.response"
 
 
