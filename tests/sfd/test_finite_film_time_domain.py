@@ -21,11 +21,13 @@ W1, C = 811.3, 1.27e-4
 
 @pytest.mark.slow
 @pytest.mark.parametrize("overrides", [[], ["elements.sfd.film_table=false"],
-                                       ["elements.sfd.end_flow=1.0"]])
+                                       ["elements.sfd.end_flow=1.0"],
+                                       ["elements.sfd.cavitation=guembel"]])
 def test_hb_against_time_integration_with_the_finite_film(overrides: list[str]) -> None:
     """Omega~ = 0.95 (a stable period-1 orbit below the folds): HB (H = 8) against Newmark from
     near rest (200 steps per period, the last of 300 periods) on the SFD's DOFs, 1e-3 C
-    (measured 4.5e-4 C at eps = 0.38 with open ends)."""
+    (measured 4.5e-4 C at eps = 0.38 with open ends; also the Guembel film's field
+    table)."""
     config = load_config(PAPER, ["unbalance[0].magnitude=144.02 g*mm",
                                  "elements.sfd.film_length=finite", *overrides])
     m = build_model(config)
