@@ -48,8 +48,9 @@ operator differentiated, two more solves of the same factorisation)::
     dF/dv = Rot M Rot^T
     dF/dq = Rot dG/deps e_r^T / C + Rot (J G - M J w) e_t^T / e,  J = [[0, -1], [1, 0]]
 
-exact for the discrete force (the Guembel force is piecewise linear in ``v`` between sign
-changes of a node; at ``e = 0`` the ``psi`` term is left out, as the short pi film does).
+exact for the discrete force (the Guembel clamp integrates the positive part of the
+linear interpolant cell by cell, so its force is C1: a node changing sign moves nothing
+abruptly; at ``e = 0`` the ``psi`` term is left out, as the short pi film does).
 
 **Table.** With ``table = True`` (default) the film is tabulated over eps when it is
 built and interpolated (:mod:`rotorsfd.model.film_finite_table`), its error against the
