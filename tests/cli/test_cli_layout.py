@@ -59,7 +59,8 @@ def test_help_imports_no_heavy_module():
 def test_help_lists_the_commands_in_workflow_order(capsys):
     assert cli.main(["--help"]) == 0
     text = capsys.readouterr().out
-    order = ["config", "modal", "fit-supports", "response", "static", "sweep", "simulate",
+    order = ["config", "modal", "fit-supports", "calibrate", "response", "static", "sweep",
+             "simulate",
              "bifurcation-diagram", "stability-chart", "fold-curve", "paper", "import-ross",
              "export-matrices"]
     listed = re.findall(r"^ {4}(\S+)", text, flags=re.M)

@@ -33,6 +33,7 @@ from __future__ import annotations
 # isort: off
 from rotorsfd.cli import config  # noqa: F401
 from rotorsfd.cli import modal  # noqa: F401
+from rotorsfd.cli import calibrate  # noqa: F401
 from rotorsfd.cli import response  # noqa: F401
 from rotorsfd.cli import static  # noqa: F401
 from rotorsfd.cli import sweep  # noqa: F401
@@ -40,6 +41,7 @@ from rotorsfd.cli import simulate  # noqa: F401
 from rotorsfd.cli import bifurcation_diagram  # noqa: F401
 from rotorsfd.cli import stability_chart  # noqa: F401
 from rotorsfd.cli import fold_curve  # noqa: F401
+from rotorsfd.cli import attractors  # noqa: F401
 from rotorsfd.cli import paper  # noqa: F401
 from rotorsfd.cli import import_ross  # noqa: F401
 from rotorsfd.cli import export_matrices  # noqa: F401

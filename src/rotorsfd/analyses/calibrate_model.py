@@ -1,0 +1,131 @@
+"""The target quantities of a calibration as functions of the fitted fields: f(p), df/dp.
+
+Configs at field values ``p`` are rebuilt by :func:`rotorsfd.io.config.with_values` (the
+same validation as ``--set``). Critical speeds and their exact Jacobian rows come from
+:class:`~rotorsfd.analyses.calibrate_targets.CriticalSpeedTracker`; the response targets
+(folds, bifurcations, peaks) from one ``[analysis.response]`` branch per evaluation, their
+Jacobian rows by central differences with step ``1e-4 |p_j|`` (or ``1e-4 (hi - lo)`` at
+0) on rebuilt configs.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from rotorsfd.analyses.calibrate_targets import (
+    CriticalSpeedTracker,
+    bifurcation_speed,
+    fold_speeds,
+    peak_amplitude,
+)
+from rotorsfd.errors import ConvergenceError
+
+EXACT = "exact (eigen-derivative)"
+FINITE = "central finite differences"
+
+
+class TargetModel:
+    """``values(p)`` and ``jacobian(p)`` of the targets of a calibration."""
+
+    def __init__(self, config: Any, fields: Sequence[Any], targets: Sequence[Any],
+                 search_path: Path | None = None, fd_step: float = 1e-4) -> None:
+        self.config, self.fields, self.targets = config, list(fields), list(targets)
+        self.search_path, self.fd_step = search_path, fd_step
+        self.critical = [i for i, t in enumerate(self.targets) if t.kind == "critical_speed"]
+        self.response = [i for i, t in enumerate(self.targets) if t.kind != "critical_speed"]
+        modal = config.analysis.modal
+        self.tracker = CriticalSpeedTracker(
+            self.system_at, [int(self.targets[i].selector) for i in self.critical],
+            modal.whirl, modal.critical_speed_max) if self.critical else None
+        self._cache: dict[bytes, np.ndarray] = {}
+
+    def config_at(self, p: Sequence[float]) -> Any:
+        from rotorsfd.io.config import with_values
+
+        return with_values(self.config, {f.path: float(v)
+                                         for f, v in zip(self.fields, p, strict=True)})
+
+    def system_at(self, p: Sequence[float]) -> Any:
+        from rotorsfd.analyses.modal import linear_system
+        from rotorsfd.model.build import build_model
+
+        return linear_system(self.config_at(p), build_model(self.config_at(p),
+                                                            self.search_path))
+
+    def derivative_kinds(self) -> list[str]:
+        return [EXACT if t.kind == "critical_speed" else FINITE for t in self.targets]
+
+    def response_values(self, p: Sequence[float]) -> np.ndarray:
+        """The response targets at ``p`` from one branch (ConvergenceError if one of them
+        is not on it)."""
+        from rotorsfd.analyses.response import run_response
+
+        result = run_response(self.config_at(p), search_path=self.search_path,
+                              progress=False)
+        folds = None
+        out = []
+        for i in self.response:
+            t = self.targets[i]
+            if t.kind == "fold_speed":
+                folds = fold_speeds(result) if folds is None else folds
+                if not folds.size:
+                    raise ConvergenceError(f"{t.name}: the branch has no saddle-node "
+                                           f"({result.message})")
+                if t.selector in ("lower", "upper"):
+                    out.append(folds[0] if t.selector == "lower" else folds[-1])
+                elif int(t.selector) > folds.size:
+                    raise ConvergenceError(f"{t.name}: the branch has {folds.size} "
+                                           "saddle-nodes")
+                else:
+                    out.append(folds[int(t.selector) - 1])
+            elif t.kind == "peak_amplitude":
+                out.append(peak_amplitude(result, int(t.selector)))
+            else:
+                out.append(bifurcation_speed(result, t.selector))
+        return np.array(out, dtype=float)
+
+    def values(self, p: Sequence[float]) -> np.ndarray:
+        """f_i(p) in the order of the targets (cached per p)."""
+        p = np.asarray(p, dtype=float)
+        key = p.tobytes()
+        if key in self._cache:
+            return self._cache[key].copy()
+        out = np.empty(len(self.targets))
+        if self.tracker is not None:
+            out[self.critical] = self.tracker.values(p)
+        if self.response:
+            out[self.response] = self.response_values(p)
+        self._cache[key] = out.copy()
+        return out
+
+    def step(self, j: int, value: float) -> float:
+        f = self.fields[j]
+        return self.fd_step * (abs(value) if value != 0.0 else f.upper - f.lower)
+
+    def jacobian(self, p: Sequence[float]) -> np.ndarray:
+        """df_i/dp_j: exact rows for the critical speeds, central differences for the
+        response targets."""
+        p = np.asarray(p, dtype=float)
+        jac = np.empty((len(self.targets), p.size))
+        if self.tracker is not None:
+            self.values(p)
+
+            def field_system(j: int, value: float) -> Any:
+                q = p.copy()
+                q[j] = value
+                return self.system_at(q)
+
+            jac[self.critical] = self.tracker.jacobian(p, field_system)
+        if self.response:
+            for j in range(p.size):
+                h = self.step(j, p[j])
+                hi, lo = p.copy(), p.copy()
+                hi[j] += h
+                lo[j] -= h
+                jac[self.response, j] = (self.response_values(hi)
+                                         - self.response_values(lo)) / (2 * h)
+        return jac
