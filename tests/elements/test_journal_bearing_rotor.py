@@ -96,3 +96,15 @@ def test_hb_orbit_matches_time_integration_below_the_whirl_onset():
     error = np.abs(q_hb[:, lateral] - res.q[:, lateral]).max()
     assert error < 1e-3 * C
     assert 0.05 < el.limit(q_hb[:, system.nl_dofs]) < 0.5     # a loaded, eccentric journal
+
+
+def test_static_of_a_rotor_held_by_its_bearings_says_why(tmp_path, capsys):
+    """The linear static offset excludes the bearings: one line naming rotor.supports and
+    where the equilibrium is, exit 2, nothing written."""
+    from rotorsfd.cli import main
+
+    status = main(["static", str(EXAMPLE), "-o", str(tmp_path / "st")])
+    err = capsys.readouterr().err
+    assert status == 2 and err.count("\n") == 1
+    assert "rotor.supports" in err and "rotorsfd response" in err
+    assert not (tmp_path / "st").exists()

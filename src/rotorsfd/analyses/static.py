@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsfd.errors import ConfigError
 from rotorsfd.linear.static import static_deflection
 from rotorsfd.model.system import RotorSystem
 
@@ -90,6 +91,13 @@ def run_static(config_or_system: Config | RotorSystem, *, speeds: Sequence[float
 
         config = config_or_system
         system = build_system(config, search_path)
+        if not system.rotor.supports and len(system.elements):
+            raise ConfigError("rotor.supports", [], "the static offset is that of the linear "
+                              "rotor, which has no support here: its nonlinear elements "
+                              "(" + ", ".join(e.describe() for e in system.elements) + ") "
+                              "are excluded; a journal bearing carries its load only at "
+                              "speed: its equilibrium is the static part (0X, static_* "
+                              "columns) of `rotorsfd response`")
         ref = reference_speed or config_reference_speed(config, system)
         speeds = modal_speeds(config, ref) if speeds is None else speeds
         title = config.title
