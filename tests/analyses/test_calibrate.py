@@ -179,3 +179,29 @@ def test_paper_rotor_supports_recovered():
                              [parse_target(f"critical_speed[{i + 1}]={s!r}")
                               for i, s in enumerate(speeds)])
     np.testing.assert_allclose(result.values, truth, rtol=1e-6)
+
+
+@pytest.mark.slow
+def test_unbalance_recovered_from_fold_speed_and_peak():
+    """Paper rotor, H = 3, Omega~ 0.9..1.2: the unbalance 144.02 g mm recovered from the
+    upper saddle-node speed and the disk's peak amplitude of its own branch (finite
+    differences), starting at 130 g mm; the folds are the known 1.0527 / 1.0593."""
+    sets = ["analysis.response.speed_range.start_ratio=0.9",
+            "analysis.response.speed_range.stop_ratio=1.2"]
+    truth = api.load_config("examples/paper_rotor.toml",
+                            [*sets, "unbalance[0].magnitude=144.02 g*mm"])
+    fields = [parse_fit(truth, "unbalance[0].magnitude=100 g*mm:200 g*mm")]
+    model = TargetModel(truth, fields, [parse_target("fold_speed[lower]=1"),
+                                        parse_target("fold_speed[upper]=1"),
+                                        parse_target("peak_amplitude[8]=1")])
+    lower, upper, peak = model.values([144.02e-6])
+    np.testing.assert_allclose([lower / 811.3, upper / 811.3], [1.0527, 1.0593], atol=1e-4)
+    start = api.load_config("examples/paper_rotor.toml",
+                            [*sets, "unbalance[0].magnitude=130 g*mm"])
+    result = run_calibration(start, [parse_fit(start, "unbalance[0].magnitude=100 g*mm:"
+                                                      "200 g*mm")],
+                             [parse_target(f"fold_speed[upper]={float(upper)!r}"),
+                              parse_target(f"peak_amplitude[8]={float(peak)!r}")])
+    assert result.derivative_kinds == ["central finite differences"] * 2
+    assert result.values[0] == pytest.approx(144.02e-6, rel=1e-6)
+    assert result.jacobian[1, 0] > 0      # more unbalance, larger peak
