@@ -26,6 +26,7 @@ at each output node.
 from __future__ import annotations
 
 import dataclasses
+import re
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -168,22 +169,25 @@ class FoldCurve:
         return cols, [tuple(self.table[c][i].item() for c in cols) for i in range(n)]
 
     def summary(self) -> str:
+        unit = "" if self.units == "1" else f" {self.units}"
+        message = re.sub(r"lam=(\S+?)(;|$)", lambda m: f"{self.parameter} = "
+                         f"{float(m.group(1)):.6g}{unit}{m.group(2)}", self.message)
         lines = [f"fold curve in (speed, {self.parameter}) over {self.range2[0]:g} .. "
-                 f"{self.range2[1]:g} {self.units}, H = {self.H}, N_f = {self.n_samples}: "
+                 f"{self.range2[1]:g}{unit}, H = {self.H}, N_f = {self.n_samples}: "
                  f"{len(self.table['speed_rad_s'])} points (aliasing <= "
-                 f"{np.max(self.table['aliasing']):.1g}), {self.message}",
+                 f"{np.max(self.table['aliasing']):.1g}), {message}",
                  "saddle-nodes at the start: " + ", ".join(
                      f"Omega~ = {w / self.reference_speed:.5f}" for w in self.start_folds)]
         for c in self.cusps:
-            lines.append(f"cusp (a fold pair meets): {self.parameter} = {c.value:.6g} "
-                         f"{self.units} at Omega~ = {c.speed_ratio:.5f} "
+            lines.append(f"cusp (a fold pair meets): {self.parameter} = {c.value:.6g}"
+                         f"{unit} at Omega~ = {c.speed_ratio:.5f} "
                          f"({c.speed_rad_s:.2f} rad/s), eccentricity {c.max_eps:.3f}")
         end = self.bistability_end
         if end is not None:
-            lines.append(f"bistability vanishes at {self.parameter} = {end:.6g} {self.units}")
+            lines.append(f"bistability vanishes at {self.parameter} = {end:.6g}{unit}")
         if not self.cusps:
             lines.append(f"no cusp in the range: the fold pair persists up to "
-                         f"{self.range2[1]:g} {self.units}")
+                         f"{self.range2[1]:g}{unit}")
         lines.append("time: " + ", ".join(f"{k} {v:.2f} s" for k, v in self.timings.items()))
         return "\n".join(lines)
 

@@ -33,9 +33,9 @@ def fold_curve_figure(value: Any, speed_ratio: Any, curve: Any, *, grid: Any, lo
     bistable = count >= 2
     ax.fill_between(grid, lo, hi, where=bistable, color="C1", alpha=0.25, lw=0,
                     label="bistable (middle branch unstable)")
-    units_words = units.replace("**", "^").replace("*", " ")
+    units_words = "" if units == "1" else " " + units.replace("**", "^").replace("*", " ")
     for k, (v, s) in enumerate(cusps):
-        ax.plot([v], [s], "kv", ms=7, label=f"cusp at {v:.4g} {units_words}" if k < 3
+        ax.plot([v], [s], "kv", ms=7, label=f"cusp at {v:.4g}{units_words}" if k < 3
                 else None)
     ax.set_ylabel(r"$\tilde\Omega$ of the saddle-nodes")
     ax.set_title(wrap((f"{title}\n" if title else "") + "Fold curve in "
