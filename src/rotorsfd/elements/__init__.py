@@ -11,6 +11,7 @@ from rotorsfd.elements import sfd  # noqa: F401  (registers "sfd")
 
 from rotorsfd.elements import rub  # noqa: F401  # isort: skip
 from rotorsfd.elements import journal_bearing  # noqa: F401  # isort: skip
+from rotorsfd.elements import intershaft_sfd  # noqa: F401  # isort: skip
 from rotorsfd.elements.base import NonlinearElement
 from rotorsfd.elements.composite import ElementSet
 from rotorsfd.elements.registry import KINDS, register
