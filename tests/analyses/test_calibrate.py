@@ -1,6 +1,8 @@
 """Calibration (rotorsfd.analyses.calibrate): fields recovered from computed targets, the
 exact critical-speed derivatives against finite differences, the covariance, bad input."""
 
+import tomllib
+
 import numpy as np
 import pytest
 
@@ -15,6 +17,7 @@ from rotorsfd.analyses.calibrate import (
 from rotorsfd.analyses.calibrate_model import TargetModel
 from rotorsfd.analyses.modal import linear_system
 from rotorsfd.errors import ConfigError
+from rotorsfd.io.config import config_from_dict
 from rotorsfd.linear import critical_speeds
 
 SMALL = """
@@ -159,6 +162,11 @@ def test_target_units_and_fit_bounds(small):
     assert (f.lower, f.upper, f.start) == pytest.approx((1e6, 1e8, 1e7))
     with pytest.raises(ConfigError, match="names no config field"):
         parse_fit(small, "rotor.supports[7].stiffness")
+    with pytest.raises(ConfigError, match="does not accept a value there"):
+        parse_fit(small, "rotor.damping.ratio=0:0.01")    # damping kind 'none'
+    assert parse_fit(config_from_dict({**tomllib.loads(SMALL), "rotor": {
+        **tomllib.loads(SMALL)["rotor"], "damping": {"kind": "modal", "ratio": 0.0}}}),
+        "rotor.damping.ratio=0:0.01").start == 0.0      # its value, on the bound
     with pytest.raises(ConfigError, match="lower bound"):
         parse_fit(small, "rotor.supports[1].stiffness=1e8:1e6")
 

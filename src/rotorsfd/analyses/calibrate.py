@@ -73,7 +73,7 @@ class Target:
 
 def parse_fit(config: Any, text: str) -> FitField:
     """``PATH`` or ``PATH=LO:HI`` (values with units allowed) -> FitField."""
-    from rotorsfd.io.config import get_path
+    from rotorsfd.io.config import get_path, with_values
     from rotorsfd.io.schema import resolve_kind
     from rotorsfd.io.units import UnitError, to_si
 
@@ -104,6 +104,11 @@ def parse_fit(config: Any, text: str) -> FitField:
     if not lower <= start <= upper:
         start = lower + 0.5 * (upper - lower) if start == 0.0 or lower <= 0.0 else \
             float(np.sqrt(lower * upper))
+    try:    # the config must accept a value there (e.g. a damping ratio needs kind "modal")
+        with_values(config, {path: start})
+    except ConfigError as exc:
+        raise ConfigError("--fit", text, f"the config does not accept a value there: "
+                          f"{exc}") from None
     return FitField(path, kind, start, lower, upper)
 
 
