@@ -14,20 +14,24 @@ from rotorsfd.errors import ConfigError
 @command("paper", "reproduce Zhang et al. 2025: run the paper's case studies, draw every "
          "figure (DIR/fig<N>.png) and write DIR/report.md and a self-contained "
          "DIR/report.html with our numbers beside the paper's; results per case in "
-         "DIR/cases/", config=False, output=True, quiet=True,
+         "DIR/cases/ (their figures with --case-plots)", config=False, output=True, quiet=True,
          arguments=[arg("--figure", action="append", default=[], metavar="N",
                         help="only this figure of the paper (repeatable), e.g. --figure 7"),
                     arg("--quick", action="store_true",
                         help="Figure 7 only (fixed base, Table 1): under a minute"),
                     arg("--workers", type=options.integer(1), metavar="N",
-                        help="worker processes (default: the CPUs, at most 2)")])
+                        help="worker processes (default: the CPUs, at most 2)"),
+                    arg("--case-plots", action="store_true",
+                        help="also draw each case's own figures under DIR/cases/ (their "
+                             "data files are always written; the figures double the run)")])
 def paper(args: argparse.Namespace, config: Any) -> int:
     """Run the cases, draw the figures, write the report."""
     from rotorsfd import api  # deferred: numpy, scipy, matplotlib (keeps --help fast)
 
     try:
         result = api.run_paper(args.output, args.figure, quick=args.quick,
-                               workers=args.workers, progress=not args.quiet)
+                               workers=args.workers, progress=not args.quiet,
+                               case_plots=args.case_plots)
     except KeyError as exc:
         bad = [f for f in args.figure if f"no figure {f} " in f"{exc.args[0]} "]
         raise ConfigError("--figure", bad[0] if bad else ", ".join(args.figure),

@@ -12,8 +12,9 @@ the condensation, time stepping). An element may have a validity limit (a film's
 eccentricity ratio, which must stay below 1; a contact law has none), a length scale for
 the Newton test and the plots, and per-orbit diagnostics for the results files.
 
-A new kind is one module: a subclass of :class:`NonlinearElement`, its config model, and
-one :func:`rotorsfd.elements.registry.register` call. The solvers only ever see the
+A new kind is two modules: ``<kind>.py`` with a subclass of :class:`NonlinearElement`, its
+config model and one :func:`rotorsfd.elements.registry.register` call (no numba), and
+``<kind>_kernel.py`` with its compiled law (``docs/elements.md``). The solvers only ever see the
 composite of all elements (:class:`rotorsfd.elements.composite.ElementSet`).
 """
 

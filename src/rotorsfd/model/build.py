@@ -27,12 +27,12 @@ from rotorsfd.model import (
     Rotor,
     uniform_shaft,
 )
-from rotorsfd.model.system import RotorSystem
 
 if TYPE_CHECKING:
     from rotorsfd.elements.base import NonlinearElement
     from rotorsfd.model.base_motion import BaseMotion, TimeLaw
     from rotorsfd.model.gravity import Gravity
+    from rotorsfd.model.system import RotorSystem
     from rotorsfd.model.unbalance import Unbalance
 
 
@@ -183,5 +183,7 @@ def build_model(config: Config, search_path: Path | None = None) -> Model:
 def build_system(config: Config, search_path: Path | None = None) -> RotorSystem:
     """The :class:`~rotorsfd.model.system.RotorSystem` of ``config``: the one way from a
     configuration to what the solvers take."""
+    from rotorsfd.model.system import RotorSystem  # deferred: numba (the HB problem)
+
     m = build_model(config, search_path)
     return RotorSystem(m.rotor, m.elements, m.unbalances, m.base_motion)
