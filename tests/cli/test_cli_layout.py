@@ -61,7 +61,8 @@ def test_help_lists_the_commands_in_workflow_order(capsys):
     text = capsys.readouterr().out
     order = ["config", "modal", "fit-supports", "calibrate", "response", "static", "sweep",
              "simulate",
-             "bifurcation-diagram", "stability-chart", "fold-curve", "paper", "import-ross",
+             "bifurcation-diagram", "stability-chart", "fold-curve", "attractors", "paper",
+             "import-ross",
              "export-matrices"]
     listed = re.findall(r"^ {4}(\S+)", text, flags=re.M)
     assert listed == order

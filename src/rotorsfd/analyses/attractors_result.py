@@ -10,7 +10,7 @@ each. The basin fraction of an attractor is ``p = k / N`` of the N starts with i
 binomial standard error ``sqrt(p (1 - p) / N)``.
 
 HB correction (period-n orbits). The last n recorded periods of the representative start
-are fitted in harmonics of ``Omega / n`` (``n H`` of them,
+are fitted in harmonics of ``Omega / n`` (``n H`` of them, ``2 n H`` if Newton fails there,
 :func:`~rotorsfd.analyses.orbit_branch.fit_samples`) and Newton solves the HB equations
 of the same system written with that fundamental (:func:`period_n_problem`: forcing
 harmonic k moved to k n) from there; reported: the scaled residual norm, the largest
@@ -107,18 +107,22 @@ def hb_correction(model: Any, outcome: Any, harmonics: int) -> dict[str, Any]:
     if model.problem is None or n is None or outcome.t.size == 0:
         return {"hb_note": "no HB problem or no recorded period"}
     problem = period_n_problem(model.problem, n)
-    Hn = harmonics * n
     nl = model.nl_dofs
     samples = {int(d): outcome.q[:, j] for j, d in enumerate(nl)}
-    try:
-        fit = fit_samples(outcome.t, samples, model.speed / n, Hn, problem.n_dof,
-                          float(model.scale[0]), "census")
-        X0 = np.zeros((Hn + 1, problem.n_dof), dtype=complex)
-        X0[:, nl] = fit.X[:, nl]
-        sol = solve_periodic(problem, model.speed, Hn, X0, condensed=True)
-        fl = FloquetEvaluator(problem)(model.speed, sol.X)
-    except (ConvergenceError, ElementDomainError, np.linalg.LinAlgError) as exc:
-        return {"hb_note": " ".join(str(exc).split())[:200]}
+    note = ""
+    for Hn in (harmonics * n, 2 * harmonics * n):        # H, then 2H if Newton fails
+        try:
+            fit = fit_samples(outcome.t, samples, model.speed / n, Hn, problem.n_dof,
+                              float(model.scale[0]), "census")
+            X0 = np.zeros((Hn + 1, problem.n_dof), dtype=complex)
+            X0[:, nl] = fit.X[:, nl]
+            sol = solve_periodic(problem, model.speed, Hn, X0, condensed=True)
+            fl = FloquetEvaluator(problem)(model.speed, sol.X)
+            break
+        except (ConvergenceError, ElementDomainError, np.linalg.LinAlgError) as exc:
+            note = f"H={Hn}: " + " ".join(str(exc).split())[:200]
+    else:
+        return {"hb_note": note}
     return {"hb_residual": float(sol.residual_norm),
             "hb_orbit_difference": fit.difference(sol.X),
             "hb_max_multiplier": fl.max_abs, "hb_stable": bool(fl.stable),
@@ -155,7 +159,8 @@ def _text(x: Any) -> Any:
 @dataclass
 class AttractorCensus:
     """A census at one speed: the starts' coordinates ``(N, 2 m)`` (``q_i / c_i``,
-    ``v_i / (c_i Omega)``), their outcomes and the attractors."""
+    ``v_i / (c_i Omega)``; a last column: the phase of the HB orbit the other DOFs start
+    on, with ``around = "orbit"``), their outcomes and the attractors."""
 
     speed: float
     reference_speed: float | None
@@ -201,6 +206,8 @@ class AttractorCensus:
                 "start_index": a.representative}
             row.update({f"start_q{j + 1}": c[j] for j in range(m)})
             row.update({f"start_v{j + 1}": c[m + j] for j in range(m)})
+            if c.size > 2 * m:
+                row["start_orbit_phase"] = c[2 * m]
             row["poincare_points"] = "; ".join(" ".join(f"{x:.5g}" for x in pt)
                                                for pt in a.points[:16])
             row["periods_run_median"] = float(np.median(
@@ -267,6 +274,7 @@ def write_census(censuses: list[AttractorCensus], folder: str | Path,
                                int(lab[r.index]), r.periods_run])
     m = censuses[0].coords.shape[1] // 2
     cols = [f"q{j + 1}" for j in range(m)] + [f"v{j + 1}" for j in range(m)]
+    cols += ["orbit_phase"] * (censuses[0].coords.shape[1] - 2 * m)
     paths["starts"] = write_csv(out / "starts.csv", ["speed_rad_s", "start", *cols,
                                                      "motion", "attractor", "periods_run"],
                                 start_rows)

@@ -22,7 +22,7 @@ def _legend(census: Any, i: int, a: Any) -> str:
             "chaotic": "irregular (chaotic)"}.get(a.motion, f"periodic, {a.motion}")
     where = ""
     if a.points.size and a.period is not None:
-        where = ", at (" + ", ".join(f"{x:.2f}" for x in a.points[0][:2]) + ")"
+        where = ", Poincare point (" + ", ".join(f"{x:.2f}" for x in a.points[0][:2]) + ")"
     stab = ""
     if "hb_stable" in a.hb:
         stab = ", stable by Floquet" if a.hb["hb_stable"] else ", unstable by Floquet"
