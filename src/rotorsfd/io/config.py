@@ -412,6 +412,11 @@ def derived_values(config: Config) -> dict[str, str]:
                     f"length {sum(s.length for s in config.rotor.shaft):.6g} m"
            if m is None else f"{config.rotor.n_nodes} nodes, given by matrices "
                              f"({m.file or m.mass})"}
+    if config.rotor.shafts:
+        out["rotor"] = f"{config.rotor.n_nodes} nodes, shafts " + ", ".join(
+            f"{s.name} (nodes {lo}..{hi}, speed ratio {s.speed_ratio:g})"
+            for s, (lo, hi) in zip(config.rotor.shafts, config.rotor.shaft_ranges(),
+                                   strict=True))
     for name, table in config.elements.items():
         text = table.derived_text() if hasattr(table, "derived_text") else ""
         if text:

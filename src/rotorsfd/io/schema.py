@@ -238,12 +238,48 @@ class MatricesConfig(Section):
         return self
 
 
+class ShaftConfig(Section):
+    """One shaft of a multi-shaft rotor (``[[rotor.shafts]]``): its sections, disks, point
+    masses and supports, its speed ratio and axial start. Nodes are global, numbered in the
+    order of the shafts (shaft 1: 1..n_1, shaft 2: n_1 + 1..n_1 + n_2, ...); this shaft's
+    disks, masses and supports must be at its own nodes."""
+
+    name: Annotated[str, Field(pattern=NAME_PATTERN, description="shaft name (in messages "
+                               "and DOF names, y@<name>.<local node>); allowed: letters, "
+                               "digits, '_' and '-'")]
+    speed_ratio: quantity("ratio", "speed of this shaft / the continuation speed (the "
+                          "first shaft's is 1)", gt=0) = 1.0
+    x_start: quantity("length", "axial position of the shaft's first node") = 0.0
+    sections: list[ShaftSectionConfig] = Field(min_length=1, description="shaft sections, "
+                                               "left to right")
+    disks: list[DiskConfig] = []
+    point_masses: list[PointMassConfig] = []
+    supports: list[SupportConfig] = []
+
+    @property
+    def n_nodes(self) -> int:
+        return sum(s.n_elements for s in self.sections) + 1
+
+
+class IntershaftConfig(SupportConfig):
+    """Linear intershaft bearing between ``node`` (inner shaft) and ``outer_node`` (another
+    shaft), on the relative displacement: the coefficients of a support."""
+
+    outer_node: NODE
+
+
 class RotorConfig(Section):
-    """The finite-element rotor. Nodes are numbered 1..N along x from ``x_start``."""
+    """The finite-element rotor. Nodes are numbered 1..N along x from ``x_start``; a
+    multi-shaft rotor (``[[rotor.shafts]]``) numbers them globally in the order of the
+    shafts, each shaft from its own ``x_start``."""
 
     x_start: quantity("length", "axial position of node 1") = 0.0
     shaft: list[ShaftSectionConfig] = Field([], description="shaft sections, left to "
-                                            "right (or give matrices)")
+                                            "right (or give matrices, or shafts)")
+    shafts: list[ShaftConfig] = Field([], description="several coaxial shafts, each at "
+                                      "its own speed (instead of shaft)")
+    intershaft: list[IntershaftConfig] = Field([], description="linear bearings between "
+                                               "nodes of two shafts (with shafts)")
     disks: list[DiskConfig] = []
     point_masses: list[PointMassConfig] = []
     supports: list[SupportConfig] = []
@@ -252,17 +288,57 @@ class RotorConfig(Section):
 
     @model_validator(mode="after")
     def _shaft_or_matrices(self):
-        if bool(self.shaft) == (self.matrices is not None):
-            raise fail("shaft", len(self.shaft), "give the shaft ([[rotor.shaft]] sections) "
-                       "or its matrices ([rotor.matrices]), exactly one")
+        forms = [bool(self.shaft), self.matrices is not None, bool(self.shafts)]
+        if sum(forms) != 1:
+            raise fail("shaft", len(self.shaft), "give the shaft ([[rotor.shaft]] sections), "
+                       "its matrices ([rotor.matrices]) or several shafts "
+                       "([[rotor.shafts]]), exactly one")
+        if self.intershaft and not self.shafts:
+            raise fail("intershaft", len(self.intershaft), "intershaft bearings need "
+                       "several shafts ([[rotor.shafts]])")
+        if self.shafts:
+            if self.shafts[0].speed_ratio != 1.0:
+                raise fail(("shafts", 0, "speed_ratio"), self.shafts[0].speed_ratio,
+                           "the first shaft's ratio must be 1 (its speed is the "
+                           "continuation speed)")
+            names = [s.name for s in self.shafts]
+            for i, name in enumerate(names):
+                if name in names[:i]:
+                    raise fail(("shafts", i, "name"), name, "shaft names must be distinct")
+            if self.x_start != 0.0:
+                raise fail("x_start", self.x_start, "with shafts, give each shaft's x_start")
         return self
 
     @property
     def n_nodes(self) -> int:
-        """Number of nodes: total elements + 1 (or the matrices' n_nodes)."""
+        """Number of nodes: total elements + 1 (or the matrices' n_nodes; with shafts, the
+        sum over the shafts)."""
         if self.matrices is not None:
             return self.matrices.n_nodes
+        if self.shafts:
+            return sum(s.n_nodes for s in self.shafts)
         return sum(s.n_elements for s in self.shaft) + 1
+
+    def shaft_ranges(self) -> list[tuple[int, int]]:
+        """(first, last) global node of each of ``shafts``."""
+        out, first = [], 1
+        for s in self.shafts:
+            out.append((first, first + s.n_nodes - 1))
+            first += s.n_nodes
+        return out
+
+    def shaft_of(self, node: int) -> int | None:
+        """0-based index in ``shafts`` of global ``node`` (None without shafts or out of
+        range)."""
+        for k, (lo, hi) in enumerate(self.shaft_ranges()):
+            if lo <= node <= hi:
+                return k
+        return None
+
+    @property
+    def all_disks(self) -> list[DiskConfig]:
+        """The disks of the rotor table and of every shaft."""
+        return list(self.disks) + [d for s in self.shafts for d in s.disks]
 
 
 # ---- squeeze film damper -----------------------------------------------------------------
@@ -670,6 +746,10 @@ class StabilityAnalysis(Section):
                      "model "
                      "(default: those with omega h <= 1/4)", ge=1, le=10000,
                      optional=True) = None
+    basis: Literal["reduced", "full"] = Field(
+        "reduced", description="Floquet basis: reduced (the method's Craig-Bampton model; "
+        "max_multiplier_outside gives the left-out modes) or full (the unreduced "
+        "monodromy of the whole model, for a check: newmark-cb becomes newmark)")
 
 
 class StabilityChartAnalysis(Section):
@@ -730,6 +810,14 @@ class SimulateAnalysis(Section):
                                "harmonic, the highest of interest, by default (the paper "
                                "rotor's settled orbit moves 7e-7 C from the full step's, "
                                "benchmarks/README.md)", gt=1, le=1e6) = 40.0
+    speed_law: dict[str, Any] | None = Field(
+        None, description="a speed law Omega(t) instead of one speed (run-up, coast-down): "
+        "{ law = \"ramp\", start = \"500 rad/s\", stop = \"1200 rad/s\", duration = "
+        "\"2 s\" } (or rate = \"350 rad/s^2\"; t_start holds start first), { law = "
+        "\"table\", file = \"speeds.csv\" } (time [s], speed [rad/s]; or times = [...], "
+        "speeds = [...]: a PCHIP interpolation) or { law = \"constant\", speed = ... }; "
+        "the run lasts to the law's end (constant: periods), timeseries.nc holds the orbit "
+        "against time and speed (docs: README, Run-up and coast-down)")
 
     def fixed_speed(self, reference_speed: float) -> float | None:
         """The speed [rad/s] (None if neither speed nor speed_ratio is set)."""
@@ -744,6 +832,15 @@ class SimulateAnalysis(Section):
         if self.poincare_periods > self.periods:
             raise fail("poincare_periods", self.poincare_periods,
                        f"must be <= periods = {self.periods}")
+        if self.speed_law is not None and "file" not in self.speed_law:
+            from rotorsfd.errors import ConfigError
+            from rotorsfd.timedomain.speed_law_config import speed_law_from_config
+
+            try:
+                speed_law_from_config(self.speed_law)
+            except ConfigError as exc:
+                raise fail(exc.field.removeprefix("analysis.simulate."), exc.value,
+                           exc.allowed) from None
         return self
 
 
@@ -813,10 +910,49 @@ class Config(Section):
         given = getattr(self.analysis, section).nodes
         if given:
             return list(given)
-        nodes = {d.node for d in self.rotor.disks}
+        nodes = {d.node for d in self.rotor.all_disks}
         for element in self.elements.values():
             nodes.update(element.nodes)
         return sorted(nodes) or list(range(1, self.rotor.n_nodes + 1))
+
+    def _shaft_checks(self) -> None:
+        """Multi-shaft rotors: each shaft's items on its own nodes, the two sides of an
+        intershaft bearing or element on two shafts, unbalances on shafts at ratio 1 (the
+        response at several unbalance frequencies needs the two-frequency HB)."""
+        r = self.rotor
+        for k, (sh, (lo, hi)) in enumerate(zip(r.shafts, r.shaft_ranges(), strict=True)):
+            for kind in ("disks", "point_masses", "supports"):
+                for i, item in enumerate(getattr(sh, kind)):
+                    if not lo <= item.node <= hi:
+                        raise fail(("rotor", "shafts", k, kind, i, "node"), item.node,
+                                   f"must be a node of shaft {sh.name!r}, {lo}..{hi} "
+                                   "(global numbering in the order of the shafts)")
+        pairs = [(("rotor", "intershaft", i, "outer_node"), b.node, b.outer_node)
+                 for i, b in enumerate(r.intershaft)]
+        pairs += [(("elements", key, "outer_node"), e.node, e.outer_node)
+                  for key, e in self.elements.items() if hasattr(e, "outer_node")]
+        for path, a, b in pairs:
+            if not r.shafts:
+                raise fail(path, b, "an element between two shafts needs several shafts "
+                           "([[rotor.shafts]])")
+            if r.shaft_of(a) == r.shaft_of(b):
+                raise fail(path, b, f"must be a node of another shaft than node {a} (both "
+                           f"on shaft {r.shafts[r.shaft_of(a)].name!r})")
+        if any(s.speed_ratio != 1.0 for s in r.shafts):
+            for name in ("rolling", "pitching", "yawing"):
+                c = getattr(self.base, name)
+                if c.law != "off" and not (c.law == "constant" and not c.value):
+                    raise fail(("base", name, "law"), c.law, "a rotating base with shafts "
+                               "at different speeds is not supported yet (the base's spin "
+                               "terms differ per shaft); base translations and gravity are")
+        for i, u in enumerate(self.unbalance):
+            k = r.shaft_of(u.node)
+            if k is not None and r.shafts[k].speed_ratio != 1.0:
+                raise fail(("unbalance", i, "node"), u.node, f"is on shaft "
+                           f"{r.shafts[k].name!r} at speed ratio {r.shafts[k].speed_ratio:g}:"
+                           " an unbalance at another frequency than the speed needs the "
+                           "two-frequency harmonic balance (not yet); put unbalances on "
+                           "shafts at ratio 1")
 
     @model_validator(mode="after")
     def _cross_checks(self):
@@ -828,6 +964,11 @@ class Config(Section):
                 for i, s in enumerate(self.rotor.shaft)]
         refs += [(("rotor", "disks", i, "material"), d.material)
                  for i, d in enumerate(self.rotor.disks) if d.material is not None]
+        for k, sh in enumerate(self.rotor.shafts):
+            refs += [(("rotor", "shafts", k, "sections", i, "material"), s.material)
+                     for i, s in enumerate(sh.sections)]
+            refs += [(("rotor", "shafts", k, "disks", i, "material"), d.material)
+                     for i, d in enumerate(sh.disks) if d.material is not None]
         for path, name in refs:
             if name not in self.materials:
                 raise fail(path, name, f"must name a material: {', '.join(names)}")
@@ -836,6 +977,8 @@ class Config(Section):
                  for kind in ("disks", "point_masses", "supports")
                  for i, item in enumerate(getattr(self.rotor, kind))]
         nodes += [(("unbalance", i, "node"), u.node) for i, u in enumerate(self.unbalance)]
+        nodes += [(("rotor", "intershaft", i, side), getattr(b, side))
+                  for i, b in enumerate(self.rotor.intershaft) for side in ("node", "outer_node")]
         seen: dict[tuple[str, int], str] = {}
         for key, element in self.elements.items():
             if not re.match(NAME_PATTERN, key):
@@ -854,7 +997,9 @@ class Config(Section):
         for path, node in nodes:
             if not 1 <= node <= n:
                 raise fail(path, node, f"must be a node of the rotor, 1..{n} "
-                           f"({n - 1} shaft elements)")
+                           f"({n - 1} shaft elements)" if not self.rotor.shafts else
+                           f"must be a node of the rotor, 1..{n} (global numbering)")
+        self._shaft_checks()
         for where, path, values in _parameter_uses(self):
             try:
                 kind = "angular_velocity" if path == "speed" else resolve_kind(self, path)

@@ -73,6 +73,10 @@ def build_rotor(config: Config, search_path: Path | None = None) -> Rotor:
     elif r.damping.kind == "modal":
         damping = ModalDamping(r.damping.ratio)
     point_masses = [PointMass(p.node, p.mass) for p in r.point_masses]
+    if r.shafts:   # several shafts at their speed ratios, global node numbering
+        from rotorsfd.model.multishaft_build import multishaft_rotor
+
+        return multishaft_rotor(config, damping, build_supports(config))
     if r.matrices is not None:
         from rotorsfd.interop.matrices import matrix_rotor
 
