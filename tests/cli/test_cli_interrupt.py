@@ -41,7 +41,7 @@ def test_marker_while_running_then_removed(tmp_path, monkeypatch):
     assert cli.main(["modal", str(PAPER), "-o", str(out), "-q"]) == 0
     assert seen[0].startswith("rotorsfd modal started writing this folder at ")
     assert "has not finished: if this file is still here, the run was killed" in seen[0]
-    assert sorted(p.name for p in out.iterdir()) == ["result.csv"]
+    assert sorted(p.name for p in out.iterdir()) == ["result.csv", "run.json"]
 
 
 def test_failure_before_any_result_leaves_no_folder(tmp_path, monkeypatch, capsys):
@@ -126,4 +126,4 @@ def test_rerun_after_a_kill_removes_half_written_files(tmp_path, monkeypatch):
         sorted(p.name for p in out.rglob("*"))) or 0)
     assert cli.main(["modal", str(PAPER), "-o", str(out), "-q"]) == 0
     assert seen == [[MARKER, "campbell.csv", "points"]]
-    assert sorted(p.name for p in out.rglob("*")) == ["campbell.csv", "points"]
+    assert sorted(p.name for p in out.rglob("*")) == ["campbell.csv", "points", "run.json"]

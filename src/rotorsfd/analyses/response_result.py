@@ -307,14 +307,14 @@ class ResponseResult:
     # ---- files ----------------------------------------------------------------------------
     def to_dataset(self) -> xr.Dataset:
         """The branch as an xarray Dataset (layout: :mod:`rotorsfd.io.branch_files`)."""
-        from rotorsfd import __version__
         from rotorsfd.io.branch_files import branch_dataset
+        from rotorsfd.io.provenance import netcdf_attrs
 
         attrs = {"run_title": self.title, "clearance_m": self.clearance,
                  "elements": "; ".join(e.describe() for e in self.system.elements),
                  "output_nodes":
                  np.asarray(self.nodes, dtype=np.int32), "output_directions":
-                 " ".join(self.directions), "rotorsfd_version": __version__,
+                 " ".join(self.directions), **netcdf_attrs(),
                  "elapsed_s": float(self.elapsed), "ended": self.ended,
                  "outcome": self.message}
         if self.speed is not None:
@@ -342,7 +342,8 @@ class ResponseResult:
         if "n_multipliers" in self.info and self.multipliers is not None:
             ds["multiplier_count"] = ("point", np.asarray(self.info["n_multipliers"],
                                                           np.int32),
-                                      {"long_name": "multipliers in the row (rest is 0)"})
+                                      {"long_name": "multipliers in the row (rest is 0)",
+                                       "units": "1"})
         return ds
 
     def write(self, directory: str | Path, plots: bool = True,

@@ -116,19 +116,23 @@ class SimulationResult:
         ``steps_per_period``, ``samples_per_period``); ``period`` = t / T along time."""
         import xarray as xr
 
-        from rotorsfd import __version__
+        from rotorsfd.io.provenance import netcdf_attrs
 
         spp = int(self.settings["steps_per_period"])
         stride = file_stride(spp)
         keep = int(self.settings["record_periods"]) * spp
         sl = slice(max(0, self.t.size - keep - 1) + (keep % stride), None, stride)
         t = self.t[sl]
-        coords = {"time": ("time", t, {"units": "s"}),
-                  "node": ("node", np.asarray(self.nodes, dtype=np.int32)),
-                  "direction": ("direction", list(DIRECTIONS)),
-                  "period": ("time", t / self.period, {"units": "rotor periods"})}
+        coords = {"time": ("time", t, {"long_name": "time", "units": "s"}),
+                  "node": ("node", np.asarray(self.nodes, dtype=np.int32),
+                           {"long_name": "rotor node (from 1)", "units": "1"}),
+                  "direction": ("direction", list(DIRECTIONS),
+                                {"long_name": "direction (y, z, ty, tz)", "units": ""}),
+                  "period": ("time", t / self.period,
+                             {"long_name": "time in rotor periods t / T",
+                              "units": "rotor periods"})}
         attrs = {"title": self.title, "speed_rad_s": self.speed, "motion": self.motion_name,
-                 "rotorsfd_version": __version__, "steps_per_period": spp,
+                 **netcdf_attrs(), "steps_per_period": spp,
                  "samples_per_period": spp // stride}
         if self.speed_ratio is not None:
             attrs["speed_ratio"] = self.speed_ratio
@@ -141,14 +145,20 @@ class SimulationResult:
         if self.config_toml:
             attrs["config_toml"] = self.config_toml
         coords["dof"] = ("dof", np.arange(self.q_final.size, dtype=np.int32),
-                         {"description": "global DOF index: 4 (node - 1) + (y, z, ty, tz)"})
+                         {"description": "global DOF index: 4 (node - 1) + (y, z, ty, tz)",
+                          "long_name": "global DOF index", "units": "1"})
         return xr.Dataset(
-            {"displacement": (("time", "node", "direction"), self.q[sl], {"units": "m"}),
-             "velocity": (("time", "node", "direction"), self.v[sl], {"units": "m/s"}),
+            {"displacement": (("time", "node", "direction"), self.q[sl],
+                              {"long_name": "displacement of the node", "units": "m"}),
+             "velocity": (("time", "node", "direction"), self.v[sl],
+                          {"long_name": "velocity of the node", "units": "m/s"}),
              "final_displacement": ("dof", self.q_final, {
+                 "long_name": "displacement of every DOF at t_final_s",
                  "units": "m or rad", "description": "every DOF at t_final_s (a start "
                  "state for rotorsfd simulate --initial-state)"}),
-             "final_velocity": ("dof", self.v_final, {"units": "m/s or rad/s"})},
+             "final_velocity": ("dof", self.v_final,
+                                {"long_name": "velocity of every DOF at t_final_s",
+                                 "units": "m/s or rad/s"})},
             coords=coords, attrs=attrs)
 
     def poincare_table(self) -> dict[str, np.ndarray]:

@@ -56,16 +56,21 @@ class ChartResult:
         for ax in (self.x, self.y):
             ds[ax.name].attrs.update(units=ax.units, long_name=ax.path)
         ds["max_abs_multiplier"].attrs.update(units="1", long_name="max |Floquet multiplier|")
-        ds["stable"].attrs.update(long_name=f"1 if max |mu| <= 1 + {self.chart.tol:g}")
+        ds["stable"].attrs.update(units="1",
+                                  long_name=f"1 if max |mu| <= 1 + {self.chart.tol:g}")
+        for part in ("re", "im"):
+            ds[f"critical_{part}"].attrs.update(
+                units="1", long_name=f"{dict(re='real', im='imaginary')[part]} part of the "
+                "Floquet multiplier of largest modulus")
         ds["natural_frequency"] = ("mode", self.natural_frequencies)
         ds["natural_frequency"].attrs.update(
             units="rad/s", long_name="damped natural frequencies of the constant part "
             "(base rates at their mean) at the chart speed")
-        from rotorsfd import __version__
+        from rotorsfd.io.provenance import netcdf_attrs
 
         ds.attrs.update(title=self.title, x=self.x.path, y=self.y.path,
                         speed_rad_s=float("nan") if self.speed is None else self.speed,
-                        rotorsfd_version=__version__)
+                        **netcdf_attrs())
         if self.config_toml:
             ds.attrs["config_toml"] = self.config_toml
         return ds

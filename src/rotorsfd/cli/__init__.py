@@ -42,8 +42,8 @@ from rotorsfd.cli import bifurcation_diagram  # noqa: F401
 from rotorsfd.cli import stability_chart  # noqa: F401
 from rotorsfd.cli import fold_curve  # noqa: F401
 from rotorsfd.cli import attractors  # noqa: F401
-from rotorsfd.cli import attractors  # noqa: F401
 from rotorsfd.cli import paper  # noqa: F401
+from rotorsfd.cli import rerun  # noqa: F401
 from rotorsfd.cli import import_ross  # noqa: F401
 from rotorsfd.cli import export_matrices  # noqa: F401
 # isort: on

@@ -23,6 +23,7 @@ from rotorsfd.cli.output import PREFIX, one_line, print_warning, user_text
 from rotorsfd.cli.registry import Command, UsageError, build_parser, unrecognized
 from rotorsfd.errors import ConfigError, RotorsfdError
 from rotorsfd.interrupt import Interrupted
+from rotorsfd.io import provenance
 
 BLAS_THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "BLIS_NUM_THREADS",
                          "VECLIB_MAXIMUM_THREADS")
@@ -37,7 +38,16 @@ def single_threaded_blas() -> None:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; return the exit status."""
+    """Run the command line; return the exit status (the invocation recorded for the
+    provenance of its results, :mod:`rotorsfd.io.provenance`, while it runs)."""
+    try:
+        return dispatch(argv)
+    finally:
+        provenance.clear_invocation()
+
+
+def dispatch(argv: Sequence[str] | None = None) -> int:
+    """Parse, load the config, run the command; return the exit status."""
     single_threaded_blas()
     parser = build_parser()
     try:
@@ -53,18 +63,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     debug = bool(getattr(args, "debug", False))
     verbose = bool(getattr(args, "verbose", False))
     try:
+        argv = list(sys.argv[1:] if argv is None else argv)
+        provenance.set_invocation(spec.name, argv)
         config = None
         if spec.config:
             # deferred: the config loader pulls pydantic and numpy (keeps --help fast)
             from rotorsfd import api
 
             config = api.load_config(args.config, args.overrides)
-        if spec.check is not None:
-            spec.check(args, config)
-        check_output(getattr(args, "output", None))
-        if spec.config and spec.output:
-            print_config_warnings(config, Path(args.config).parent)
-        status = run_marked(spec, args, config)
+        status = run_command(spec, args, config)
         sys.stdout.flush()  # a closed pipe fails here, not at the interpreter's exit
         return status
     except ConfigError as exc:
@@ -87,9 +94,24 @@ def main(argv: Sequence[str] | None = None) -> int:
                       "report it; run with --debug for the traceback: ", verbose=True)
 
 
+def run_command(spec: Command, args: argparse.Namespace, config: Any) -> int:
+    """Check the options and the output folder, print the config's warnings, run the
+    handler (:func:`run_marked`); the loaded ``config`` is given (``rotorsfd rerun`` gives
+    the saved one)."""
+    if spec.check is not None:
+        spec.check(args, config)
+    check_output(getattr(args, "output", None))
+    if spec.config and spec.output:
+        print_config_warnings(config, Path(args.config).parent)
+    return run_marked(spec, args, config)
+
+
 def run_marked(spec: Command, args: argparse.Namespace, config: Any) -> int:
     """Run the handler with ``INCOMPLETE.txt`` in its output folder while it runs (kept,
-    saying so, if the run is interrupted; left behind if it is killed)."""
+    saying so, if the run is interrupted; left behind if it is killed) and ``run.json``
+    (:func:`write_run_file`) written once the handler has written its results (also
+    those of a branch stopped early, exit 1, or interrupted; not after an error before
+    any result, so that a folder of an earlier run keeps its own)."""
     if not spec.output:
         return int(spec.handler(args, config) or 0)
     from rotorsfd.io.marker import MARKER, IncompleteMarker
@@ -97,7 +119,9 @@ def run_marked(spec: Command, args: argparse.Namespace, config: Any) -> int:
     marker = IncompleteMarker.start(args.output, spec.name)
     try:
         status = int(spec.handler(args, config) or 0)
+        write_run_file(args, config)
     except Interrupted as exc:
+        write_run_file(args, config)
         marker.interrupted(exc.kept)
         exc.kept += f"; {args.output / MARKER} marks the folder incomplete"
         raise
@@ -109,6 +133,25 @@ def run_marked(spec: Command, args: argparse.Namespace, config: Any) -> int:
         raise
     marker.finished()
     return status
+
+
+#: parsed arguments that are not analysis options (the parser's own, or in run.json apart)
+NOT_OPTIONS = frozenset({"_command", "_parser", "config", "overrides", "debug", "verbose"})
+
+
+def write_run_file(args: argparse.Namespace, config: Any) -> Path:
+    """Write ``run.json`` (:func:`rotorsfd.io.provenance.run_record`) atomically in the
+    output folder: the resolved config, versions, revision and the command line."""
+    from rotorsfd.io.atomic import write_json  # deferred: numpy
+
+    config_toml = None
+    if config is not None:
+        from rotorsfd.io.config import show_config  # deferred: pydantic
+
+        config_toml = show_config(config)
+    options = {k: v for k, v in vars(args).items() if k not in NOT_OPTIONS}
+    record = provenance.run_record(config_toml, options, getattr(args, "config", None))
+    return write_json(Path(args.output) / provenance.RUN_FILE, record)
 
 
 def report(exc: BaseException, status: int, debug: bool, prefix: str = "", *,

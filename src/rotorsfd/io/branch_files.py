@@ -56,6 +56,15 @@ def bifurcation_columns(rows: Sequence[Mapping[str, Any]]) -> tuple[str, ...]:
     return LEGACY_BIFURCATION_COLUMNS
 
 
+def bifurcation_units(column: str, parameter_units: str) -> str:
+    """The unit of a bifurcation table column (``bifurcation_<column>`` in branch.nc)."""
+    if column == "speed_rad_s":
+        return "rad/s"
+    if column in ("parameter", "check_parameter"):
+        return parameter_units
+    return "1"
+
+
 def dof_labels(n_dof: int) -> tuple[NDArray[np.int64], NDArray[np.str_]]:
     """(node, direction) of every global DOF (nodes from 1, directions y, z, ty, tz)."""
     idx = np.arange(n_dof)
@@ -76,55 +85,81 @@ def branch_dataset(branch: Branch, *, parameter: str, parameter_units: str,
     lam = np.asarray(branch.lam, dtype=float)
     speeds = np.broadcast_to(np.asarray(speeds, dtype=float), (n,))
     coords = {
-        "point": np.arange(n), "harmonic": np.arange(branch.H + 1), "dof": np.arange(n_dof),
-        "node": ("dof", node), "direction": ("dof", direction.astype(str)),
+        "point": ("point", np.arange(n), {"long_name": "continuation point, in branch "
+                                                        "order", "units": "1"}),
+        "harmonic": ("harmonic", np.arange(branch.H + 1),
+                     {"long_name": "harmonic order k of the response frequency",
+                      "units": "1"}),
+        "dof": ("dof", np.arange(n_dof), {"long_name": "global DOF index 4 (node - 1) + "
+                                                      "(y, z, ty, tz)", "units": "1"}),
+        "node": ("dof", node, {"long_name": "rotor node of the DOF (from 1)", "units": "1"}),
+        "direction": ("dof", direction.astype(str),
+                      {"long_name": "direction of the DOF (y, z, ty, tz)", "units": ""}),
         "parameter": ("point", lam, {"long_name": parameter, "units": parameter_units}),
-        "speed_rad_s": ("point", speeds.copy(), {"units": "rad/s"}),
+        "speed_rad_s": ("point", speeds.copy(), {"long_name": "rotor speed Omega",
+                                                  "units": "rad/s"}),
         "speed_ratio": ("point", speeds / reference_speed,
                         {"long_name": "Omega / reference speed", "units": "1"}),
     }
     harm = ("point", "harmonic", "dof")
-    unit = {"units": "m (y, z) or rad (ty, tz)"}
+    unit = "m (y, z) or rad (ty, tz)"
     data: dict[str, Any] = {
-        "X_real": (harm, branch.X.real.reshape(n, branch.H + 1, n_dof), unit),
-        "X_imag": (harm, branch.X.imag.reshape(n, branch.H + 1, n_dof), unit),
-        "frequency_rad_s": ("point", np.asarray(branch.frequency, float), {"units": "rad/s"}),
-        "iterations": ("point", np.asarray(branch.iterations, np.int32)),
-        "ds": ("point", np.asarray(branch.ds, float), {"long_name": "arc-length step"}),
-        "aliasing": ("point", np.asarray(branch.aliasing, float)),
+        "X_real": (harm, branch.X.real.reshape(n, branch.H + 1, n_dof),
+                   {"long_name": "real part of the Fourier coefficient X_k", "units": unit}),
+        "X_imag": (harm, branch.X.imag.reshape(n, branch.H + 1, n_dof),
+                   {"long_name": "imaginary part of the Fourier coefficient X_k",
+                    "units": unit}),
+        "frequency_rad_s": ("point", np.asarray(branch.frequency, float),
+                            {"long_name": "response fundamental frequency w",
+                             "units": "rad/s"}),
+        "iterations": ("point", np.asarray(branch.iterations, np.int32),
+                       {"long_name": "Newton corrector iterations", "units": "1"}),
+        "ds": ("point", np.asarray(branch.ds, float),
+               {"long_name": "arc-length step (scaled unknowns)", "units": "1"}),
+        "aliasing": ("point", np.asarray(branch.aliasing, float),
+                     {"long_name": "AFT aliasing indicator of the nonlinear force",
+                      "units": "1"}),
     }
     if "n_samples" in branch.info:
         data["n_samples"] = ("point", np.asarray(branch.info["n_samples"], np.int32),
-                             {"long_name": "AFT time samples N_f"})
+                             {"long_name": "AFT time samples N_f", "units": "1"})
     for name, values in point_info_columns(branch).items():
         data[name] = ("point", values, {"long_name": POINT_INFO_LONG_NAMES[name],
                                         "units": "1"})
     if branch.tangents.size:
         data["tangent"] = (("point", "unknown"), np.asarray(branch.tangents, float),
-                           {"long_name": "unit tangent in scaled unknowns (last: parameter)"})
+                           {"long_name": "unit tangent in scaled unknowns (last: parameter)",
+                            "units": "1"})
     if stable is not None:
         data["stable"] = ("point", np.asarray(stable, dtype=bool).astype(np.int8),
-                          {"long_name": "1 stable, 0 unstable"})
+                          {"long_name": "1 stable, 0 unstable", "units": "1"})
     if max_multiplier is not None:
         data["max_multiplier"] = ("point", np.asarray(max_multiplier, float),
-                                  {"long_name": "largest Floquet multiplier modulus"})
+                                  {"long_name": "largest Floquet multiplier modulus",
+                                   "units": "1"})
     if multipliers is not None:
         mu = np.asarray(multipliers, dtype=complex).reshape(n, -1)
-        data["multiplier_real"] = (("point", "multiplier"), mu.real)
-        data["multiplier_imag"] = (("point", "multiplier"), mu.imag)
+        data["multiplier_real"] = (("point", "multiplier"), mu.real,
+                                   {"long_name": "real part of the Floquet multiplier",
+                                    "units": "1"})
+        data["multiplier_imag"] = (("point", "multiplier"), mu.imag,
+                                   {"long_name": "imaginary part of the Floquet multiplier",
+                                    "units": "1"})
     for name in bifurcation_columns(bifurcations or []):
         if bifurcations:
             values = [row[name] for row in bifurcations]
             text = any(isinstance(v, str) for v in values)
             data[f"bifurcation_{name}"] = ("bifurcation", np.asarray(
-                [str(v) for v in values] if text else values, dtype=str if text else float))
+                [str(v) for v in values] if text else values, dtype=str if text else float),
+                {"long_name": f"located bifurcation: {name.replace('_', ' ')}",
+                 "units": bifurcation_units(name, parameter_units) if not text else ""})
     ds = xr.Dataset(data, coords=coords)
     for dim, text in (("unknown", "scaled HB unknown (real coefficients, then lam)"),
                       ("multiplier", "Floquet multiplier, largest modulus first"),
                       ("bifurcation", "located bifurcation, in branch order")):
         if dim in ds.dims:
             ds = ds.assign_coords({dim: (dim, np.arange(ds.sizes[dim]),
-                                         {"long_name": text})})
+                                         {"long_name": text, "units": "1"})})
     ds.attrs.update({
         "title": "rotorsfd periodic response branch",
         "convention": "q(t) = Re(sum_k (X_real + i X_imag)_k exp(i k w t)), w = "
