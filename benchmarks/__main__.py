@@ -56,6 +56,8 @@ REGISTRY: dict[str, tuple[str, str]] = {
                  "path; cost against 1, 2, 4, 8 elements", "bench_elements:run"),
     "film": ("squeeze film models: force + Jacobian per sample, short vs finite-length film; "
              "the paper rotor's branch with each", "bench_film:run"),
+    "attractors": ("attractor census: 256 starts at one speed on 2 workers, stopped once "
+                   "settled, vs 2000 periods each", "bench_attractors:run"),
 }
 
 

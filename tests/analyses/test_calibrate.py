@@ -190,10 +190,29 @@ def test_paper_rotor_supports_recovered():
 
 
 @pytest.mark.slow
+def test_exact_fold_derivative_matches_finite_differences():
+    """dOmega_fold/dU from the fold-augmented system = central differences of the
+    located folds of rebuilt branches (paper rotor, U = 144.02 g mm, H = 3)."""
+    config = api.load_config("examples/paper_rotor.toml", [
+        "unbalance[0].magnitude=144.02 g*mm", "analysis.response.speed_range.start_ratio=1.0",
+        "analysis.response.speed_range.stop_ratio=1.1"])
+    fields = [parse_fit(config, "unbalance[0].magnitude")]
+    targets = [parse_target("fold_speed[lower]=1"), parse_target("fold_speed[upper]=1")]
+    model = TargetModel(config, fields, targets)
+    assert model.derivative_kinds() == ["exact (fold-augmented system)"] * 2
+    p = np.array([144.02e-6])
+    exact = model.jacobian(p)
+    h = 1e-4 * p[0]
+    fd = (model.response_values(p + h) - model.response_values(p - h)) / (2 * h)
+    np.testing.assert_allclose(exact[:, 0], fd, rtol=1e-6)
+    assert exact[1, 0] > exact[0, 0] > 0      # the bistable range widens with U
+
+
+@pytest.mark.slow
 def test_unbalance_recovered_from_fold_speed_and_peak():
     """Paper rotor, H = 3, Omega~ 0.9..1.2: the unbalance 144.02 g mm recovered from the
-    upper saddle-node speed and the disk's peak amplitude of its own branch (finite
-    differences), starting at 130 g mm; the folds are the known 1.0527 / 1.0593."""
+    upper saddle-node speed (exact derivative) and the disk's peak amplitude of its own
+    branch (finite differences), starting at 130 g mm; the folds are the known 1.0527 / 1.0593."""
     sets = ["analysis.response.speed_range.start_ratio=0.9",
             "analysis.response.speed_range.stop_ratio=1.2"]
     truth = api.load_config("examples/paper_rotor.toml",
@@ -210,6 +229,7 @@ def test_unbalance_recovered_from_fold_speed_and_peak():
                                                       "200 g*mm")],
                              [parse_target(f"fold_speed[upper]={float(upper)!r}"),
                               parse_target(f"peak_amplitude[8]={float(peak)!r}")])
-    assert result.derivative_kinds == ["central finite differences"] * 2
+    assert result.derivative_kinds == ["exact (fold-augmented system)",
+                                       "central finite differences"]
     assert result.values[0] == pytest.approx(144.02e-6, rel=1e-6)
     assert result.jacobian[1, 0] > 0      # more unbalance, larger peak

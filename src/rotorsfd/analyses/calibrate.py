@@ -13,7 +13,9 @@ start values). ``f_i``: ``critical_speed[k]`` (k-th lowest critical speed of
 ``analysis.modal.whirl``; exact derivative from the eigenproblem), ``fold_speed[k|lower|
 upper]`` (located saddle-nodes of the ``[analysis.response]`` branch, ascending),
 ``bifurcation_speed[k|TYPE]`` and ``peak_amplitude[NODE]`` (central finite differences on
-rebuilt configs); see :mod:`rotorsfd.analyses.calibrate_targets`.
+rebuilt configs; a fold speed's derivative in a registered continuation parameter --
+unbalance, base rates, film fields -- exact, from the fold-augmented system); see
+:mod:`rotorsfd.analyses.calibrate_targets` and :mod:`~rotorsfd.analyses.calibrate_model`.
 
 Uncertainty: with ``J = dr/dp`` at the optimum, ``cov = (J^T J)^-1 sigma^2`` where
 ``sigma^2 = 1`` when every target has a tolerance (the tolerances taken as one standard

@@ -244,3 +244,44 @@ def bifurcation_speed(result: Any, selector: str) -> float:
         if row["type"] == selector:
             return float(row["speed_rad_s"])
     raise ConvergenceError(f"no {selector} bifurcation located on the branch")
+
+
+# ---- fold speeds: exact derivatives from the fold-augmented system ----------------------
+
+
+def fold_points(result: Any) -> list[tuple[Any, int]]:
+    """(located saddle-node, index of the branch point before it), ascending in speed."""
+    from rotorsfd.continuation.folds import locate_branch_fold
+
+    b = result.branch
+    pts = [(locate_branch_fold(b, int(i)), int(i)) for i in b.folds()]
+    return sorted(pts, key=lambda pi: float(pi[0].frequency))
+
+
+def fold_speed_derivative(result: Any, point: Any, index: int, parameter: str,
+                          value: float) -> float:
+    """dOmega_fold/dp at a located saddle-node of a speed branch for a registered
+    continuation parameter ``p`` (:mod:`rotorsfd.model.parameters`) at ``value``.
+
+    On the fold curve ``R(x, Omega, p) = 0`` with ``R_x`` singular (left null vector
+    ``w``), differentiating along it and projecting on ``w``::
+
+        w^T R_Omega dOmega + w^T R_p dp = 0   =>   dOmega/dp = -(w^T R_p) / (w^T R_Omega),
+
+    with R_Omega and R_p exact (:class:`~rotorsfd.continuation.folds.TwoParameterHB`, the
+    residual of ``rotorsfd fold-curve``) at the fold's H and N_f; ``w`` from the SVD of R_x.
+    """
+    from rotorsfd.continuation.folds import TwoParameterHB
+
+    family = result.system.two_parameter_problem(parameter)
+    b = result.branch
+    m = family.first(value).m
+    H = (np.size(point.xs) // m - 1) // 2
+    n_samples = b.info.get("n_samples")
+    N = int(max(n_samples[index], n_samples[min(index + 1, len(n_samples) - 1)])) \
+        if n_samples is not None and np.size(n_samples) else int(b.n_samples)
+    hb = TwoParameterHB(family, H, N, (1.0, 1.0), point.xs, (point.lam, value))
+    _, jac = hb.evaluate(hb.to_z(point.xs, point.lam, value))
+    n = hb.n
+    w = scipy.linalg.svd(jac[:, :n])[0][:, -1]
+    return float(-(w @ jac[:, n + 1]) / (w @ jac[:, n]))

@@ -31,7 +31,8 @@ def check_calibrate(args: argparse.Namespace, config: Any) -> None:
 @command("calibrate", "fit config fields to target quantities the tool computes: "
          "critical_speed[N] (exact eigen-derivatives), fold_speed[N|lower|upper], "
          "bifurcation_speed[N|TYPE], peak_amplitude[NODE] (of the [analysis.response] "
-         "branch; finite differences); bounded least squares; writes calibration.json "
+         "branch; a fold speed's derivative exact in a continuation parameter, finite "
+         "differences otherwise); bounded least squares; writes calibration.json "
          "(residuals, Jacobian, covariance) and calibrated.toml (the fitted config); exit 1 "
          "if the solver did not converge", output=True, quiet=True,
          arguments=[arg("--fit", action="append", required=True, metavar="PATH[=LO:HI]",

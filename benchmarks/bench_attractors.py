@@ -1,0 +1,59 @@
+"""Attractor census (issue 21 item 4): 256 starts at one speed on the paper rotor, on the
+process pool of the sweeps (2 workers), each start stopped once its Poincare points
+repeat, against the same starts run for the paper's fixed 2000 periods (estimated from
+the measured cost per period: every period costs the same number of steps).
+
+Case: examples/paper/fig23_time_domain.toml (C/R = 0.728 %, U = 252 g mm, w_by = 10
+rad/s) at Omega~ = 1.075, where the main branch and the isola coexist; starts around the
+HB orbit (``around = "orbit"``); the file's converged step T/800 and the paper's T/200.
+
+Run: ``python -m benchmarks --only attractors`` (quick: 8 starts at T/200).
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import benchmarks.common as common  # noqa: F401  (one BLAS thread before numpy loads)
+from benchmarks.common import Row
+
+CONFIG = Path(__file__).resolve().parents[1] / "examples/paper/fig23_time_domain.toml"
+FIXED_PERIODS = 2000
+
+
+def census_row(n_starts: int, steps: int, workers: int = 2) -> Row:
+    from rotorsfd.analyses.attractors import CensusOptions, run_census
+    from rotorsfd.io.config import load_config
+    from rotorsfd.studies.executors import make_executor
+
+    config = load_config(CONFIG)
+    opts = CensusOptions(n_starts=n_starts, steps_per_period=steps, around="orbit",
+                         harmonics=16)
+    tic = time.perf_counter()
+    with make_executor(workers) as ex:
+        (c,) = run_census(config, speed_ratios=[1.075], search_path=CONFIG.parent,
+                          options=opts, executor=ex)
+    wall = time.perf_counter() - tic
+    periods = sum(r.periods_run for r in c.outcomes)
+    fixed = c.elapsed_integration * FIXED_PERIODS * c.n_starts / max(periods, 1)
+    kinds = ", ".join(f"{a.motion} {len(a.members)}" for a in c.attractors)
+    return Row("attractors", f"{n_starts} starts, Omega~ 1.075, T/{steps}, {workers} workers",
+               "stopped once settled", wall, ratio=fixed / c.elapsed_integration,
+               ref=f"{FIXED_PERIODS} periods each (estimated)",
+               note=f"{periods / c.n_starts:.0f} periods per start; integration "
+                    f"{c.elapsed_integration:.1f} s, HB + Floquet {c.elapsed_hb:.1f} s; "
+                    f"{kinds}",
+               extra={"periods_run": periods, "elapsed_integration_s": c.elapsed_integration,
+                      "elapsed_hb_s": c.elapsed_hb, "attractors": kinds})
+
+
+def run(quick: bool = False, repeat: int = 1) -> list[Row]:
+    if quick:
+        return [census_row(8, 200)]
+    return [census_row(256, 800), census_row(256, 200)]
+
+
+if __name__ == "__main__":
+    for r in run():
+        print(r)
