@@ -108,3 +108,35 @@ def test_static_of_a_rotor_held_by_its_bearings_says_why(tmp_path, capsys):
     assert status == 2 and err.count("\n") == 1
     assert "rotor.supports" in err and "rotorsfd response" in err
     assert not (tmp_path / "st").exists()
+
+
+@pytest.mark.slow
+def test_half_speed_locking_is_reported_as_period_doubling():
+    """With 5 g mm the whirl pair near -1 meets the real axis over a narrow speed range;
+    the branch's points straddle it with a complex pair at both ends, so the crossing is
+    found on a finer sampling: two period doublings, at the speeds where a real multiplier
+    passes -1 by a direct bracketing of Floquet on single HB solves (1e-4)."""
+    from rotorsfd.stability.orbit import orbit_floquet
+
+    result = run_response(config_from_dict(read_toml(EXAMPLE)), progress=False)
+    kinds = [b["type"] for b in result.bifurcations]
+    assert "secondary-hopf" not in kinds and kinds.count("period-doubling") == 2
+    system = build_system(config_from_dict(read_toml(EXAMPLE)))
+    problem = system.periodic_problem("speed")
+    X = [solve_periodic(problem, 900.0, 3, None, tol=1e-10).X]
+
+    def locked(speed, which):
+        """The first (which=0: most negative) or second real multiplier near -1, plus 1
+        (1 while the pair is complex)."""
+        X[0] = solve_periodic(problem, speed, 3, X[0], tol=1e-11).X
+        M, D, K = problem.matrices(speed)
+        mu = orbit_floquet(M, D, K, X[0], speed, problem.nl_dofs,
+                           problem.law(speed).jacobian, n_intervals=800).multipliers
+        real = np.sort(mu[(np.abs(mu.imag) < 1e-9) & (mu.real < -0.5)].real)
+        return float(real[which]) + 1.0 if real.size > which else 1.0
+
+    for which, (b, (lo, hi)) in enumerate(zip(
+            sorted(result.bifurcations, key=lambda r: r["speed_rad_s"]),
+            [(1010.0, 1060.0), (1060.0, 1100.0)], strict=True)):
+        speed = brentq(locked, lo, hi, args=(which,), xtol=1e-6)
+        assert b["speed_rad_s"] == pytest.approx(speed, rel=1e-4)

@@ -177,6 +177,28 @@ def _hill_resolution(results: list[FloquetResult]) -> list[str]:
             "crossing type are unreliable there; raise n_harmonics or use newmark-cb"]
 
 
+#: interior points sampled when a located secondary Hopf is off the unit circle
+REFINE_POINTS = 8
+
+
+def _refined(br: Bracket, solve_at: Callable, o: StabilityOptions) -> list[Bifurcation]:
+    """The crossings of a bracket re-detected on ``REFINE_POINTS`` interior points and
+    located: a complex pair whose modulus passes 1 between two points may have met the
+    real axis in between (a narrow locking range: the crossing there is a period doubling
+    or a real multiplier through +1), which the endpoints alone cannot tell."""
+    ss = np.linspace(br.a.s, br.b.s, REFINE_POINTS + 2)[1:-1]
+    try:
+        inner = [BranchSample.from_solve(float(x), solve_at(float(x))) for x in ss]
+        out = []
+        for sub in detect([br.a, *inner, br.b], o.tol):
+            out.append(locate(sub, solve_at, rtol=o.rtol))
+    except (ConvergenceError, ArithmeticError, ValueError):
+        return []
+    if all(f.kind == "secondary-hopf" and abs(abs(f.critical) - 1.0) > 0.05 for f in out):
+        return []      # nothing better than the endpoints' picture
+    return out
+
+
 def branch_stability(branch: Branch, problem: PeriodicProblem,
                      options: StabilityOptions | None = None, *,
                      progress: Callable[[int, int], None] | None = None) -> BranchStability:
@@ -248,6 +270,22 @@ def branch_stability(branch: Branch, problem: PeriodicProblem,
                             "resolve the exchange of stability at this fold, so the "
                             "stability flags next to it are unreliable; raise H (or use "
                             "harmonics = 'auto') and the intervals")
+        if (can_locate and b.kind == "secondary-hopf"
+                and abs(abs(b.critical) - 1.0) > 0.05):
+            finer = _refined(br, solve_at, o)
+            if finer:   # e.g. a pair that meets the real axis: period doublings inside
+                for f in finer:   # the nearest computed points carry the complex pair:
+                    j = ia if abs(br.a.s - f.s) <= abs(br.b.s - f.s) else ib   # report it
+                    mu = np.asarray(samples[j].multipliers, dtype=complex)
+                    rep = complex(mu[np.argmax(np.abs(mu))]) if mu.size else 0j
+                    f.info.update(point=j, reported=rep, bracket=(ia, ib), refined=True)
+                    bifs.append(f)
+                messages.append(f"secondary-hopf between lam = {br.a.lam:.9g} and "
+                                f"{br.b.lam:.9g} not on the unit circle at its located "
+                                f"point: {len(finer)} crossing(s) found on a finer sampling "
+                                "of the interval (" + ", ".join(
+                                    f"{f.kind} at {f.lam:.9g}" for f in finer) + ")")
+                continue
         if b.via != "tangent" and abs(abs(b.critical) - 1.0) > 0.05:
             messages.append(f"{b.kind} at lam = {b.lam:.9g}: the multiplier at the located "
                             f"point is {b.critical:.4f}, far from the unit circle (a pair "
@@ -274,5 +312,9 @@ def branch_stability(branch: Branch, problem: PeriodicProblem,
         n_intervals=np.array([r.info.get("n_intervals", o.n_intervals) for r in results],
                              dtype=np.int64),
         multiplier_error=np.array([r.info["multiplier_error"] for r in results], float)
-        if results and all("multiplier_error" in r.info for r in results) else None)
+        if results and all("multiplier_error" in r.info for r in results) else None,
+        basis=o.basis_label,
+        max_multiplier_outside=np.array([r.info.get("max_multiplier_outside", 0.0)
+                                         for r in results], dtype=float),
+        n_modes=np.array([r.info.get("n_modes", 0) for r in results], dtype=np.int64))
 
