@@ -46,7 +46,7 @@ from rotorsfd.model.rotor import Rotor
 from rotorsfd.model.shaft import ShaftElement
 from rotorsfd.model.supports import LinearSupport
 
-__all__ = ["IntershaftBearing", "MultiShaftRotor", "Shaft", "check_base_motion"]
+__all__ = ["IntershaftBearing", "MultiShaftRotor", "Shaft", "SpoolSpeed", "check_base_motion"]
 
 
 @dataclass(frozen=True)
@@ -318,6 +318,34 @@ class MultiShaftRotor(Rotor):
         return (f"MultiShaftRotor(shafts={[s.name for s in self.shafts]}, "
                 f"ratios={self.speed_ratios.tolist()}, n_nodes={self.n_nodes}, "
                 f"intershaft={len(self.intershaft)}, mass={self.total_mass:.4g} kg)")
+
+
+class SpoolSpeed:
+    """The ``LinearDynamics`` view of a multi-shaft ``rotor`` against the speed of one
+    spool: ``matrices(speed)`` with shaft ``spool`` at ``speed`` and every shaft ``k`` at
+    ``speed r_k / r_spool`` (the fixed ratios), i.e. ``rotor.matrices(speed / r_spool)``.
+    A Campbell diagram or critical speeds of this view are against that spool's speed; the
+    excitation line of shaft ``k``'s unbalance is ``w = (r_k / r_spool) speed``
+    (:meth:`harmonic`)."""
+
+    def __init__(self, rotor: MultiShaftRotor, spool: str | int) -> None:
+        names = [s.name for s in rotor.shafts]
+        if isinstance(spool, str):
+            if spool not in names:
+                raise ConfigError("spool", spool, "must name a shaft: " + ", ".join(names))
+            spool = names.index(spool)
+        self.rotor = rotor
+        self.index = int(spool)
+        self.ratio = float(rotor.shafts[self.index].speed_ratio)
+        self.n_dof = rotor.n_dof
+
+    def matrices(self, speed: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        return self.rotor.matrices(float(speed) / self.ratio)
+
+    def harmonic(self, shaft: str | int) -> float:
+        """The slope of shaft ``shaft``'s unbalance line against this spool's speed."""
+        k = SpoolSpeed(self.rotor, shaft).index
+        return self.rotor.shafts[k].speed_ratio / self.ratio
 
 
 def check_base_motion(rotor: Rotor, base) -> None:

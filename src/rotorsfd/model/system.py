@@ -363,7 +363,7 @@ class RotorSystem:
         without elements) for displacements, c / rotor length for rotations, so that a
         tolerance on scaled unknowns means the same in any units."""
         c = self.length_scale or 1e-4
-        length = float(self.rotor.node_x[-1] - self.rotor.node_x[0])
+        length = float(np.ptp(self.rotor.node_x))   # the axial extent (several shafts too)
         scale = np.full(self.n_dof, c)
         scale[2::4] = scale[3::4] = c / length
         return scale
