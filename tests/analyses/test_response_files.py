@@ -43,7 +43,8 @@ def test_columns_documented_order(written):
             expected += [f"static_{n}_{d}"] + [f"amp_{n}_{d}_h{k}" for k in (1, 2, 3)]
     expected += ["defl_1", "defl_3", "eps_max_sfd", "harmonics", "truncation_error",
                  "stable", "max_multiplier", "floquet_intervals",
-                 "multiplier_error"]  # stability (step-controlled) on by default
+                 "multiplier_error", "floquet_modes", "max_multiplier_outside"]
+    # stability (step-controlled) on by default
     assert header == expected
     assert sorted(paths) == ["bifurcations.csv", "branch.csv", "branch.nc",
                              "multipliers.png", "response_deflection.png",
@@ -163,3 +164,14 @@ def test_stability_hook_fills_arrays(tmp_path):
     assert result.stable.tolist() == (result.branch.lam < 600.0).tolist()
     assert result.multipliers.shape == (result.branch.n_points, 2)
     assert "stable" in result.table() and "max_multiplier" in result.table()
+
+
+def test_floquet_basis_recorded(written):
+    """Which basis max_multiplier covers (issue 22 item 4): the attribute, the modes kept
+    and the left-out modes' multiplier, a stable structural mode (0 < |mu| <= 1 + 1e-9)."""
+    _, _, _, table, ds = written
+    assert ds.attrs["floquet_basis"].startswith("craig-bampton")
+    assert np.all(table["floquet_modes"] >= 0)
+    out = table["max_multiplier_outside"]
+    assert np.all(np.isfinite(out)) and np.all(out <= 1 + 1e-9)
+    np.testing.assert_array_equal(ds["max_multiplier_outside"].values, out)

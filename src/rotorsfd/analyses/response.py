@@ -259,7 +259,8 @@ def _stability_options(config: Config | None, given: StabilityOptions | bool | N
                             tol=st.tolerance, rtol=st.locate_tolerance,
                             interval_tol=st.interval_tolerance if st.adaptive_intervals
                             else None, max_intervals=st.max_intervals,
-                            check=st.check_bifurcations, check_rtol=st.check_tolerance)
+                            check=st.check_bifurcations, check_rtol=st.check_tolerance,
+                            basis=st.basis)
 
 
 def _with_branch_stability(result: ResponseResult, problem: Any,
@@ -308,6 +309,8 @@ def _from_config(config: Config, search_path: Path | None, parameter: str | None
     from rotorsfd.analyses.modal import reference_speed as config_reference_speed
     from rotorsfd.io.schema import parameter_values
     from rotorsfd.model.build import build_system
+    out.info.update(floquet_basis=st.basis, floquet_modes=st.n_modes,
+                    max_multiplier_outside=st.max_multiplier_outside)
 
     r = config.analysis.response
     if not config.elements:

@@ -275,11 +275,15 @@ class ResponseResult:
                 "follow the branch closer to the housing)")
 
     def floquet_columns(self) -> dict[str, NDArray[Any]]:
-        """``floquet_intervals`` (the Newmark M of every point) and ``multiplier_error``
-        (the step control's estimate of the largest multipliers' error), when known."""
+        """``floquet_intervals`` (the Newmark M of every point), ``multiplier_error``
+        (the step control's estimate of the largest multipliers' error), ``floquet_modes``
+        (the fixed-interface modes in the reduced basis ``max_multiplier`` covers; the
+        interior DOFs for the full basis) and ``max_multiplier_outside`` (the modes above
+        the basis' cut-off, :mod:`rotorsfd.stability.outside`), when known."""
         n = self.branch.n_points
         out: dict[str, NDArray[Any]] = {}
-        for key, dtype in (("floquet_intervals", np.int64), ("multiplier_error", float)):
+        for key, dtype in (("floquet_intervals", np.int64), ("multiplier_error", float),
+                           ("floquet_modes", np.int64), ("max_multiplier_outside", float)):
             v = self.info.get(key)
             if v is not None and np.shape(v) == (n,) and np.all(np.isfinite(v)):
                 out[key] = np.asarray(v, dtype=dtype)
@@ -326,7 +330,13 @@ class ResponseResult:
             bifurcations=self.bifurcations, attrs=attrs)
         long = {"floquet_intervals": "Newmark intervals per period of the monodromy",
                 "multiplier_error": "estimated error of the largest Floquet multipliers' "
-                                    "moduli (|mu(M) - mu(M/2)| / 3)"}
+                                    "moduli (|mu(M) - mu(M/2)| / 3)",
+                "floquet_modes": "fixed-interface modes in the reduced Floquet basis",
+                "max_multiplier_outside": "largest |exp(lambda_j T)| of the structural "
+                                          "modes above the Floquet basis' cut-off "
+                                          "(averaged model)"}
+        if "floquet_basis" in self.info:
+            ds.attrs["floquet_basis"] = str(self.info["floquet_basis"])
         for key, values in self.floquet_columns().items():
             ds[key] = ("point", values, {"long_name": long[key], "units": "1"})
         for n in self.nodes:

@@ -17,6 +17,10 @@ METHODS = ("newmark-cb", "newmark", "generalized-alpha", "generalized-alpha-cb",
            "hill-koopman")
 #: The methods on the Craig-Bampton reduced model (the basis once per (M, K)).
 REDUCED_METHODS = ("newmark-cb", "generalized-alpha-cb", "hill", "hill-koopman")
+#: ``basis = "full"``: the unreduced counterpart of each reduced time-stepping method.
+FULL_METHODS = {"newmark-cb": "newmark", "generalized-alpha-cb": "generalized-alpha",
+                "newmark": "newmark", "generalized-alpha": "generalized-alpha"}
+BASES = ("reduced", "full")
 
 
 @dataclass(frozen=True)
@@ -43,6 +47,9 @@ class StabilityOptions:
     ``fold_merge_rtol``: a multiplier crossing +1 within this relative distance of a
     turning point is that fold (the gap, HB truncation, is reported in ``messages``); so
     is one farther away from a turning point across which no multiplier crosses +1.
+    ``basis``: ``"reduced"`` (the method as given) or ``"full"`` (the unreduced monodromy
+    of the whole model for a check: ``newmark-cb`` becomes ``newmark``,
+    ``generalized-alpha-cb`` ``generalized-alpha``; Hill has no full form).
     """
 
     method: str = "newmark-cb"
@@ -61,11 +68,32 @@ class StabilityOptions:
     basis_intervals: int | None = None
     check: bool = False
     check_rtol: float = 1e-3
+    basis: str = "reduced"
 
     def __post_init__(self) -> None:
         if self.method not in METHODS:
             raise ConfigError("analysis.stability.method", self.method,
                               f"one of {', '.join(METHODS)}")
+        if self.basis not in BASES:
+            raise ConfigError("analysis.stability.basis", self.basis,
+                              f"one of {', '.join(BASES)}")
+        if self.basis == "full":
+            if self.method not in FULL_METHODS:
+                raise ConfigError("analysis.stability.basis", self.basis,
+                                  "'full' needs a Newmark or generalized-alpha method, not "
+                                  f"{self.method!r}")
+            object.__setattr__(self, "method", FULL_METHODS[self.method])
+
+    @property
+    def basis_label(self) -> str:
+        """What the multipliers cover, for the files' ``floquet_basis``."""
+        if self.method in REDUCED_METHODS:
+            cut = (f"{self.n_modes} modes" if self.n_modes is not None else
+                   f"omega <= {self.omega_max:g} rad/s" if self.omega_max is not None else
+                   f"omega <= M_b / (4 T), M_b = {self.basis_intervals or self.n_intervals}")
+            return ("craig-bampton: the nonlinear DOFs plus the fixed-interface modes with "
+                    + cut)
+        return "full: every DOF of the model"
         if self.interval_tol is not None and not self.interval_tol > 0:
             raise ConfigError("analysis.stability.interval_tolerance", self.interval_tol,
                               "must be > 0")

@@ -43,6 +43,11 @@ class BranchStability:
         side), ``reported`` (its critical multiplier) and ``bracket`` (the two points).
     method, tol, elapsed (total seconds), elapsed_points (seconds for the points only),
     n_bases (reduction bases computed), messages (bifurcations that could not be located).
+    basis : what ``max_multiplier`` covers (``StabilityOptions.basis_label``).
+    max_multiplier_outside : (n_points,) ``max |exp(lambda_j T)|`` of the structural modes
+        above the reduced basis' cut-off, from the averaged model
+        (:mod:`rotorsfd.stability.outside`; 0 for the full basis); n_modes : (n_points,)
+        the fixed-interface modes kept (the interior DOFs for the full basis).
     """
 
     lam: NDArray[np.float64]
@@ -63,6 +68,9 @@ class BranchStability:
     n_intervals: NDArray[np.int64] | None = None
     multiplier_error: NDArray[np.float64] | None = None
     checks: list[Any] = field(default_factory=list)
+    basis: str = ""
+    max_multiplier_outside: NDArray[np.float64] | None = None
+    n_modes: NDArray[np.int64] | None = None
 
     @property
     def n_points(self) -> int:

@@ -20,61 +20,14 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import NDArray
 
-from rotorsfd.errors import ConfigError
 from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.stability.branch_options import REDUCED_METHODS, StabilityOptions
 from rotorsfd.stability.floquet import FloquetResult
 from rotorsfd.stability.hill import fourier_coefficients, hill_floquet
 from rotorsfd.stability.monodromy import floquet_multipliers
 from rotorsfd.stability.orbit import orbit_floquet, orbit_samples
-from rotorsfd.stability.reduction import ReducedModel
-
-
-class _Basis:
-    """Craig-Bampton pieces for one (M, K): constraint modes and all fixed-interface modes;
-    the modes kept at a point are selected by ``omega_max``/``n_modes`` there."""
-
-    def __init__(self, M: NDArray, K: NDArray, nl: NDArray) -> None:
-        import scipy.linalg as sla
-
-        n = M.shape[0]
-        self.M, self.K, self.nl = M.copy(), K.copy(), nl
-        i = np.setdiff1d(np.arange(n), nl)
-        self.i = i
-        try:
-            self.phi_c = -np.linalg.solve(K[np.ix_(i, i)], K[np.ix_(i, nl)])
-        except np.linalg.LinAlgError as exc:
-            raise ConfigError("K", "singular interior stiffness", "interior restrained once "
-                              "the nonlinear DOFs are fixed") from exc
-        Ks = 0.5 * (K[np.ix_(i, i)] + K[np.ix_(i, i)].T)
-        Ms = 0.5 * (M[np.ix_(i, i)] + M[np.ix_(i, i)].T)
-        w2, self.modes = sla.eigh(Ks, Ms)
-        self.omegas = np.sqrt(np.clip(w2, 0.0, None))
-        self._models: dict[int, tuple[NDArray, NDArray, NDArray]] = {}
-
-    def matches(self, M: NDArray, K: NDArray) -> bool:
-        return ((M is self.M or np.array_equal(M, self.M))
-                and (K is self.K or np.array_equal(K, self.K)))
-
-    def reduce(self, D: NDArray, n_modes: int | None, omega_max: float | None
-               ) -> ReducedModel:
-        keep = np.ones(self.omegas.size, bool)
-        if omega_max is not None:
-            keep &= self.omegas <= omega_max
-        if n_modes is not None:
-            keep &= np.arange(self.omegas.size) < n_modes
-        k = int(keep.sum())  # modes are sorted: the kept set is the first k
-        if k not in self._models:
-            m, n = self.nl.size, self.M.shape[0]
-            psi = np.zeros((n, m + k))
-            psi[self.nl, :m] = np.eye(m)
-            psi[np.ix_(self.i, np.arange(m))] = self.phi_c
-            psi[np.ix_(self.i, np.arange(m, m + k))] = self.modes[:, :k]
-            self._models[k] = (psi, psi.T @ self.M @ psi, psi.T @ self.K @ psi)
-        psi, Mr, Kr = self._models[k]
-        return ReducedModel(Mr, psi.T @ D @ psi, Kr, psi, np.arange(self.nl.size),
-                            self.omegas[:k])
-
+from rotorsfd.stability.outside import averaged_eigenvalues, exact_multipliers, largest_modulus
+from rotorsfd.stability.reduction import FixedInterfaceBasis, ReducedModel
 
 #: The step control starts the next point at M/2 when the error estimate at M is below
 #: this fraction of the tolerance: the scheme is second order, so the estimate at M/2 is
@@ -121,7 +74,9 @@ class FloquetEvaluator:
         self.problem = problem
         self.options = options or StabilityOptions()
         self.nl = np.asarray(problem.nl_dofs, dtype=np.intp)
-        self._basis: _Basis | None = None
+        self._basis: FixedInterfaceBasis | None = None
+        self._lin: tuple[object, object, object] = (None, None, None)
+        self._cut = 0.0
         self.n_bases = 0
         self.n_intervals = int(self.options.n_intervals)
 
@@ -130,19 +85,54 @@ class FloquetEvaluator:
         o = self.options
         return o.interval_tol is not None and not o.method.startswith("hill")
 
+    def linear_part(self, lam: float) -> tuple[object, object, object]:
+        """(M, D, K) at lam for the basis: CSR (``problem.matrices.sparse``) when the
+        problem's linear part is banded and larger than ``DENSE_MAX_DOF`` (the switch of
+        the linear solvers), else the dense arrays."""
+        from rotorsfd.model.sparse import DENSE_MAX_DOF
+
+        part = self.problem.matrices
+        if hasattr(part, "sparse") and self.problem.n_dof > DENSE_MAX_DOF:
+            return part.sparse(lam)
+        M, D, K = part(lam)
+        return np.asarray(M, float), np.asarray(D, float), np.asarray(K, float)
+
     def reduced(self, lam: float, period: float) -> ReducedModel:
         """Craig-Bampton model at lam (modes with ``omega <= M_b / (4 T)``, ``M_b`` the
         options' ``basis_intervals`` or ``n_intervals``, unless ``n_modes``/``omega_max``
-        are given)."""
+        are given). The basis: :class:`FixedInterfaceBasis` on the matrices of
+        :meth:`linear_part` (dense: every mode by LAPACK; sparse: only the lowest)."""
         o = self.options
-        M, D, K = self.problem.matrices(lam)
+        M, D, K = self.linear_part(lam)
         if self._basis is None or not self._basis.matches(M, K):
-            self._basis = _Basis(np.asarray(M, float), np.asarray(K, float), self.nl)
+            dense = isinstance(M, np.ndarray)
+            self._basis = FixedInterfaceBasis(M.copy() if dense else M,
+                                              K.copy() if dense else K, self.nl)
             self.n_bases += 1
         om = o.omega_max
         if o.n_modes is None and om is None:
             om = 0.25 * (o.basis_intervals or o.n_intervals) / period
-        return self._basis.reduce(np.asarray(D, float), o.n_modes, om)
+        red = self._basis.reduce(D, o.n_modes, om)
+        self._lin = (M, D, K)
+        self._cut = float(om) if om is not None else (
+            float(red.omegas[-1]) if red.omegas.size else 0.0)
+        return red
+
+    def outside(self, red: ReducedModel, period: float, Jq: NDArray, Jv: NDArray,
+                endpoint: bool = True) -> dict[str, float | int]:
+        """The modes above the cut-off of the last :meth:`reduced` model, from the averaged
+        model (:mod:`rotorsfd.stability.outside`; ``Jq, Jv`` the Jacobian samples of one
+        period, ``t = T`` included unless ``endpoint=False``): ``max_multiplier_outside`` (largest
+        ``|exp(lambda_j T)|``, 0 if none is found), ``n_modes`` (fixed-interface modes
+        kept) and ``omega_cut`` (the cut-off [rad/s])."""
+        M, D, K = self._lin
+        Jq, Jv = np.asarray(Jq), np.asarray(Jv)
+        if endpoint:      # t = 0 and t = T: one sample of the period
+            Jq, Jv = Jq[:-1], Jv[:-1]
+        lam = averaged_eigenvalues(M, D, K, self.nl, Jq.mean(axis=0), Jv.mean(axis=0),
+                                   omega_max=self._cut)
+        return {"max_multiplier_outside": largest_modulus(exact_multipliers(lam, period)),
+                "n_modes": int(red.omegas.size), "omega_cut": float(self._cut)}
 
     def __call__(self, lam: float, X: NDArray) -> FloquetResult:
         if not self.step_controlled:
@@ -177,6 +167,7 @@ class FloquetEvaluator:
         X = np.asarray(X, dtype=complex)
         Xnl = X[:, self.nl] if X.shape[1] == p.n_dof else X
         red = self.reduced(lam, T)
+        extra: dict[str, float | int] = {}
         cache: dict[int, tuple[NDArray, NDArray]] = {}
 
         def run(n: int) -> FloquetResult:
@@ -187,7 +178,11 @@ class FloquetEvaluator:
                 else:
                     cache[n] = p.law(lam).jacobian(*orbit_samples(Xnl, w, n))
             Jq, Jv = cache[n]
-            return self._reduced_newmark(red, T, Jq, Jv, n, p.n_dof)
+            res = self._reduced_newmark(red, T, Jq, Jv, n, p.n_dof)
+            if not extra:
+                extra.update(self.outside(red, T, Jq, Jv))
+            res.info.update(extra)
+            return res
 
         return run
 
@@ -212,13 +207,18 @@ class FloquetEvaluator:
         Xnl = X[:, self.nl] if X.shape[1] == p.n_dof else X
         if o.method not in REDUCED_METHODS:
             M, D, K = p.matrices(lam)
-            return orbit_floquet(M, D, K, Xnl, w, self.nl, p.law(lam).jacobian,
-                                 method=o.method,
-                                 n_intervals=n_intervals, rho_inf=o.rho_inf, tol=o.tol)
+            res = orbit_floquet(M, D, K, Xnl, w, self.nl, p.law(lam).jacobian,
+                                method=o.method,
+                                n_intervals=n_intervals, rho_inf=o.rho_inf, tol=o.tol)
+            # the full basis: every interior DOF in it, nothing outside
+            res.info.update(n_modes=p.n_dof - self.nl.size, max_multiplier_outside=0.0)
+            return res
         red = self.reduced(lam, T)    # the basis of the options' M, whatever the step
         if not o.method.startswith("hill"):
             Jq, Jv = p.law(lam).jacobian(*orbit_samples(Xnl, w, n_intervals))
-            return self._reduced_newmark(red, T, Jq, Jv, n_intervals, p.n_dof)
+            res = self._reduced_newmark(red, T, Jq, Jv, n_intervals, p.n_dof)
+            res.info.update(self.outside(red, T, Jq, Jv))
+            return res
         H = o.n_harmonics if o.n_harmonics is not None else max(8, X.shape[0] - 1)
         L = 2 * H
         q, v = orbit_samples(Xnl, w, 4 * (2 * L + 1), endpoint=False)
@@ -228,6 +228,6 @@ class FloquetEvaluator:
                            dFdv_hat=fourier_coefficients(Jv, L), n_harmonics=H,
                            method="koopman" if o.method == "hill-koopman" else "symmetric",
                            tol=o.tol)
-        res.info.update(n_dof_full=p.n_dof, n_modes=red.omegas.size)
+        res.info.update(n_dof_full=p.n_dof, **self.outside(red, T, Jq, Jv, endpoint=False))
         return res
 

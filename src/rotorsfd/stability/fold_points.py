@@ -140,5 +140,10 @@ def _merged(branch: Branch, st: BranchStability,
         n_intervals=None if st.n_intervals is None else merge(
             st.n_intervals, [x[3].info.get("n_intervals", 0) for x in new]),
         multiplier_error=None if st.multiplier_error is None else merge(
-            st.multiplier_error, [x[3].info.get("multiplier_error", 0.0) for x in new]))
+            st.multiplier_error, [x[3].info.get("multiplier_error", 0.0) for x in new]),
+        max_multiplier_outside=None if st.max_multiplier_outside is None else merge(
+            st.max_multiplier_outside,
+            [x[3].info.get("max_multiplier_outside", 0.0) for x in new]),
+        n_modes=None if st.n_modes is None else merge(
+            st.n_modes, [x[3].info.get("n_modes", 0) for x in new]))
     return b2, st2
