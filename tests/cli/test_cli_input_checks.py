@@ -205,12 +205,13 @@ def test_one_error_prefix(capsys, argv):
 
 
 def test_time_varying_base_in_response_names_the_law(tmp_path, capsys):
+    # a harmonic law gets the torus branch (tests/analyses/test_torus_response.py); a
+    # law that is neither constant nor harmonic is refused, naming it
     argv = ["response", str(PAPER), "-o", str(tmp_path), "-q", "--set",
-            "base.pitching.law=harmonic", "--set", "base.pitching.amplitude=1 rad/s",
-            "--set", "base.pitching.frequency=10 rad/s"]
+            "base.pitching.law=callable", "--set", "base.pitching.callable=numpy:sin"]
     assert cli.main(argv) == 2
     line = _line(capsys.readouterr().err)
-    assert line.startswith("rotorsfd: error: base.pitching.law: got 'harmonic'; this "
+    assert line.startswith("rotorsfd: error: base.pitching.law: got 'callable'; this "
                            "analysis needs a base motion constant in time")
     assert "BaseMotion(" not in line and "Harmonic(" not in line
     assert list(tmp_path.iterdir()) == []

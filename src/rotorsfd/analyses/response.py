@@ -131,6 +131,10 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
     the branch. A failed step never raises: the result then has ``success`` False and the
     points so far.
 
+    A Config whose base law is harmonic gets the quasi-periodic response instead (a
+    :class:`~rotorsfd.analyses.torus_response.TorusResponseResult`, the torus branch in the
+    speed: :func:`~rotorsfd.analyses.torus_response.run_torus_response`).
+
     ``from_orbit`` (a simulate ``timeseries.nc``, its directory, or a SimulationResult;
     speed parameter only): the branch starts at the orbit's speed from the Fourier
     coefficients of its last period, Newton-corrected (``info["orbit_difference"]``: the
@@ -139,6 +143,13 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
     (an isola, ``info["closed"]``; ``closure_tol`` see
     :func:`~rotorsfd.analyses.orbit_branch.continue_both_ways`).
     """
+    if not isinstance(config_or_system, RotorSystem):   # a harmonic base law: a torus
+        from rotorsfd.analyses.torus_response import harmonic_base, run_torus_response
+
+        if harmonic_base(config_or_system):
+            return run_torus_response(config_or_system, search_path=search_path,
+                                      progress=progress, from_orbit=from_orbit,
+                                      callback=callback)
     if isinstance(config_or_system, RotorSystem):
         system = config_or_system
         path = parameter or "speed"
@@ -259,8 +270,7 @@ def _stability_options(config: Config | None, given: StabilityOptions | bool | N
                             tol=st.tolerance, rtol=st.locate_tolerance,
                             interval_tol=st.interval_tolerance if st.adaptive_intervals
                             else None, max_intervals=st.max_intervals,
-                            check=st.check_bifurcations, check_rtol=st.check_tolerance,
-                            basis=st.basis)
+                            check=st.check_bifurcations, check_rtol=st.check_tolerance)
 
 
 def _with_branch_stability(result: ResponseResult, problem: Any,
@@ -309,8 +319,6 @@ def _from_config(config: Config, search_path: Path | None, parameter: str | None
     from rotorsfd.analyses.modal import reference_speed as config_reference_speed
     from rotorsfd.io.schema import parameter_values
     from rotorsfd.model.build import build_system
-    out.info.update(floquet_basis=st.basis, floquet_modes=st.n_modes,
-                    max_multiplier_outside=st.max_multiplier_outside)
 
     r = config.analysis.response
     if not config.elements:

@@ -16,12 +16,16 @@ from rotorsfd.interrupt import Interrupted, StopRequest
 @command("response", "periodic response by harmonic balance and arc-length continuation "
          "([analysis.response]): branch.nc, branch.csv, response plots; a branch that "
          "ends at an element's validity limit is a result (a warning line); exit 1 if it "
-         "stops early for a numerical reason (the points so far are written)",
+         "stops early for a numerical reason (the points so far are written); under a "
+         "harmonic base law the quasi-periodic response instead (a torus branch: "
+         "torus.nc, torus.csv, torus_*.png)",
          output=True, quiet=True,
          arguments=[arg("--multipliers-at", type=options.ratio, default=None, metavar="X",
                         help="multipliers.png at the point nearest this speed ratio "
                              "Omega/Omega_ref (the parameter in SI for a non-speed branch); "
-                             "default: the point of largest |mu|max"),
+                             "default: the point of largest |mu|max; under a harmonic "
+                             "base law: torus_spectrum.png at this speed ratio (default: "
+                             "the largest deflection)"),
                     arg("--from-orbit", type=Path, metavar="DIR_OR_NC",
                         help="start the branch on the last period of a time-domain orbit "
                              "(rotorsfd simulate output), Newton-corrected at its speed, "

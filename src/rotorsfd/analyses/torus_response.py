@@ -1,0 +1,325 @@
+"""``rotorsfd response`` under a harmonic base law: a branch of quasi-periodic responses
+(tori, harmonics ``k1 Omega + k2 w_b``) continued in the rotor speed, its files and plots.
+
+Under a base law ``w(t) = mean + A sin(w_b t + phi)`` the response lies on a 2-torus,
+``q(t) = Re sum_k X_k exp(i (k1 Omega + k2 w_b) t)`` over the box ``|k1| <= H1,
+|k2| <= H2`` (:mod:`rotorsfd.quasiperiodic`, docs/quasiperiodic.md). From
+``[analysis.response]``: H1 = the response's (starting) harmonics, H2 = :data:`TORUS_H2`
+(the base terms couple k2 to k2 +- 1, +- 2; the loads sit at |k2| <= 2), the speed range,
+step sizes, tolerance and ``max_eccentricity``. With ``[analysis.stability].enabled`` the
+largest Lyapunov exponent of the motion started on the torus
+(:func:`~rotorsfd.quasiperiodic.torus_stability.torus_lyapunov`, 200 rotor periods at
+T/200) is computed at :data:`LYAPUNOV_POINTS` points spread along the branch (the first and
+the last among them); a point is stable when ``lambda T + its uncertainty < 0``.
+
+Quantities per point, for an output node n, direction d and lattice harmonic (k1, k2)::
+
+    amp_<n>_<d>_<k1>_<k2>  = |X_(k1,k2)| / C     (half peak-to-peak of that line; a
+                                                   negative k2 written m2, m1)
+    defl_<n>               = max over the torus of sqrt(y^2 + z^2) / C
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, NamedTuple
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rotorsfd.errors import ConfigError, ConvergenceError
+from rotorsfd.model.system import RotorSystem
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+    from rotorsfd.io.schema import Config
+    from rotorsfd.quasiperiodic import TorusBranch, TorusLattice
+    from rotorsfd.quasiperiodic.torus_stability import TorusLyapunov
+
+FloatArray = NDArray[np.float64]
+FIELD = "analysis.response"
+#: highest base harmonic |k2| kept (the base terms and loads reach |k2| = 2)
+TORUS_H2 = 2
+#: points of the branch with a Lyapunov exponent (spread along it; about 2 s each on the
+#: 20-DOF test rotor, about 3-6 s on the paper rotor)
+LYAPUNOV_POINTS = 5
+#: torus samples per direction for the largest radius defl_<n>
+RADIUS_GRID = 64
+LAWS = ("rolling", "pitching", "yawing", "x", "y", "z")
+
+
+class TorusPoint(NamedTuple):
+    """A converged torus as the callback sees it: index, speed [rad/s], coefficients."""
+
+    index: int
+    lam: float
+    X: Any
+
+
+def harmonic_base(config: Config) -> bool:
+    """True when a base law of the config is harmonic (the response is then a torus)."""
+    return any(getattr(config.base, name).law == "harmonic" for name in LAWS)
+
+
+def component_slug(k1: int, k2: int) -> str:
+    """(k1, k2) in a column name: 1_m2 for (1, -2)."""
+    return "_".join(f"m{-k}" if k < 0 else str(k) for k in (k1, k2))
+
+
+@dataclasses.dataclass
+class TorusResponseResult:
+    """A torus branch in the speed with its system, output nodes and Lyapunov exponents
+    (``lyapunov``: point index -> :class:`TorusLyapunov`)."""
+
+    branch: TorusBranch
+    system: RotorSystem
+    reference_speed: float
+    nodes: tuple[int, ...]
+    directions: tuple[str, ...]
+    title: str = ""
+    elapsed: float = 0.0
+    lyapunov: dict[int, TorusLyapunov] = dataclasses.field(default_factory=dict)
+    info: dict[str, Any] = dataclasses.field(default_factory=dict)
+
+    FILES = ("torus.nc", "torus.csv")
+    is_speed = True
+    parameter = "speed"
+
+    @property
+    def clearance(self) -> float:
+        """C [m]: the smallest length scale of the nonlinear DOFs (an SFD's clearance)."""
+        return float(self.system.length_scale or 1.0)
+
+    @property
+    def speeds(self) -> FloatArray:
+        return np.asarray(self.branch.omega, dtype=float)
+
+    @property
+    def success(self) -> bool:
+        return bool(self.branch.success)
+
+    @property
+    def ended(self) -> str:
+        """"range", "limit" (an element's validity limit), "stopped" or "failed"."""
+        msg = str(self.branch.message)
+        if msg.startswith("stopped by the callback"):
+            return "stopped"
+        if self.branch.success:
+            return "range"
+        return "limit" if "state limit" in msg else "failed"
+
+    @property
+    def message(self) -> str:
+        b = self.branch
+        if not b.n_points:
+            return str(b.message)
+        last = f"Omega~ = {b.omega[-1] / self.reference_speed:.5g}"
+        if self.ended == "stopped":
+            return f"torus branch stopped on request after {b.n_points} points at {last}"
+        if self.ended == "range":
+            return f"reached the end of the range at {last}"
+        if self.ended == "limit":
+            return (f"the torus branch ends at {last}: an element reached its validity "
+                    f"limit (analysis.response.max_eccentricity = "
+                    f"{self.info.get('limit_max', 1.0):g}) [{b.message}]")
+        return f"the torus branch stopped at {last} [{b.message}]"
+
+    # ---- quantities -----------------------------------------------------------------------
+    def dof(self, node: int, direction: str) -> int:
+        return 4 * (node - 1) + "yz".index(direction)
+
+    def amplitude(self, node: int, direction: str, k1: int, k2: int) -> FloatArray:
+        """|X_(k1,k2)| / C of one node and direction along the branch."""
+        return self.branch.amplitude(self.dof(node, direction), k1, k2) / self.clearance
+
+    def deflection(self, node: int) -> FloatArray:
+        """max over the torus of sqrt(y^2 + z^2) / C at each point (a 64 x 64 grid)."""
+        from rotorsfd.harmonic.fourier import to_real
+        from rotorsfd.quasiperiodic.torus_fourier import TorusAFT
+
+        aft = TorusAFT(self.branch.lattice, RADIUS_GRID, RADIUS_GRID)
+        d = [self.dof(node, "y"), self.dof(node, "z")]
+        out = [np.sqrt((aft.sample(to_real(X[:, d])) ** 2).sum(axis=1)).max()
+               for X in self.branch.X]
+        return np.asarray(out, dtype=float) / self.clearance
+
+    def stability_columns(self) -> dict[str, list[Any]]:
+        """Per point: the Lyapunov exponent per rotor period, its uncertainty and 1/0
+        stable; empty where it was not computed."""
+        cols: dict[str, list[Any]] = {"lyapunov_per_period": [], "lyapunov_uncertainty": [],
+                                      "stable": []}
+        for i in range(self.branch.n_points):
+            ly = self.lyapunov.get(i)
+            cols["lyapunov_per_period"].append("" if ly is None else ly.per_period)
+            cols["lyapunov_uncertainty"].append("" if ly is None else ly.uncertainty)
+            cols["stable"].append("" if ly is None else int(ly.stable))
+        return cols
+
+    def table(self) -> dict[str, Any]:
+        """The columns of ``torus.csv`` (module docstring)."""
+        b = self.branch
+        cols: dict[str, Any] = {"point": np.arange(b.n_points), "speed_rad_s": b.omega,
+                                "speed_ratio": b.omega / self.reference_speed,
+                                "base_frequency_rad_s": b.wb, "iterations": b.iterations,
+                                "aliasing": b.aliasing, "validity_measure": b.limit}
+        for n in self.nodes:
+            cols[f"defl_{n}"] = self.deflection(n)
+            for d in self.directions:
+                for k1, k2 in b.lattice.k:
+                    cols[f"amp_{n}_{d}_{component_slug(int(k1), int(k2))}"] = \
+                        self.amplitude(n, d, int(k1), int(k2))
+        if self.lyapunov:
+            cols.update(self.stability_columns())
+        return cols
+
+    def summary(self) -> str:
+        b = self.branch
+        lat = b.lattice
+        lines = [f"quasi-periodic response (torus, harmonics of Omega and w_b): {b.n_points} "
+                 f"points, Omega~ from {b.omega.min() / self.reference_speed:.5g} to "
+                 f"{b.omega.max() / self.reference_speed:.5g}, w_b = {b.wb[0]:.6g} rad/s, "
+                 f"box |k1| <= {lat.H1}, |k2| <= {lat.H2}, grid {b.grid[0]} x {b.grid[1]}, "
+                 f"{self.elapsed:.2f} s"]
+        x = b.omega / self.reference_speed
+        for n in self.nodes:
+            r = self.deflection(n)
+            i = int(np.argmax(r))
+            lines.append(f"node {n}: max r~ = {r[i]:.4g} at Omega~ = {x[i]:.5g}")
+        if self.lyapunov:
+            bad = [i for i, ly in self.lyapunov.items() if not ly.stable]
+            lines.append(f"Lyapunov exponent at {len(self.lyapunov)} points: "
+                         f"{len(bad)} unstable" + (
+                             f" (first at Omega~ = {x[bad[0]]:.5g})" if bad else ""))
+        lines.append({"range": "ok: ", "limit": "ended at a validity limit: ",
+                      "stopped": "stopped: "}.get(self.ended, "FAILED: ") + self.message)
+        return "\n".join(lines)
+
+    # ---- files ----------------------------------------------------------------------------
+    def to_dataset(self) -> xr.Dataset:
+        from rotorsfd import __version__
+        from rotorsfd.io.torus_files import torus_dataset
+
+        attrs = {"run_title": self.title, "clearance_m": self.clearance,
+                 "elements": "; ".join(e.describe() for e in self.system.elements),
+                 "output_nodes": np.asarray(self.nodes, dtype=np.int32),
+                 "output_directions": " ".join(self.directions),
+                 "rotorsfd_version": __version__, "elapsed_s": float(self.elapsed),
+                 "ended": self.ended, "outcome": self.message}
+        if "config_toml" in self.info:
+            attrs["config_toml"] = self.info["config_toml"]
+        defl = {n: self.deflection(n) for n in self.nodes}
+        return torus_dataset(self.branch, reference_speed=self.reference_speed,
+                             deflection=defl, lyapunov=self.lyapunov, attrs=attrs)
+
+    def spectrum_index(self, speed_ratio: float | None = None) -> int:
+        """The point nearest ``speed_ratio`` (default: the largest deflection)."""
+        if speed_ratio is None:
+            return int(np.argmax(self.deflection(self.nodes[0])))
+        return int(np.argmin(np.abs(self.branch.omega / self.reference_speed - speed_ratio)))
+
+    def write(self, directory: str | Path, plots: bool = True,
+              multipliers_at: float | None = None) -> dict[str, Path]:
+        """Write torus.nc, torus.csv and the plots (torus_components.png, and
+        torus_spectrum.png at the point nearest ``multipliers_at``, a speed ratio; default
+        the largest deflection) atomically."""
+        from rotorsfd.io import atomic
+        from rotorsfd.io.branch_files import write_table
+        from rotorsfd.io.torus_files import write_torus_netcdf
+
+        out = Path(directory)
+        paths = {"torus.nc": write_torus_netcdf(self.to_dataset(), out / "torus.nc"),
+                 "torus.csv": write_table(out / "torus.csv", self.table())}
+        if plots and self.branch.n_points:
+            from rotorsfd.plots.torus import plot_torus_components, plot_torus_spectrum
+
+            figs = {"torus_components.png": plot_torus_components(self),
+                    "torus_spectrum.png": plot_torus_spectrum(
+                        self, self.spectrum_index(multipliers_at))}
+            for name, fig in figs.items():
+                paths[name] = atomic.save_figure(fig, out / name, dpi=120)
+        return paths
+
+
+def lyapunov_indices(n_points: int, count: int = LYAPUNOV_POINTS) -> list[int]:
+    """``count`` point indices spread evenly along a branch of n_points (first, last)."""
+    if n_points <= 0:
+        return []
+    return sorted({int(np.rint(v)) for v in np.linspace(0, n_points - 1, min(count, n_points))})
+
+
+def run_torus_response(config: Config, *, search_path: Path | None = None,
+                       lattice: TorusLattice | None = None, progress: bool = True,
+                       stability: bool | None = None, from_orbit: Any = None,
+                       callback: Callable[[Any], bool | None] | None = None,
+                       lyapunov_points: int = LYAPUNOV_POINTS) -> TorusResponseResult:
+    """The torus branch of a config with a harmonic base law over its speed range
+    (module docstring); ``stability`` None: ``[analysis.stability].enabled``.
+    ``callback(point)`` returning True stops the branch (``point.index``, ``point.lam``)."""
+    from rotorsfd.analyses.modal import reference_speed
+    from rotorsfd.io.config import show_config
+    from rotorsfd.model.build import build_system
+    from rotorsfd.quasiperiodic import TorusLattice, continue_torus, torus_problem
+    from rotorsfd.quasiperiodic.torus_stability import torus_lyapunov
+
+    r = config.analysis.response
+    if from_orbit is not None:
+        raise ConfigError("--from-orbit", str(from_orbit), "a torus branch (harmonic base "
+                          "law) starts from the linear response, not from an orbit")
+    if r.parameter.strip() != "speed":
+        raise ConfigError(f"{FIELD}.parameter", r.parameter, "under a harmonic base law "
+                          "the torus branch is continued in 'speed' only")
+    if not config.elements:
+        raise ConfigError("elements", None, "the nonlinear response needs at least one "
+                          "nonlinear element (an [elements.<name>] table)")
+    system = build_system(config, search_path)
+    ref = float(reference_speed(config, system))
+    lo, hi = r.speed_range.bounds(ref)
+    if not (lo > 0 and hi > 0) or lo == hi:
+        raise ConfigError(f"{FIELD}.speed_range", r.speed_range.model_dump(
+            exclude_none=True), "the torus branch needs two different speeds > 0")
+    nodes = tuple(r.nodes) or system.output_nodes
+    for n in nodes:
+        if not 1 <= n <= system.rotor.n_nodes:
+            raise ConfigError(f"{FIELD}.nodes", n, f"must be 1..{system.rotor.n_nodes}")
+    lattice = lattice or TorusLattice(r.start_harmonics, TORUS_H2)
+    problem = torus_problem(system)          # ConfigError for unsupported base laws
+
+    def hook(index: int, lam: float, X: Any) -> bool:
+        if progress:
+            import sys
+
+            print(f"\rtorus: {index + 1} points, at Omega~ = {lam / ref:.4g}", end="",
+                  file=sys.stderr, flush=True)
+        return bool(callback(TorusPoint(index, lam, X))) if callback else False
+
+    t0 = time.perf_counter()
+    try:
+        branch = continue_torus(problem, float(lo), float(hi), lattice, tol=r.tolerance,
+                                ds=r.step_initial, ds_min=r.step_min, ds_max=r.step_max,
+                                max_iter=r.max_iterations, max_points=r.max_points,
+                                max_angle_deg=math.degrees(r.max_tangent_angle),
+                                limit_max=r.max_eccentricity, callback=hook)
+    except ConvergenceError as exc:
+        raise ConvergenceError(f"no torus at the start of the speed range (Omega~ = "
+                               f"{lo / ref:.4g}): {exc}") from None
+    finally:
+        if progress:
+            import sys
+
+            print("\r\033[K", end="", file=sys.stderr, flush=True)
+    enabled = config.analysis.stability.enabled if stability is None else stability
+    lyap = {}
+    if enabled:
+        for i in lyapunov_indices(branch.n_points, lyapunov_points):
+            lyap[i] = torus_lyapunov(system, lattice, branch.X[i], float(branch.omega[i]),
+                                     float(branch.wb[i]))
+    return TorusResponseResult(branch, system, ref, tuple(nodes),
+                               tuple(r.directions), config.title,
+                               time.perf_counter() - t0, lyap,
+                               {"config_toml": show_config(config),
+                                "limit_max": float(r.max_eccentricity)})

@@ -1,0 +1,128 @@
+"""Figures of a torus branch (a quasi-periodic response under a harmonic base law).
+
+``torus_components.png``: per output node, the amplitudes ``|X_(k1,k2)| / C`` of the
+strongest lines ``k1 Omega + k2 w_b`` (the radial amplitude ``sqrt(|X_y|^2 + |X_z|^2)``,
+legends in words: "1X", "1X - 2 w_b", "1 w_b") against Omega~, and below the largest
+Lyapunov exponent per rotor period where computed (filled: stable, open: unstable).
+
+``torus_spectrum.png``: the 2D amplitude spectrum at one speed, per node a map over the
+half lattice (k1 >= 0 along x, k2 along y), colour ``log10`` of the radial amplitude / C,
+each cell labelled with its value. The cells (0, k2 < 0) are the conjugates of (0, -k2)
+(the same line) and left blank.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from rotorsfd.plots.labels import mathtext, wrap
+
+
+def component_label(k1: int, k2: int) -> str:
+    """A line's name in the user's words: "1X", "1X - 2 w_b", "1 w_b", "static"."""
+    if k1 == 0 and k2 == 0:
+        return "static"
+    if k1 == 0:
+        return f"{k2} w_b"
+    if k2 == 0:
+        return f"{k1}X"
+    return f"{k1}X {'+' if k2 > 0 else '-'} {abs(k2)} w_b"
+
+
+#: lines drawn per node in torus_components.png (the strongest along the branch)
+N_LINES = 6
+
+
+def radial_amplitude(result: Any, node: int) -> np.ndarray:
+    """(n_points, nk) ``sqrt(|X_y|^2 + |X_z|^2) / C`` of every lattice harmonic."""
+    X = result.branch.X
+    y, z = result.dof(node, "y"), result.dof(node, "z")
+    return np.sqrt(np.abs(X[:, :, y]) ** 2 + np.abs(X[:, :, z]) ** 2) / result.clearance
+
+
+def strongest(result: Any, node: int, count: int = N_LINES) -> list[int]:
+    """Indices of the ``count`` lattice harmonics of largest peak radial amplitude."""
+    peak = radial_amplitude(result, node).max(axis=0)
+    return [int(i) for i in np.argsort(peak)[::-1][:count]]
+
+
+def plot_torus_components(result: Any) -> Figure:
+    """The strongest lines of every output node against Omega~, and the Lyapunov
+    exponents (module docstring)."""
+    b = result.branch
+    x = b.omega / result.reference_speed
+    rows = len(result.nodes) + (1 if result.lyapunov else 0)
+    fig = Figure(figsize=(8, 2.8 * rows + 0.8), layout="constrained")
+    axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
+    for ax, n in zip(axes, result.nodes, strict=False):
+        amp = radial_amplitude(result, n)
+        for i in strongest(result, n):
+            k1, k2 = (int(v) for v in b.lattice.k[i])
+            ax.plot(x, amp[:, i], "-", label=mathtext(component_label(k1, k2)))
+        ax.set_yscale("log")
+        ax.set_ylabel(f"node {n}: " + r"$|X_{k_1,k_2}|\,/\,C$")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7, ncols=2, loc="best", title="line", title_fontsize=7)
+    if result.lyapunov:
+        ax = axes[-1]
+        idx = sorted(result.lyapunov)
+        lam = np.array([result.lyapunov[i].per_period for i in idx])
+        err = np.array([result.lyapunov[i].uncertainty for i in idx])
+        ok = np.array([result.lyapunov[i].stable for i in idx], dtype=bool)
+        xi = x[idx]
+        ax.errorbar(xi, lam, yerr=err, fmt="none", ecolor="0.5", capsize=2)
+        ax.plot(xi[ok], lam[ok], "o", color="C0", label="stable torus")
+        ax.plot(xi[~ok], lam[~ok], "o", mfc="none", color="C3", label="unstable torus")
+        ax.axhline(0.0, color="k", lw=0.8)
+        ax.set_ylabel(mathtext("largest Lyapunov exponent x T"))
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7, loc="best")
+    axes[-1].set_xlabel(mathtext("Omega~ = Omega / Omega_ref"))
+    wb = float(b.wb[0])
+    fig.suptitle(mathtext(wrap(f"{result.title or 'Quasi-periodic response'}: lines at "
+                               f"k1 Omega + k2 w_b, w_b = {wb:.4g} rad/s", 90)), fontsize=9)
+    return fig
+
+
+def plot_torus_spectrum(result: Any, index: int) -> Figure:
+    """The 2D amplitude spectrum of point ``index`` (module docstring)."""
+    from matplotlib.colors import LogNorm
+
+    b = result.branch
+    lat = b.lattice
+    H1, H2 = lat.H1, lat.H2
+    nodes = result.nodes
+    fig = Figure(figsize=(1.1 * (H1 + 1) * len(nodes) + 2.5, 0.55 * (2 * H2 + 1) + 1.6),
+                 layout="constrained")
+    axes = fig.subplots(1, len(nodes), squeeze=False)[0]
+    image = None
+    floor = 1e-6
+    for ax, n in zip(axes, nodes, strict=True):
+        amp = radial_amplitude(result, n)[index]
+        grid = np.full((2 * H2 + 1, H1 + 1), np.nan)
+        for i, (k1, k2) in enumerate(lat.k):
+            grid[int(k2) + H2, int(k1)] = max(float(amp[i]), floor)
+        top = float(np.nanmax(grid))
+        image = ax.imshow(grid, origin="lower", cmap="viridis", aspect="auto",
+                          extent=(-0.5, H1 + 0.5, -H2 - 0.5, H2 + 0.5),
+                          norm=LogNorm(vmin=max(floor, top * 1e-5), vmax=top))
+        for i, (k1, k2) in enumerate(lat.k):
+            text = f"{amp[i]:.2g}" if amp[i] > 1e-12 * top else "0"   # round-off: 0
+            ax.text(int(k1), int(k2), text, ha="center", va="center",
+                    fontsize=6, color="w" if amp[i] < 0.3 * top else "k")
+        ax.set_xticks(range(H1 + 1), [f"{k}X" for k in range(H1 + 1)])
+        ax.set_yticks(range(-H2, H2 + 1), [f"{k:+d} " + r"$\omega_b$" if k else "0"
+                                          for k in range(-H2, H2 + 1)])
+        ax.set_xlabel(r"$k_1$ (multiples of $\Omega$)")
+        ax.set_title(f"node {n}", fontsize=8)
+    axes[0].set_ylabel(r"$k_2$ (multiples of $\omega_b$)")
+    if image is not None:
+        fig.colorbar(image, ax=list(axes), label=r"$\sqrt{|X_y|^2 + |X_z|^2}\,/\,C$")
+    ratio = b.omega[index] / result.reference_speed
+    fig.suptitle(mathtext(wrap(f"Amplitude spectrum at Omega~ = {ratio:.4g} (the line at "
+                               "k1 Omega + k2 w_b; blank: the conjugate of the mirrored "
+                               "cell)", 90)), fontsize=9)
+    return fig
