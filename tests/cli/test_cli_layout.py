@@ -62,7 +62,7 @@ def test_help_lists_the_commands_in_workflow_order(capsys):
     order = ["config", "modal", "fit-supports", "calibrate", "response", "static", "sweep",
              "simulate",
              "bifurcation-diagram", "stability-chart", "fold-curve", "attractors", "paper",
-             "import-ross",
+             "rerun", "import-ross",
              "export-matrices"]
     listed = re.findall(r"^ {4}(\S+)", text, flags=re.M)
     assert listed == order
