@@ -270,7 +270,8 @@ def _stability_options(config: Config | None, given: StabilityOptions | bool | N
                             tol=st.tolerance, rtol=st.locate_tolerance,
                             interval_tol=st.interval_tolerance if st.adaptive_intervals
                             else None, max_intervals=st.max_intervals,
-                            check=st.check_bifurcations, check_rtol=st.check_tolerance)
+                            check=st.check_bifurcations, check_rtol=st.check_tolerance,
+                            basis=st.basis)
 
 
 def _with_branch_stability(result: ResponseResult, problem: Any,
@@ -308,6 +309,8 @@ def _with_branch_stability(result: ResponseResult, problem: Any,
                     stability_elapsed=st.elapsed, floquet_intervals=st.n_intervals)
     if st.multiplier_error is not None:
         out.info["multiplier_error"] = st.multiplier_error
+    out.info.update(floquet_basis=st.basis, floquet_modes=st.n_modes,
+                    max_multiplier_outside=st.max_multiplier_outside)
     return out
 
 

@@ -236,7 +236,8 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
                    step_tolerance: float | None = None,
                    max_steps_per_period: int | None = None,
                    reduction: str | None = None,
-                   reduction_cutoff: float | None = None) -> SimulationResult:
+                   reduction_cutoff: float | None = None,
+                   speed_law: Any = None) -> SimulationResult:
     """Integrate the nonlinear rotor at one speed and classify the motion.
 
     From a Config: ``[analysis.simulate]`` and ``[reference]``, keyword arguments override
@@ -256,6 +257,9 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
     integer, checked by one halving over the last ``step_check_periods`` (0: off).
     ``result.step_check`` (a :class:`StepControl`) holds the halvings and the achieved
     error; a step that fails the tolerance puts a warning in the summary.
+    ``speed_law`` (default ``[analysis.simulate] speed_law``; a config table or a
+    :mod:`~rotorsfd.timedomain.speed_law` law): a run-up or coast-down instead
+    (:func:`~rotorsfd.analyses.runup_simulation.run_speed_law_simulation`, a RunUpResult).
     ``reduction`` / ``reduction_cutoff`` (default ``[analysis.simulate]``, "auto" and 40):
     the step on the Craig-Bampton model with the fixed-interface modes up to
     ``reduction_cutoff`` x Omega (:func:`~rotorsfd.analyses.td_integration.with_reduction`);
@@ -291,8 +295,19 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
         h_samples = config.analysis.response.n_samples
         name = config.title if title is None else title
         out_nodes = tuple(nodes) if nodes else tuple(config.output_nodes("simulate"))
-        if speed is None and speed_ratio is None:
+        if speed is None and speed_ratio is None and speed_law is None:
             speed = sim.fixed_speed(ref)
+    law = speed_law if speed_law is not None else sim.speed_law
+    if law is not None:            # a run-up / coast-down: analyses/runup_simulation.py
+        from rotorsfd.analyses.runup_simulation import law_of, run_speed_law_simulation
+
+        if speed is not None or speed_ratio is not None:
+            raise ConfigError(f"{FIELD}.speed_law", "with a speed", "give a speed law or "
+                              "one speed (speed, speed_ratio, --speed), not both")
+        return run_speed_law_simulation(
+            system, law_of(law, search_path), sim=sim, nodes=out_nodes, title=name,
+            steps_per_period=steps_per_period, periods=periods, scheme=scheme,
+            alpha=alpha, initial_displacement=initial_displacement)
     if speed is None and speed_ratio is not None:
         if not ref:
             raise ConfigError("speed_ratio", speed_ratio, "needs a reference speed")

@@ -20,6 +20,20 @@ def check_simulate(args: argparse.Namespace, config: Any) -> None:
     if args.hb_phase and not args.from_hb:
         raise ConfigError("--hb-phase", args.hb_phase, "needs --from-hb")
     options.check_exists("--initial-state", args.initial_state)
+    if args.speed_law is not None:
+        for flag, given in (("--speed", args.speed), ("--speed-ratio", args.speed_ratio),
+                            ("--from-hb", args.from_hb or None),
+                            ("--initial-state", args.initial_state)):
+            if given is not None:
+                raise ConfigError("--speed-law", args.speed_law,
+                                  f"a run-up starts from the displaced state at its own "
+                                  f"speeds: not with {flag}")
+        from rotorsfd.timedomain.speed_law_config import (
+            parse_speed_law_text,
+            speed_law_from_config,
+        )
+
+        speed_law_from_config(parse_speed_law_text(args.speed_law), Path.cwd())
 
 
 @command("simulate", "time integration at one speed ([analysis.simulate]): timeseries.nc, "
@@ -40,6 +54,11 @@ def check_simulate(args: argparse.Namespace, config: Any) -> None:
                     arg("--initial-state", type=Path, metavar="DIR_OR_NC",
                         help="start from the final state of a previous run (its output "
                              "directory or timeseries.nc); same speed: continues it"),
+                    arg("--speed-law", metavar="LAW",
+                        help="a run-up / coast-down instead of one speed: "
+                             "'ramp,start=500 rad/s,stop=1200 rad/s,duration=2 s' (or "
+                             "rate=...), 'constant,speed=...' or a CSV table (time [s], "
+                             "speed [rad/s]); default [analysis.simulate] speed_law"),
                     arg("--record-periods", type=options.integer(1), metavar="N",
                         help="last periods kept in timeseries.nc (default: poincare_periods)"),
                     arg("--lyapunov-periods", type=options.integer(0), metavar="N",
@@ -50,13 +69,18 @@ def simulate(args: argparse.Namespace, config: Any) -> int:
     """Integrate, write and print the summary."""
     from rotorsfd import api  # deferred: numpy, scipy, numba (keeps --help fast)
 
+    law = args.speed_law
+    if law is not None and Path(law).is_file():      # a table: relative to the cwd
+        law = str(Path(law).resolve())
+
     result = api.run_simulation(config, args.speed, speed_ratio=args.speed_ratio,
                                 search_path=Path(args.config).parent,
                                 from_hb=args.from_hb, hb_phase=args.hb_phase,
                                 initial_state=args.initial_state,
                                 record_periods=args.record_periods,
                                 lyapunov_periods=args.lyapunov_periods,
-                                progress=not args.quiet)
+                                progress=not args.quiet,
+                                **({"speed_law": law} if law else {}))
     paths = result.write(args.output)
     print_written(result, paths, args.quiet, args.verbose)
     return 0

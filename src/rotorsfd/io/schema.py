@@ -817,7 +817,8 @@ class SimulateAnalysis(Section):
         "\"table\", file = \"speeds.csv\" } (time [s], speed [rad/s]; or times = [...], "
         "speeds = [...]: a PCHIP interpolation) or { law = \"constant\", speed = ... }; "
         "the run lasts to the law's end (constant: periods), timeseries.nc holds the orbit "
-        "against time and speed (docs: README, Run-up and coast-down)")
+        "against time and speed (docs: README, Run-up and coast-down); allowed: a table "
+        "with law = \"constant\", \"ramp\" or \"table\" and its keys")
 
     def fixed_speed(self, reference_speed: float) -> float | None:
         """The speed [rad/s] (None if neither speed nor speed_ratio is set)."""

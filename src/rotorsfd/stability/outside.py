@@ -31,7 +31,9 @@ reported value is the exact one.
 
 Dense models (at most ``DENSE_MAX_DOF``): every mode of the companion form. Larger (sparse)
 ones: the ``N_SPARSE`` modes nearest ``i omega_max`` by shift-invert Arnoldi on the sparse
-linearisation (the least damped ones just above the cut-off for light structural damping).
+linearisation (the least damped ones just above the cut-off for damping that grows with
+the frequency, Rayleigh or modal). A lightly damped mode far above the cut-off (one with a
+node at every damper) is then missed: the dense path, or ``basis = "full"``, sees it.
 """
 
 from __future__ import annotations

@@ -1,0 +1,90 @@
+"""FloquetEvaluator on a banded model above DENSE_MAX_DOF (issue 17 item 2): the
+Craig-Bampton basis from the CSR matrices (sparse LU + shift-invert Lanczos) gives the
+multipliers of the dense basis (every mode by LAPACK) to 1e-8, and the modes above the
+cut-off by shift-invert Arnoldi the dense companion form's largest |exp(lambda T)|."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from rotorsfd.model.sparse import DENSE_MAX_DOF
+from rotorsfd.stability.branch_options import StabilityOptions
+from rotorsfd.stability.floquet_evaluator import FloquetEvaluator
+
+N_EL = 104
+pytestmark = pytest.mark.slow   # ~7 s: the dense companion form of 888 states
+
+
+def _config() -> dict:
+    return {
+        "title": "uniform rotor, SFD at node 1",
+        "materials": {"steel": {"density": 7810.0, "young_modulus": 211e9,
+                                "shear_modulus": 81.2e9}},
+        "rotor": {"shaft": [{"length": 1.0, "n_elements": N_EL, "outer_radius": 0.02,
+                             "material": "steel"}],
+                  "disks": [{"node": N_EL // 2 + 1, "material": "steel",
+                             "inner_radius": 0.02, "outer_radius": 0.12,
+                             "thickness": 0.03}],
+                  "supports": [{"node": N_EL + 1, "stiffness": 3e7, "damping": 500.0}]},
+        "elements": {"sfd": {"kind": "sfd", "node": 1, "viscosity": 0.0051,
+                             "clearance": 1.27e-4, "clearance_ratio": 0.00485,
+                             "length_to_diameter": 0.325, "cavitation": "pi",
+                             "centring_stiffness": 1e7, "centring_damping": 0.0}},
+        "unbalance": [{"node": N_EL // 2 + 1, "magnitude": 5e-5}],
+        "gravity": {"enabled": False},
+    }
+
+
+@pytest.fixture(scope="module")
+def point():
+    from rotorsfd import api
+    from rotorsfd.harmonic.periodic import solve_periodic
+    from rotorsfd.io.config import config_from_dict
+
+    system = api.build_system(config_from_dict(_config()))
+    problem = system.periodic_problem()
+    assert problem.n_dof > DENSE_MAX_DOF and hasattr(problem.matrices, "sparse")
+    speed = 300.0
+    return problem, speed, solve_periodic(problem, speed, H=3).X
+
+
+def test_sparse_basis_equals_dense(point) -> None:
+    import scipy.sparse as sp
+
+    problem, speed, X = point
+    o = StabilityOptions()
+    sparse = FloquetEvaluator(problem, o)
+    a = sparse(speed, X)
+    assert sp.issparse(sparse.linear_part(speed)[0]) and sparse._basis.sparse
+    dense = FloquetEvaluator(problem, o)
+    dense.linear_part = lambda lam: tuple(np.asarray(x, float)
+                                          for x in problem.matrices(lam))
+    b = dense(speed, X)
+    assert not dense._basis.sparse
+    assert a.info["n_modes"] == b.info["n_modes"] >= 2
+    ma, mb = (np.sort(np.abs(r.multipliers))[::-1][:8] for r in (a, b))
+    assert np.abs(ma - mb).max() <= 1e-8
+    assert a.max_abs == pytest.approx(b.max_abs, abs=1e-8)
+    # above the cut-off: the sparse path's N_SPARSE modes nearest i omega_max against the
+    # same modes of the dense companion form (all of them: the dense path's value)
+    from rotorsfd.stability.orbit import orbit_samples
+    from rotorsfd.stability.outside import N_SPARSE, mode_eigenvalues
+
+    cut = a.info["omega_cut"]
+    assert cut == b.info["omega_cut"] == pytest.approx(0.25 * 400 * speed / (2 * np.pi))
+    nl = problem.nl_dofs
+    Jq, Jv = problem.law(speed).jacobian(*orbit_samples(X[:, nl], speed, 400,
+                                                        endpoint=False))
+    M, D, K = (np.array(x, float) for x in problem.matrices(speed))
+    K[np.ix_(nl, nl)] -= Jq.mean(axis=0)
+    D[np.ix_(nl, nl)] -= Jv.mean(axis=0)
+    lam = mode_eigenvalues(M, D, K)
+    T = 2 * np.pi / speed
+    above = lam[np.abs(lam.imag) > cut]
+    assert b.info["max_multiplier_outside"] == pytest.approx(
+        np.abs(np.exp(above * T)).max(), abs=1e-9)
+    near = lam[np.argsort(np.abs(lam - 1j * cut))[:N_SPARSE]]
+    near = near[np.abs(near.imag) > cut]
+    assert a.info["max_multiplier_outside"] == pytest.approx(
+        np.abs(np.exp(near * T)).max(), abs=1e-8)
