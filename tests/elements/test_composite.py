@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from rotorsfd.elements import ElementSet
+from rotorsfd.elements import KINDS, ElementSet
 from rotorsfd.elements.sfd import SFDElement
 from rotorsfd.errors import ConfigError, JournalContactError
 from rotorsfd.io.config import config_from_dict, read_toml
@@ -115,11 +115,13 @@ def test_config_two_sfds_and_bad_tables():
         config_from_dict(raw)
 
 
+ALLOWED = ", ".join(repr(k) for k in KINDS)   # every registered kind, in order
+
+
 @pytest.mark.parametrize(("change", "message"), [
-    ({"kind": "rubb"}, "elements.sfd.kind: got 'rubb'; allowed: 'sfd', 'rub', "
-                       "'journal_bearing'"),
-    ({"kind": None}, "elements.sfd.kind: got nothing; required, the element's kind: "
-                     "'sfd', 'rub', 'journal_bearing'"),
+    ({"kind": "rubb"}, f"elements.sfd.kind: got 'rubb'; allowed: {ALLOWED}"),
+    ({"kind": None}, f"elements.sfd.kind: got nothing; required, the element's kind: "
+                     f"{ALLOWED}"),
 ])
 def test_element_kind_errors_are_one_line(change, message):
     raw = read_toml(PAPER_TOML)

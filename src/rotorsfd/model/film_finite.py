@@ -69,6 +69,7 @@ from typing import Any
 import numpy as np
 
 from rotorsfd.errors import ConfigError, JournalContactError
+from rotorsfd.model.film_land import DEFAULT_EPS_MAX, FilmLand
 
 __all__ = ["DEFAULT_N_AXIAL", "DEFAULT_N_THETA", "FiniteSFD", "centred_damping_ratio"]
 
@@ -77,13 +78,6 @@ DEFAULT_N_THETA = 48
 DEFAULT_N_AXIAL = 4
 
 _SCALARS = (float, int, np.floating, np.integer)
-
-
-def _positive(field: str, value: float) -> float:
-    value = float(value)
-    if not (math.isfinite(value) and value > 0.0):
-        raise ConfigError(field, value, "a finite positive number (SI units)")
-    return value
 
 
 def centred_damping_ratio(length_to_diameter: float, end_flow: float = math.inf) -> float:
@@ -103,7 +97,7 @@ def centred_damping_ratio(length_to_diameter: float, end_flow: float = math.inf)
     return 3.0 * (1.0 / lam - a_sinh / s)
 
 
-class FiniteSFD:
+class FiniteSFD(FilmLand):
     """Finite-length squeeze film damper (module doc) with the API of
     :class:`rotorsfd.model.sfd.SFD`.
 
@@ -128,7 +122,7 @@ class FiniteSFD:
     def __init__(self, viscosity: float, radius: float, length: float, clearance: float,
                  cavitation: str = "pi", end_flow: float = math.inf,
                  n_theta: int = DEFAULT_N_THETA, n_axial: int = DEFAULT_N_AXIAL,
-                 eps_max: float = 0.999, table: bool = True) -> None:
+                 eps_max: float = DEFAULT_EPS_MAX, table: bool = True) -> None:
         from rotorsfd.model.film_finite_kernels import (
             CAVITATION_CODES,
             N_PARAMS,
@@ -142,13 +136,7 @@ class FiniteSFD:
             P_RADIUS,
             P_VISCOSITY,
         )
-        self.viscosity = _positive("viscosity", viscosity)
-        self.radius = _positive("radius", radius)
-        self.length = _positive("length", length)
-        self.clearance = _positive("clearance", clearance)
-        if cavitation not in CAVITATION_CODES:
-            raise ConfigError("cavitation", cavitation, "one of 'pi', 'none', 'guembel'")
-        self.cavitation = cavitation
+        super().__init__(viscosity, radius, length, clearance, cavitation, eps_max)
         end_flow = float(end_flow)
         if not end_flow >= 0.0:
             raise ConfigError("end_flow", end_flow, "a number >= 0 (inf: open ends)")
@@ -158,16 +146,12 @@ class FiniteSFD:
         if int(n_axial) != n_axial or n_axial < 2 or n_axial % 2:
             raise ConfigError("n_axial", n_axial, "an even number, at least 2")
         self.n_theta, self.n_axial = int(n_theta), int(n_axial)
-        eps_max = float(eps_max)
-        if not 0.0 < eps_max < 1.0:
-            raise ConfigError("eps_max", eps_max, "a number with 0 < eps_max < 1")
-        self.eps_max = eps_max
         params = np.zeros(N_PARAMS)
         params[P_VISCOSITY] = self.viscosity
         params[P_RADIUS] = self.radius
         params[P_LENGTH] = self.length
         params[P_CLEARANCE] = self.clearance
-        params[P_EPS_MAX] = eps_max
+        params[P_EPS_MAX] = self.eps_max
         params[P_CODE] = CAVITATION_CODES[cavitation]
         params[P_N_THETA] = self.n_theta
         params[P_N_AXIAL] = self.n_axial
@@ -189,16 +173,6 @@ class FiniteSFD:
 
         return self._params[P_TABLE_N] > 0
 
-    @classmethod
-    def from_ratios(cls, viscosity: float, clearance: float, clearance_ratio: float,
-                    length_to_diameter: float, cavitation: str = "pi", **kwargs: Any
-                    ) -> FiniteSFD:
-        """From ``C``, ``C/R`` and ``L/D``, as :meth:`rotorsfd.model.sfd.SFD.from_ratios`."""
-        clearance = _positive("clearance", clearance)
-        radius = clearance / _positive("clearance_ratio", clearance_ratio)
-        length = _positive("length_to_diameter", length_to_diameter) * 2.0 * radius
-        return cls(viscosity, radius, length, clearance, cavitation, **kwargs)
-
     def __repr__(self) -> str:
         return (f"FiniteSFD(viscosity={self.viscosity!r}, radius={self.radius!r}, "
                 f"length={self.length!r}, clearance={self.clearance!r}, "
@@ -210,11 +184,6 @@ class FiniteSFD:
     def length_to_diameter(self) -> float:
         """L/D."""
         return self.length / (2.0 * self.radius)
-
-    @property
-    def coefficient(self) -> float:
-        """``K = mu R L^3 / C^3`` [N s/m], the short film's force scale."""
-        return self.viscosity * self.radius * self.length**3 / self.clearance**3
 
     @property
     def pressure_scale(self) -> float:

@@ -35,7 +35,8 @@ from typing import Any
 
 import numpy as np
 
-from rotorsfd.errors import ConfigError, JournalContactError
+from rotorsfd.errors import JournalContactError
+from rotorsfd.model.film_land import DEFAULT_EPS_MAX, FilmLand
 from rotorsfd.model.sfd_kernels import (
     CAVITATION_CODES,
     N_PARAMS,
@@ -52,21 +53,10 @@ from rotorsfd.model.sfd_kernels import (
 
 __all__ = ["DEFAULT_EPS_MAX", "SFD"]
 
-#: Default contact limit on the eccentricity ratio: the force grows like (1 - eps)^(-5/2)
-#: and the Jacobian like (1 - eps)^(-7/2); at 0.999 that is a factor ~1e7 above eps = 0.
-DEFAULT_EPS_MAX = 0.999
-
 _SCALARS = (float, int, np.floating, np.integer)
 
 
-def _positive(field: str, value: float) -> float:
-    value = float(value)
-    if not (math.isfinite(value) and value > 0.0):
-        raise ConfigError(field, value, "a finite positive number (SI units)")
-    return value
-
-
-class SFD:
+class SFD(FilmLand):
     """Short-bearing squeeze film damper with the pi, 2 pi (``"none"``) or Guembel film.
 
     Parameters
@@ -84,17 +74,7 @@ class SFD:
 
     def __init__(self, viscosity: float, radius: float, length: float, clearance: float,
                  cavitation: str = "pi", eps_max: float = DEFAULT_EPS_MAX) -> None:
-        self.viscosity = _positive("viscosity", viscosity)
-        self.radius = _positive("radius", radius)
-        self.length = _positive("length", length)
-        self.clearance = _positive("clearance", clearance)
-        if cavitation not in CAVITATION_CODES:
-            raise ConfigError("cavitation", cavitation, "one of 'pi', 'none', 'guembel'")
-        self.cavitation = cavitation
-        eps_max = float(eps_max)
-        if not 0.0 < eps_max < 1.0:
-            raise ConfigError("eps_max", eps_max, "a number with 0 < eps_max < 1")
-        self.eps_max = eps_max
+        super().__init__(viscosity, radius, length, clearance, cavitation, eps_max)
         params = np.empty(N_PARAMS)
         params[P_VISCOSITY] = self.viscosity
         params[P_RADIUS] = self.radius
@@ -104,26 +84,10 @@ class SFD:
         params[P_CODE] = CAVITATION_CODES[cavitation]
         self._params = params
 
-    @classmethod
-    def from_ratios(cls, viscosity: float, clearance: float, clearance_ratio: float,
-                    length_to_diameter: float, cavitation: str = "pi",
-                    eps_max: float = DEFAULT_EPS_MAX) -> SFD:
-        """SFD from ``C``, ``C/R`` and ``L/D`` as the paper gives them:
-        ``R = C / (C/R)``, ``L = (L/D) 2 R`` (``clearance_ratio`` as a fraction, 0.00485)."""
-        clearance = _positive("clearance", clearance)
-        radius = clearance / _positive("clearance_ratio", clearance_ratio)
-        length = _positive("length_to_diameter", length_to_diameter) * 2.0 * radius
-        return cls(viscosity, radius, length, clearance, cavitation, eps_max)
-
     def __repr__(self) -> str:
         return (f"SFD(viscosity={self.viscosity!r}, radius={self.radius!r}, "
                 f"length={self.length!r}, clearance={self.clearance!r}, "
                 f"cavitation={self.cavitation!r}, eps_max={self.eps_max!r})")
-
-    @property
-    def coefficient(self) -> float:
-        """``K = mu R L^3 / C^3`` [N s/m], the scale of every force term."""
-        return self.viscosity * self.radius * self.length**3 / self.clearance**3
 
     @property
     def linear_damping(self) -> float:

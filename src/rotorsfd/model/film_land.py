@@ -1,0 +1,65 @@
+"""The land of a film (a squeeze film damper or a journal bearing): the oil viscosity mu,
+journal radius R, land length L, radial clearance C, the film model and the contact limit
+on the eccentricity ratio, checked once for every film law (the short-bearing
+:class:`~rotorsfd.model.sfd.SFD`, the finite-length
+:class:`~rotorsfd.model.film_finite.FiniteSFD`). No numba here: the laws' kernels live in
+their own modules."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from rotorsfd.errors import ConfigError
+
+__all__ = ["DEFAULT_EPS_MAX", "FILM_MODELS", "FilmLand", "positive"]
+
+#: Default contact limit on the eccentricity ratio: the force grows like (1 - eps)^(-5/2)
+#: and the Jacobian like (1 - eps)^(-7/2); at 0.999 that is a factor ~1e7 above eps = 0.
+DEFAULT_EPS_MAX = 0.999
+#: the film (cavitation) models: half-Sommerfeld pi film, full 2 pi film, Guembel film
+FILM_MODELS = ("pi", "none", "guembel")
+
+
+def positive(field: str, value: float) -> float:
+    """``value`` as a float; ConfigError naming ``field`` unless finite and > 0."""
+    value = float(value)
+    if not (math.isfinite(value) and value > 0.0):
+        raise ConfigError(field, value, "a finite positive number (SI units)")
+    return value
+
+
+class FilmLand:
+    """mu [Pa s], R, L, C [m], the film model (:data:`FILM_MODELS`) and ``0 < eps_max < 1``,
+    validated."""
+
+    def __init__(self, viscosity: float, radius: float, length: float, clearance: float,
+                 cavitation: str = "pi", eps_max: float = DEFAULT_EPS_MAX) -> None:
+        self.viscosity = positive("viscosity", viscosity)
+        self.radius = positive("radius", radius)
+        self.length = positive("length", length)
+        self.clearance = positive("clearance", clearance)
+        if cavitation not in FILM_MODELS:
+            raise ConfigError("cavitation", cavitation, "one of 'pi', 'none', 'guembel'")
+        self.cavitation = cavitation
+        eps_max = float(eps_max)
+        if not 0.0 < eps_max < 1.0:
+            raise ConfigError("eps_max", eps_max, "a number with 0 < eps_max < 1")
+        self.eps_max = eps_max
+
+    @classmethod
+    def from_ratios(cls, viscosity: float, clearance: float, clearance_ratio: float,
+                    length_to_diameter: float, cavitation: str = "pi", **kwargs: Any
+                    ) -> Any:
+        """From ``C``, ``C/R`` and ``L/D`` as the paper gives them: ``R = C / (C/R)``,
+        ``L = (L/D) 2 R`` (``clearance_ratio`` as a fraction, 0.00485); ``kwargs`` go to the
+        law's constructor."""
+        clearance = positive("clearance", clearance)
+        radius = clearance / positive("clearance_ratio", clearance_ratio)
+        length = positive("length_to_diameter", length_to_diameter) * 2.0 * radius
+        return cls(viscosity, radius, length, clearance, cavitation, **kwargs)
+
+    @property
+    def coefficient(self) -> float:
+        """``K = mu R L^3 / C^3`` [N s/m], the scale of every short-bearing force term."""
+        return self.viscosity * self.radius * self.length**3 / self.clearance**3
