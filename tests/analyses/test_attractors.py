@@ -10,6 +10,7 @@ from rotorsfd.analyses.attractors import (
     CensusModel,
     CensusOptions,
     census,
+    settled,
     settled_period,
     unit_samples,
 )
@@ -134,3 +135,42 @@ def test_bad_options_name_the_field():
         CensusOptions(sampling="random").validate()
     with pytest.raises(ConfigError, match="displacement_fraction"):
         CensusOptions(displacement_fraction=1.5).validate()
+
+
+@pytest.mark.slow
+def test_speed_map_one_table_with_a_speed_column(tmp_path):
+    import csv
+
+    from rotorsfd.analyses.attractors import census_map
+    from rotorsfd.analyses.attractors_result import write_census
+
+    opts = CensusOptions(n_starts=24, steps_per_period=64, displacement_fraction=FRACTION,
+                         velocity_fraction=FRACTION, max_periods=400, harmonics=5)
+    maps = census_map([duffing_model(W), duffing_model(1.3)], opts)
+    paths = write_census(maps, tmp_path, ["x(0) / 3", "x'(0) / (3 w)"], "Duffing")
+    rows = list(csv.DictReader(open(paths["attractors"])))
+    per_speed = {}
+    for r in rows:
+        per_speed.setdefault(float(r["speed_rad_s"]), []).append(r)
+    assert sorted(per_speed) == [W, 1.3]
+    assert len(per_speed[W]) == 2                   # inside the fold interval: two orbits
+    (single,) = per_speed[1.3]                      # above it: one
+    assert float(single["basin_fraction"]) == 1.0 and float(single["basin_se"]) == 0.0
+    for group_rows in per_speed.values():
+        assert sum(float(r["basin_fraction"]) for r in group_rows) == pytest.approx(1.0)
+    text = paths["attractors"].read_text() + paths["summary"].read_text()
+    assert "nan" not in text.lower()
+    assert len(list(csv.DictReader(open(paths["starts"])))) == 48
+
+
+def test_flip_transient_into_a_period_1_orbit_is_not_period_2():
+    """Returns r_k (-0.95)^k, r_0 = 1e-2 (a multiplier near -1, close to a period
+    doubling): the 2-period differences |mu^2 - 1| r_k = 0.0975 r_k drop below 1e-4 long
+    before the one-period ones 1.95 r_k; the census must not call that period-2."""
+    k = np.arange(60)
+    P = (1e-2 * (-0.95) ** k)[:, None]
+    opts = CensusOptions(settle_tol=1e-4, n_max=8, check_periods=10)
+    assert settled_period(P, 1e-4, 3, 8) == 2          # the trap
+    assert settled(P, opts) is None
+    true2 = np.tile([[0.3], [-0.2]], (30, 1))
+    assert settled(true2, opts) == 2                   # a true period-2 orbit

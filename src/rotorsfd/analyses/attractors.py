@@ -19,7 +19,10 @@ the smallest ``n <= n_max`` with
 
     max_{k in last repeats * n} |P_{k+n} - P_k|_inf <= settle_tol,
 
-and the run stops there. Not settled after ``max_periods``: ``classify_periods`` more
+and the run stops there, unless the returns of a divisor ``m`` of n still shrink
+(:func:`~rotorsfd.timedomain.poincare.converging_period`: a transient spiralling into a
+period-m orbit whose multiplier's angle is near ``2 pi / n`` passes the period-n test
+first). Not settled after ``max_periods``: ``classify_periods`` more
 periods are recorded and classified as ``rotorsfd simulate`` does
 (:func:`~rotorsfd.analyses.simulate.classify`, spectral and section tests; no Lyapunov
 run). A state outside an element's law is ``contact``. Grouping, HB correction and the
@@ -37,6 +40,7 @@ import numpy as np
 
 from rotorsfd.analyses.td_integration import TimeDomainInputs, integrate_periods
 from rotorsfd.errors import ConfigError, ConvergenceError, ElementDomainError
+from rotorsfd.timedomain.poincare import converging_period
 
 FIELD = "attractors"
 SAMPLINGS = ("lhs", "grid")
@@ -213,6 +217,17 @@ def settled_period(P: np.ndarray, tol: float, repeats: int, n_max: int) -> int |
     return None
 
 
+def settled(P: np.ndarray, options: CensusOptions) -> int | None:
+    """:func:`settled_period` of the returns ``P``, None if a divisor's returns still
+    shrink (a spiral into a period-m orbit, m | n, passes the period-n test first)."""
+    o = options
+    n = settled_period(P, o.settle_tol, o.repeats, o.n_max)
+    if n is not None and n > 1 and converging_period(
+            P[-max(4 * n + 8, 40):], n, rtol=o.settle_tol) is not None:
+        return None
+    return n
+
+
 @dataclass
 class StartOutcome:
     """One start: the class (``period-n``, ``quasi-periodic``, ``chaotic``,
@@ -262,7 +277,7 @@ def run_start(model: CensusModel, index: int, q0: np.ndarray, v0: np.ndarray,
             q, v, t = traj.q_final, traj.v_final, traj.t_final
             done += k
             P = np.concatenate(pts)
-            n = settled_period(P, o.settle_tol, o.repeats, o.n_max)
+            n = settled(P, o)
             if n is not None:
                 sel = traj.t > t - n * T * (1 + 1e-9)
                 return StartOutcome(index, f"period-{n}", n, done, P[-n:], traj.t[sel],
