@@ -38,6 +38,10 @@ def check_attractors(args: argparse.Namespace, config: Any) -> None:
     census_options(args)
 
 
+OPTION_OF = {"n_starts": "--starts", "displacement_fraction": "--fraction",
+             "velocity_fraction": "--fraction"}
+
+
 def census_options(args: argparse.Namespace) -> Any:
     """The CensusOptions of the command line (checked)."""
     from rotorsfd.analyses.attractors import CensusOptions  # deferred: numpy
@@ -50,7 +54,8 @@ def census_options(args: argparse.Namespace) -> Any:
                              max_periods=args.max_periods, seed=args.seed,
                              around=args.around, harmonics=args.harmonics).validate()
     except ConfigError as exc:
-        option = "--" + str(exc.field).split(".")[-1].replace("_", "-")
+        name = str(exc.field).split(".")[-1]
+        option = OPTION_OF.get(name, "--" + name.replace("_", "-"))
         raise ConfigError(option, exc.value, exc.allowed) from None
 
 
