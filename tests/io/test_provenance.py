@@ -156,3 +156,14 @@ def test_chart_nc_variables_have_units_and_long_name(tmp_path):
     assert _missing_cf(tmp_path / "chart.nc") == []
     with xr.open_dataset(tmp_path / "chart.nc") as ds:
         assert ds.attrs["rotorsfd_version"] == __version__ and "git_revision" in ds.attrs
+
+
+def test_sweep_nc_carries_version_revision_and_command_line(tmp_path):
+    from rotorsfd.studies import SyntheticTask, run_sweep
+
+    config = api.load_config(small_rotor_toml(tmp_path / "rotor.toml"))
+    run_sweep(config, {"elements.sfd.clearance_ratio": ["0.4 %", "0.5 %"]}, SyntheticTask(),
+              directory=tmp_path / "sweep", workers=1, progress=False)
+    with xr.open_dataset(tmp_path / "sweep" / "sweep.nc") as ds:
+        assert {k: ds.attrs[k] for k in ("rotorsfd_version", "git_revision",
+                                         "command_line")} == provenance.netcdf_attrs()

@@ -162,8 +162,11 @@ class SweepResult:
 
     def write(self, directory: str | Path) -> dict[str, Path]:
         """Write ``sweep.nc``, ``summary.csv`` and ``sweep.json`` atomically."""
+        from rotorsfd.io.provenance import netcdf_attrs
+
         out = Path(directory)
         ds = self.to_dataset()
+        ds.attrs.update(netcdf_attrs())   # version, git revision, command line
         header, rows = self.table()
         return {"sweep.nc": atomic.write_netcdf(ds, out / "sweep.nc",
                                                 encoding=netcdf_encoding(ds)),
