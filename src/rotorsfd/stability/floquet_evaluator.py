@@ -36,6 +36,10 @@ from rotorsfd.stability.reduction import FixedInterfaceBasis, ReducedModel
 #: U = 360.04 g mm case, |mu| - 1 <= 3.4e-4, from Omega~ 1.2881 to 1.2885.)
 HALVE_FRACTION = 1 / 16
 
+#: Large (sparse) models: the modes above the cut-off are the Ritz values of the averaged
+#: model on the Craig-Bampton basis extended to this multiple of the cut-off.
+OUTSIDE_FACTOR = 2.0
+
 #: Multipliers compared by the step control: the largest ones (the critical multipliers
 #: of every crossing type lie among them wherever a bifurcation is near).
 N_COMPARED = 4
@@ -124,13 +128,23 @@ class FloquetEvaluator:
         model (:mod:`rotorsfd.stability.outside`; ``Jq, Jv`` the Jacobian samples of one
         period, ``t = T`` included unless ``endpoint=False``): ``max_multiplier_outside`` (largest
         ``|exp(lambda_j T)|``, 0 if none is found), ``n_modes`` (fixed-interface modes
-        kept) and ``omega_cut`` (the cut-off [rad/s])."""
+        kept) and ``omega_cut`` (the cut-off [rad/s]). Dense basis: every mode of the
+        averaged model; sparse: its Ritz values on the Craig-Bampton basis extended to
+        :data:`OUTSIDE_FACTOR` x the cut-off (the constraint modes carry the elements'
+        coupling; fixed-interface modes found by the same Lanczos run), modes in
+        ``(omega_cut, ~OUTSIDE_FACTOR omega_cut)``."""
         M, D, K = self._lin
         Jq, Jv = np.asarray(Jq), np.asarray(Jv)
         if endpoint:      # t = 0 and t = T: one sample of the period
             Jq, Jv = Jq[:-1], Jv[:-1]
-        lam = averaged_eigenvalues(M, D, K, self.nl, Jq.mean(axis=0), Jv.mean(axis=0),
-                                   omega_max=self._cut)
+        Jq, Jv = Jq.mean(axis=0), Jv.mean(axis=0)
+        if self._basis.sparse:   # Ritz: the basis extended to OUTSIDE_FACTOR x the cut-off
+            ext = self._basis.reduce(D, None, OUTSIDE_FACTOR * self._cut)
+            M, D, K = ext.M, ext.D, ext.K
+            nl = ext.nl_dofs
+        else:
+            nl = self.nl
+        lam = averaged_eigenvalues(M, D, K, nl, Jq, Jv, omega_max=self._cut)
         return {"max_multiplier_outside": largest_modulus(exact_multipliers(lam, period)),
                 "n_modes": int(red.omegas.size), "omega_cut": float(self._cut)}
 
