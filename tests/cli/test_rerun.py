@@ -66,3 +66,24 @@ def test_response_rerun_gives_identical_files(tmp_path, monkeypatch):
 def test_rerun_is_a_registered_command(argv, capsys):
     assert cli.main(argv) == 0
     assert "run.json" in capsys.readouterr().out
+
+
+@pytest.mark.slow
+def test_simulate_rerun_keeps_the_analysis_options(tmp_path):
+    """--speed-ratio, --record-periods and --lyapunov-periods are parsed again from the
+    saved argv: timeseries.nc's variables and poincare.csv (no time stamp) come out the
+    same."""
+    config = small_rotor_toml(tmp_path / "small.toml")
+    argv = ["simulate", str(config), "--set", "analysis.simulate.periods=20",
+            "--set", "analysis.simulate.poincare_periods=5",
+            "--set", "analysis.simulate.steps_per_period=64", "--speed-ratio", "0.9",
+            "--record-periods", "4", "--lyapunov-periods", "0", "-o", str(tmp_path / "a"),
+            "-q"]
+    assert cli.main(argv) == 0
+    assert cli.main(["rerun", str(tmp_path / "a"), "-o", str(tmp_path / "b"), "-q"]) == 0
+    a, b = tmp_path / "a", tmp_path / "b"
+    assert (a / "poincare.csv").read_bytes() == (b / "poincare.csv").read_bytes()
+    with xr.open_dataset(a / "timeseries.nc") as x, xr.open_dataset(b / "timeseries.nc") as y:
+        assert x.sizes["time"] == y.sizes["time"] and x.attrs["speed_ratio"] == 0.9
+        for name in (*x.data_vars, *x.coords):
+            xr.testing.assert_identical(x[name], y[name])
