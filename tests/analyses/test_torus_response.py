@@ -57,6 +57,7 @@ def test_torus_response_end_to_end(tmp_path, capsys):
     assert ds.attrs["H1"] == 2 and ds.attrs["H2"] == 2
     assert "rotorsfd_version" in ds.attrs and "harmonic" in ds.attrs["config_toml"]
     assert ds["k1"].attrs["long_name"] and ds["speed_rad_s"].attrs["units"] == "rad/s"
+    assert all("units" in ds[v].attrs and "long_name" in ds[v].attrs for v in ds.variables)
     grid = tuple(int(g) for g in ds.attrs["grid"])
     X_file = torus_coefficients(ds)[-1]
     k1, k2 = ds["k1"].values, ds["k2"].values

@@ -201,14 +201,14 @@ class TorusResponseResult:
 
     # ---- files ----------------------------------------------------------------------------
     def to_dataset(self) -> xr.Dataset:
-        from rotorsfd import __version__
+        from rotorsfd.io.provenance import netcdf_attrs
         from rotorsfd.io.torus_files import torus_dataset
 
         attrs = {"run_title": self.title, "clearance_m": self.clearance,
                  "elements": "; ".join(e.describe() for e in self.system.elements),
                  "output_nodes": np.asarray(self.nodes, dtype=np.int32),
                  "output_directions": " ".join(self.directions),
-                 "rotorsfd_version": __version__, "elapsed_s": float(self.elapsed),
+                 **netcdf_attrs(), "elapsed_s": float(self.elapsed),
                  "ended": self.ended, "outcome": self.message}
         if "config_toml" in self.info:
             attrs["config_toml"] = self.info["config_toml"]

@@ -31,6 +31,11 @@ from numpy.typing import NDArray
 from rotorsfd.io import atomic
 from rotorsfd.io.branch_files import check_finite, dof_labels
 
+#: long names of the index-like variables (the others carry their own)
+FALLBACK_NAMES = {"point": "continuation point", "dof": "global degree of freedom",
+                  "node": "node (from 1)", "direction": "DOF direction (y, z, ty, tz)",
+                  "lyapunov": "point with a Lyapunov exponent"}
+
 
 def torus_dataset(branch: Any, *, reference_speed: float,
                   deflection: Mapping[int, NDArray[np.float64]],
@@ -96,6 +101,11 @@ def torus_dataset(branch: Any, *, reference_speed: float,
                                                np.int8),
                           {"long_name": "1 stable (exponent + uncertainty < 0), 0 unstable"})
     ds = xr.Dataset(data, coords=coords)
+    for name, text in FALLBACK_NAMES.items():     # units and long_name on every variable
+        if name in ds.variables:
+            ds[name].attrs.setdefault("long_name", text)
+    for name in ds.variables:
+        ds[name].attrs.setdefault("units", "1")
     ds.attrs.update({
         "title": "rotorsfd quasi-periodic response branch (torus)",
         "convention": "q(t) = Re(sum_k (X_real + i X_imag)_k exp(i (k1 Omega + k2 w_b) t)) "
