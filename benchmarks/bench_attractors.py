@@ -37,7 +37,9 @@ def census_row(n_starts: int, steps: int, workers: int = 2) -> Row:
     wall = time.perf_counter() - tic
     periods = sum(r.periods_run for r in c.outcomes)
     fixed = c.elapsed_integration * FIXED_PERIODS * c.n_starts / max(periods, 1)
-    kinds = ", ".join(f"{a.motion} {len(a.members)}" for a in c.attractors)
+    kinds = ", ".join(f"{a.motion} {len(a.members)}"
+                      + (" at ({:.3f}, {:.3f}) C".format(*a.points[0][:2])
+                         if a.period is not None else "") for a in c.attractors)
     return Row("attractors", f"{n_starts} starts, Omega~ 1.075, T/{steps}, {workers} workers",
                "stopped once settled", wall, ratio=fixed / c.elapsed_integration,
                ref=f"{FIXED_PERIODS} periods each (estimated)",
