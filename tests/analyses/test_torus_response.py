@@ -110,3 +110,35 @@ def test_torus_response_lyapunov_column(tmp_path):
     ly = torus_lyapunov(result.system, b.lattice, b.X[0], b.omega[0], b.wb[0])
     assert float(rows[0]["lyapunov_per_period"]) == pytest.approx(ly.per_period, abs=1e-9)
     assert ly.per_period < 0
+
+
+def test_torus_file_round_trip_and_no_nan(tmp_path):
+    """torus.nc keeps the coefficients (k1, k2 axes in lattice order) exactly, and a NaN
+    is refused (never written)."""
+    from types import SimpleNamespace
+
+    from rotorsfd.io.torus_files import torus_dataset, write_torus_netcdf
+    from rotorsfd.quasiperiodic import TorusLattice
+
+    lat = TorusLattice(2, 1)
+    rng = np.random.default_rng(1)
+    X = rng.normal(size=(3, lat.nk, 8)) + 1j * rng.normal(size=(3, lat.nk, 8))
+    branch = SimpleNamespace(lattice=lat, X=X, omega=np.array([500.0, 510.0, 520.0]),
+                             wb=np.full(3, 120.0), iterations=np.array([3, 2, 2]),
+                             aliasing=np.zeros(3), limit=np.full(3, 0.2), s=np.arange(3.0),
+                             grid=(16, 8), success=True, message="ok")
+    ds = torus_dataset(branch, reference_speed=800.0, deflection={1: np.ones(3)})
+    path = write_torus_netcdf(ds, tmp_path / "torus.nc")
+    import xarray as xr
+
+    with xr.open_dataset(path) as back:
+        assert np.array_equal(torus_coefficients(back), X)
+        assert [tuple(k) for k in zip(back["k1"].values, back["k2"].values,
+                                      strict=True)] == [tuple(k) for k in lat.k]
+        assert back["speed_ratio"].values[1] == pytest.approx(510.0 / 800.0, rel=1e-15)
+    branch.X = X.copy()
+    branch.X[0, 0, 0] = np.nan
+    with pytest.raises(ValueError, match="X_real"):
+        write_torus_netcdf(torus_dataset(branch, reference_speed=800.0, deflection={}),
+                           tmp_path / "bad.nc")
+    assert not (tmp_path / "bad.nc").exists()
