@@ -30,12 +30,21 @@ from rotorsfd.interrupt import Interrupted, StopRequest
                         help="start the branch on the last period of a time-domain orbit "
                              "(rotorsfd simulate output), Newton-corrected at its speed, "
                              "and continue it both ways over the speed range, stopping "
-                             "when it closes on itself (an isola)")],
+                             "when it closes on itself (an isola)"),
+                    arg("--stability-basis", choices=("reduced", "full"), default=None,
+                        help="Floquet basis ([analysis.stability].basis): full = the "
+                             "unreduced monodromy of the whole model, to check "
+                             "max_multiplier against max_multiplier_outside (slow on "
+                             "large models)")],
          check=lambda args, config: options.check_exists("--from-orbit", args.from_orbit))
 def response(args: argparse.Namespace, config: Any) -> int:
     """Continue the branch and write it; exit 1 (after writing) if it stopped early."""
     from rotorsfd import api  # deferred: numpy, scipy, numba (keeps --help fast)
 
+    if args.stability_basis is not None:
+        from rotorsfd.io.config import with_values
+
+        config = with_values(config, {"analysis.stability.basis": args.stability_basis})
     with StopRequest("the current point") as stop:
         result = api.run_response(config, search_path=Path(args.config).parent,
                                   progress=not args.quiet, from_orbit=args.from_orbit,
