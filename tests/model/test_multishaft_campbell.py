@@ -68,3 +68,23 @@ def test_either_spool_gives_the_same_criticals() -> None:
     np.testing.assert_allclose(on_hp, R * on_lp, rtol=1e-8)
     with pytest.raises(ConfigError, match="must name a shaft"):
         SpoolSpeed(ms, "ip")
+
+
+def test_campbell_against_the_hp_speed_is_each_shafts_own() -> None:
+    """The Campbell diagram of the view: at every HP speed the frequencies are the HP
+    shaft's at that speed and the LP shaft's at HP speed / R."""
+    from rotorsfd.linear.campbell import campbell
+
+    lp, hp = _parts()
+    ms = MultiShaftRotor([Shaft("lp", **lp), Shaft("hp", speed_ratio=R, **hp)])
+    speeds = np.array([0.0, 900.0, 2400.0])
+    res = campbell(SpoolSpeed(ms, "hp"), speeds, n_modes=6)
+    for k, s in enumerate(speeds):
+        own = np.concatenate([np.asarray(campbell(_alone(hp, 7), [s], n_modes=6)
+                                         .eigenvalues)[0],
+                              np.asarray(campbell(_alone(lp, 0), [s / R], n_modes=6)
+                                         .eigenvalues)[0]])
+        lam = np.asarray(res.eigenvalues)[k]
+        for x in lam:
+            assert np.min(np.abs(own - x)) < 1e-9 * abs(x)
+    assert res.frequencies[2].max() > res.frequencies[0].max()   # forward branches stiffen
