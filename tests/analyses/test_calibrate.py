@@ -233,3 +233,15 @@ def test_unbalance_recovered_from_fold_speed_and_peak():
                                        "central finite differences"]
     assert result.values[0] == pytest.approx(144.02e-6, rel=1e-6)
     assert result.jacobian[1, 0] > 0      # more unbalance, larger peak
+
+
+def test_calibrated_paper_example_meets_the_critical_speeds():
+    """examples/paper_rotor_calibrated.toml: the literal rotor plus the fitted modal
+    damping; its re-fitted stiffnesses give the paper's 811.3 / 2784.6 rad/s (1e-9)."""
+    config = api.load_config("examples/paper_rotor_calibrated.toml")
+    assert config.rotor.damping.kind == "modal"
+    assert config.rotor.damping.ratio == pytest.approx(0.0021972548, rel=1e-7)
+    assert config.unbalance[0].magnitude == pytest.approx(360.04e-6)   # extends the rotor
+    speeds = [c.speed_rad_s for c in critical_speeds(
+        linear_system(config), n=2, speed_range=(0.0, 4000.0), xtol=1e-12)]
+    np.testing.assert_allclose(speeds, [811.3, 2784.6], rtol=1e-9)
