@@ -9,13 +9,15 @@ matrix from the CSR M, D, K, one ``splu`` per harmonic and lam, the m + 1 right-
 and the m + 1 derivative right-hand sides solved with it (:func:`splu_condense`, swapped in
 for ``CondensedHB.condense`` by :func:`splu_baseline`).
 
-Stability: the Floquet multipliers of every branch point by the reduced Newmark monodromy
-(M = 400 intervals, Craig-Bampton onto the SFD DOFs with the fixed-interface modes up to
-``M / (4 T)``: the defaults of ``[analysis.stability]`` without the step control), the
-basis by :class:`rotorsfd.stability.reduction.FixedInterfaceBasis` on the CSR matrices
-(sparse LU + shift-invert Lanczos; the dense basis of ``FloquetEvaluator`` does a dense
-``eigh`` of the whole interior, minutes at 1280 elements). At the smallest size the
-multipliers are checked against ``FloquetEvaluator`` (dense basis).
+Stability: the Floquet multipliers of every branch point by ``FloquetEvaluator`` (the
+response analysis' path): the reduced Newmark monodromy (M = 400 intervals, Craig-Bampton
+onto the SFD DOFs with the fixed-interface modes up to ``M / (4 T)``: the defaults of
+``[analysis.stability]`` without the step control), the basis by
+:class:`rotorsfd.stability.reduction.FixedInterfaceBasis` on the CSR matrices above
+``DENSE_MAX_DOF`` (sparse LU + shift-invert Lanczos; before, a dense ``eigh`` of the whole
+interior, minutes at 1280 elements), and the modes above the cut-off
+(``max_multiplier_outside``, shift-invert Arnoldi). At the smallest size the multipliers
+are checked against the dense basis.
 
 Peak memory: the peak resident set of a fresh process (``python -m benchmarks.scale_hb
 --memory N WORKLOAD``) that builds the model and runs the workload.
@@ -134,37 +136,31 @@ def branch(problem: Any, w1: float, opts: dict[str, Any]) -> Any:
 
 
 def stability(problem: Any, br: Any) -> np.ndarray:
-    """Largest multiplier modulus of every branch point (module docstring)."""
+    """Largest multiplier modulus of every branch point by ``FloquetEvaluator`` (module
+    docstring: on a banded model above ``DENSE_MAX_DOF`` it builds the sparse basis)."""
+    from rotorsfd.stability.branch_options import StabilityOptions
+    from rotorsfd.stability.floquet_evaluator import FloquetEvaluator
+
+    ev = FloquetEvaluator(problem, StabilityOptions(n_intervals=N_INTERVALS))
+    return np.array([ev(float(br.lam[j]), br.X[j]).max_abs for j in range(br.n_points)])
+
+
+def stability_check(problem: Any, br: Any, mu: np.ndarray, j: int) -> float:
+    """|max |mu| - the dense basis' (``FixedInterfaceBasis`` on dense M, K: every mode by
+    LAPACK)| at point j, the same M and cut-off."""
     from rotorsfd.stability.monodromy import floquet_multipliers
     from rotorsfd.stability.orbit import orbit_samples
     from rotorsfd.stability.reduction import FixedInterfaceBasis
 
     part, nl = problem.matrices, problem.nl_dofs
-    M, _, K = part.sparse(float(br.lam[0]))
-    basis = FixedInterfaceBasis(M, K, nl)
-    out = np.empty(br.n_points)
-    for j in range(br.n_points):
-        lam = float(br.lam[j])
-        w = float(problem.frequency(lam))
-        T = 2 * np.pi / w
-        red = basis.reduce(part.sparse(lam)[1], None, 0.25 * N_INTERVALS / T)
-        Jq, Jv = problem.nl_jacobian(*orbit_samples(br.X[j][:, nl], w, N_INTERVALS))
-        res = floquet_multipliers(red.M, red.D, red.K, T, nl_dofs=red.nl_dofs, dFdq=Jq,
-                                  dFdv=Jv, n_intervals=N_INTERVALS, reduction=None)
-        out[j] = float(np.max(np.abs(res.multipliers)))
-    return out
-
-
-def stability_check(problem: Any, br: Any, mu: np.ndarray, j: int) -> float:
-    """|max |mu| - FloquetEvaluator's (dense basis, fixed M)| at point j."""
-    try:
-        from rotorsfd.stability.branch_options import StabilityOptions
-        from rotorsfd.stability.floquet_evaluator import FloquetEvaluator
-    except ImportError:      # before the split of stability/branch_stability.py
-        from rotorsfd.stability.branch_stability import FloquetEvaluator, StabilityOptions
-
-    ev = FloquetEvaluator(problem, StabilityOptions(n_intervals=N_INTERVALS))
-    res = ev(float(br.lam[j]), br.X[j])
+    lam = float(br.lam[j])
+    M, D, K = part(lam)
+    w = float(problem.frequency(lam))
+    T = 2 * np.pi / w
+    red = FixedInterfaceBasis(M, K, nl).reduce(D, None, 0.25 * N_INTERVALS / T)
+    Jq, Jv = problem.nl_jacobian(*orbit_samples(br.X[j][:, nl], w, N_INTERVALS))
+    res = floquet_multipliers(red.M, red.D, red.K, T, nl_dofs=red.nl_dofs, dFdq=Jq,
+                              dFdv=Jv, n_intervals=N_INTERVALS, reduction=None)
     return abs(float(np.max(np.abs(res.multipliers))) - mu[j])
 
 
