@@ -6,7 +6,12 @@ by :mod:`rotorsfd.stability` (default ``'newmark-cb'``: Newmark, N = 400, on a
 Craig-Bampton model that keeps the nonlinear DOFs and the fixed-interface modes with
 ``omega h <= 1/4``). The reduction basis depends on M and K only, so it is computed once
 per branch and again only when K (or M) changes along it (base-rate continuation); D
-(gyroscopic, base Coriolis) is projected at every point, ``D_r = Psi^T D Psi``.
+(gyroscopic, base Coriolis) is projected at every point, ``D_r = Psi^T D Psi``. The basis
+is :class:`~rotorsfd.stability.reduction.FixedInterfaceBasis`: on the CSR matrices
+(``problem.matrices.sparse``) for a banded model above ``DENSE_MAX_DOF``, else on the
+dense ones (every mode by LAPACK). Each result's ``info`` carries ``n_modes``,
+``omega_cut`` and ``max_multiplier_outside``, the modes above the cut-off
+(:mod:`rotorsfd.stability.outside`).
 
 Step control (``StabilityOptions.interval_tol``): the monodromy at M and M/2 intervals,
 the error of the M result ``|mu(M) - mu(M/2)| / 3`` (second-order scheme), M doubled
