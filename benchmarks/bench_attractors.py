@@ -23,7 +23,8 @@ FIXED_PERIODS = 2000
 
 
 def census_row(n_starts: int, steps: int, workers: int = 2) -> Row:
-    from rotorsfd.analyses.attractors import CensusOptions, run_census
+    from rotorsfd.analyses.attractors import CensusOptions
+    from rotorsfd.analyses.attractors_config import run_census
     from rotorsfd.io.config import load_config
     from rotorsfd.studies.executors import make_executor
 

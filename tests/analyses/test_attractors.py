@@ -174,3 +174,5 @@ def test_flip_transient_into_a_period_1_orbit_is_not_period_2():
     assert settled(P, opts) is None
     true2 = np.tile([[0.3], [-0.2]], (30, 1))
     assert settled(true2, opts) == 2                   # a true period-2 orbit
+    near = np.tile([[0.3], [0.3 + 1e-3]], (30, 1))     # 2 points within cluster_tol
+    assert settled_period(near, 1e-4, 3, 8) == 2 and settled(near, opts) is None

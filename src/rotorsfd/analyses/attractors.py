@@ -119,20 +119,6 @@ class CensusModel:
         return np.asarray(self.inputs.nl_dofs, dtype=np.int64)
 
 
-def census_model(system: Any, speed: float, *, reduction: str = "auto",
-                 cutoff: float = 40.0, reference_speed: float | None = None) -> CensusModel:
-    """:class:`CensusModel` of a :class:`~rotorsfd.model.system.RotorSystem` at ``speed``
-    [rad/s] (the reduced step of ``reduction``, as ``simulate``)."""
-    from rotorsfd.analyses.td_integration import time_domain_inputs, with_reduction
-
-    if not len(system.elements):
-        raise ConfigError("elements", 0, "an attractor census needs a nonlinear element")
-    inputs = with_reduction(time_domain_inputs(system, speed), reduction, cutoff)
-    problem = system.periodic_problem() if system.base.is_constant else None
-    scale = np.asarray(system.periodic_problem().dof_scale, float)[inputs.nl_dofs]
-    return CensusModel(inputs, scale, problem, reference_speed)
-
-
 def unit_samples(n: int, dim: int, sampling: str = "lhs", seed: int = 0) -> np.ndarray:
     """``(n', dim)`` points of the unit cube: a Latin hypercube of n points, or the grid
     of ``ceil(n^(1/dim))`` cell centres per coordinate (``n'`` may exceed n)."""
@@ -219,13 +205,17 @@ def settled_period(P: np.ndarray, tol: float, repeats: int, n_max: int) -> int |
 
 def settled(P: np.ndarray, options: CensusOptions) -> int | None:
     """:func:`settled_period` of the returns ``P``, None if a divisor's returns still
-    shrink (a spiral into a period-m orbit, m | n, passes the period-n test first)."""
+    shrink (a spiral into a period-m orbit, m | n, passes the period-n test first) or if
+    the n points lie within ``cluster_tol`` of each other (a period-1 orbit, unsettled)."""
     o = options
     n = settled_period(P, o.settle_tol, o.repeats, o.n_max)
-    if n is not None and n > 1 and converging_period(
-            P[-max(4 * n + 8, 40):], n, rtol=o.settle_tol) is not None:
+    if n is None or n == 1:
+        return n
+    if converging_period(P[-max(4 * n + 8, 40):], n, rtol=o.settle_tol) is not None:
         return None
-    return n
+    if float(np.max(np.ptp(P[-n:], axis=0))) <= o.cluster_tol:
+        return None      # n points within the grouping tolerance: a period-1 orbit not yet
+    return n             # settled (a slow spiral), not a period-n one
 
 
 @dataclass
@@ -389,37 +379,3 @@ def census_map(models: Sequence[CensusModel], options: CensusOptions | None = No
     """:func:`census` at each model's speed (a map of coexisting solutions)."""
     return [census(m, options, executor=executor, progress=progress) for m in models]
 
-
-def with_options(options: CensusOptions, **changes: Any) -> CensusOptions:
-    """``options`` with the non-None ``changes``."""
-    return replace(options, **{k: v for k, v in changes.items() if v is not None})
-
-
-def run_census(config: Any, speeds: Sequence[float] | None = None, *,
-               speed_ratios: Sequence[float] | None = None, search_path: Any = None,
-               options: CensusOptions | None = None, executor: Any = None,
-               progress: Any = None) -> list[Any]:
-    """Censuses of a Config at ``speeds`` [rad/s] or ``speed_ratios`` (of the
-    reference speed); the step: ``options.steps_per_period``, default the integer
-    ``[analysis.simulate] steps_per_period`` (400 with ``"auto"``: each attractor's
-    ``step_check`` then says what halving it moves); H: ``[analysis.response]``."""
-    from rotorsfd.analyses.modal import reference_speed
-    from rotorsfd.analyses.simulate import system_from_config
-
-    system = system_from_config(config, search_path)
-    ref = reference_speed(config, system)
-    sim = config.analysis.simulate
-    if speeds is None:
-        if speed_ratios is None:
-            speeds = [sim.fixed_speed(ref)]
-        else:
-            speeds = [r * ref for r in speed_ratios]
-    o = options or CensusOptions()
-    spp, H = sim.steps_per_period, config.analysis.response.harmonics
-    o = replace(o, steps_per_period=o.steps_per_period or (
-        spp if isinstance(spp, int) else DEFAULT_STEPS),
-        harmonics=o.harmonics or (H if isinstance(H, int) else DEFAULT_HARMONICS))
-    models = [census_model(system, float(s), reduction=sim.reduction,
-                           cutoff=sim.reduction_cutoff, reference_speed=ref)
-              for s in speeds]
-    return census_map(models, o, executor=executor, progress=progress)

@@ -102,7 +102,7 @@ def census_options(args: argparse.Namespace) -> Any:
 def attractors(args: argparse.Namespace, config: Any) -> int:
     """Run the census, write and print it."""
     # deferred: numpy, scipy, numba (keeps --help fast)
-    from rotorsfd.analyses.attractors import run_census
+    from rotorsfd.analyses.attractors_config import run_census
     from rotorsfd.analyses.attractors_result import write_census
     from rotorsfd.studies.executors import make_executor
 
