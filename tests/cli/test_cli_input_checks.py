@@ -25,7 +25,9 @@ FOLDS = ROOT / "examples" / "paper" / "fig19_unstable_range.toml"
 #: the arguments each command needs besides CONFIG and -o
 EXTRA = {"fold-curve": ["--from", "0 rad/s", "--to", "6 rad/s"],
          "simulate": ["--speed-ratio", "1.0"],
-         "fit-supports": ["--field", "elements.sfd.centring_stiffness", "--target", "811.3"]}
+         "fit-supports": ["--field", "elements.sfd.centring_stiffness", "--target", "811.3"],
+         "calibrate": ["--fit", "elements.sfd.centring_stiffness",
+                       "--target", "critical_speed[1]=811.3"]}
 OUTPUT_COMMANDS = [*sorted(n for n, c in cli.COMMANDS.items() if c.output), "fit-supports"]
 
 

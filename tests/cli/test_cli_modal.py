@@ -9,7 +9,7 @@ from pathlib import Path
 PAPER = Path(__file__).parents[2] / "examples" / "paper_rotor.toml"
 
 
-def test_modal_writes_three_files(tmp_path):
+def test_modal_writes_its_three_files_and_run_json(tmp_path):
     out = tmp_path / "modal"
     proc = subprocess.run(
         [sys.executable, "-m", "rotorsfd", "modal", str(PAPER), "-o", str(out),
@@ -19,7 +19,8 @@ def test_modal_writes_three_files(tmp_path):
     assert proc.returncode == 0, proc.stderr
     assert "critical speed 1 (forward)" in proc.stdout
     assert sorted(p.name for p in out.iterdir()) == [
-        "campbell.csv", "campbell.png", "critical_speeds.csv"]       # no temporary files left
+        "campbell.csv", "campbell.png", "critical_speeds.csv",
+        "run.json"]                                  # provenance; no temporary files left
 
     with (out / "critical_speeds.csv").open() as fh:
         rows = list(csv.reader(fh))

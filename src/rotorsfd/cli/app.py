@@ -117,11 +117,17 @@ def run_marked(spec: Command, args: argparse.Namespace, config: Any) -> int:
     from rotorsfd.io.marker import MARKER, IncompleteMarker
 
     marker = IncompleteMarker.start(args.output, spec.name)
+
+    def record() -> None:   # only beside results: a folder left empty is removed
+        folder = Path(args.output)
+        if folder.is_dir() and any(f.name != MARKER for f in folder.iterdir()):
+            write_run_file(args, config)
+
     try:
         status = int(spec.handler(args, config) or 0)
-        write_run_file(args, config)
+        record()
     except Interrupted as exc:
-        write_run_file(args, config)
+        record()
         marker.interrupted(exc.kept)
         exc.kept += f"; {args.output / MARKER} marks the folder incomplete"
         raise
