@@ -145,9 +145,11 @@ def test_config_check_and_schema(capsys):
     assert "rotor" in schema["properties"]
 
 
-def test_registry_adds_commands(monkeypatch, capsys):
+def test_registry_adds_commands(monkeypatch, capsys, tmp_path):
     """A new command slots in through the registry, with CONFIG, --set, -o and --quiet."""
     from rotorsfd.cli import registry
+
+    monkeypatch.chdir(tmp_path)   # "-o x" is relative: keep it out of the checkout
 
     monkeypatch.setattr(registry, "COMMANDS", dict(registry.COMMANDS))
     seen = {}
