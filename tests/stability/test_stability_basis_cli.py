@@ -14,7 +14,7 @@ from rotorsfd.cli import main
 from rotorsfd.io.branch_files import read_branch
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from rotors import small_rotor_toml  # noqa: E402
+from rotors import small_rotor_toml
 
 pytestmark = pytest.mark.slow   # two branches with stability, ~20 s
 
