@@ -218,7 +218,9 @@ def run_fold_curve(config: Any, parameter: str, start: Any, stop: Any, **kwargs:
 def run_paper(output: Any, figures: Sequence[str] | None = None, **kwargs: Any) -> Any:
     """Reproduce the paper's case studies and write the comparison report: see
     :func:`rotorsfd.paper.run.run_paper`."""
+    from rotorsfd.paper.cases import select
     from rotorsfd.paper.run import run_paper as _run
 
+    select(list(figures or []), bool(kwargs.get("quick")))   # unknown figures: before work
     announce_compilation("response" if kwargs.get("quick") else "paper", kwargs)
     return _run(output, figures, **kwargs)

@@ -30,7 +30,7 @@ def test_response_command_end_to_end(tmp_path):
     assert sorted(p.name for p in out.iterdir()) == [
         "bifurcations.csv", "branch.csv", "branch.nc", "multipliers.png",
         "response_deflection.png", "response_node1.png",
-        "response_node3.png"]  # stability on by default
+        "response_node3.png", "run.json"]  # stability on by default; provenance
     with (out / "branch.csv").open() as fh:
         rows = list(csv.DictReader(fh))
     assert float(rows[-1]["speed_ratio"]) == pytest.approx(1.2, rel=1e-12)

@@ -73,7 +73,7 @@ def test_cli_writes_files_with_progress(tmp_path, capsys):
     captured = capsys.readouterr()
     assert "stability chart" in captured.err            # the progress bar
     assert "unstable" in captured.out and "chart.nc" in captured.out
-    assert sorted(p.name for p in out.iterdir()) == ["chart.nc", "chart.png"]
+    assert sorted(p.name for p in out.iterdir()) == ["chart.nc", "chart.png", "run.json"]
     assert (out / "chart.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 

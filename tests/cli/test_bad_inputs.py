@@ -232,9 +232,9 @@ CASES = [
          replace=('law = "constant"', 'law = "sine"')),
     case("harmonic-law-no-frequency", CHECK, "base.pitching", "harmonic",
          replace=('law = "constant", value = "2 rad/s"', 'law = "harmonic", value = "2 rad/s"')),
-    case("harmonic-base-in-response", RESPONSE, "base.pitching.law", "harmonic",
-         replace=('law = "constant", value = "2 rad/s"', 'law = "harmonic", value = "2 rad/s", '
-                  'amplitude = "1 rad/s", frequency = "10 rad/s"')),
+    case("callable-base-in-response", RESPONSE, "base.pitching.law", "callable",
+         replace=('law = "constant", value = "2 rad/s"',
+                  'law = "callable", callable = "numpy:sin"')),
     case("speed-range-empty", RESPONSE, "analysis.response.speed_range", "1000 rpm",
          replace=('start = "1000 rpm", stop = "8000 rpm"',
                   'start = "1000 rpm", stop = "1000 rpm"')),
@@ -343,6 +343,10 @@ def no_work(monkeypatch: pytest.MonkeyPatch) -> None:
 
     def reached(*args, **kwargs):
         raise Reached("a solver was reached")
+
+    # a first run on a cold numba cache says it compiles before the analysis' own checks
+    # (a late config error then follows that progress line): not what these cases test
+    monkeypatch.setattr("rotorsfd.api.announce_compilation", lambda *a, **k: None)
 
     for module, name in SOLVERS:
         try:

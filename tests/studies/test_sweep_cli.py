@@ -26,8 +26,21 @@ def _cli(*args: str) -> list[str]:
     return [sys.executable, "-m", "rotorsfd", "sweep", *args]
 
 
-def _bytes(directory: Path) -> dict[str, bytes]:
-    return {f: (directory / f).read_bytes() for f in FILES}
+#: attributes that say how a run was invoked (provenance): a resumed sweep's differ
+INVOCATION = ("command_line",)
+
+
+def _bytes(directory: Path) -> dict[str, object]:
+    """The result files byte for byte; sweep.nc as its data and attributes without the
+    invocation's (the command line of a resumed or dask run is another one)."""
+    out: dict[str, object] = {f: (directory / f).read_bytes() for f in FILES
+                              if f != "sweep.nc"}
+    with xr.open_dataset(directory / "sweep.nc") as ds:
+        d = ds.load().to_dict()
+    for name in INVOCATION:
+        d["attrs"].pop(name, None)
+    out["sweep.nc"] = repr(d)
+    return out
 
 
 def _env() -> dict[str, str]:
