@@ -326,11 +326,11 @@ class RotorSystem:
         if par.kind == "element":   # the element's law at each lam, with dF/dlam
             el = el.at_speed(float(speed))
             self._check_element_parameter(par)
-            nl_at = functools.partial(_law_at_element_value, el, par)
+            nl_at = functools.partial(_law_at, el, par.field, par.element)
         elif par.kind != "speed":
             el = el.at_speed(float(speed))
         elif el.depends_on("speed"):   # a law of the speed itself: the law at each lam
-            nl_at = functools.partial(_law_at_speed, el)
+            nl_at = functools.partial(_law_at, el, "speed", None)
             el = el.at_speed(float("nan"))   # the fixed fields must not be used
         return PeriodicProblem(
             n_dof=self.n_dof, nl_dofs=self.nl_dofs, matrices=matrices, dmatrices=dmatrices,
@@ -427,19 +427,13 @@ class RotorSystem:
         return TwoParameterProblem(first, across, ("speed", second))
 
 
-def _law_at_speed(elements: ElementSet, speed: float) -> NonlinearLaw:
-    """The elements' force law at rotor speed ``speed``, with ``dF/dspeed``."""
-    el = elements.at_speed(float(speed))
+def _law_at(elements: ElementSet, name: str, element: str | None, value: float
+            ) -> NonlinearLaw:
+    """The elements' force law with their input ``name`` (``"speed"``, or a field of the
+    element named ``element``) at ``value``, with ``dF/dvalue``."""
+    el = elements.with_parameter(name, float(value), element=element)
     return NonlinearLaw(el.force, el.jacobian, el.force_and_jacobian, el.kernel_params,
-                        functools.partial(el.dforce, name="speed"))
-
-
-def _law_at_element_value(elements: ElementSet, par, value: float) -> NonlinearLaw:
-    """The elements' force law with the field ``par.field`` of element ``par.element`` at
-    ``value``, with ``dF/dvalue``."""
-    el = elements.with_parameter(par.field, float(value), element=par.element)
-    return NonlinearLaw(el.force, el.jacobian, el.force_and_jacobian, el.kernel_params,
-                        functools.partial(el.dforce, name=par.field, element=par.element))
+                        functools.partial(el.dforce, name=name, element=element))
 
 
 def _time_varying(base: BaseMotion) -> tuple[str, str]:
