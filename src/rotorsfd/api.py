@@ -11,13 +11,13 @@ object with its data, ``write(directory)`` (atomic files) and plot methods.
 
 from __future__ import annotations
 
-import importlib
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from rotorsfd.errors import ConfigError
+from rotorsfd.lazy import lazy_getattr
 
 if TYPE_CHECKING:
     from rotorsfd.analyses.modal import (
@@ -70,14 +70,8 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str) -> Any:
-    """The re-exported name ``name`` (:data:`LAZY`), imported on first use and kept."""
-    module = LAZY.get(name)
-    if module is None:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(module), name)
-    globals()[name] = value
-    return value
+#: the names of :data:`LAZY`, imported on first use and kept
+__getattr__ = lazy_getattr(__name__, LAZY, globals())
 
 
 def __dir__() -> list[str]:

@@ -9,8 +9,9 @@ harmonic-balance solvers and numba with the package.
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from rotorsfd.lazy import lazy_getattr
 
 if TYPE_CHECKING:
     from rotorsfd.analyses.response import PointStability, ResponseResult, run_response
@@ -26,11 +27,5 @@ LAZY: dict[str, str] = {
 __all__ = ["PointStability", "ResponseResult", "StaticResult", "run_response", "run_static"]
 
 
-def __getattr__(name: str) -> Any:
-    """The name ``name`` of :data:`LAZY`, imported on first use and kept."""
-    module = LAZY.get(name)
-    if module is None:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(module), name)
-    globals()[name] = value
-    return value
+#: the names of :data:`LAZY`, imported on first use and kept
+__getattr__ = lazy_getattr(__name__, LAZY, globals())
