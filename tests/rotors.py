@@ -64,3 +64,58 @@ def small_rotor_toml(path: Path, unbalance: str = "50 g*mm", base: str = "",
     path.write_text(SMALL_ROTOR.format(unbalance=unbalance, base=base,
                                        reference=reference) + extra)
     return path
+
+
+#: a three-node rotor (2 shaft elements, a disk at node 2, a support at node 3) with an SFD
+#: at node 1: the smallest rotor whose branches end at the film's limit
+TINY_ROTOR = """\
+[materials.steel]
+density = "7850 kg/m^3"
+young_modulus = "210 GPa"
+poisson_ratio = 0.3
+
+[[rotor.shaft]]
+length = "0.4 m"
+n_elements = 2
+outer_radius = "25 mm"
+material = "steel"
+
+[[rotor.disks]]
+node = 2
+mass = "8 kg"
+polar_inertia = "0.05 kg*m^2"
+diametral_inertia = "0.026 kg*m^2"
+
+[[rotor.supports]]
+node = 3
+stiffness = "5e7 N/m"
+
+[elements.{element}]
+kind = "sfd"
+node = 1
+viscosity = "0.01 Pa*s"
+clearance = "0.15 mm"
+radius = "40 mm"
+length = "20 mm"
+centring_stiffness = "4e6 N/m"
+
+[[unbalance]]
+node = 2
+magnitude = "{unbalance}"
+
+[reference]
+speed = "500 rad/s"
+
+[analysis.response]
+harmonics = 3
+speed_range = {{ start = "{start}", stop = "{stop}" }}
+
+[analysis.stability]
+enabled = false
+"""
+
+
+def tiny_rotor_text(element: str = "sfd", unbalance: str = "0.2 kg*m",
+                    start: str = "100 rad/s", stop: str = "600 rad/s") -> str:
+    """The TOML text of the tiny rotor with its SFD named ``element``."""
+    return TINY_ROTOR.format(element=element, unbalance=unbalance, start=start, stop=stop)

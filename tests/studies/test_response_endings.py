@@ -9,55 +9,12 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from rotors import tiny_rotor_text
 from rotorsfd.analyses.response import run_response
 from rotorsfd.io.config import load_config
 from rotorsfd.studies.tasks import response_output
 
-TINY = """\
-[materials.steel]
-density = "7850 kg/m^3"
-young_modulus = "210 GPa"
-poisson_ratio = 0.3
-
-[[rotor.shaft]]
-length = "0.4 m"
-n_elements = 2
-outer_radius = "25 mm"
-material = "steel"
-
-[[rotor.disks]]
-node = 2
-mass = "8 kg"
-polar_inertia = "0.05 kg*m^2"
-diametral_inertia = "0.026 kg*m^2"
-
-[[rotor.supports]]
-node = 3
-stiffness = "5e7 N/m"
-
-[elements.sfd]
-kind = "sfd"
-node = 1
-viscosity = "0.01 Pa*s"
-clearance = "0.15 mm"
-radius = "40 mm"
-length = "20 mm"
-centring_stiffness = "4e6 N/m"
-
-[[unbalance]]
-node = 2
-magnitude = "0.2 kg*m"
-
-[reference]
-speed = "500 rad/s"
-
-[analysis.response]
-harmonics = 3
-speed_range = { start = "100 rad/s", stop = "600 rad/s" }
-
-[analysis.stability]
-enabled = false
-"""
+TINY = tiny_rotor_text()
 
 
 @pytest.fixture(scope="module")
