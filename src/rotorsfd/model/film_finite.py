@@ -68,7 +68,7 @@ from typing import Any
 
 import numpy as np
 
-from rotorsfd.errors import ConfigError, JournalContactError
+from rotorsfd.errors import ConfigError
 from rotorsfd.model.film_land import DEFAULT_EPS_MAX, FilmLand
 
 __all__ = ["DEFAULT_N_AXIAL", "DEFAULT_N_THETA", "FiniteSFD", "centred_damping_ratio"]
@@ -118,6 +118,8 @@ class FiniteSFD(FilmLand):
     table
         Tabulate the film over eps (module doc).
     """
+
+    label = "finite SFD"
 
     def __init__(self, viscosity: float, radius: float, length: float, clearance: float,
                  cavitation: str = "pi", end_flow: float = math.inf,
@@ -212,14 +214,7 @@ class FiniteSFD(FilmLand):
 
         return finite_kernel
 
-    def _raise(self, y: float, z: float, vy: float, vz: float) -> None:
-        if not all(math.isfinite(a) for a in (y, z, vy, vz)):
-            raise ValueError(f"SFD state is not finite: y={y}, z={z}, vy={vy}, vz={vz}")
-        raise JournalContactError(math.hypot(y, z) / self.clearance, y, z, vy, vz,
-                                  where=f"finite SFD ({self.cavitation} film, eps_max="
-                                        f"{self.eps_max:g})")
-
-    def _evaluate(self, y: Any, z: Any, vy: Any, vz: Any
+    def samples(self, y: Any, z: Any, vy: Any, vz: Any, want_jac: bool = True
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, tuple[int, ...]]:
         from rotorsfd.model.film_finite_kernels import finite_batch
 
@@ -231,37 +226,8 @@ class FiniteSFD(FilmLand):
         F, dFdq, dFdv = np.empty((n, 2)), np.empty((n, 2, 2)), np.empty((n, 2, 2))
         bad = finite_batch(*flat, self._params, F, dFdq, dFdv)
         if bad >= 0:
-            self._raise(*(float(a[bad]) for a in flat))
+            self.contact(*(float(a[bad]) for a in flat))
         return F, dFdq, dFdv, shape
-
-    def force(self, y: Any, z: Any, vy: Any, vz: Any) -> tuple[Any, Any]:
-        """Film force ``(Fy, Fz)`` [N], broadcasting; raises like
-        :meth:`rotorsfd.model.sfd.SFD.force`."""
-        F, _, _, shape = self._evaluate(y, z, vy, vz)
-        return F[:, 0].reshape(shape)[()], F[:, 1].reshape(shape)[()]
-
-    def jacobian(self, y: Any, z: Any, vy: Any, vz: Any) -> tuple[np.ndarray, np.ndarray]:
-        """Exact ``(dF/dq, dF/dv)`` of the discrete force, each ``(..., 2, 2)``."""
-        _, dFdq, dFdv, shape = self._evaluate(y, z, vy, vz)
-        return dFdq.reshape((*shape, 2, 2)), dFdv.reshape((*shape, 2, 2))
-
-    def force_and_jacobian(self, y: Any, z: Any, vy: Any, vz: Any
-                           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """``(F, dF/dq, dF/dv)``; ``F`` of shape ``(..., 2)``."""
-        F, dFdq, dFdv, shape = self._evaluate(y, z, vy, vz)
-        return (F.reshape((*shape, 2)), dFdq.reshape((*shape, 2, 2)),
-                dFdv.reshape((*shape, 2, 2)))
-
-    def nl_force(self, q: Any, v: Any) -> np.ndarray:
-        """``F (..., 2)`` of ``q, v (..., 2)``."""
-        q, v = np.asarray(q, dtype=np.float64), np.asarray(v, dtype=np.float64)
-        F, _, _, shape = self._evaluate(q[..., 0], q[..., 1], v[..., 0], v[..., 1])
-        return F.reshape((*shape, 2))
-
-    def nl_jacobian(self, q: Any, v: Any) -> tuple[np.ndarray, np.ndarray]:
-        """``(dF/dq, dF/dv)`` of ``q, v (..., 2)``."""
-        q, v = np.asarray(q, dtype=np.float64), np.asarray(v, dtype=np.float64)
-        return self.jacobian(q[..., 0], q[..., 1], v[..., 0], v[..., 1])
 
     def pressure(self, y: float, z: float, vy: float, vz: float
                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -274,7 +240,7 @@ class FiniteSFD(FilmLand):
         e = math.hypot(y, z)
         eps = e / self.clearance
         if not eps < self.eps_max:
-            self._raise(y, z, vy, vz)
+            self.contact(y, z, vy, vz)
         psi = math.atan2(z, y) if e > 0.0 else 0.0
         cp, sp = math.cos(psi), math.sin(psi)
         wr, wt = cp * vy + sp * vz, -sp * vy + cp * vz

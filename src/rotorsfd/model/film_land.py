@@ -8,9 +8,11 @@ their own modules."""
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, NoReturn
 
-from rotorsfd.errors import ConfigError
+import numpy as np
+
+from rotorsfd.errors import ConfigError, JournalContactError
 
 __all__ = ["DEFAULT_EPS_MAX", "FILM_MODELS", "FilmLand", "positive"]
 
@@ -31,7 +33,11 @@ def positive(field: str, value: float) -> float:
 
 class FilmLand:
     """mu [Pa s], R, L, C [m], the film model (:data:`FILM_MODELS`) and ``0 < eps_max < 1``,
-    validated."""
+    validated; the force law's public forms (``force``, ``jacobian``, ...) over the law's
+    :meth:`samples`."""
+
+    #: how the law names itself in its contact errors
+    label = "film"
 
     def __init__(self, viscosity: float, radius: float, length: float, clearance: float,
                  cavitation: str = "pi", eps_max: float = DEFAULT_EPS_MAX) -> None:
@@ -63,3 +69,52 @@ class FilmLand:
     def coefficient(self) -> float:
         """``K = mu R L^3 / C^3`` [N s/m], the scale of every short-bearing force term."""
         return self.viscosity * self.radius * self.length**3 / self.clearance**3
+
+    # ---- the law's forms, over its samples ------------------------------------------------
+    def samples(self, y: Any, z: Any, vy: Any, vz: Any, want_jac: bool
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, tuple[int, ...]]:
+        """Flat ``F (n, 2)``, ``dFdq, dFdv (n, 2, 2)`` (scratch if not ``want_jac``) of the
+        broadcast samples and their shape; :meth:`contact` outside the law's domain."""
+        raise NotImplementedError
+
+    def contact(self, y: float, z: float, vy: float, vz: float) -> NoReturn:
+        """Raise for a sample the law rejects: ValueError for a non-finite state, else
+        JournalContactError (``eps >= eps_max``)."""
+        if not all(math.isfinite(a) for a in (y, z, vy, vz)):
+            raise ValueError(f"SFD state is not finite: y={y}, z={z}, vy={vy}, vz={vz}")
+        raise JournalContactError(math.hypot(y, z) / self.clearance, y, z, vy, vz,
+                                  where=f"{self.label} ({self.cavitation} film, eps_max="
+                                        f"{self.eps_max:g})")
+
+    def force(self, y: Any, z: Any, vy: Any, vz: Any) -> tuple[Any, Any]:
+        """Film force ``(Fy, Fz)`` [N] on the journal, broadcasting over numpy arrays.
+        Raises ``JournalContactError`` if ``eps >= eps_max`` anywhere (with the state of
+        the first such sample) and ``ValueError`` on a non-finite state."""
+        F, _, _, shape = self.samples(y, z, vy, vz, want_jac=False)
+        return F[:, 0].reshape(shape)[()], F[:, 1].reshape(shape)[()]
+
+    def jacobian(self, y: Any, z: Any, vy: Any, vz: Any) -> tuple[np.ndarray, np.ndarray]:
+        """Exact ``(dF/dq, dF/dv)``, each of shape ``(..., 2, 2)``: rows (Fy, Fz),
+        columns (y, z) resp. (vy, vz). Raises like :meth:`force`."""
+        _, dFdq, dFdv, shape = self.samples(y, z, vy, vz, want_jac=True)
+        return dFdq.reshape((*shape, 2, 2)), dFdv.reshape((*shape, 2, 2))
+
+    def force_and_jacobian(self, y: Any, z: Any, vy: Any, vz: Any
+                           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(F, dF/dq, dF/dv)`` in one pass; ``F`` of shape ``(..., 2)``."""
+        F, dFdq, dFdv, shape = self.samples(y, z, vy, vz, want_jac=True)
+        return (F.reshape((*shape, 2)), dFdq.reshape((*shape, 2, 2)),
+                dFdv.reshape((*shape, 2, 2)))
+
+    def nl_force(self, q: Any, v: Any) -> np.ndarray:
+        """Generic-solver form (``docs/INTERFACES.md``): ``q = (..., 2)`` displacements
+        ``(y, z)``, ``v = (..., 2)`` velocities; returns ``F (..., 2)``."""
+        q, v = np.asarray(q, dtype=np.float64), np.asarray(v, dtype=np.float64)
+        F, _, _, shape = self.samples(q[..., 0], q[..., 1], v[..., 0], v[..., 1],
+                                      want_jac=False)
+        return F.reshape((*shape, 2))
+
+    def nl_jacobian(self, q: Any, v: Any) -> tuple[np.ndarray, np.ndarray]:
+        """Generic-solver form of :meth:`jacobian`: ``(dF/dq, dF/dv)``, each ``(..., 2, 2)``."""
+        q, v = np.asarray(q, dtype=np.float64), np.asarray(v, dtype=np.float64)
+        return self.jacobian(q[..., 0], q[..., 1], v[..., 0], v[..., 1])

@@ -35,7 +35,6 @@ from typing import Any
 
 import numpy as np
 
-from rotorsfd.errors import JournalContactError
 from rotorsfd.model.film_land import DEFAULT_EPS_MAX, FilmLand
 from rotorsfd.model.sfd_kernels import (
     CAVITATION_CODES,
@@ -70,7 +69,17 @@ class SFD(FilmLand):
         Contact limit, ``0 < eps_max < 1``: ``force``/``jacobian`` raise
         :class:`~rotorsfd.errors.JournalContactError` when ``eps = sqrt(y^2+z^2)/C >=
         eps_max``; the compiled kernel returns 1 instead.
+
+    ``force``, ``jacobian``, ... (:class:`~rotorsfd.model.film_land.FilmLand`) give
+    ``F = -mu R L^3 int_film n n^T v / (C - q.n)^3 dphi`` in closed form (module doc),
+    ``dF/dv = -mu R L^3 int_film n n^T / h^3 dphi`` and
+    ``dF/dq = -3 mu R L^3 int_film (n.v) n n^T / h^4 dphi`` plus, for the pi film, the
+    term of its ends turning with psi. Where the force is not differentiable the mean of
+    the limiting Jacobians is returned: pi film at ``eps = 0`` exactly (``dF/dq = 0``),
+    Guembel film at ``v = 0`` (``dF/dv`` = half the 2 pi film's).
     """
+
+    label = "SFD"
 
     def __init__(self, viscosity: float, radius: float, length: float, clearance: float,
                  cavitation: str = "pi", eps_max: float = DEFAULT_EPS_MAX) -> None:
@@ -109,14 +118,7 @@ class SFD(FilmLand):
         (``eps >= eps_max`` or a non-finite state), outputs then untouched."""
         return sfd_kernel
 
-    def _raise(self, y: float, z: float, vy: float, vz: float) -> None:
-        if not all(math.isfinite(a) for a in (y, z, vy, vz)):
-            raise ValueError(f"SFD state is not finite: y={y}, z={z}, vy={vy}, vz={vz}")
-        raise JournalContactError(math.hypot(y, z) / self.clearance, y, z, vy, vz,
-                                  where=f"SFD ({self.cavitation} film, eps_max="
-                                        f"{self.eps_max:g})")
-
-    def _evaluate(self, y: Any, z: Any, vy: Any, vz: Any, want_jac: bool
+    def samples(self, y: Any, z: Any, vy: Any, vz: Any, want_jac: bool
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, tuple[int, ...]]:
         """Flat outputs ``F (n, 2)``, ``dFdq, dFdv (n, 2, 2)`` (``(1, 2, 2)`` scratch if
         not ``want_jac``) and the broadcast shape; raises on contact."""
@@ -124,7 +126,7 @@ class SFD(FilmLand):
             F, dFdq, dFdv = np.empty((1, 2)), np.empty((1, 2, 2)), np.empty((1, 2, 2))
             yf, zf, vyf, vzf = float(y), float(z), float(vy), float(vz)
             if sfd_sample(yf, zf, vyf, vzf, self._params, F[0], dFdq[0], dFdv[0]) != 0:
-                self._raise(yf, zf, vyf, vzf)
+                self.contact(yf, zf, vyf, vzf)
             return F, dFdq, dFdv, ()
         arrays = np.broadcast_arrays(*(np.asarray(a, dtype=np.float64) for a in (y, z, vy, vz)))
         shape = arrays[0].shape
@@ -135,49 +137,6 @@ class SFD(FilmLand):
         dFdv = np.empty((n, 2, 2)) if want_jac else np.empty((1, 2, 2))
         bad = sfd_batch(*flat, self._params, F, dFdq, dFdv, want_jac)
         if bad >= 0:
-            self._raise(*(float(a[bad]) for a in flat))
+            self.contact(*(float(a[bad]) for a in flat))
         return F, dFdq, dFdv, shape
 
-    def force(self, y: Any, z: Any, vy: Any, vz: Any) -> tuple[Any, Any]:
-        """Film force ``(Fy, Fz)`` [N] on the journal, broadcasting over numpy arrays.
-
-        ``F = -mu R L^3 int_film n n^T v / (C - q.n)^3 dphi`` in closed form (module doc).
-        Raises ``JournalContactError`` if ``eps >= eps_max`` anywhere (with the state of
-        the first such sample) and ``ValueError`` on a non-finite state.
-        """
-        F, _, _, shape = self._evaluate(y, z, vy, vz, want_jac=False)
-        return F[:, 0].reshape(shape)[()], F[:, 1].reshape(shape)[()]
-
-    def jacobian(self, y: Any, z: Any, vy: Any, vz: Any) -> tuple[np.ndarray, np.ndarray]:
-        """Exact ``(dF/dq, dF/dv)``, each of shape ``(..., 2, 2)``: rows (Fy, Fz),
-        columns (y, z) resp. (vy, vz).
-
-        ``dF/dv = -mu R L^3 int_film n n^T / h^3 dphi``;
-        ``dF/dq = -3 mu R L^3 int_film (n.v) n n^T / h^4 dphi`` plus, for the pi film, the
-        term of its ends turning with psi. Where the force is not differentiable the
-        mean of the limiting Jacobians is returned: pi film at ``eps = 0`` exactly
-        (``dF/dq = 0``), Guembel film at ``v = 0`` (``dF/dv`` = half the 2 pi film's).
-        Raises like :meth:`force`.
-        """
-        _, dFdq, dFdv, shape = self._evaluate(y, z, vy, vz, want_jac=True)
-        return dFdq.reshape((*shape, 2, 2)), dFdv.reshape((*shape, 2, 2))
-
-    def force_and_jacobian(self, y: Any, z: Any, vy: Any, vz: Any
-                           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """``(F, dF/dq, dF/dv)`` in one pass; ``F`` of shape ``(..., 2)``."""
-        F, dFdq, dFdv, shape = self._evaluate(y, z, vy, vz, want_jac=True)
-        return (F.reshape((*shape, 2)), dFdq.reshape((*shape, 2, 2)),
-                dFdv.reshape((*shape, 2, 2)))
-
-    def nl_force(self, q: Any, v: Any) -> np.ndarray:
-        """Generic-solver form (``docs/INTERFACES.md``): ``q = (..., 2)`` displacements
-        ``(y, z)``, ``v = (..., 2)`` velocities; returns ``F (..., 2)``."""
-        q, v = np.asarray(q, dtype=np.float64), np.asarray(v, dtype=np.float64)
-        F, _, _, shape = self._evaluate(q[..., 0], q[..., 1], v[..., 0], v[..., 1],
-                                        want_jac=False)
-        return F.reshape((*shape, 2))
-
-    def nl_jacobian(self, q: Any, v: Any) -> tuple[np.ndarray, np.ndarray]:
-        """Generic-solver form of :meth:`jacobian`: ``(dF/dq, dF/dv)``, each ``(..., 2, 2)``."""
-        q, v = np.asarray(q, dtype=np.float64), np.asarray(v, dtype=np.float64)
-        return self.jacobian(q[..., 0], q[..., 1], v[..., 0], v[..., 1])
