@@ -33,6 +33,7 @@ import scipy.sparse as sp
 
 from rotorsfd.errors import ConfigError
 from rotorsfd.model import dofs
+from rotorsfd.model.rotor import LinearRotor
 
 if TYPE_CHECKING:
     from rotorsfd.io.schema import Config, MatricesConfig
@@ -248,7 +249,7 @@ def _node_x(data: dict[str, np.ndarray], x_rows: np.ndarray | None, node: np.nda
     return x
 
 
-class MatrixRotor:
+class MatrixRotor(LinearRotor):
     """A rotor whose M, K, C, G come from :class:`MatrixModel`, plus the supports, disks,
     point masses and structural damping of the configuration, added as
     :class:`~rotorsfd.model.rotor.Rotor` adds them. Same interface as ``Rotor``
@@ -300,16 +301,6 @@ class MatrixRotor:
         #: (kl, ku): the lower and upper bandwidths of M, C, G, K together
         self.band = (int(max((rows - cols).max(initial=0), 0)),
                      int(max((cols - rows).max(initial=0), 0)))
-
-    def dof_index(self, node: int, direction: str) -> int:
-        """Global index of ``direction`` (y, z, ty, tz) at 1-based ``node``."""
-        if not 1 <= node <= self.n_nodes:
-            raise ConfigError("node", node, f"must be in 1..{self.n_nodes}")
-        return dofs.dof_index(node, direction)
-
-    def matrices(self, speed: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(M, C + speed G, K) at spin speed ``speed`` [rad/s] (LinearDynamics protocol)."""
-        return self.M, self.C + speed * self.G, self.K
 
     def with_supports(self, extra_supports: Any) -> MatrixRotor:
         """A new rotor with the same matrices, disks, masses and damping, plus

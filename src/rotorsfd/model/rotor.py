@@ -20,7 +20,22 @@ from rotorsfd.model.shaft import ShaftElement
 from rotorsfd.model.supports import LinearSupport
 
 
-class Rotor:
+class LinearRotor:
+    """What every linear rotor gives over its ``n_nodes`` and matrices ``M, C, G, K``: the
+    DOF of a node and direction, and the ``LinearDynamics`` protocol."""
+
+    def dof_index(self, node: int, direction: str) -> int:
+        """Global index of ``direction`` (y, z, ty, tz) at 1-based ``node``."""
+        if not 1 <= node <= self.n_nodes:
+            raise ConfigError("node", node, f"must be in 1..{self.n_nodes}")
+        return dofs.dof_index(node, direction)
+
+    def matrices(self, speed: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(M, C + speed G, K) at spin speed ``speed`` [rad/s] (LinearDynamics protocol)."""
+        return self.M, self.C + speed * self.G, self.K
+
+
+class Rotor(LinearRotor):
     """Finite-element rotor with global float matrices ``M, K, C, G`` (n_dof x n_dof),
     stored sparse (``M_csr, K_csr, C_csr, G_csr``, scipy CSR, half bandwidth 7: see
     :mod:`rotorsfd.model.sparse`); the dense ``M, K, C, G`` are built on first use.
@@ -121,16 +136,6 @@ class Rotor:
         return self.G_csr.toarray()
 
     # ---- protocol and helpers ---------------------------------------------------------
-    def dof_index(self, node: int, direction: str) -> int:
-        """Global index of ``direction`` (y, z, ty, tz) at 1-based ``node``."""
-        if not 1 <= node <= self.n_nodes:
-            raise ConfigError("node", node, f"must be in 1..{self.n_nodes}")
-        return dofs.dof_index(node, direction)
-
-    def matrices(self, speed: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(M, C + speed G, K) at spin speed ``speed`` [rad/s] (LinearDynamics protocol)."""
-        return self.M, self.C + speed * self.G, self.K
-
     def with_supports(self, extra_supports: Iterable[LinearSupport]) -> Rotor:
         """A new rotor with the same shaft, disks, masses and damping, plus ``extra_supports``."""
         return Rotor(self.shaft_elements, self.disks, self.point_masses,
