@@ -72,7 +72,11 @@ def unbalance_series_law(unbalances: Sequence[Unbalance], n_dof: int, law: Speed
 
 
 def _fixed(system: RotorSystem) -> bool:
-    """True when the base does not move (zero rates and accelerations, no gravity)."""
+    """True when the base does not move (zero rates and accelerations, no gravity): by
+    the laws where the base says (a shock pulse is zero at most sampled times)."""
+    fixed = getattr(system.base, "is_fixed", None)
+    if isinstance(fixed, bool):
+        return fixed
     st = system.base.state(np.array([0.0, 1.0]))
     arrays = [st.w, st.dw, st.a0] + ([st.g] if st.g is not None else [])
     return all(not np.any(np.asarray(a)) for a in arrays)

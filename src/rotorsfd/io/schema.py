@@ -364,8 +364,12 @@ class UnbalanceConfig(Section):
 _LAW_DOC = ("time law: 'off'; 'constant' (value); 'harmonic' (value + amplitude * "
             "sin(frequency t + phase)); 'callable' (a Python function f(t), vectorised "
             "over numpy arrays of t)")
+_RECORDED_DOC = ("; 'table' (a recorded history: file or times/values of the quantity, "
+                 "splined, optionally low-pass filtered); 'pulse' (a half-sine or versine "
+                 "shock: shape, amplitude, duration, start)")
 _TRANSLATION_LAW_DOC = _LAW_DOC + "; 'uniform_acceleration' (value + velocity t + " \
-    "acceleration t^2 / 2)"
+    "acceleration t^2 / 2)" + _RECORDED_DOC
+_RECORD_FIELDS = ("file", "times", "values", "quantity", "filter")
 
 
 class _Component(Section):
@@ -375,6 +379,22 @@ class _Component(Section):
     callable: CALLABLE = None
     derivative: CALLABLE = Field(None, description="the derivative f'(t) of the callable "
                                  "law (default: by complex step); allowed: 'module:function'")
+    file: str | None = Field(None, description="the 'table' law's record: a CSV file of two "
+                             "columns, time [s] and the quantity [SI] (one header line "
+                             "allowed), or a netCDF file with one variable over 'time'; "
+                             "relative to the config file's folder")
+    times: list[float] | None = Field(None, description="the 'table' law's sample times [s] "
+                                      "(instead of file)")
+    values: list[float] | None = Field(None, description="the 'table' law's samples of the "
+                                       "quantity [SI] (instead of file)")
+    filter: quantity("angular_velocity", "cut-off of the zero-phase 4th-order Butterworth "
+                     "low-pass applied to the record before it is splined (default: none, "
+                     "the spline through the samples)", gt=0, optional=True) = None
+    shape: Literal["half_sine", "versine"] | None = Field(
+        None, description="the 'pulse' law's shape: A sin(pi s/T) or (A/2)(1 - cos(2 pi s/T)) "
+                          "on 0 <= s <= T")
+    duration: quantity("time", "the 'pulse' law's duration T", gt=0, optional=True) = None
+    start: quantity("time", "the 'pulse' law's start time", ge=0, optional=True) = None
 
     _alt_amplitude: ClassVar[str] = ""  # name of the alternative amplitude field
     _law_fields: ClassVar[dict[str, tuple[str, ...]]] = {}  # fields of extra laws
@@ -392,6 +412,19 @@ class _Component(Section):
                 raise fail(name, getattr(self, name), f"not used with law = {self.law!r}")
         if self.law == "constant" and self.value is None:
             raise fail("value", None, "law = 'constant' needs a value")
+        if self.law == "table":
+            if (self.file is None) == (self.times is None):
+                raise fail("file", self.file, "law = 'table' needs file or times/values")
+            if (self.times is None) != (self.values is None):
+                raise fail("values", self.values, "times and values go together")
+            if self.quantity is None:
+                raise fail("quantity", None, f"law = 'table' needs the recorded quantity: "
+                           f"{' or '.join(repr(q) for q in self._quantities)}")
+        if self.law == "pulse":
+            for name in ("shape", "duration", self._pulse_amplitude):
+                if getattr(self, name) is None:
+                    raise fail(name, None, f"law = 'pulse' needs shape, "
+                               f"{self._pulse_amplitude} and duration")
         if self.law == "callable" and self.callable is None:
             raise fail("callable", None, "law = 'callable' needs callable = 'module:function'")
         if self.law == "harmonic":
@@ -409,13 +442,22 @@ class RotationComponent(_Component):
     rate amplitude may be given as the angle amplitude A0 (paper section 3.3):
     w_b = A0 w sin(w t + phase)."""
 
-    law: Literal["off", "constant", "harmonic", "callable"] = Field("off", description=_LAW_DOC)
+    law: Literal["off", "constant", "harmonic", "callable", "table", "pulse"] = Field(
+        "off", description=_LAW_DOC + _RECORDED_DOC)
     value: quantity("angular_velocity", "constant rate, or mean rate of the harmonic law",
                     optional=True) = None
     amplitude: quantity("angular_velocity", "rate amplitude", ge=0, optional=True) = None
     angle_amplitude: quantity("angle", "angle amplitude A0 (rate amplitude = A0 * frequency)",
                               ge=0, optional=True) = None
+    # (the field named quantity comes last: below it the name is the field, not quantity())
+    quantity: Literal["rate", "angle"] | None = Field(
+        None, description="what the 'table' law's record holds: the rate [rad/s] or the "
+                          "angle [rad] (differentiated through the spline)")
     _alt_amplitude: ClassVar[str] = "angle_amplitude"
+    _quantities: ClassVar[tuple[str, ...]] = ("rate", "angle")
+    _pulse_amplitude: ClassVar[str] = "amplitude"
+    _law_fields: ClassVar[dict[str, tuple[str, ...]]] = {
+        "table": _RECORD_FIELDS, "pulse": ("shape", "amplitude", "duration", "start")}
 
     def rate_amplitude(self) -> float:
         """Amplitude of the rate [rad/s] for the harmonic law."""
@@ -429,7 +471,8 @@ class TranslationComponent(_Component):
     equations; a constant displacement has no effect). For the harmonic law the amplitude
     may be given as an acceleration amplitude a: x0 = -(a / w^2) sin(w t + phase)."""
 
-    law: Literal["off", "constant", "uniform_acceleration", "harmonic", "callable"] = Field(
+    law: Literal["off", "constant", "uniform_acceleration", "harmonic", "callable", "table",
+                 "pulse"] = Field(
         "off", description=_TRANSLATION_LAW_DOC)
     value: quantity("length", "constant displacement, or mean / initial displacement",
                     optional=True) = None
@@ -441,9 +484,17 @@ class TranslationComponent(_Component):
                            optional=True) = None
     velocity: quantity("velocity", "initial velocity (uniform_acceleration law)",
                        optional=True) = None
+    # (last, as in RotationComponent)
+    quantity: Literal["displacement", "velocity", "acceleration"] | None = Field(
+        None, description="what the 'table' law's record holds: displacement [m], velocity "
+                          "[m/s] or acceleration [m/s^2] (integrated from rest)")
     _alt_amplitude: ClassVar[str] = "acceleration_amplitude"
+    _quantities: ClassVar[tuple[str, ...]] = ("displacement", "velocity", "acceleration")
+    _pulse_amplitude: ClassVar[str] = "acceleration_amplitude"
     _law_fields: ClassVar[dict[str, tuple[str, ...]]] = {
-        "uniform_acceleration": ("value", "velocity", "acceleration")}
+        "uniform_acceleration": ("value", "velocity", "acceleration"),
+        "table": _RECORD_FIELDS,
+        "pulse": ("shape", "acceleration_amplitude", "duration", "start")}
 
     @model_validator(mode="after")
     def _uniform(self):

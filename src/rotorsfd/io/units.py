@@ -108,7 +108,10 @@ def to_si(value: object, kind: str) -> float:
         if not q.unit_items():  # no units written: SI
             out = float(q.magnitude)
         elif q.dimensionality != k.dimensionality:
-            raise UnitError(f"expected {describe(kind)}; {value!r} is {_dim_name(q)}")
+            hint = ""
+            if kind == "acceleration" and [n for n, _ in q.unit_items()] == ["gram"]:
+                hint = " (standard gravity is 'g0', e.g. '20 g0')"
+            raise UnitError(f"expected {describe(kind)}; {value!r} is {_dim_name(q)}{hint}")
         else:
             # 15 significant digits: drop the last-bit noise of the unit conversion
             out = float(f"{float(q.to(k.unit).magnitude):.15g}")

@@ -67,6 +67,11 @@ class TimeLaw:
         """True if f, f', f'' vanish identically."""
         return False
 
+    def support_times(self) -> np.ndarray:
+        """Times inside the interval where a law that acts only for a while (a pulse, a
+        record) is nonzero (empty: the law is not local)."""
+        return np.zeros(0)
+
 
 @dataclass(frozen=True)
 class Off(TimeLaw):
@@ -368,6 +373,11 @@ class BaseMotion:
         if g is not None and g.enabled and g.frame == "inertial" and rotating:
             return bool(np.linalg.norm(np.cross(w, g.vector)) == 0.0)
         return True
+
+    def support_times(self) -> np.ndarray:
+        """The laws' :meth:`TimeLaw.support_times` together (probes of the base terms)."""
+        return np.concatenate([law.support_times()
+                               for law in (*self.translation, *self.rotation)])
 
     # ---- state -------------------------------------------------------------------------
     def state(self, t: ArrayLike) -> BaseState:

@@ -583,7 +583,8 @@ def time_varying_terms(basis: BaseBasis, motion, speed: float, probe_times: int 
     ``c(t) -> (nt,)`` such that C_base(t) = sum c_i(t) C_i, K_base(t) = sum k_i(t) K_i,
     F_base(t) = sum f_j(t) f_j (the shape of ``timedomain.forcing.TimeVaryingMatrices`` and
     ``Forcing.series``). Coefficients that vanish at ``probe_times`` irrational sample times
-    in [0, 10] s are dropped (exact for the built-in laws).
+    in [0, 10] s and at the times where a law that acts only for a while (a shock pulse, a
+    record) is nonzero are dropped (exact for the built-in laws).
     """
     cache: dict[bytes, BaseCoefficients] = {}
 
@@ -596,6 +597,9 @@ def time_varying_terms(basis: BaseBasis, motion, speed: float, probe_times: int 
         return cache[key]
 
     probe = np.sqrt(2.0) * (1.0 + np.arange(probe_times)) * 10.0 / (probe_times * np.sqrt(2.0) + 1)
+    local = getattr(motion, "support_times", None)      # pulses, records: where they act
+    if local is not None:
+        probe = np.concatenate([probe, local()])
     probe_co = base_coefficients(motion.state(probe), speed)
 
     def make(attr: str, i: int):

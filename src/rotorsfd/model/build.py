@@ -15,6 +15,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
 from rotorsfd.errors import ConfigError
 from rotorsfd.io.schema import Config, RotationComponent, TranslationComponent
 from rotorsfd.model import (
@@ -137,10 +139,37 @@ def _law(c: RotationComponent | TranslationComponent, where: str,
         else:
             amplitude, phase = c.displacement_amplitude()
         return bm.Harmonic(amplitude, c.frequency, phase, c.value or 0.0)
+    if c.law in ("table", "pulse"):
+        return _recorded_law(c, where, search_path)
     f = resolve_callable(c.callable, f"{where}.callable", search_path)
     df = (resolve_callable(c.derivative, f"{where}.derivative", search_path)
           if c.derivative is not None else None)
     return bm.CallableLaw(f, df)
+
+
+ORDER = {"rate": 0, "angle": -1, "displacement": 0, "velocity": 1, "acceleration": 2}
+"""The derivative of the law a recorded quantity is (model/recorded_motion.py)."""
+
+
+def _recorded_law(c: RotationComponent | TranslationComponent, where: str,
+                  search_path: Path | None) -> TimeLaw:
+    """A recorded history or a shock pulse (:mod:`rotorsfd.model.recorded_motion`)."""
+    from rotorsfd.model import recorded_motion as rm
+
+    rotation = isinstance(c, RotationComponent)
+    if c.law == "pulse":
+        amplitude = c.amplitude if rotation else c.acceleration_amplitude
+        return rm.PulseLaw(c.shape, amplitude, c.duration, c.start or 0.0,
+                           order=0 if rotation else 2)
+    if c.file is not None:
+        path = Path(c.file)
+        if not path.is_absolute() and search_path is not None:
+            path = search_path / path
+        times, values = rm.read_record(path, f"{where}.file")
+    else:
+        times, values = np.asarray(c.times, float), np.asarray(c.values, float)
+    return rm.RecordedLaw(times, values, order=ORDER[c.quantity], cutoff=c.filter,
+                          where=where)
 
 
 def build_gravity(config: Config) -> Gravity | None:
