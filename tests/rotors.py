@@ -119,3 +119,14 @@ def tiny_rotor_text(element: str = "sfd", unbalance: str = "0.2 kg*m",
                     start: str = "100 rad/s", stop: str = "600 rad/s") -> str:
     """The TOML text of the tiny rotor with its SFD named ``element``."""
     return TINY_ROTOR.format(element=element, unbalance=unbalance, start=start, stop=stop)
+
+
+def linear_rotor_toml(path: Path, unbalance: str = "0 g*mm", base: str = "",
+                      extra: str = "") -> Path:
+    """The small rotor with its SFD replaced by a linear support at node 1 (a linear rotor
+    whose reference solutions are scipy integrations of its own M, C, G, K)."""
+    text = SMALL_ROTOR.format(unbalance=unbalance, base=base, reference="800 rad/s")
+    start, end = text.index("[elements.sfd]"), text.index("[[unbalance]]")
+    path.write_text(text[:start] + '[[rotor.supports]]\nnode = 1\nstiffness = "1e7 N/m"\n\n'
+                    + text[end:] + extra)
+    return path

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.integrate import cumulative_trapezoid, solve_ivp
 
-from rotors import small_rotor_toml
+from rotors import linear_rotor_toml, small_rotor_toml
 from rotorsfd import api
 from rotorsfd.errors import ConfigError
 from rotorsfd.model.base_motion import BaseMotion, Harmonic
@@ -129,16 +129,9 @@ def test_config_table_and_pulse_laws(tmp_path):
 
 @pytest.fixture(scope="module")
 def linear_system(tmp_path_factory):
-    """The small test rotor without its SFD (a linear rotor: the reference below is
-    solve_ivp of its own M, C, G, K)."""
-    tmp = tmp_path_factory.mktemp("shock")
-    text = small_rotor_toml(tmp / "r.toml", unbalance="0 g*mm").read_text()
-    start = text.index("[elements.sfd]")
-    end = text.index("[[unbalance]]")
-    cfg_path = tmp / "linear.toml"
-    cfg_path.write_text(text[:start] + '[[rotor.supports]]\nnode = 1\nstiffness = "1e7 N/m"\n'
-                        + text[end:])
-    return cfg_path
+    """The small test rotor without its SFD (the reference below is solve_ivp of its own
+    M, C, G, K)."""
+    return linear_rotor_toml(tmp_path_factory.mktemp("shock") / "linear.toml")
 
 
 def _run(cfg_path, base: str, speed: float, t_end: float, spp: int):

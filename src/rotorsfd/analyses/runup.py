@@ -61,11 +61,11 @@ def unbalance_series_law(unbalances: Sequence[Unbalance], n_dof: int, law: Speed
 
         def cy(t, u=u):
             ay, by, _, _, th = factors(t)
-            return ay * np.cos(th + u.phase) + by * np.sin(th + u.phase)
+            return (ay * np.cos(th + u.phase) + by * np.sin(th + u.phase)) * u.on(t)
 
         def cz(t, u=u):
             _, _, az, bz, th = factors(t)
-            return az * np.sin(th + u.phase) - bz * np.cos(th + u.phase)
+            return (az * np.sin(th + u.phase) - bz * np.cos(th + u.phase)) * u.on(t)
 
         out += [(cy, ey), (cz, ez)]
     return out

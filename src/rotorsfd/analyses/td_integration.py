@@ -201,7 +201,8 @@ def time_domain_inputs(system: RotorSystem, speed: float, *,
     nl = system.nl_dofs
     el = system.elements_at(speed)   # a law of the speed (journal bearing) set to it
     kernel, params = (el.kernel, el.kernel_params) if len(el) else (None, None)
-    if system.base.is_constant:
+    events = any(u.start > 0.0 for u in system.unbalances)   # a sudden unbalance: series
+    if system.base.is_constant and not events:
         M, D, K = system.matrices(speed)
         Fc, Fs = system.unbalance_harmonics(speed)
         harm = [HarmonicLoad(1.0, Fc, Fs)] if system.unbalances else []
@@ -214,7 +215,8 @@ def time_domain_inputs(system: RotorSystem, speed: float, *,
     T = 2.0 * math.pi / speed
     span = horizon if horizon is not None else 1000.0 * T
     probe = np.concatenate([np.linspace(0.0, span, 257),
-                            span * (np.arange(1, 64) * math.sqrt(2.0) % 1.0)])
+                            span * (np.arange(1, 64) * math.sqrt(2.0) % 1.0),
+                            system.base.support_times()])   # where a pulse or record acts
     damping, stiffness, force = time_varying_terms(system.basis, system.base, speed)
     damping, dC = _fold_constant(damping, probe)
     stiffness, dK = _fold_constant(stiffness, probe)

@@ -359,6 +359,12 @@ class UnbalanceConfig(Section):
     node: NODE
     magnitude: quantity("unbalance", "unbalance m*e", ge=0)
     phase: quantity("angle", "angular position at t = 0") = 0.0
+    start: quantity("time", "time from which it acts in the time domain (a sudden unbalance, "
+                    "e.g. a blade loss, appearing at the rotor angle of that instant); "
+                    "steady-state analyses see every unbalance", ge=0) = 0.0
+    rise_time: quantity("time", "time over which a sudden unbalance grows to its magnitude, "
+                        "(1 - cos(pi s / rise_time)) / 2 (0: a step, resolved to first order "
+                        "by a fixed time step)", ge=0) = 0.0
 
 
 _LAW_DOC = ("time law: 'off'; 'constant' (value); 'harmonic' (value + amplitude * "

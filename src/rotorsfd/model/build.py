@@ -98,7 +98,8 @@ def build_unbalances(config: Config) -> list[Unbalance]:
     """The ``[[unbalance]]`` entries."""
     from rotorsfd.model.unbalance import Unbalance
 
-    return [Unbalance(u.node, u.magnitude, u.phase) for u in config.unbalance]
+    return [Unbalance(u.node, u.magnitude, u.phase, u.start, u.rise_time)
+            for u in config.unbalance]
 
 
 def resolve_callable(spec: str, field_name: str,

@@ -33,17 +33,40 @@ from rotorsfd.model.base_motion import BaseState
 
 @dataclass(frozen=True)
 class Unbalance:
-    """Unbalance ``magnitude`` = m_u e [kg m] at 1-based ``node``, phase eta [rad]."""
+    """Unbalance ``magnitude`` = m_u e [kg m] at 1-based ``node``, phase eta [rad]; in the
+    time domain it acts from ``start`` [s] on (0: always; later: a sudden unbalance, a
+    blade loss, appearing at the rotor angle of that instant), growing to its magnitude
+    over ``rise_time`` as ``(1 - cos(pi s / rise_time)) / 2`` (0: a step, which a fixed
+    time step resolves to first order only: the step's trapezoidal impulse is off by up to
+    half a step's). Steady-state analyses see every unbalance (the rotor after its
+    events)."""
 
     node: int
     magnitude: float
     phase: float = 0.0
+    start: float = 0.0
+    rise_time: float = 0.0
 
     def __post_init__(self) -> None:
         if self.node < 1:
             raise ConfigError("unbalance.node", self.node, "node numbers start at 1")
         if not np.isfinite(self.magnitude) or self.magnitude < 0.0:
             raise ConfigError("unbalance.magnitude", self.magnitude, "must be finite, >= 0")
+        if not (np.isfinite(self.start) and self.start >= 0.0):
+            raise ConfigError("unbalance.start", self.start, "must be finite, >= 0 s")
+        if not (np.isfinite(self.rise_time) and self.rise_time >= 0.0):
+            raise ConfigError("unbalance.rise_time", self.rise_time, "must be finite, >= 0 s")
+
+    def on(self, t: np.ndarray) -> np.ndarray | float:
+        """The share of the magnitude acting at t: 0 before ``start``, the half-cosine
+        rise over ``rise_time``, then 1."""
+        if self.start == 0.0 and self.rise_time == 0.0:
+            return 1.0
+        s = np.asarray(t, dtype=float) - self.start
+        if self.rise_time == 0.0:
+            return (s >= 0.0).astype(float)
+        x = np.clip(s / self.rise_time, 0.0, 1.0)
+        return 0.5 * (1.0 - np.cos(np.pi * x))
 
 
 def _state_or_fixed(state: BaseState | None) -> BaseState:
@@ -142,12 +165,12 @@ def unbalance_series(unbalances: Sequence[Unbalance], rotor, speed: float,
         def cy(t, u=u):
             ay, by, _, _ = factors(t)
             th = speed * np.asarray(t, dtype=float) + u.phase
-            return ay * np.cos(th) + by * np.sin(th)
+            return (ay * np.cos(th) + by * np.sin(th)) * u.on(t)
 
         def cz(t, u=u):
             _, _, az, bz = factors(t)
             th = speed * np.asarray(t, dtype=float) + u.phase
-            return az * np.sin(th) - bz * np.cos(th)
+            return (az * np.sin(th) - bz * np.cos(th)) * u.on(t)
 
         out += [(cy, ey), (cz, ez)]
     return out
