@@ -5,8 +5,15 @@ files.
 ``timeseries.nc``: ``displacement`` [m] over (time, node, direction), with the coordinates
 ``speed`` [rad/s] and ``rotor_angle`` [rad] along time (the orbit against time and against
 speed), ``radius`` [m] = sqrt(y^2 + z^2) per node and, at an element with a clearance,
-``eccentricity`` = radius / C; the law in the attributes (``speed_law``). ``summary.json``:
-the law, the step, and per node the peak radius with the time and the speed where it occurs.
+``eccentricity`` = radius / C; the waterfall ``waterfall`` [m] over (window, frequency, node)
+(:mod:`rotorsfd.timedomain.waterfall`: the two-sided short-time spectrum of y + i z, forward
+whirl at positive frequencies) with the window's ``window_time`` and ``window_speed``, and
+the natural frequencies ``natural_frequency`` [rad/s] of the linear rotor (forward modes)
+over ``campbell_speed``; the law in the attributes (``speed_law``). ``summary.json``: the
+law, the step, per node the peak radius with the time and the speed where it occurs, and
+around each unbalance event the peaks before and after it. Figures: ``envelope.png``
+(radius against speed, with a steady branch file's orbit over it when given, and against
+time) and ``waterfall_<node>.png``.
 """
 
 from __future__ import annotations
@@ -24,6 +31,7 @@ from rotorsfd.errors import ConfigError
 from rotorsfd.model import dofs
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.timedomain.speed_law import RampSpeed, SpeedLaw, TableSpeed
+from rotorsfd.timedomain.waterfall import Waterfall, default_window, waterfall
 
 DEFAULT_STEPS = 200
 """Steps per period of the highest speed with ``steps_per_period = "auto"`` (no halving
@@ -49,9 +57,36 @@ class RunUpResult:
     settings: dict[str, Any]
     title: str = ""
     clearances: dict[int, float] = field(default_factory=dict)
+    events: tuple[float, ...] = ()
+    natural: tuple[np.ndarray, np.ndarray] | None = None
+    overlay: Path | None = None
 
     def radius(self, node: int) -> np.ndarray:
         return self.run.radius(node)
+
+    def waterfall(self, node: int) -> Waterfall:
+        """The waterfall of ``node`` on windows of 8 periods of the slowest speed."""
+        run = self.run
+        window = min(default_window(float(np.min(run.omega))), 0.25 * float(run.t[-1]))
+        return waterfall(run.t, run.q[:, self._col(node, "y")], run.q[:, self._col(node, "z")],
+                         window)
+
+    def event_peaks(self) -> list[dict[str, Any]]:
+        """Around each unbalance event: per node the peak radius before and after it."""
+        out = []
+        for te in self.events:
+            before = self.run.t < te
+            row: dict[str, Any] = {"time_s": float(te), "nodes": {}}
+            for n in self.nodes:
+                r = self.radius(n)
+                after = r[~before]
+                i = int(np.argmax(after)) + int(np.count_nonzero(before)) if after.size else 0
+                row["nodes"][str(n)] = {
+                    "radius_max_before_m": float(r[before].max()) if before.any() else 0.0,
+                    "radius_max_after_m": float(r[i]), "time_of_max_after_s":
+                    float(self.run.t[i])}
+            out.append(row)
+        return out
 
     def peaks(self) -> dict[str, dict[str, float]]:
         """Per node: the largest radius [m], the time [s] and the speed [rad/s] there."""
@@ -86,6 +121,24 @@ class RunUpResult:
             c = np.array([self.clearances.get(n, np.inf) for n in self.nodes])
             data["eccentricity"] = (("time", "node"), radius / c, {
                 "units": "1", "description": "radius / clearance (0 at nodes without one)"})
+        falls = [self.waterfall(n) for n in self.nodes]
+        coords.update({"window_time": ("window", falls[0].time, {"units": "s",
+                                                                  "long_name": "window centre"}),
+                       "window_speed": ("window", np.interp(falls[0].time, run.t, run.omega),
+                                        {"units": "rad/s",
+                                         "long_name": "speed at the window centre"}),
+                       "frequency": ("frequency", falls[0].frequency, {
+                           "units": "Hz", "long_name": "whirl frequency (> 0 forward, "
+                                                       "< 0 backward)"})})
+        data["waterfall"] = (("window", "frequency", "node"),
+                             np.stack([f.amplitude for f in falls], axis=-1),
+                             {"units": "m", "long_name": "short-time whirl amplitude of "
+                                                         "y + i z (Hann window)"})
+        if self.natural is not None:
+            coords["campbell_speed"] = ("campbell_speed", self.natural[0], {"units": "rad/s"})
+            data["natural_frequency"] = (("campbell_speed", "mode"), self.natural[1], {
+                "units": "rad/s", "long_name": "natural frequency of the linear rotor "
+                                               "(forward whirl)"})
         attrs = {"title": self.title, "speed_law": self.settings["speed_law"],
                  "rotorsfd_version": __version__,
                  "steps_per_period": self.settings["steps_per_period"],
@@ -97,7 +150,7 @@ class RunUpResult:
 
     def summary_dict(self) -> dict[str, Any]:
         return {"analysis": "simulate (speed law)", "title": self.title, **self.settings,
-                "peaks": self.peaks(),
+                "peaks": self.peaks(), "events": self.event_peaks(),
                 "max_eccentricity_run": self.run.max_eccentricity_run}
 
     def summary(self) -> str:
@@ -107,10 +160,36 @@ class RunUpResult:
         for n, p in self.peaks().items():
             lines.append(f"  node {n}: peak radius {p['radius_max_m']:.4g} m at "
                          f"t = {p['time_s']:.4g} s, {p['speed_rad_s']:.6g} rad/s")
+        for ev in self.event_peaks():
+            for n, p in ev["nodes"].items():
+                lines.append(f"  unbalance event at t = {ev['time_s']:.4g} s, node {n}: peak "
+                             f"radius {p['radius_max_before_m']:.4g} m before, "
+                             f"{p['radius_max_after_m']:.4g} m after (t = "
+                             f"{p['time_of_max_after_s']:.4g} s)")
         return "\n".join(lines)
 
-    def write(self, directory: str | Path, plots: bool = False) -> dict[str, Path]:
-        """``timeseries.nc`` and ``summary.json`` in ``directory``."""
+    def figures(self) -> dict[str, Any]:
+        """``envelope`` and ``waterfall_<node>`` (:mod:`rotorsfd.plots.transient`)."""
+        from rotorsfd.plots.transient import envelope_figure, waterfall_figure
+
+        run = self.run
+        branch = None if self.overlay is None else branch_envelope(self.overlay, self.nodes)
+        figs = {"envelope": envelope_figure(
+            t=run.t, speed=run.omega, radius={n: self.radius(n) for n in self.nodes},
+            clearances=self.clearances, events=self.events, branch=branch,
+            title=f"{self.title}: {self.settings['speed_law']}".strip(": "))}
+        for n in self.nodes:
+            f = self.waterfall(n)
+            c = self.clearances.get(n)
+            figs[f"waterfall_{n}"] = waterfall_figure(
+                time=f.time, frequency_hz=f.frequency, amplitude=f.amplitude, node=n,
+                t=run.t, speed=run.omega, natural=self.natural,
+                unit_scale=1.0 / c if c else 1e6, unit="C" if c else "µm",
+                title=f"node {n}: waterfall, {self.settings['speed_law']}")
+        return figs
+
+    def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
+        """``timeseries.nc``, ``summary.json`` and (``plots``) the figures in ``directory``."""
         from rotorsfd.io import atomic
 
         out = Path(directory)
@@ -119,8 +198,40 @@ class RunUpResult:
         for name, var in ds.data_vars.items():
             if not np.all(np.isfinite(var.values)):
                 raise ValueError(f"{name}: non-finite values")
-        return {"timeseries.nc": atomic.write_netcdf(ds, out / "timeseries.nc"),
-                "summary.json": atomic.write_json(out / "summary.json", self.summary_dict())}
+        paths = {"timeseries.nc": atomic.write_netcdf(ds, out / "timeseries.nc"),
+                 "summary.json": atomic.write_json(out / "summary.json", self.summary_dict())}
+        if plots:
+            for name, fig in self.figures().items():
+                paths[f"{name}.png"] = atomic.save_figure(fig, out / f"{name}.png", dpi=120)
+        return paths
+
+
+def branch_envelope(path: Path, nodes: Sequence[int]) -> dict[int, tuple[np.ndarray, ...]]:
+    """Per node of ``nodes`` in the branch file ``path`` (``rotorsfd response``'s
+    branch.nc): (speed [rad/s], largest orbit radius over the period [m], stable (1/0)),
+    the radius from the harmonics ``q(t) = Re sum_k X_k exp(i k w t)`` on 128 samples."""
+    import xarray as xr
+
+    with xr.open_dataset(path) as ds:
+        if "X_real" not in ds or "speed_rad_s" not in ds.coords:
+            raise ConfigError("--overlay", str(path), "a branch.nc written by rotorsfd "
+                              "response (a periodic branch in speed)")
+        X = ds["X_real"].values + 1j * ds["X_imag"].values        # (point, harmonic, dof)
+        k = ds["harmonic"].values
+        node_of, direction = ds["node"].values, ds["direction"].values
+        speed = ds["speed_rad_s"].values
+        stable = ds["stable"].values if "stable" in ds else np.ones(speed.size)
+    phase = np.exp(1j * np.outer(k, np.linspace(0.0, 2 * np.pi, 128, endpoint=False)))
+    out = {}
+    for n in nodes:
+        iy = np.flatnonzero((node_of == n) & (direction == "y"))
+        iz = np.flatnonzero((node_of == n) & (direction == "z"))
+        if iy.size == 0 or iz.size == 0:
+            continue
+        y = np.real(np.einsum("ph,hs->ps", X[:, :, iy[0]], phase))
+        z = np.real(np.einsum("ph,hs->ps", X[:, :, iz[0]], phase))
+        out[int(n)] = (speed, np.hypot(y, z).max(axis=1), np.asarray(stable, float))
+    return out
 
 
 def law_of(law: Any, search_path: Path | None = None) -> SpeedLaw:
@@ -141,7 +252,9 @@ def run_speed_law_simulation(system: RotorSystem, law: SpeedLaw, *, sim: Any,
                              steps_per_period: int | str | None = None,
                              periods: int | None = None, scheme: str | None = None,
                              alpha: float | None = None,
-                             initial_displacement: float | None = None) -> RunUpResult:
+                             initial_displacement: float | None = None,
+                             overlay: str | Path | None = None,
+                             natural_modes: int = 6) -> RunUpResult:
     """Integrate ``system`` under ``law`` from the displaced state of ``sim``
     (``[analysis.simulate]``; ``initial_displacement`` in y and z at every node)."""
     spp = steps_per_period if steps_per_period is not None else sim.steps_per_period
@@ -172,5 +285,29 @@ def run_speed_law_simulation(system: RotorSystem, law: SpeedLaw, *, sim: Any,
                 "speed_max_rad_s": float(np.max(run.omega)),
                 "speed_min_rad_s": float(np.min(run.omega)),
                 "initial_displacement_m": float(disp)}
-    return RunUpResult(run, tuple(int(n) for n in nodes), settings, title, clear)
+    events = tuple(sorted({float(u.start) for u in system.unbalances if u.start > 0.0}))
+    natural = _natural_frequencies(system, run.omega, natural_modes)
+    if overlay is not None:
+        overlay = Path(overlay)
+        if not overlay.is_file():
+            raise ConfigError("--overlay", str(overlay), "an existing branch.nc of "
+                              "rotorsfd response")
+        settings["overlay"] = str(overlay)
+    return RunUpResult(run, tuple(int(n) for n in nodes), settings, title, clear, events,
+                       natural, overlay)
+
+
+def _natural_frequencies(system: RotorSystem, omega: np.ndarray, n_modes: int
+                         ) -> tuple[np.ndarray, np.ndarray] | None:
+    """Forward-whirl natural frequencies of the linear rotor (supports and the elements'
+    linear parts, no film) at 9 speeds over the run (None without modes)."""
+    if n_modes <= 0:
+        return None
+    from rotorsfd.linear.campbell import campbell
+
+    lo, hi = float(np.min(omega)), float(np.max(omega))
+    speeds = np.linspace(lo, hi if hi > lo else lo * 1.0001, 9)
+    res = campbell(system.rotor, speeds, n_modes=2 * n_modes)
+    forward = np.all(res.whirl == "forward", axis=0)
+    return speeds, np.asarray(res.frequencies)[:, forward][:, :n_modes]
 
