@@ -109,6 +109,6 @@ def test_branch_overlay_equals_the_branch_files_deflection(tmp_path):
     env = branch_envelope(tmp_path / "b" / "branch.nc", (1,))
     with xr.open_dataset(tmp_path / "b" / "branch.nc") as ds:
         defl = ds["defl_1"].values * 0.127e-3
-    speed, radius, stable = env[1]
+    _, radius, stable = env[1]
     assert radius == pytest.approx(defl, rel=1e-3)
     assert set(np.unique(stable)) <= {0.0, 1.0}

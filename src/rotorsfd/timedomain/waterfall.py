@@ -47,11 +47,11 @@ def waterfall(t: np.ndarray, y: np.ndarray, z: np.ndarray, window: float,
     dt = float(t[1] - t[0])
     if not np.allclose(np.diff(t), dt, rtol=1e-6, atol=0.0):
         raise ValueError("waterfall needs uniformly sampled times")
-    n = max(16, int(round(window / dt)))
+    n = max(16, round(window / dt))
     n = min(n, t.size)
     if not 0.0 <= overlap < 1.0:
         raise ValueError("overlap must be in [0, 1)")
-    hop = max(1, int(round(n * (1.0 - overlap))))
+    hop = max(1, round(n * (1.0 - overlap)))
     h = hann(n, sym=False)
     stft = ShortTimeFFT(h / h.sum(), hop=hop, fs=1.0 / dt, fft_mode="centered")
     w = np.asarray(y, dtype=float) + 1j * np.asarray(z, dtype=float)
