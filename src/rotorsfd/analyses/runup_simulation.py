@@ -25,17 +25,14 @@ from typing import Any
 
 import numpy as np
 
-from rotorsfd.analyses.runup import SpeedLawRun, run_speed_law
+from rotorsfd.analyses.runup import SpeedLawRun, run_speed_law, speed_law_inputs
+from rotorsfd.analyses.runup_step import controlled_run
 from rotorsfd.analyses.td_integration import DIRECTIONS, FIELD, scheme_options
 from rotorsfd.errors import ConfigError
 from rotorsfd.model import dofs
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.timedomain.speed_law import RampSpeed, SpeedLaw, TableSpeed
 from rotorsfd.timedomain.waterfall import Waterfall, default_window, waterfall
-
-DEFAULT_STEPS = 200
-"""Steps per period of the highest speed with ``steps_per_period = "auto"`` (no halving
-control under a speed law yet)."""
 
 
 def law_end(law: SpeedLaw, periods: int) -> float:
@@ -65,7 +62,8 @@ class RunUpResult:
         return self.run.radius(node)
 
     def waterfall(self, node: int) -> Waterfall:
-        """The waterfall of ``node`` on windows of 8 periods of the slowest speed."""
+        """The waterfall of ``node`` on windows of 16 periods of the slowest speed (at most a
+        quarter of the run)."""
         run = self.run
         window = min(default_window(float(np.min(run.omega))), 0.25 * float(run.t[-1]))
         return waterfall(run.t, run.q[:, self._col(node, "y")], run.q[:, self._col(node, "z")],
@@ -157,6 +155,13 @@ class RunUpResult:
         lines = [f"speed law: {self.settings['speed_law']}",
                  f"  {self.run.t.size - 1} steps of T/{self.settings['steps_per_period']} "
                  f"at {self.settings['speed_max_rad_s']:.6g} rad/s"]
+        step = self.settings.get("time_step") or {}
+        if step.get("halvings"):
+            ladder = ", ".join(f"T/{h['steps_per_period'][0]} -> T/{h['steps_per_period'][1]}"
+                               f" {h['difference']:.2g}" for h in step["halvings"])
+            lines.append(f"  time step ({step['mode']}): change of the orbit radius at node "
+                         f"{step['node']} per halving ({step['unit']}): {ladder} "
+                         f"(tolerance {step['tolerance']:g})")
         for n, p in self.peaks().items():
             lines.append(f"  node {n}: peak radius {p['radius_max_m']:.4g} m at "
                          f"t = {p['time_s']:.4g} s, {p['speed_rad_s']:.6g} rad/s")
@@ -166,6 +171,8 @@ class RunUpResult:
                              f"radius {p['radius_max_before_m']:.4g} m before, "
                              f"{p['radius_max_after_m']:.4g} m after (t = "
                              f"{p['time_of_max_after_s']:.4g} s)")
+        if step.get("warning"):
+            lines.append(f"warning: {step['warning']}")
         return "\n".join(lines)
 
     def figures(self) -> dict[str, Any]:
@@ -212,10 +219,15 @@ def branch_envelope(path: Path, nodes: Sequence[int]) -> dict[int, tuple[np.ndar
     the radius from the harmonics ``q(t) = Re sum_k X_k exp(i k w t)`` on 128 samples."""
     import xarray as xr
 
-    with xr.open_dataset(path) as ds:
+    try:
+        ds = xr.open_dataset(path)
+    except (OSError, ValueError):
+        raise ConfigError(f"{FIELD}.overlay", str(path), "a netCDF branch.nc written by "
+                          "rotorsfd response") from None
+    with ds:
         if "X_real" not in ds or "speed_rad_s" not in ds.coords:
-            raise ConfigError("--overlay", str(path), "a branch.nc written by rotorsfd "
-                              "response (a periodic branch in speed)")
+            raise ConfigError(f"{FIELD}.overlay", str(path), "a branch.nc written by "
+                              "rotorsfd response (a periodic branch in speed)")
         X = ds["X_real"].values + 1j * ds["X_imag"].values        # (point, harmonic, dof)
         k = ds["harmonic"].values
         node_of, direction = ds["node"].values, ds["direction"].values
@@ -258,12 +270,18 @@ def run_speed_law_simulation(system: RotorSystem, law: SpeedLaw, *, sim: Any,
     """Integrate ``system`` under ``law`` from the displaced state of ``sim``
     (``[analysis.simulate]``; ``initial_displacement`` in y and z at every node)."""
     spp = steps_per_period if steps_per_period is not None else sim.steps_per_period
-    spp = DEFAULT_STEPS if spp == "auto" else spp
-    if not (isinstance(spp, int | np.integer) and spp >= 8):
+    if spp != "auto" and not (isinstance(spp, int | np.integer) and spp >= 8):
         raise ConfigError(f"{FIELD}.steps_per_period", spp, '"auto" or an integer >= 8')
     for n in nodes:
         if not 1 <= n <= system.rotor.n_nodes:
             raise ConfigError(f"{FIELD}.nodes", n, f"must be 1..{system.rotor.n_nodes}")
+    overlay = overlay if overlay is not None else getattr(sim, "overlay", None)
+    if overlay is not None:                  # checked before the run
+        overlay = Path(overlay)
+        if not overlay.is_file():
+            raise ConfigError(f"{FIELD}.overlay", str(overlay), "an existing branch.nc "
+                              "of rotorsfd response")
+        branch_envelope(overlay, nodes)
     opts = scheme_options(scheme or sim.scheme, sim.alpha if alpha is None else alpha)
     t_end = law_end(law, periods or sim.periods)
     disp = sim.initial_displacement if initial_displacement is None \
@@ -271,16 +289,27 @@ def run_speed_law_simulation(system: RotorSystem, law: SpeedLaw, *, sim: Any,
     q0 = np.zeros(system.n_dof)
     q0[0::4] = q0[1::4] = disp
     rec = [dofs.dof_index(n, d) for n in nodes for d in DIRECTIONS]
-    run = run_speed_law(system, law, t_end, steps_per_period=int(spp), record_dofs=rec,
-                        q0=q0, v0=0.0, method_options=opts)
     clear = {}
     for e in system.elements:
         c = getattr(e, "clearance", None)
         node = getattr(e, "node", None)
         if c and node in nodes:
             clear[int(node)] = float(c)
+    inputs = speed_law_inputs(system, law, t_end)
+    reduction = getattr(sim, "reduction", "none")
+
+    def run_at(n: int) -> SpeedLawRun:
+        return run_speed_law(None, law, t_end, steps_per_period=n, record_dofs=rec, q0=q0,
+                             v0=0.0, inputs=inputs, method_options=opts, reduction=reduction)
+
+    node = next(iter(clear), nodes[0])
+    run, step = controlled_run(run_at, spp, node=node, clearance=clear.get(node),
+                               tolerance=sim.step_tolerance,
+                               max_steps=sim.max_steps_per_period,
+                               check=sim.step_check_periods > 0)
     settings = {"speed_law": law.describe() if hasattr(law, "describe") else str(law),
-                "steps_per_period": int(spp), "scheme": scheme or sim.scheme,
+                "steps_per_period": step.steps_per_period, "time_step": step.as_dict(),
+                "reduction": reduction, "scheme": scheme or sim.scheme,
                 "t_end_s": float(run.t[-1]),
                 "speed_max_rad_s": float(np.max(run.omega)),
                 "speed_min_rad_s": float(np.min(run.omega)),
@@ -288,10 +317,6 @@ def run_speed_law_simulation(system: RotorSystem, law: SpeedLaw, *, sim: Any,
     events = tuple(sorted({float(u.start) for u in system.unbalances if u.start > 0.0}))
     natural = _natural_frequencies(system, run.omega, natural_modes)
     if overlay is not None:
-        overlay = Path(overlay)
-        if not overlay.is_file():
-            raise ConfigError("--overlay", str(overlay), "an existing branch.nc of "
-                              "rotorsfd response")
         settings["overlay"] = str(overlay)
     return RunUpResult(run, tuple(int(n) for n in nodes), settings, title, clear, events,
                        natural, overlay)

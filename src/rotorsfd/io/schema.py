@@ -876,6 +876,10 @@ class SimulateAnalysis(Section):
         "the run lasts to the law's end (constant: periods), timeseries.nc holds the orbit "
         "against time and speed (docs: README, Run-up and coast-down); allowed: a table "
         "with law = \"constant\", \"ramp\" or \"table\" and its keys")
+    overlay: str | None = Field(
+        None, description="a speed-law run's steady branch to draw over its envelope: the "
+        "branch.nc of `rotorsfd response` on the same rotor (relative to the working "
+        "directory, as -o); allowed: a branch.nc path")
 
     def fixed_speed(self, reference_speed: float) -> float | None:
         """The speed [rad/s] (None if neither speed nor speed_ratio is set)."""
@@ -890,6 +894,9 @@ class SimulateAnalysis(Section):
         if self.poincare_periods > self.periods:
             raise fail("poincare_periods", self.poincare_periods,
                        f"must be <= periods = {self.periods}")
+        if self.overlay is not None and self.speed_law is None:
+            raise fail("overlay", self.overlay, "an overlay needs a speed_law (a run-up or "
+                       "coast-down)")
         if self.speed_law is not None and "file" not in self.speed_law:
             from rotorsfd.errors import ConfigError
             from rotorsfd.timedomain.speed_law_config import speed_law_from_config

@@ -77,7 +77,7 @@ def waterfall_figure(*, time: Any, frequency_hz: Any, amplitude: Any, node: int,
     f = np.asarray(frequency_hz)
     a = np.asarray(amplitude) * unit_scale
     keep = (f >= 0.0) & (f <= f_max)
-    floor = max(float(np.max(a)) * 1e-4, 1e-30)
+    floor = max(float(np.max(a)) * 1e-3, 1e-30)
     from matplotlib.colors import LogNorm
 
     mesh = ax.pcolormesh(np.asarray(time), f[keep], np.maximum(a[:, keep], floor).T,

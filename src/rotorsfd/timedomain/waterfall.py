@@ -66,6 +66,6 @@ def waterfall(t: np.ndarray, y: np.ndarray, z: np.ndarray, window: float,
     return Waterfall(centres, freq, np.abs(s[:, cols]).T)
 
 
-def default_window(omega_min: float, periods: float = 8.0) -> float:
-    """``periods`` periods of the slowest speed [s]: a resolution of 1/4 of its 1X."""
+def default_window(omega_min: float, periods: float = 16.0) -> float:
+    """``periods`` periods of the slowest speed [s]: a resolution of 1/8 of its 1X."""
     return periods * 2.0 * math.pi / float(omega_min)
