@@ -57,6 +57,7 @@ class RunUpResult:
     events: tuple[float, ...] = ()
     natural: tuple[np.ndarray, np.ndarray] | None = None
     overlay: Path | None = None
+    config_toml: str = ""       # the resolved configuration it was run from, if any
 
     def radius(self, node: int) -> np.ndarray:
         return self.run.radius(node)
@@ -111,8 +112,10 @@ class RunUpResult:
         coords = {"time": ("time", run.t, {"units": "s"}),
                   "speed": ("time", run.omega, {"units": "rad/s"}),
                   "rotor_angle": ("time", run.theta, {"units": "rad"}),
-                  "node": ("node", np.asarray(self.nodes, dtype=np.int32)),
-                  "direction": ("direction", list(DIRECTIONS))}
+                  "node": ("node", np.asarray(self.nodes, dtype=np.int32),
+                           {"long_name": "node number (1-based)", "units": "1"}),
+                  "direction": ("direction", list(DIRECTIONS),
+                                {"long_name": "lateral direction of the base frame"})}
         data = {"displacement": (("time", "node", "direction"), q, {"units": "m"}),
                 "radius": (("time", "node"), radius, {"units": "m"})}
         if self.clearances:
@@ -137,10 +140,14 @@ class RunUpResult:
             data["natural_frequency"] = (("campbell_speed", "mode"), self.natural[1], {
                 "units": "rad/s", "long_name": "natural frequency of the linear rotor "
                                                "(forward whirl)"})
-        attrs = {"title": self.title, "speed_law": self.settings["speed_law"],
+        from rotorsfd.io.provenance import netcdf_attrs
+
+        attrs = {**netcdf_attrs(), "title": self.title, "speed_law": self.settings["speed_law"],
                  "rotorsfd_version": __version__,
                  "steps_per_period": self.settings["steps_per_period"],
                  "t_final_s": float(run.t[-1])}
+        if self.config_toml:
+            attrs["config_toml"] = self.config_toml
         return xr.Dataset(data, coords=coords, attrs=attrs)
 
     def _col(self, node: int, direction: str) -> int:
@@ -266,7 +273,7 @@ def run_speed_law_simulation(system: RotorSystem, law: SpeedLaw, *, sim: Any,
                              alpha: float | None = None,
                              initial_displacement: float | None = None,
                              overlay: str | Path | None = None,
-                             natural_modes: int = 6) -> RunUpResult:
+                             natural_modes: int = 6, config_toml: str = "") -> RunUpResult:
     """Integrate ``system`` under ``law`` from the displaced state of ``sim``
     (``[analysis.simulate]``; ``initial_displacement`` in y and z at every node)."""
     spp = steps_per_period if steps_per_period is not None else sim.steps_per_period
@@ -319,7 +326,7 @@ def run_speed_law_simulation(system: RotorSystem, law: SpeedLaw, *, sim: Any,
     if overlay is not None:
         settings["overlay"] = str(overlay)
     return RunUpResult(run, tuple(int(n) for n in nodes), settings, title, clear, events,
-                       natural, overlay)
+                       natural, overlay, config_toml)
 
 
 def _natural_frequencies(system: RotorSystem, omega: np.ndarray, n_modes: int
