@@ -21,11 +21,14 @@ from typing import Any
 import griffe
 
 ROLE = re.compile(r":(?:py:)?[a-z]+:`(~?)([^`]+)`")
-CODE_SPAN = re.compile(r"(`+)(.+?)\1")
+CODE_SPAN = re.compile(r"(`+)(.+?)\1", re.DOTALL)
 
 
 def _role(match: re.Match[str]) -> str:
     tilde, target = match.groups()
+    title, _, ref = target.partition(" <")      # :attr:`title <target>`
+    if ref:
+        return f"`{title.strip()}`"
     name = target.rsplit(".", 1)[-1] if tilde else target.lstrip(".")
     return f"`{name}`"
 
@@ -35,23 +38,31 @@ def _escape(text: str) -> str:
             .replace("[", "\\[").replace("]", "\\]"))
 
 
-def _text_line(line: str) -> str:
-    """Escape a line of running text, leaving its code spans alone."""
+def _text(text: str) -> str:
+    """Escape running text (several lines), leaving its code spans alone (they may
+    continue on the next line)."""
     out, pos = [], 0
-    for m in CODE_SPAN.finditer(line):
-        out.append(_escape(line[pos:m.start()]))
+    for m in CODE_SPAN.finditer(text):
+        out.append(_escape(text[pos:m.start()]))
         out.append(m.group(0))
         pos = m.end()
-    out.append(_escape(line[pos:]))
+    out.append(_escape(text[pos:]))
     return "".join(out)
 
 
 def markdown_docstring(text: str) -> str:
     """The docstring ``text`` as Markdown (module docstring)."""
     text = ROLE.sub(_role, text)
-    lines, out = text.split("\n"), []
+    out: list[str] = []
+    para: list[str] = []          # running text since the last block
+
+    def flush() -> None:
+        if para:
+            out.append(_text("\n".join(para)))
+            para.clear()
+
     in_block, in_doctest, prev_blank = False, False, True
-    for line in lines:
+    for line in text.split("\n"):
         blank = not line.strip()
         indented = line.startswith("    ")
         if in_doctest:
@@ -59,23 +70,21 @@ def markdown_docstring(text: str) -> str:
                 out.append("```")
                 in_doctest = False
             out.append(line)
-            prev_blank = blank
-            continue
-        if not in_block and line.startswith(">>>"):
+        elif not in_block and line.startswith(">>>"):
+            flush()
             out.extend(["", "```pycon", line])
             in_doctest = True
-            continue
-        if in_block and not blank and not indented:
-            in_block = False
-        elif not in_block and indented and prev_blank:
+        elif (in_block and (blank or indented)) or (not in_block and indented and prev_blank):
+            flush()
             in_block = True
-        if in_block or blank:
             out.append(line)
         else:
+            in_block = False
             if line.rstrip().endswith("::"):
                 line = line.rstrip()[:-1]
-            out.append(_text_line(line))
+            para.append(line)
         prev_blank = blank
+    flush()
     if in_doctest:
         out.append("```")
     return "\n".join(out)
