@@ -19,7 +19,8 @@
 # Coarse settings, so that the notebook runs in a few seconds: the speed range is
 # narrowed to Omega~ = 0.9-1.2 around the jump (the example's is 0.5-1.6), H = 3 harmonics
 # as in the paper (the example's setting; `harmonics = "auto"` is the default of a new
-# config) and the example's M = 400 Newmark intervals per period for the monodromy.
+# config) and M = 400 Newmark intervals per period for the monodromy to start with
+# (doubled at a point until its largest multipliers change by less than 1e-4).
 # `rotorsfd response examples/paper_rotor.toml --set "unbalance[0].magnitude=144.02 g*mm"`
 # runs the same analysis over the full range.
 
