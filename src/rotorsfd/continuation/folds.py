@@ -249,7 +249,9 @@ def _locate_turn(fold: FoldSystem, z: FloatArray, t: FloatArray, z1: FloatArray,
 def continue_folds(base: TwoParameterSystem, z0: FloatArray, lam2_range: tuple[float, float],
                    options: FoldOptions | None = None,
                    on_point: Callable[[FloatArray, int], None] | None = None,
-                   lam_physical: Callable[[float], float] = float) -> FoldBranch:
+                   lam_physical: Callable[[float], float] = float,
+                   augmented: Callable[[TwoParameterSystem, FloatArray], Any] | None = None
+                   ) -> FoldBranch:
     """Continue the fold near z0 (scaled ``(x, lam1, lam2)``) in lam2 over ``lam2_range``
     (scaled), from ``z0[-1]`` towards ``lam2_range[1]``.
 
@@ -259,10 +261,13 @@ def continue_folds(base: TwoParameterSystem, z0: FloatArray, lam2_range: tuple[f
     (at most ``max_turns`` times). ``on_point(z, segment)`` is called at every point;
     ``lam_physical(lam2)`` converts the scaled lam2 for messages.
     Never raises after the first point: ``success`` False and a message on failure.
+    ``augmented(base, z0)`` builds another singularity's augmented system with the
+    interface of :class:`FoldSystem` (default: the fold's; a period doubling's:
+    :class:`rotorsfd.harmonic.pd_curve.PeriodDoublingSystem`).
     """
     o = options or FoldOptions()
     z0 = np.asarray(z0, dtype=float)
-    fold = FoldSystem(base, z0)
+    fold = FoldSystem(base, z0) if augmented is None else augmented(base, z0)
     e = np.zeros(fold.n + 1)
     e[-1] = 1.0
     first = newton_extended(fold, z0, e, float(z0[-1]), o.tol, 30)
