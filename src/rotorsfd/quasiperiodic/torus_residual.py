@@ -13,6 +13,11 @@ and exactly (Ev = E D_omega, linear in the frequencies omega_k = k1 Omega + k2 w
     dR/dxs = I - Ht (dG/dxs + Delta),
     dR/dlam = -dPt - dHt (G + Delta xs) - Ht dG/dlam,
     dG/dlam = P (dF/dv . Ev' xs),   Ev' = Ev at the frequencies d omega_k / dlam.
+
+Each ``P diag(g) E`` comes from the 2D FFT of the samples g alone (its entries are g's
+coefficients at k_a -+ k_b:
+:meth:`~rotorsfd.quasiperiodic.torus_fourier.TorusAFT.product_matrix`), and
+``P diag(g) Ev = (P diag(g) E) D_omega``: the N x n_real sampling matrices are never formed.
 """
 
 from __future__ import annotations
@@ -61,9 +66,12 @@ def torus_force(problem: TorusProblem, aft: TorusAFT, xs: FloatArray, lam: float
         raise FloatingPointError("non-finite nonlinear force in the torus AFT")
     G = aft.project(f)
     nr, m = xs.shape
-    E, Ev = aft.E, aft.velocity_matrix(w)
-    T = dfq[..., None] * E[:, None, None, :] + dfv[..., None] * Ev[:, None, None, :]
-    dG = aft.project(T).transpose(0, 1, 3, 2).reshape(nr * m, nr * m)
+    T = aft.product_matrix(dfq)                        # P dF/dq E  (a, i, j, b)
+    Tv = aft.product_matrix(dfv)                       # P dF/dv E;  Ev = E D_omega
+    wk = w[1:]
+    T[..., 1::2] += wk * Tv[..., 2::2]
+    T[..., 2::2] -= wk * Tv[..., 1::2]
+    dG = T.transpose(0, 1, 3, 2).reshape(nr * m, nr * m)
     dw = lat.frequencies(*problem.dfrequencies(lam))
     dv = aft.sample(derivative(xs, dw))
     dGdlam = aft.project(np.einsum("nij,nj->ni", dfv, dv))
