@@ -135,12 +135,34 @@ class BandedColumn:
                 I, J, pt.p, pt.b, pt.kl, self.srow, self.scol, self.sval,
                 np.ascontiguousarray(rhs, dtype=complex), deriv)
         if pt.banded:
-            sol, sol2, info = condense_band_column(*args)
+            sol, sol2, info, ab, ipiv = condense_band_column(*args)
+            self.factors = (ab, ipiv)
         else:
-            sol, sol2, info = dense_column(*args)
+            sol, sol2, info, lu = dense_column(*args)
+            self.factors = lu
         if info:
             raise np.linalg.LinAlgError("singular torus column operator")
         return sol, (sol2 if deriv else None)
+
+    def direction(self, x: ComplexArray, dDv: ComplexArray, dKv: ComplexArray,
+                  dw: FloatArray, dF: ComplexArray) -> ComplexArray:
+        """``Zt^-1 (dF - dZ x)`` for one DOF-major vector x (N,), with the factors of the
+        last :meth:`condense`: the lam-derivative of ``Zt^-1 (F + S^T g)`` at fixed g
+        when ``x = Zt^-1 (F + S^T g)`` (the whole derivative of the condensed response in
+        one solve)."""
+        pt = self.pattern
+        I, J = pt.band_entries
+        x = np.ascontiguousarray(x, dtype=complex).reshape(-1, 1)
+        dF = np.ascontiguousarray(dF, dtype=complex).reshape(-1, 1)
+        if pt.banded:
+            ab, ipiv = self.factors
+            return band_direction(ab, ipiv, pt.kl, self.Dv, self.Mv, self.w, dDv, dKv, dw,
+                                  I, J, pt.p, pt.b, x, dF)[:, 0]
+        N = x.shape[0]
+        A, dA = np.zeros((N, N), dtype=complex), np.zeros((N, N), dtype=complex)
+        fill_column(A, dA, self.Dv, self.Kv, self.Mv, self.w, dDv, dKv, dw, I, J, pt.p,
+                    pt.b, True)
+        return lu_solve(self.factors, dF - dA @ x, check_finite=False)[:, 0]
 
 
 def dense_column(Dv, Kv, Mv, w, dDv, dKv, dw, dF, I, J, p, b, kl, srow, scol, sval,
@@ -154,15 +176,15 @@ def dense_column(Dv, Kv, Mv, w, dDv, dKv, dw, dF, I, J, p, b, kl, srow, scol, sv
     try:
         lu = lu_factor(A, check_finite=False)
     except (ValueError, np.linalg.LinAlgError):
-        return rhs, rhs, 1
+        return rhs, rhs, 1, None
     if not np.all(np.isfinite(lu[0])) or np.any(np.diag(lu[0]) == 0):
-        return rhs, rhs, 1
+        return rhs, rhs, 1, None
     sol = lu_solve(lu, rhs, check_finite=False)
     if not deriv:
-        return sol, sol, 0
+        return sol, sol, 0, lu
     y = -(dA @ sol)
     y[:, -1] += dF
-    return sol, lu_solve(lu, y, check_finite=False), 0
+    return sol, lu_solve(lu, y, check_finite=False), 0, lu
 
 
 @njit(cache=True)
@@ -194,7 +216,8 @@ def condense_band_column(Dv, Kv, Mv, w, dDv, dKv, dw, dF, I, J, p, b, kl, srow, 
     (``ab[col, 2 kl + row - col]``, :func:`rotorsfd.harmonic.banded.band_lu`'s layout),
     plus the shift, LU, ``sol = Zt^-1 rhs``, and with ``deriv``
     ``sol2 = Zt^-1 ([0 .. 0, dF] - dZ sol)`` with dZ's entries formed on the fly.
-    Returns (sol, sol2, info), info > 0 if Zt is singular."""
+    Returns (sol, sol2, info, ab, ipiv), info > 0 if Zt is singular; ab, ipiv the
+    factors (for :func:`band_direction`)."""
     N = rhs.shape[0]
     nc = rhs.shape[1]
     ab = np.zeros((N, 3 * kl + 1), dtype=np.complex128)
@@ -217,10 +240,10 @@ def condense_band_column(Dv, Kv, Mv, w, dDv, dKv, dw, dF, I, J, p, b, kl, srow, 
     sol = rhs.copy()
     info = band_lu(ab, kl, kl, ipiv)
     if info:
-        return sol, sol, info
+        return sol, sol, info, ab, ipiv
     band_solve(ab, kl, kl, ipiv, sol)
     if not deriv:
-        return sol, sol, 0
+        return sol, sol, 0, ab, ipiv
     y = np.zeros_like(sol)
     for j in range(-bb, bb + 1):
         jj = j + b
@@ -239,7 +262,32 @@ def condense_band_column(Dv, Kv, Mv, w, dDv, dKv, dw, dF, I, J, p, b, kl, srow, 
     for i in range(N):
         y[i, nc - 1] += dF[i]
     band_solve(ab, kl, kl, ipiv, y)
-    return sol, y, 0
+    return sol, y, 0, ab, ipiv
+
+
+@njit(cache=True)
+def band_direction(ab, ipiv, kl, Dv, Mv, w, dDv, dKv, dw, I, J, p, b, x, dF):
+    """``Zt^-1 (dF - dZ x)`` (x, dF (N, c)) with the band factors of
+    :func:`condense_band_column`, dZ's entries formed on the fly."""
+    y = dF.copy()
+    nc = x.shape[1]
+    bb = min(b, p - 1)
+    for j in range(-bb, bb + 1):
+        jj = j + b
+        for c in range(max(0, -j), min(p, p - j)):
+            wc = w[c]
+            dwc = dw[c]
+            for e in range(I.size):
+                dv = dKv[jj, e] + 1j * (dwc * Dv[jj, e] + wc * dDv[jj, e])
+                if j == 0:
+                    dv -= 2.0 * wc * dwc * Mv[e]
+                if dv != 0.0:
+                    row = I[e] * p + c + j
+                    col = J[e] * p + c
+                    for k in range(nc):
+                        y[row, k] -= dv * x[col, k]
+    band_solve(ab, kl, kl, ipiv, y)
+    return y
 
 
 def dof_major(x: ComplexArray, p: int, n: int) -> ComplexArray:

@@ -182,6 +182,11 @@ class TorusCondensed:
     C: list[ComplexArray]
     dHt: FloatArray | None = None
     dPt: FloatArray | None = None
+    #: per k1: the factorised column, its DOF-major solution [C, u], and the band entries
+    #: of dD_j, dK_j (for :meth:`TorusCondenser.response_derivative`)
+    columns: list[Any] | None = None
+    solutions: list[ComplexArray] | None = None
+    dbands: tuple[ComplexArray, ComplexArray] | None = None
 
 
 class TorusCondenser:
@@ -227,27 +232,25 @@ class TorusCondenser:
         nr = lat.n_real
         F = block_vectors(lat, p_.forcing(lam, lat))
         D, K = p_.coefficients(lam)
+        dD, dK = p_.dcoefficients(lam)
         om, wb = p_.frequencies(lam)
-        mats = [p_.M[None], D, K]
         if deriv:
             dF = block_vectors(lat, p_.dforcing(lam, lat))
-            dD, dK = p_.dcoefficients(lam)
             dom, dwb = p_.dfrequencies(lam)
-            mats += [dD, dK]
-        beta = half_bandwidth(*mats)
+        beta = half_bandwidth(p_.M[None], D, K, dD, dK)   # dZ in the same band
         if m:                                   # the shift's couplings stay in the band
             a_, b_ = np.nonzero(np.abs(self.Kr) + np.abs(self.Cr))
             beta = max(beta, int(np.abs(s[a_] - s[b_]).max(initial=0)))
         b = D.shape[0] - 1
         I, J = column_pattern(n, 1, b, beta).band_entries
         Dv, Kv, Mv = two_sided_band(D, I, J), two_sided_band(K, I, J), p_.M[I, J]
-        dDv = two_sided_band(dD, I, J) if deriv else None
-        dKv = two_sided_band(dK, I, J) if deriv else None
+        dbands = (two_sided_band(dD, I, J), two_sided_band(dK, I, J))
+        dDv, dKv = dbands if deriv else (None, None)
         Ht = np.zeros((nr * m, nr * m))
         Pt = np.zeros((nr, m))
         dHt = np.zeros_like(Ht) if deriv else None
         dPt = np.zeros_like(Pt) if deriv else None
-        us, Cs = [], []
+        us, Cs, cols, sols = [], [], [], []
         for k1 in range(lat.H1 + 1):
             h = lat.h(k1)
             p = 2 * h + 1
@@ -263,6 +266,8 @@ class TorusCondenser:
                                      if deriv else None)
             us.append(harmonic_major(sol[:, -1], p, n))
             Cs.append(harmonic_major(sol[:, :-1], p, n))
+            cols.append(col)
+            sols.append(sol)
             idx = block_real_indices(lat, k1)
             _, U = block_real_maps(lat, k1)
             Pt[idx] = (U @ sol[rows, -1].reshape(p, m)).real
@@ -276,8 +281,33 @@ class TorusCondenser:
             if m:
                 g, R = complex_to_real(lat, k1, sol2[:, :-1], m)
                 dHt[np.ix_(g, g)] = R
-        out = TorusCondensed(lam, Ht, Pt, us, Cs, dHt, dPt)
+        out = TorusCondensed(lam, Ht, Pt, us, Cs, dHt, dPt, cols, sols, dbands)
         self._cache = out
+        return out
+
+    def response_derivative(self, cond: TorusCondensed, g: FloatArray) -> FloatArray:
+        """``d(Pt + Ht g)/dlam`` at fixed g (n_real, m), real layout: per k1 column
+        ``S Zt^-1 (dF - dZ X)`` with ``X = u + C g`` the column's response, one solve
+        (``dPt + dHt g`` without forming dHt: ``dHt = -S Zt^-1 dZ C``)."""
+        p_, lat = self.problem, self.lattice
+        n, m, s = p_.n_dof, p_.m, p_.nl_dofs
+        lam = cond.lam
+        dF = block_vectors(lat, p_.dforcing(lam, lat))
+        dom, dwb = p_.dfrequencies(lam)
+        dDv, dKv = cond.dbands
+        out = np.zeros((lat.n_real, m))
+        gb = block_vectors(lat, to_complex(np.asarray(g, dtype=float).reshape(-1, m))) \
+            if m else None
+        for k1 in range(lat.H1 + 1):
+            h = lat.h(k1)
+            p = 2 * h + 1
+            sol = cond.solutions[k1]
+            X = sol[:, -1] + (sol[:, :-1] @ gb[k1].ravel() if m else 0.0)
+            dw = k1 * dom + np.arange(-h, h + 1) * dwb
+            y = cond.columns[k1].direction(X, dDv, dKv, dw, dof_major(dF[k1].ravel(), p, n))
+            rows = (s[None, :] * p + np.arange(p)[:, None]).ravel()
+            _, U = block_real_maps(lat, k1)
+            out[block_real_indices(lat, k1)] = (U @ y[rows].reshape(p, m)).real
         return out
 
     def recover(self, cond: TorusCondensed, xs: FloatArray, G: FloatArray) -> ComplexArray:

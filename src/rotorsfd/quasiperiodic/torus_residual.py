@@ -12,6 +12,9 @@ and exactly (Ev = E D_omega, linear in the frequencies omega_k = k1 Omega + k2 w
     dG/dxs [a,i,b,j] = sum_n P[a,n] (dF/dq[n,i,j] E[n,b] + dF/dv[n,i,j] Ev[n,b]),
     dR/dxs = I - Ht (dG/dxs + Delta),
     dR/dlam = -dPt - dHt (G + Delta xs) - Ht dG/dlam,
+            (dPt + dHt g = S Zt^-1 (dF - dZ X), X the all-DOF response: one solve per
+            column, :meth:`~rotorsfd.quasiperiodic.torus_linear.TorusCondenser.
+            response_derivative`)
     dG/dlam = P (dF/dv . Ev' xs),   Ev' = Ev at the frequencies d omega_k / dlam.
 
 Each ``P diag(g) E`` comes from the 2D FFT of the samples g alone (its entries are g's
@@ -108,7 +111,7 @@ class TorusHB:
         """R (n_real, m) and, if jac, dR/dxs (nu, nu) and dR/dlam (nu,)."""
         nr, m = self.lattice.n_real, self.problem.m
         xs = np.asarray(xs, dtype=float).reshape(nr, m)
-        cond = self.condenser.condense(lam, deriv=jac)
+        cond = self.condenser.condense(lam, deriv=False)
         nl = torus_force(self.problem, self.aft, xs, lam, jac)
         Dl = self.condenser.delta_real()
         g = nl.G.reshape(-1) + Dl @ xs.reshape(-1)
@@ -116,7 +119,8 @@ class TorusHB:
         if not jac:
             return R.reshape(nr, m), None, None
         J = np.eye(nr * m) - cond.Ht @ (nl.dG + Dl)
-        dR = -cond.dPt.reshape(-1) - cond.dHt @ g - cond.Ht @ nl.dGdlam.reshape(-1)
+        dPg = self.condenser.response_derivative(cond, g.reshape(nr, m))  # dPt + dHt g
+        dR = -dPg.reshape(-1) - cond.Ht @ nl.dGdlam.reshape(-1)
         return R.reshape(nr, m), J, dR
 
     def coefficients(self, xs: FloatArray, lam: float) -> np.ndarray:
