@@ -53,12 +53,17 @@ def torus_force(problem: TorusProblem, aft: TorusAFT, xs: FloatArray, lam: float
     at the N1 x N2 samples."""
     lat = aft.lattice
     w = lat.frequencies(*problem.frequencies(lam))
-    q = aft.sample(xs)
-    v = aft.sample(derivative(xs, w))
     el = problem.elements
-    if el is None or not problem.m:      # a linear system: no force, no derivative
+    nr, m = xs.shape
+    if el is None or not m:              # a linear system: no force, no derivative
         nu = xs.size
-        return TorusForce(np.zeros_like(xs), np.zeros((nu, nu)), np.zeros_like(xs), q)
+        return TorusForce(np.zeros_like(xs), np.zeros((nu, nu)), np.zeros_like(xs),
+                          aft.sample(xs))
+    parts = [xs, derivative(xs, w)]
+    if jac:                              # the velocity's lam-derivative, for dG/dlam
+        parts.append(derivative(xs, lat.frequencies(*problem.dfrequencies(lam))))
+    samples = aft.sample(np.concatenate(parts, axis=1))      # one inverse 2D FFT
+    q, v = samples[:, :m], samples[:, m:2 * m]
     if not jac:
         f = np.asarray(el.force(q, v), dtype=float)
         if not np.all(np.isfinite(f)):
@@ -67,17 +72,15 @@ def torus_force(problem: TorusProblem, aft: TorusAFT, xs: FloatArray, lam: float
     f, dfq, dfv = el.force_and_jacobian(q, v)
     if not np.all(np.isfinite(f)):
         raise FloatingPointError("non-finite nonlinear force in the torus AFT")
-    G = aft.project(f)
-    nr, m = xs.shape
-    T = aft.product_matrix(dfq)                        # P dF/dq E  (a, i, j, b)
-    Tv = aft.product_matrix(dfv)                       # P dF/dv E;  Ev = E D_omega
+    dv = samples[:, 2 * m:]
+    both = aft.project(np.concatenate([f, np.einsum("nij,nj->ni", dfv, dv)], axis=1))
+    G, dGdlam = both[:, :m], both[:, m:]
+    T = aft.product_matrix(np.stack([dfq, dfv], axis=1))    # P dF/dq E, P dF/dv E
+    T, Tv = T[:, 0], T[:, 1]                                 # (a, i, j, b); Ev = E D_omega
     wk = w[1:]
     T[..., 1::2] += wk * Tv[..., 2::2]
     T[..., 2::2] -= wk * Tv[..., 1::2]
     dG = T.transpose(0, 1, 3, 2).reshape(nr * m, nr * m)
-    dw = lat.frequencies(*problem.dfrequencies(lam))
-    dv = aft.sample(derivative(xs, dw))
-    dGdlam = aft.project(np.einsum("nij,nj->ni", dfv, dv))
     return TorusForce(G, dG, dGdlam, q)
 
 
