@@ -50,6 +50,19 @@ def test_fft_sampling_and_projection_are_the_matrices(lattice):
         TorusAFT(lattice, n1 - 1, n2) if n1 > 1 else TorusAFT(lattice, n1, n2 - 1)
 
 
+@pytest.mark.parametrize("lattice", LATTICES)
+@pytest.mark.parametrize("grow", [(1, 1), (2, 4)])
+def test_product_matrix_is_the_matrix_product(lattice, grow):
+    """P diag(g) E (the exact AFT Jacobian's building block) from the FFT of g alone
+    (entries at k_a -+ k_b) = the explicit product with the sampling and projection
+    matrices, on the smallest grid (aliases included) and a finer one, for g (N, 2, 3)."""
+    n1, n2 = lattice.min_grid()
+    aft = TorusAFT(lattice, n1 * grow[0], n2 * grow[1])
+    g = np.random.default_rng(3).normal(size=(aft.N, 2, 3))
+    ref = aft.project(g[..., None] * aft.E[:, None, None, :])     # (n_real, 2, 3, n_real)
+    np.testing.assert_allclose(aft.product_matrix(g), ref, atol=1e-13)
+
+
 def test_convention_in_time():
     """Q = Re(sum X_k e^{i(k1 Omega + k2 w_b) t}): X_(1,-1) = 2 - i gives
     2 cos((Omega - w_b) t) + sin((Omega - w_b) t), with its derivative by finite

@@ -1,18 +1,31 @@
 """``rotorsfd response`` under a harmonic base law: a branch of quasi-periodic responses
-(tori, harmonics ``k1 Omega + k2 w_b``) continued in the rotor speed, its files and plots.
+(tori, harmonics ``k1 Omega + k2 w_b``) continued in the rotor speed, or at a fixed speed
+in the base frequency, a base law's amplitude or the unbalance, its files and plots.
 
 Under a base law ``w(t) = mean + A sin(w_b t + phi)`` the response lies on a 2-torus,
 ``q(t) = Re sum_k X_k exp(i (k1 Omega + k2 w_b) t)`` over the box ``|k1| <= H1,
 |k2| <= H2`` (:mod:`rotorsfd.quasiperiodic`, docs/quasiperiodic.md). From
 ``[analysis.response]``: H1 = the response's (starting) harmonics, H2 = :data:`TORUS_H2`
 (the base terms couple k2 to k2 +- 1, +- 2; the loads sit at |k2| <= 2), the speed range,
-step sizes, tolerance and ``max_eccentricity``. With ``[analysis.stability].enabled`` the
+step sizes, tolerance and ``max_eccentricity``. ``parameter`` in the vocabulary of the
+periodic branches (config paths; :func:`torus_parameter`): ``"speed"`` over
+``speed_range``, or, at the fixed ``speed`` / ``speed_ratio`` over ``parameter_range`` (in
+the field's units), ``base.<law>.frequency`` (w_b: every harmonic law moves with it, the
+rotation laws keeping the amplitude form the config gives them, angle or rate;
+translations keep their displacement), ``base.<law>.amplitude`` (or ``angle_amplitude``,
+``acceleration_amplitude``) and ``unbalance[0].magnitude`` (the others scaled with it),
+each with exact derivatives (:mod:`rotorsfd.quasiperiodic.torus_base_parameters`,
+:func:`~rotorsfd.quasiperiodic.torus_system.torus_problem`). With
+``[analysis.stability].enabled`` the
 largest Lyapunov exponent of the motion started on the torus
 (:func:`~rotorsfd.quasiperiodic.torus_stability.torus_lyapunov`, 200 rotor periods at
 T/200) is computed at :data:`LYAPUNOV_POINTS` points spread along the branch (the first and
 the last among them); a point is stable when ``lambda T + its uncertainty < 0``.
 
-Quantities per point, for an output node n, direction d and lattice harmonic (k1, k2)::
+Quantities per point (after ``speed_rad_s``, ``speed_ratio``, ``base_frequency_rad_s``
+and, for a parameter other than the speed, its value ``<path>_<unit>``, e.g.
+``base_pitching_frequency_rad_s``), for an output node n, direction d and lattice harmonic
+(k1, k2)::
 
     amp_<n>_<d>_<k1>_<k2>  = |X_(k1,k2)| / C     (half peak-to-peak of that line; a
                                                    negative k2 written m2, m1)
@@ -31,6 +44,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsfd.analyses.response_result import column_slug
 from rotorsfd.errors import ConfigError, ConvergenceError
 from rotorsfd.model.system import RotorSystem
 
@@ -71,6 +85,82 @@ def component_slug(k1: int, k2: int) -> str:
     return "_".join(f"m{-k}" if k < 0 else str(k) for k in (k1, k2))
 
 
+#: amplitude forms of a base law that a torus branch may be continued in
+AMPLITUDES = ("amplitude", "angle_amplitude", "acceleration_amplitude")
+ALLOWED = ("speed, base.<law>.frequency (w_b), base.<law>.amplitude (or angle_amplitude, "
+           "acceleration_amplitude) of a harmonic law, or unbalance[0].magnitude")
+
+
+class TorusParameter(NamedTuple):
+    """A torus branch's parameter: the config ``path``, the quasiperiodic API's ``name``
+    (``speed``, ``unbalance``, ``base.frequency``, ``base.<law>.<amplitude form>``), its SI
+    ``unit`` and, for the base frequency, which rotation amplitude is held (``hold``)."""
+
+    path: str
+    name: str
+    unit: str
+    hold: str = "angle"
+
+
+def torus_parameter(config: Config, path: str) -> TorusParameter:
+    """The torus parameter of ``analysis.response.parameter`` = ``path`` (module
+    docstring); ConfigError naming that field for anything else."""
+    from rotorsfd.io.schema import resolve_kind
+    from rotorsfd.io.units import KINDS
+
+    path = path.strip()
+    if path == "speed":
+        return TorusParameter(path, "speed", "rad/s")
+    field = f"{FIELD}.parameter"
+    if path in ("unbalance[0].magnitude", "unbalance.0.magnitude"):
+        if not config.unbalance:
+            raise ConfigError(field, path, "needs an [[unbalance]] to continue in")
+        return TorusParameter(path, "unbalance", KINDS[resolve_kind(config, path)].unit)
+    parts = path.split(".")
+    if len(parts) != 3 or parts[0] != "base" or parts[1] not in LAWS \
+            or parts[2] not in ("frequency", *AMPLITUDES):
+        raise ConfigError(field, path, "under a harmonic base law the torus branch is "
+                          f"continued in {ALLOWED}")
+    law = getattr(config.base, parts[1])
+    if law.law != "harmonic":
+        raise ConfigError(field, path, f"base.{parts[1]} has law = {law.law!r}: continue "
+                          "in a field of a harmonic law")
+    try:
+        unit = KINDS[resolve_kind(config, path)].unit
+    except KeyError:
+        raise ConfigError(field, path, f"base.{parts[1]} has no field {parts[2]!r}; "
+                          f"allowed: {ALLOWED}") from None
+    if parts[2] != "frequency":
+        return TorusParameter(path, path, unit)
+    forms = {"angle" if getattr(config.base, n).angle_amplitude is not None else "rate"
+             for n in LAWS[:3] if getattr(config.base, n).law == "harmonic"}
+    if len(forms) > 1:
+        raise ConfigError(field, path, "the base frequency moves every harmonic law: give "
+                          "the rotation laws' amplitudes in one form (all angle_amplitude "
+                          "or all amplitude)")
+    return TorusParameter(path, "base.frequency", unit, forms.pop() if forms else "angle")
+
+
+def parameter_problem(system: RotorSystem, par: TorusParameter, speed: float | None):
+    """The TorusProblem of ``system`` continued in ``par`` (at the fixed ``speed``)."""
+    from rotorsfd.quasiperiodic import base_parameter_problem, torus_problem
+
+    if par.name in ("speed", "unbalance"):
+        return torus_problem(system, par.name, speed=speed)
+    return base_parameter_problem(system, par.name, float(speed), hold=par.hold)
+
+
+def system_at(system: RotorSystem, par: TorusParameter, lam: float) -> RotorSystem:
+    """``system`` with the parameter at ``lam`` (for the time integration of a point)."""
+    if par.name == "speed":
+        return system
+    if par.name == "unbalance":
+        return system.with_parameter("unbalance.magnitude", lam)
+    from rotorsfd.quasiperiodic.torus_base_parameters import with_base_value
+
+    return with_base_value(system, par.name, lam, par.hold)
+
+
 @dataclasses.dataclass
 class TorusResponseResult:
     """A torus branch in the speed with its system, output nodes and Lyapunov exponents
@@ -86,9 +176,28 @@ class TorusResponseResult:
     lyapunov: dict[int, TorusLyapunov] = dataclasses.field(default_factory=dict)
     info: dict[str, Any] = dataclasses.field(default_factory=dict)
 
+    parameter: str = "speed"                  # config path
+    parameter_units: str = "rad/s"
+    speed: float | None = None                # the fixed speed of a non-speed branch
+
     FILES = ("torus.nc", "torus.csv")
-    is_speed = True
-    parameter = "speed"
+
+    @property
+    def is_speed(self) -> bool:
+        return self.parameter == "speed"
+
+    @property
+    def parameter_column(self) -> str:
+        """The parameter's CSV column (a non-speed branch): ``<path>_<unit>``."""
+        return f"{column_slug(self.parameter)}_{column_slug(self.parameter_units)}"
+
+    def at(self, index: int) -> str:
+        """Where point ``index`` is, in the parameter's terms."""
+        b = self.branch
+        if self.is_speed:
+            return f"Omega~ = {b.omega[index] / self.reference_speed:.5g}"
+        unit = "" if self.parameter_units == "1" else f" {self.parameter_units}"
+        return f"{self.parameter} = {b.lam[index]:.6g}{unit}"
 
     @property
     def clearance(self) -> float:
@@ -118,7 +227,7 @@ class TorusResponseResult:
         b = self.branch
         if not b.n_points:
             return str(b.message)
-        last = f"Omega~ = {b.omega[-1] / self.reference_speed:.5g}"
+        last = self.at(-1)
         if self.ended == "stopped":
             return f"torus branch stopped on request after {b.n_points} points at {last}"
         if self.ended == "range":
@@ -165,8 +274,11 @@ class TorusResponseResult:
         b = self.branch
         cols: dict[str, Any] = {"point": np.arange(b.n_points), "speed_rad_s": b.omega,
                                 "speed_ratio": b.omega / self.reference_speed,
-                                "base_frequency_rad_s": b.wb, "iterations": b.iterations,
-                                "aliasing": b.aliasing, "validity_measure": b.limit}
+                                "base_frequency_rad_s": b.wb}
+        if not self.is_speed:
+            cols[self.parameter_column] = np.asarray(b.lam, dtype=float)
+        cols.update({"iterations": b.iterations, "aliasing": b.aliasing,
+                     "validity_measure": b.limit})
         for n in self.nodes:
             cols[f"defl_{n}"] = self.deflection(n)
             for d in self.directions:
@@ -180,21 +292,27 @@ class TorusResponseResult:
     def summary(self) -> str:
         b = self.branch
         lat = b.lattice
+        if self.is_speed:
+            where = (f"Omega~ from {b.omega.min() / self.reference_speed:.5g} to "
+                     f"{b.omega.max() / self.reference_speed:.5g}, w_b = {b.wb[0]:.6g} rad/s")
+        else:
+            unit = "" if self.parameter_units == "1" else f" {self.parameter_units}"
+            where = (f"{self.parameter} from {b.lam.min():.6g} to {b.lam.max():.6g}{unit} "
+                     f"at Omega~ = {b.omega[0] / self.reference_speed:.5g}"
+                     + ("" if self.parameter.endswith(".frequency")
+                        else f", w_b = {b.wb[0]:.6g} rad/s"))
         lines = [f"quasi-periodic response (torus, harmonics of Omega and w_b): {b.n_points} "
-                 f"points, Omega~ from {b.omega.min() / self.reference_speed:.5g} to "
-                 f"{b.omega.max() / self.reference_speed:.5g}, w_b = {b.wb[0]:.6g} rad/s, "
-                 f"box |k1| <= {lat.H1}, |k2| <= {lat.H2}, grid {b.grid[0]} x {b.grid[1]}, "
-                 f"{self.elapsed:.2f} s"]
-        x = b.omega / self.reference_speed
+                 f"points, {where}, box |k1| <= {lat.H1}, |k2| <= {lat.H2}, grid "
+                 f"{b.grid[0]} x {b.grid[1]}, {self.elapsed:.2f} s"]
         for n in self.nodes:
             r = self.deflection(n)
             i = int(np.argmax(r))
-            lines.append(f"node {n}: max r~ = {r[i]:.4g} at Omega~ = {x[i]:.5g}")
+            lines.append(f"node {n}: max r~ = {r[i]:.4g} at {self.at(i)}")
         if self.lyapunov:
             bad = [i for i, ly in self.lyapunov.items() if not ly.stable]
             lines.append(f"Lyapunov exponent at {len(self.lyapunov)} points: "
                          f"{len(bad)} unstable" + (
-                             f" (first at Omega~ = {x[bad[0]]:.5g})" if bad else ""))
+                             f" (first at {self.at(bad[0])})" if bad else ""))
         lines.append({"range": "ok: ", "limit": "ended at a validity limit: ",
                       "stopped": "stopped: "}.get(self.ended, "FAILED: ") + self.message)
         return "\n".join(lines)
@@ -214,19 +332,23 @@ class TorusResponseResult:
             attrs["config_toml"] = self.info["config_toml"]
         defl = {n: self.deflection(n) for n in self.nodes}
         return torus_dataset(self.branch, reference_speed=self.reference_speed,
-                             deflection=defl, lyapunov=self.lyapunov, attrs=attrs)
+                             deflection=defl, lyapunov=self.lyapunov, attrs=attrs,
+                             parameter=None if self.is_speed else (
+                                 self.parameter, self.parameter_units))
 
     def spectrum_index(self, speed_ratio: float | None = None) -> int:
-        """The point nearest ``speed_ratio`` (default: the largest deflection)."""
+        """The point nearest ``speed_ratio`` (a non-speed branch: the parameter's value in
+        SI; default: the largest deflection)."""
         if speed_ratio is None:
             return int(np.argmax(self.deflection(self.nodes[0])))
-        return int(np.argmin(np.abs(self.branch.omega / self.reference_speed - speed_ratio)))
+        x = self.branch.omega / self.reference_speed if self.is_speed else self.branch.lam
+        return int(np.argmin(np.abs(x - speed_ratio)))
 
     def write(self, directory: str | Path, plots: bool = True,
               multipliers_at: float | None = None) -> dict[str, Path]:
         """Write torus.nc, torus.csv and the plots (torus_components.png, and
         torus_spectrum.png at the point nearest ``multipliers_at``, a speed ratio; default
-        the largest deflection) atomically."""
+        the largest deflection; a non-speed branch: the parameter's value) atomically."""
         from rotorsfd.io import atomic
         from rotorsfd.io.branch_files import write_table
         from rotorsfd.io.torus_files import write_torus_netcdf
@@ -257,43 +379,60 @@ def run_torus_response(config: Config, *, search_path: Path | None = None,
                        stability: bool | None = None, from_orbit: Any = None,
                        callback: Callable[[Any], bool | None] | None = None,
                        lyapunov_points: int = LYAPUNOV_POINTS) -> TorusResponseResult:
-    """The torus branch of a config with a harmonic base law over its speed range
-    (module docstring); ``stability`` None: ``[analysis.stability].enabled``.
-    ``callback(point)`` returning True stops the branch (``point.index``, ``point.lam``)."""
+    """The torus branch of a config with a harmonic base law over its speed range, or at
+    its fixed speed over ``parameter_range`` (module docstring); ``stability`` None:
+    ``[analysis.stability].enabled``. ``callback(point)`` returning True stops the branch
+    (``point.index``, ``point.lam``: the parameter in SI)."""
     from rotorsfd.analyses.modal import reference_speed
     from rotorsfd.io.config import show_config
+    from rotorsfd.io.schema import parameter_values
     from rotorsfd.model.build import build_system
-    from rotorsfd.quasiperiodic import TorusLattice, continue_torus, torus_problem
+    from rotorsfd.quasiperiodic import TorusLattice, continue_torus
     from rotorsfd.quasiperiodic.torus_stability import torus_lyapunov
 
     r = config.analysis.response
     if from_orbit is not None:
         raise ConfigError("--from-orbit", str(from_orbit), "a torus branch (harmonic base "
                           "law) starts from the linear response, not from an orbit")
-    if r.parameter.strip() != "speed":
-        raise ConfigError(f"{FIELD}.parameter", r.parameter, "under a harmonic base law "
-                          "the torus branch is continued in 'speed' only")
+    par = torus_parameter(config, r.parameter)
     if not config.elements:
         raise ConfigError("elements", None, "the nonlinear response needs at least one "
                           "nonlinear element (an [elements.<name>] table)")
     system = build_system(config, search_path)
     ref = float(reference_speed(config, system))
-    lo, hi = r.speed_range.bounds(ref)
-    if not (lo > 0 and hi > 0) or lo == hi:
-        raise ConfigError(f"{FIELD}.speed_range", r.speed_range.model_dump(
-            exclude_none=True), "the torus branch needs two different speeds > 0")
+    speed = None
+    if par.name == "speed":
+        lo, hi = r.speed_range.bounds(ref)
+        if not (lo > 0 and hi > 0) or lo == hi:
+            raise ConfigError(f"{FIELD}.speed_range", r.speed_range.model_dump(
+                exclude_none=True), "the torus branch needs two different speeds > 0")
+    else:
+        speed = float(r.fixed_speed(ref))
+        lo, hi = parameter_values(config, par.path, list(r.parameter_range))
+        low = 0.0 if par.name.endswith("amplitude") or par.name == "unbalance" else None
+        if lo == hi or (low is None and not (lo > 0 and hi > 0)) or \
+                (low is not None and not (lo >= 0 and hi >= 0)):
+            need = "> 0" if low is None else ">= 0"
+            raise ConfigError(f"{FIELD}.parameter_range", list(r.parameter_range),
+                              f"the torus branch in {par.path} needs two different values "
+                              f"{need}")
     nodes = tuple(r.nodes) or system.output_nodes
     for n in nodes:
         if not 1 <= n <= system.rotor.n_nodes:
             raise ConfigError(f"{FIELD}.nodes", n, f"must be 1..{system.rotor.n_nodes}")
     lattice = lattice or TorusLattice(r.start_harmonics, TORUS_H2)
-    problem = torus_problem(system)          # ConfigError for unsupported base laws
+    problem = parameter_problem(system, par, speed)   # ConfigError: unsupported base laws
+    unit = "" if par.unit == "1" else f" {par.unit}"
+
+    def where(lam: float) -> str:
+        return f"Omega~ = {lam / ref:.4g}" if speed is None else \
+            f"{par.path} = {lam:.4g}{unit}"
 
     def hook(index: int, lam: float, X: Any) -> bool:
         if progress:
             import sys
 
-            print(f"\rtorus: {index + 1} points, at Omega~ = {lam / ref:.4g}", end="",
+            print(f"\rtorus: {index + 1} points, at {where(lam)}", end="",
                   file=sys.stderr, flush=True)
         return bool(callback(TorusPoint(index, lam, X))) if callback else False
 
@@ -305,8 +444,9 @@ def run_torus_response(config: Config, *, search_path: Path | None = None,
                                 max_angle_deg=math.degrees(r.max_tangent_angle),
                                 limit_max=r.max_eccentricity, callback=hook)
     except ConvergenceError as exc:
-        raise ConvergenceError(f"no torus at the start of the speed range (Omega~ = "
-                               f"{lo / ref:.4g}): {exc}") from None
+        start = (f"the speed range ({where(lo)})" if speed is None else
+                 f"{FIELD}.parameter_range ({where(lo)}, Omega~ = {speed / ref:.4g})")
+        raise ConvergenceError(f"no torus at the start of {start}: {exc}") from None
     finally:
         if progress:
             import sys
@@ -316,10 +456,12 @@ def run_torus_response(config: Config, *, search_path: Path | None = None,
     lyap = {}
     if enabled:
         for i in lyapunov_indices(branch.n_points, lyapunov_points):
-            lyap[i] = torus_lyapunov(system, lattice, branch.X[i], float(branch.omega[i]),
+            lyap[i] = torus_lyapunov(system_at(system, par, float(branch.lam[i])), lattice,
+                                     branch.X[i], float(branch.omega[i]),
                                      float(branch.wb[i]))
     return TorusResponseResult(branch, system, ref, tuple(nodes),
                                tuple(r.directions), config.title,
                                time.perf_counter() - t0, lyap,
                                {"config_toml": show_config(config),
-                                "limit_max": float(r.max_eccentricity)})
+                                "limit_max": float(r.max_eccentricity)},
+                               parameter=par.path, parameter_units=par.unit, speed=speed)

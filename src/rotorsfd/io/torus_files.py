@@ -5,7 +5,8 @@ netCDF layout (real and imaginary parts separate, as in ``branch.nc``)::
 
     dims     point, harmonic (the half lattice), dof (4 per node: y, z, ty, tz), lyapunov
     coords   point, harmonic, k1(harmonic), k2(harmonic), dof, node(dof), direction(dof),
-             speed_rad_s(point), speed_ratio(point), base_frequency_rad_s(point)
+             speed_rad_s(point), speed_ratio(point), base_frequency_rad_s(point),
+             parameter(point) (a branch in another parameter than the speed)
     vars     X_real, X_imag (point, harmonic, dof)
                  q(t) = Re sum_k X_k exp(i (k1 Omega + k2 w_b) t)
              iterations, aliasing, validity_measure, arc_length, defl_<n> (point);
@@ -40,10 +41,13 @@ FALLBACK_NAMES = {"point": "continuation point", "dof": "global degree of freedo
 def torus_dataset(branch: Any, *, reference_speed: float,
                   deflection: Mapping[int, NDArray[np.float64]],
                   lyapunov: Mapping[int, Any] | None = None,
-                  attrs: Mapping[str, Any] | None = None) -> xr.Dataset:
-    """The Dataset of a :class:`~rotorsfd.quasiperiodic.TorusBranch` in the speed
-    (module docstring); ``deflection`` node -> r~ per point, ``lyapunov`` point index ->
-    :class:`~rotorsfd.quasiperiodic.torus_stability.TorusLyapunov`."""
+                  attrs: Mapping[str, Any] | None = None,
+                  parameter: tuple[str, str] | None = None) -> xr.Dataset:
+    """The Dataset of a :class:`~rotorsfd.quasiperiodic.TorusBranch` (module docstring);
+    ``deflection`` node -> r~ per point, ``lyapunov`` point index ->
+    :class:`~rotorsfd.quasiperiodic.torus_stability.TorusLyapunov`; ``parameter``
+    (config path, SI unit) of a branch in another parameter than the speed (None: the
+    speed), whose values ``branch.lam`` become the coordinate ``parameter(point)``."""
     lat = branch.lattice
     n, nk, n_dof = branch.X.shape
     node, direction = dof_labels(n_dof)
@@ -65,6 +69,9 @@ def torus_dataset(branch: Any, *, reference_speed: float,
         "base_frequency_rad_s": ("point", np.asarray(branch.wb, dtype=float),
                                  {"long_name": "base frequency w_b", "units": "rad/s"}),
     }
+    if parameter is not None:
+        coords["parameter"] = ("point", np.asarray(branch.lam, dtype=float),
+                               {"long_name": parameter[0], "units": parameter[1]})
     harm = ("point", "harmonic", "dof")
     unit = {"units": "m (y, z) or rad (ty, tz)"}
     data: dict[str, Any] = {
@@ -113,8 +120,10 @@ def torus_dataset(branch: Any, *, reference_speed: float,
                       "the half peak-to-peak amplitude of the line at k1 Omega + k2 w_b",
         "H1": int(lat.H1), "H2": int(lat.H2), "lattice": str(lat.shape),
         "grid": np.asarray(branch.grid, dtype=np.int32), "success": int(branch.success),
-        "message": str(branch.message), "continuation_parameter": "speed",
-        "parameter_units": "rad/s", "reference_speed_rad_s": float(reference_speed),
+        "message": str(branch.message),
+        "continuation_parameter": "speed" if parameter is None else parameter[0],
+        "parameter_units": "rad/s" if parameter is None else parameter[1],
+        "reference_speed_rad_s": float(reference_speed),
     })
     for key, value in (attrs or {}).items():
         ds.attrs[key] = int(value) if isinstance(value, bool) else value

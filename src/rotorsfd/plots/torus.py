@@ -2,7 +2,8 @@
 
 ``torus_components.png``: per output node, the amplitudes ``|X_(k1,k2)| / C`` of the
 strongest lines ``k1 Omega + k2 w_b`` (the radial amplitude ``sqrt(|X_y|^2 + |X_z|^2)``,
-legends in words: "1X", "1X - 2 w_b", "1 w_b") against Omega~, and below the largest
+legends in words: "1X", "1X - 2 w_b", "1 w_b") against Omega~ (or the branch's parameter,
+e.g. ``base.pitching.frequency [rad/s]``), and below the largest
 Lyapunov exponent per rotor period where computed (filled: stable, open: unstable).
 
 ``torus_spectrum.png``: the 2D amplitude spectrum at one speed, per node a map over the
@@ -53,7 +54,7 @@ def plot_torus_components(result: Any) -> Figure:
     """The strongest lines of every output node against Omega~, and the Lyapunov
     exponents (module docstring)."""
     b = result.branch
-    x = b.omega / result.reference_speed
+    x, xlabel = branch_axis(result)
     rows = len(result.nodes) + (1 if result.lyapunov else 0)
     fig = Figure(figsize=(8, 2.8 * rows + 0.8), layout="constrained")
     axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
@@ -80,11 +81,26 @@ def plot_torus_components(result: Any) -> Figure:
         ax.set_ylabel(mathtext("largest Lyapunov exponent x T"))
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=7, loc="best")
-    axes[-1].set_xlabel(mathtext("Omega~ = Omega / Omega_ref"))
-    wb = float(b.wb[0])
+    axes[-1].set_xlabel(xlabel)
+    if result.is_speed:
+        at = f"w_b = {float(b.wb[0]):.4g} rad/s"
+    else:
+        at = f"Omega~ = {float(b.omega[0]) / result.reference_speed:.4g}" + (
+            "" if result.parameter.endswith(".frequency")
+            else f", w_b = {float(b.wb[0]):.4g} rad/s")
     fig.suptitle(mathtext(wrap(f"{result.title or 'Quasi-periodic response'}: lines at "
-                               f"k1 Omega + k2 w_b, w_b = {wb:.4g} rad/s", 90)), fontsize=9)
+                               f"k1 Omega + k2 w_b, {at}", 90)), fontsize=9)
     return fig
+
+
+def branch_axis(result: Any) -> tuple[np.ndarray, str]:
+    """The x values of a torus branch and their label: Omega~ for a speed branch, the
+    parameter in SI (named by its config path) otherwise."""
+    b = result.branch
+    if result.is_speed:
+        return b.omega / result.reference_speed, mathtext("Omega~ = Omega / Omega_ref")
+    unit = "" if result.parameter_units == "1" else f" [{result.parameter_units}]"
+    return np.asarray(b.lam, dtype=float), f"{result.parameter}{unit}"
 
 
 def plot_torus_spectrum(result: Any, index: int) -> Figure:
@@ -122,7 +138,9 @@ def plot_torus_spectrum(result: Any, index: int) -> Figure:
     if image is not None:
         fig.colorbar(image, ax=list(axes), label=r"$\sqrt{|X_y|^2 + |X_z|^2}\,/\,C$")
     ratio = b.omega[index] / result.reference_speed
-    fig.suptitle(mathtext(wrap(f"Amplitude spectrum at Omega~ = {ratio:.4g} (the line at "
+    at = f"Omega~ = {ratio:.4g}" if result.is_speed else \
+        f"{result.at(index)}, Omega~ = {ratio:.4g}"
+    fig.suptitle(mathtext(wrap(f"Amplitude spectrum at {at} (the line at "
                                "k1 Omega + k2 w_b; blank: the conjugate of the mirrored "
                                "cell)", 90)), fontsize=9)
     return fig

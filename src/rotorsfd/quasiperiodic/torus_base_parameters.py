@@ -14,9 +14,12 @@ exact (to round-off) at every value, with the exact derivative.
 
 Parameters: ``"base.frequency"`` (lam = w_b [rad/s], every harmonic law moved together;
 ``hold="angle"`` keeps the rotation laws' angle amplitudes A / w_b, ``"rate"`` their rate
-amplitudes; translations keep their displacement amplitudes) and
+amplitudes; translations keep their displacement amplitudes),
 ``"base.<component>.amplitude"`` (lam = that law's amplitude: a rate [rad/s] for rolling,
-pitching, yawing, a displacement [m] for x, y, z).
+pitching, yawing, a displacement [m] for x, y, z), and the config's other forms of it,
+``"base.<rotation>.angle_amplitude"`` (lam = A0 [rad], rate amplitude A0 w_b) and
+``"base.<translation>.acceleration_amplitude"`` (lam = a [m/s^2], displacement a / w_b^2):
+each a fixed multiple of the amplitude, so the interpolation stays exact.
 """
 
 from __future__ import annotations
@@ -38,25 +41,37 @@ NODES = np.array([0.6, 0.8, 1.0, 1.2, 1.4])
 HOLDS = ("angle", "rate")
 
 
+#: the amplitude forms per component kind, and the factor amplitude / lam at frequency w
+AMPLITUDE_FORMS = {"amplitude": lambda w: 1.0, "angle_amplitude": lambda w: w,
+                   "acceleration_amplitude": lambda w: 1.0 / w**2}
+
+
 def base_parameter_value(system: RotorSystem, parameter: str) -> float:
     """The parameter's value in ``system`` (ConfigError for an unknown one)."""
     if parameter == "base.frequency":
         return base_frequency(system)
-    law = _law(system.base, parameter)
-    return float(law.amplitude)
+    law, form = _law(system.base, parameter)
+    return float(law.amplitude) / AMPLITUDE_FORMS[form](float(law.frequency))
 
 
 def _law(base: BaseMotion, parameter: str):
+    """(law, amplitude form) named by ``base.<component>.<form>``."""
     parts = parameter.split(".")
+    allowed = ("must be base.frequency, base.<x|y|z|rolling|pitching|yawing>.amplitude, "
+               "base.<rolling|pitching|yawing>.angle_amplitude or "
+               "base.<x|y|z>.acceleration_amplitude")
     if len(parts) != 3 or parts[0] != "base" or parts[1] not in COMPONENTS \
-            or parts[2] != "amplitude":
-        raise ConfigError("parameter", parameter, "must be base.frequency or "
-                          "base.<x|y|z|rolling|pitching|yawing>.amplitude")
-    law = (*base.translation, *base.rotation)[COMPONENTS.index(parts[1])]
+            or parts[2] not in AMPLITUDE_FORMS:
+        raise ConfigError("parameter", parameter, allowed)
+    i = COMPONENTS.index(parts[1])
+    if (parts[2] == "angle_amplitude" and i < 3) or \
+            (parts[2] == "acceleration_amplitude" and i >= 3):
+        raise ConfigError("parameter", parameter, allowed)
+    law = (*base.translation, *base.rotation)[i]
     if law.kind != "harmonic":
         raise ConfigError(f"base.{parts[1]}.law", law.kind,
                           "continuing in its amplitude needs a harmonic law")
-    return law
+    return law, parts[2]
 
 
 def with_base_value(system: RotorSystem, parameter: str, value: float,
@@ -75,7 +90,9 @@ def with_base_value(system: RotorSystem, parameter: str, value: float,
                 laws[i] = dataclasses.replace(law, frequency=float(value), amplitude=amp)
     else:
         i = COMPONENTS.index(parameter.split(".")[1])
-        laws[i] = dataclasses.replace(_law(system.base, parameter), amplitude=float(value))
+        law, form = _law(system.base, parameter)
+        amp = float(value) * AMPLITUDE_FORMS[form](float(law.frequency))
+        laws[i] = dataclasses.replace(law, amplitude=amp)
     base = BaseMotion(*laws, gravity=system.base.gravity)
     return RotorSystem(system.rotor, system.elements, system.unbalances, base)
 

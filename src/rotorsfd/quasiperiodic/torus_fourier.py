@@ -250,6 +250,45 @@ class TorusAFT:
         A[self._slots] = X
         return (self.N * np.fft.ifft2(A, axes=(0, 1))).real.reshape(self.N, *X.shape[1:])
 
+    @cached_property
+    def _pairs(self) -> tuple[tuple[NDArray[np.int64], ...], tuple[NDArray[np.int64], ...]]:
+        """Grid bins of ``k_a - k_b`` and ``k_a + k_b`` for every pair of harmonics."""
+        k = self.lattice.k
+        d, s = k[:, None, :] - k[None, :, :], k[:, None, :] + k[None, :, :]
+        n = (self.N1, self.N2)
+        return (tuple(d[..., i] % n[i] for i in (0, 1)),
+                tuple(s[..., i] % n[i] for i in (0, 1)))
+
+    def product_matrix(self, g: FloatArray) -> FloatArray:
+        """``P diag(g) E`` (n_real, ..., n_real) for samples g (N, ...): the projection of
+        the product of g with every sampled harmonic, from the 2D FFT of g alone.
+
+        With ``g^(k) = (1/N) sum_n g_n exp(-i k . theta_n)`` (on the grid, bins mod N),
+        ``A_ab = g^(k_a - k_b)``, ``B_ab = g^(k_a + k_b)``: column ``cos phi_b`` projects
+        to ``X_a = A_ab + B_ab`` and column ``-sin phi_b`` to ``X_a = i (A_ab - B_ab)``
+        (halved for a = 0, whose coefficient is the mean): equal to the product of the
+        sampled matrices, aliases included."""
+        g = np.asarray(g, dtype=float)
+        rest = g.shape[1:]
+        gh = np.fft.fft2(g.reshape(self.N1, self.N2, *rest), axes=(0, 1)) / self.N
+        d, s = self._pairs
+        A, B = gh[d], gh[s]                    # (nk, nk, ...)
+        cos, sin = A + B, 1j * (A - B)
+        cos[0] *= 0.5
+        sin[0] *= 0.5
+        nr = self.lattice.n_real
+        out = np.empty((nr, nr, *rest))
+        out[0, 0] = cos[0, 0].real
+        out[0, 1::2] = cos[0, 1:].real
+        out[0, 2::2] = sin[0, 1:].real
+        out[1::2, 0] = cos[1:, 0].real
+        out[2::2, 0] = cos[1:, 0].imag
+        out[1::2, 1::2] = cos[1:, 1:].real
+        out[2::2, 1::2] = cos[1:, 1:].imag
+        out[1::2, 2::2] = sin[1:, 1:].real
+        out[2::2, 2::2] = sin[1:, 1:].imag
+        return np.moveaxis(out, 1, -1)
+
     def project(self, f: FloatArray) -> FloatArray:
         """``P f`` by a 2D FFT: samples (N, ...) -> real layout (n_real, ...)."""
         f = np.asarray(f, dtype=float)

@@ -31,7 +31,9 @@ couple)
 so the receptance ``Ht`` couples the k2 harmonics of one k1 at the nonlinear DOFs: the
 condensed unknowns are those of the nonlinear DOFs only, as in the periodic case, at the
 price of a solve of size ``n (2h + 1)`` per block instead of n per harmonic (banded when
-the rotor's matrices are: :class:`ColumnSolver`). Exact
+the rotor's matrices are: :mod:`~rotorsfd.quasiperiodic.torus_columns` writes each block
+straight into band storage, DOF-major; :func:`column_operator` builds the dense block,
+the reference of the tests). Exact
 derivatives: ``dHt = -S Zt^{-1} dZ C``, ``dPt = S Zt^{-1} (dF - dZ u)``.
 """
 
@@ -39,14 +41,22 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.linalg import get_lapack_funcs, lu_factor, lu_solve
 
 from rotorsfd.harmonic.fourier import to_complex
 from rotorsfd.harmonic.residual import real_blocks
+from rotorsfd.quasiperiodic.torus_columns import (
+    BandedColumn,
+    column_pattern,
+    dof_major,
+    half_bandwidth,
+    harmonic_major,
+    two_sided_band,
+)
 from rotorsfd.quasiperiodic.torus_fourier import (
     TorusLattice,
     block_real_indices,
@@ -144,50 +154,19 @@ def complex_to_real(lattice: TorusLattice, k1: int, A: ComplexArray, width: int
     """A complex column operator A (p w, p w) as a real matrix on the real layout:
     ``(global indices g, Re((U x I) A (T x I)))`` with g into the flattened (n_real, w)
     layout (:func:`~rotorsfd.quasiperiodic.torus_fourier.block_real_maps`)."""
+    UI, TI, g = real_maps(lattice, k1, width)
+    return g, (UI @ A @ TI).real
+
+
+@lru_cache(maxsize=256)
+def real_maps(lattice: TorusLattice, k1: int, width: int
+              ) -> tuple[ComplexArray, ComplexArray, NDArray[np.int64]]:
+    """``(U x I, T x I, g)`` of :func:`complex_to_real` (cached per lattice column)."""
     T, U = block_real_maps(lattice, k1)
     eye = np.eye(width)
-    R = (np.kron(U, eye) @ A @ np.kron(T, eye)).real
     idx = block_real_indices(lattice, k1)
     g = (idx[:, None] * width + np.arange(width)[None, :]).ravel()
-    return g, R
-
-
-class ColumnSolver:
-    """LU of a column block Z (p n, p n), rows ordered (k2, DOF). Reordered DOF-major
-    (index d p + r) the block is banded when the rotor's matrices are: with ``dof_band``
-    the half bandwidth of M, D_j, K_j (FE: a few DOFs), that of the reordered block is
-    ``dof_band p + p - 1``; then LAPACK's banded LU (gbtrf/gbtrs), else a dense LU."""
-
-    def __init__(self, Z: ComplexArray, p: int, n: int, dof_band: int) -> None:
-        self.perm = (np.arange(n)[:, None] + n * np.arange(p)[None, :]).ravel()
-        N = p * n
-        A = Z.reshape(p, n, p, n).transpose(1, 0, 3, 2).reshape(N, N)   # = Z[perm][:, perm]
-        # entries (d, r), (e, c) with |d - e| <= dof_band: |i - j| <= dof_band p + p - 1
-        kl = ku = min(dof_band * p + p - 1, N - 1)
-        self.banded = kl + ku < N // 4
-        if not self.banded:
-            self.lu = lu_factor(Z, check_finite=False)
-            return
-        gbtrf, self._gbtrs = get_lapack_funcs(("gbtrf", "gbtrs"), (A,))
-        ab = np.zeros((2 * kl + ku + 1, N), dtype=complex)
-        for d in range(-ku, kl + 1):              # ab[kl + ku + i - j, j] = A[i, j]
-            diag = np.diagonal(A, -d)
-            if d >= 0:
-                ab[kl + ku + d, : N - d] = diag
-            else:
-                ab[kl + ku + d, -d:] = diag
-        self.lu, self.piv, info = gbtrf(ab, kl, ku)
-        if info > 0:
-            raise np.linalg.LinAlgError("singular torus column operator")
-        self.kl, self.ku = kl, ku
-        self.inverse = np.argsort(self.perm)
-
-    def solve(self, b: ComplexArray) -> ComplexArray:
-        """Z^-1 b for b (p n, c)."""
-        if not self.banded:
-            return lu_solve(self.lu, b, check_finite=False)
-        x, _ = self._gbtrs(self.lu, self.kl, self.ku, b[self.perm], self.piv)
-        return x[self.inverse]
+    return np.kron(U, eye), np.kron(T, eye), g
 
 
 @dataclass
@@ -203,6 +182,11 @@ class TorusCondensed:
     C: list[ComplexArray]
     dHt: FloatArray | None = None
     dPt: FloatArray | None = None
+    #: per k1: the factorised column, its DOF-major solution [C, u], and the band entries
+    #: of dD_j, dK_j (for :meth:`TorusCondenser.response_derivative`)
+    columns: list[Any] | None = None
+    solutions: list[ComplexArray] | None = None
+    dbands: tuple[ComplexArray, ComplexArray] | None = None
 
 
 class TorusCondenser:
@@ -237,7 +221,9 @@ class TorusCondenser:
         return real_blocks(stack)
 
     def condense(self, lam: float, deriv: bool = True) -> TorusCondensed:
-        """Receptance, particular response and (deriv) their lam-derivatives at lam."""
+        """Receptance, particular response and (deriv) their lam-derivatives at lam; the
+        column blocks written in band storage (:mod:`~rotorsfd.quasiperiodic.
+        torus_columns`), one LU each."""
         c = self._cache
         if c is not None and c.lam == lam and (c.dHt is not None or not deriv):
             return c
@@ -245,48 +231,83 @@ class TorusCondenser:
         n, m, s = p_.n_dof, p_.m, p_.nl_dofs
         nr = lat.n_real
         F = block_vectors(lat, p_.forcing(lam, lat))
-        dF = block_vectors(lat, p_.dforcing(lam, lat)) if deriv else None
+        D, K = p_.coefficients(lam)
+        dD, dK = p_.dcoefficients(lam)
+        om, wb = p_.frequencies(lam)
+        if deriv:
+            dF = block_vectors(lat, p_.dforcing(lam, lat))
+            dom, dwb = p_.dfrequencies(lam)
+        beta = half_bandwidth(p_.M[None], D, K, dD, dK)   # dZ in the same band
+        if m:                                   # the shift's couplings stay in the band
+            a_, b_ = np.nonzero(np.abs(self.Kr) + np.abs(self.Cr))
+            beta = max(beta, int(np.abs(s[a_] - s[b_]).max(initial=0)))
+        b = D.shape[0] - 1
+        I, J = column_pattern(n, 1, b, beta).band_entries
+        Dv, Kv, Mv = two_sided_band(D, I, J), two_sided_band(K, I, J), p_.M[I, J]
+        dbands = (two_sided_band(dD, I, J), two_sided_band(dK, I, J))
+        dDv, dKv = dbands if deriv else (None, None)
         Ht = np.zeros((nr * m, nr * m))
         Pt = np.zeros((nr, m))
         dHt = np.zeros_like(Ht) if deriv else None
         dPt = np.zeros_like(Pt) if deriv else None
-        us, Cs = [], []
-        D, K = p_.coefficients(lam)
-        pattern = np.abs(p_.M) + np.abs(D).sum(axis=0) + np.abs(K).sum(axis=0)
-        r_, c_ = np.nonzero(pattern)
-        band = int(np.abs(r_ - c_).max(initial=0))      # the shift is diagonal
+        us, Cs, cols, sols = [], [], [], []
         for k1 in range(lat.H1 + 1):
-            Z, dZ = column_operator(p_, lat, k1, lam, deriv)
-            p = 2 * lat.h(k1) + 1
-            rows = (np.arange(p)[:, None] * n + s[None, :]).ravel()   # S in the column
-            if m:
-                dl = self.delta(k1)
-                for r in range(p):
-                    Z[np.ix_(r * n + s, r * n + s)] += dl[r]
-            lu = ColumnSolver(Z, p, n, band)
+            h = lat.h(k1)
+            p = 2 * h + 1
+            pt = column_pattern(n, p, b, beta)
+            w = k1 * om + np.arange(-h, h + 1) * wb
+            dw = k1 * dom + np.arange(-h, h + 1) * dwb if deriv else None
+            col = BandedColumn(pt, Dv, Kv, Mv, w, s, self.delta(k1) if m else None)
+            rows = (s[None, :] * p + np.arange(p)[:, None]).ravel()   # S, DOF-major
             rhs = np.zeros((p * n, p * m + 1), dtype=complex)
             rhs[rows, np.arange(p * m)] = 1.0
-            rhs[:, -1] = F[k1].ravel()
-            sol = lu.solve(rhs)
-            C, u = sol[:, :-1], sol[:, -1]
-            us.append(u)
-            Cs.append(C)
+            rhs[:, -1] = dof_major(F[k1].ravel(), p, n)
+            sol, sol2 = col.condense(rhs, dDv, dKv, dw, dof_major(dF[k1].ravel(), p, n)
+                                     if deriv else None)
+            us.append(harmonic_major(sol[:, -1], p, n))
+            Cs.append(harmonic_major(sol[:, :-1], p, n))
+            cols.append(col)
+            sols.append(sol)
             idx = block_real_indices(lat, k1)
             _, U = block_real_maps(lat, k1)
-            Pt[idx] = (U @ u[rows].reshape(p, m)).real
+            Pt[idx] = (U @ sol[rows, -1].reshape(p, m)).real
             if m:
-                g, R = complex_to_real(lat, k1, C[rows], m)
+                g, R = complex_to_real(lat, k1, sol[rows, :-1], m)
                 Ht[np.ix_(g, g)] = R
             if not deriv:
                 continue
-            rhs2 = np.concatenate([dZ @ C, (dF[k1].ravel() - dZ @ u)[:, None]], axis=1)
-            sol2 = lu.solve(rhs2)[rows]
+            sol2 = sol2[rows]             # Zt^-1 [-dZ C, dF - dZ u]
             dPt[idx] = (U @ sol2[:, -1].reshape(p, m)).real
             if m:
-                g, R = complex_to_real(lat, k1, -sol2[:, :-1], m)
+                g, R = complex_to_real(lat, k1, sol2[:, :-1], m)
                 dHt[np.ix_(g, g)] = R
-        out = TorusCondensed(lam, Ht, Pt, us, Cs, dHt, dPt)
+        out = TorusCondensed(lam, Ht, Pt, us, Cs, dHt, dPt, cols, sols, dbands)
         self._cache = out
+        return out
+
+    def response_derivative(self, cond: TorusCondensed, g: FloatArray) -> FloatArray:
+        """``d(Pt + Ht g)/dlam`` at fixed g (n_real, m), real layout: per k1 column
+        ``S Zt^-1 (dF - dZ X)`` with ``X = u + C g`` the column's response, one solve
+        (``dPt + dHt g`` without forming dHt: ``dHt = -S Zt^-1 dZ C``)."""
+        p_, lat = self.problem, self.lattice
+        n, m, s = p_.n_dof, p_.m, p_.nl_dofs
+        lam = cond.lam
+        dF = block_vectors(lat, p_.dforcing(lam, lat))
+        dom, dwb = p_.dfrequencies(lam)
+        dDv, dKv = cond.dbands
+        out = np.zeros((lat.n_real, m))
+        gb = block_vectors(lat, to_complex(np.asarray(g, dtype=float).reshape(-1, m))) \
+            if m else None
+        for k1 in range(lat.H1 + 1):
+            h = lat.h(k1)
+            p = 2 * h + 1
+            sol = cond.solutions[k1]
+            X = sol[:, -1] + (sol[:, :-1] @ gb[k1].ravel() if m else 0.0)
+            dw = k1 * dom + np.arange(-h, h + 1) * dwb
+            y = cond.columns[k1].direction(X, dDv, dKv, dw, dof_major(dF[k1].ravel(), p, n))
+            rows = (s[None, :] * p + np.arange(p)[:, None]).ravel()
+            _, U = block_real_maps(lat, k1)
+            out[block_real_indices(lat, k1)] = (U @ y[rows].reshape(p, m)).real
         return out
 
     def recover(self, cond: TorusCondensed, xs: FloatArray, G: FloatArray) -> ComplexArray:

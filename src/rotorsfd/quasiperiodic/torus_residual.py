@@ -12,7 +12,15 @@ and exactly (Ev = E D_omega, linear in the frequencies omega_k = k1 Omega + k2 w
     dG/dxs [a,i,b,j] = sum_n P[a,n] (dF/dq[n,i,j] E[n,b] + dF/dv[n,i,j] Ev[n,b]),
     dR/dxs = I - Ht (dG/dxs + Delta),
     dR/dlam = -dPt - dHt (G + Delta xs) - Ht dG/dlam,
+            (dPt + dHt g = S Zt^-1 (dF - dZ X), X the all-DOF response: one solve per
+            column, :meth:`~rotorsfd.quasiperiodic.torus_linear.TorusCondenser.
+            response_derivative`)
     dG/dlam = P (dF/dv . Ev' xs),   Ev' = Ev at the frequencies d omega_k / dlam.
+
+Each ``P diag(g) E`` comes from the 2D FFT of the samples g alone (its entries are g's
+coefficients at k_a -+ k_b:
+:meth:`~rotorsfd.quasiperiodic.torus_fourier.TorusAFT.product_matrix`), and
+``P diag(g) Ev = (P diag(g) E) D_omega``: the N x n_real sampling matrices are never formed.
 """
 
 from __future__ import annotations
@@ -45,12 +53,17 @@ def torus_force(problem: TorusProblem, aft: TorusAFT, xs: FloatArray, lam: float
     at the N1 x N2 samples."""
     lat = aft.lattice
     w = lat.frequencies(*problem.frequencies(lam))
-    q = aft.sample(xs)
-    v = aft.sample(derivative(xs, w))
     el = problem.elements
-    if el is None or not problem.m:      # a linear system: no force, no derivative
+    nr, m = xs.shape
+    if el is None or not m:              # a linear system: no force, no derivative
         nu = xs.size
-        return TorusForce(np.zeros_like(xs), np.zeros((nu, nu)), np.zeros_like(xs), q)
+        return TorusForce(np.zeros_like(xs), np.zeros((nu, nu)), np.zeros_like(xs),
+                          aft.sample(xs))
+    parts = [xs, derivative(xs, w)]
+    if jac:                              # the velocity's lam-derivative, for dG/dlam
+        parts.append(derivative(xs, lat.frequencies(*problem.dfrequencies(lam))))
+    samples = aft.sample(np.concatenate(parts, axis=1))      # one inverse 2D FFT
+    q, v = samples[:, :m], samples[:, m:2 * m]
     if not jac:
         f = np.asarray(el.force(q, v), dtype=float)
         if not np.all(np.isfinite(f)):
@@ -59,14 +72,15 @@ def torus_force(problem: TorusProblem, aft: TorusAFT, xs: FloatArray, lam: float
     f, dfq, dfv = el.force_and_jacobian(q, v)
     if not np.all(np.isfinite(f)):
         raise FloatingPointError("non-finite nonlinear force in the torus AFT")
-    G = aft.project(f)
-    nr, m = xs.shape
-    E, Ev = aft.E, aft.velocity_matrix(w)
-    T = dfq[..., None] * E[:, None, None, :] + dfv[..., None] * Ev[:, None, None, :]
-    dG = aft.project(T).transpose(0, 1, 3, 2).reshape(nr * m, nr * m)
-    dw = lat.frequencies(*problem.dfrequencies(lam))
-    dv = aft.sample(derivative(xs, dw))
-    dGdlam = aft.project(np.einsum("nij,nj->ni", dfv, dv))
+    dv = samples[:, 2 * m:]
+    both = aft.project(np.concatenate([f, np.einsum("nij,nj->ni", dfv, dv)], axis=1))
+    G, dGdlam = both[:, :m], both[:, m:]
+    T = aft.product_matrix(np.stack([dfq, dfv], axis=1))    # P dF/dq E, P dF/dv E
+    T, Tv = T[:, 0], T[:, 1]                                 # (a, i, j, b); Ev = E D_omega
+    wk = w[1:]
+    T[..., 1::2] += wk * Tv[..., 2::2]
+    T[..., 2::2] -= wk * Tv[..., 1::2]
+    dG = T.transpose(0, 1, 3, 2).reshape(nr * m, nr * m)
     return TorusForce(G, dG, dGdlam, q)
 
 
@@ -100,7 +114,7 @@ class TorusHB:
         """R (n_real, m) and, if jac, dR/dxs (nu, nu) and dR/dlam (nu,)."""
         nr, m = self.lattice.n_real, self.problem.m
         xs = np.asarray(xs, dtype=float).reshape(nr, m)
-        cond = self.condenser.condense(lam, deriv=jac)
+        cond = self.condenser.condense(lam, deriv=False)
         nl = torus_force(self.problem, self.aft, xs, lam, jac)
         Dl = self.condenser.delta_real()
         g = nl.G.reshape(-1) + Dl @ xs.reshape(-1)
@@ -108,7 +122,8 @@ class TorusHB:
         if not jac:
             return R.reshape(nr, m), None, None
         J = np.eye(nr * m) - cond.Ht @ (nl.dG + Dl)
-        dR = -cond.dPt.reshape(-1) - cond.dHt @ g - cond.Ht @ nl.dGdlam.reshape(-1)
+        dPg = self.condenser.response_derivative(cond, g.reshape(nr, m))  # dPt + dHt g
+        dR = -dPg.reshape(-1) - cond.Ht @ nl.dGdlam.reshape(-1)
         return R.reshape(nr, m), J, dR
 
     def coefficients(self, xs: FloatArray, lam: float) -> np.ndarray:
