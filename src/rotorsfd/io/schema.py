@@ -180,7 +180,7 @@ class DampingConfig(Section):
     modal damping ratio on the undamped non-rotating modes."""
 
     kind: Literal["none", "rayleigh", "modal"] = Field(
-        "none", description="'none'; 'rayleigh' (alpha, beta); 'modal' (ratio)")
+        "none", description="'none'; 'rayleigh' (alpha, beta); 'modal' (ratio, modes)")
     alpha: quantity("rayleigh_alpha", "Rayleigh mass coefficient alpha", ge=0,
                     optional=True) = None
     beta: quantity("rayleigh_beta", "Rayleigh stiffness coefficient beta", ge=0,
