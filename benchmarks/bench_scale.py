@@ -437,7 +437,7 @@ def full_rows(quick: bool = False, repeat: int = 3) -> list[Row]:
                      ratio=1.0, ref="sparse", note=f"CPU {c_s * 1e3:.1f} ms; {a.iterations} iter."),
                  Row("scale", case, "condensed HB point (banded)", t_c, repeat=repeat,
                      ratio=t_c / t_s, ref="sparse", note=f"CPU {c_c * 1e3:.1f} ms")]
-        if n > DENSE_FULL_MAX:
+        if n > (QUICK_SIZES[0] if quick else DENSE_FULL_MAX):
             continue
         old = full_sparse.SPARSE_MIN_DOF
         full_sparse.SPARSE_MIN_DOF = 10**9                  # the dense FullHB of before
