@@ -56,6 +56,8 @@ SIZES = (80, 160, 320, 640, 1280, 2560)
 QUICK_SIZES = (80, 160)
 DENSE_MAX = 160                 # largest mesh of the dense baseline (80 s at 160 elements)
 TARGET_SIZE = 1280              # the size of the issue's HB targets (5124 DOF)
+DENSE_MODAL_MAX = 320           # largest mesh of the dense modal-damping baseline
+DENSE_FULL_MAX = 160            # largest mesh of the dense full-HB baseline
 
 
 def node_at(unit: int, n_elements: int) -> int:
@@ -347,13 +349,18 @@ def hb_rows(quick: bool = False, repeat: int = 3) -> list[Row]:
                         ref="banded", note=f"CPU {c_br:.2f} s; Omega/w1 0.5-"
                                            f"{br.lam[-1] / w1:.3f}, adaptive H, "
                                            f"{c_br / br.n_points * 1e3:.0f} ms CPU/point"))
+        with S.no_refinement():
+            t_brn, c_brn, brn = S.timed(lambda p=problem, w=w1, o=opts: S.branch(p, w, o), 1)
+        rows.append(Row("scale", case, f"{brn.n_points}-point branch: banded, no refinement "
+                        "(before)", t_brn, ratio=t_brn / t_br, ref="banded",
+                        note=f"CPU {c_brn:.2f} s; Omega/w1 0.5-{brn.lam[-1] / w1:.3f}"))
         if not quick:
             with S.splu_baseline():
                 t_brs, c_brs, brs = S.timed(
                     lambda p=problem, w=w1, o=opts: S.branch(p, w, o), 1)
             rows.append(Row("scale", case, f"{brs.n_points}-point branch: scipy.sparse + "
                             "splu", t_brs, ratio=t_brs / t_br, ref="banded",
-                            note=f"CPU {c_brs:.2f} s"))
+                            note=f"CPU {c_brs:.2f} s; Omega/w1 0.5-{brs.lam[-1] / w1:.3f}"))
         rows += [Row("scale", case, "branch + stability of every point (banded, sparse CB)",
                      t_br + t_st, ratio=1.0, ref="banded",
                      note=f"CPU {c_br + c_st:.2f} s (Floquet {c_st:.2f} s), M = "
@@ -367,6 +374,7 @@ def hb_rows(quick: bool = False, repeat: int = 3) -> list[Row]:
         for workload, label in loads[2:3] if quick else loads:
             rows.append(Row("scale", case, f"peak memory: {label}", S.peak_memory(n, workload),
                             unit="GiB", note="fresh process: build + workload"))
+    rows += modal_rows(quick, repeat) + full_rows(quick, repeat)
     for name, data in fits.items():
         x, y = np.array(data, float).T
         rows.append(Row("scale", f"fit over elements {list(map(int, x))}",
@@ -376,10 +384,79 @@ def hb_rows(quick: bool = False, repeat: int = 3) -> list[Row]:
     return rows
 
 
+def modal_rows(quick: bool = False, repeat: int = 3) -> list[Row]:
+    """HB point with modal damping of MODAL_MODES modes: banded + low-rank (Woodbury)
+    against the dense LAPACK path of before (measured up to DENSE_MODAL_MAX elements)."""
+    from benchmarks import scale_hb as S
+
+    sizes = QUICK_SIZES if quick else (80, 320, TARGET_SIZE)
+    rows: list[Row] = []
+    for n in sizes:
+        system, problem, w1, _ = S.build(n, S.MODAL_MODES)
+        case = (f"{n} elements ({system.n_dof} DOF), HB H={S.H}, modal damping "
+                f"{S.MODAL_RATIO:g} on {S.MODAL_MODES} modes")
+        S.point(problem, w1)
+        t_lr, c_lr, a = S.timed(lambda p=problem, w=w1: S.point(p, w), repeat)
+        rows.append(Row("scale", case, "HB point: banded + low-rank (Woodbury)", t_lr,
+                        repeat=repeat, ratio=1.0, ref="low-rank",
+                        note=f"CPU {c_lr * 1e3:.1f} ms; {a.iterations} iter."))
+        if n > DENSE_MODAL_MAX:
+            continue
+        dense = S.dense_problem(problem)
+        S.point(dense, w1)
+        t_d, c_d, b = S.timed(lambda p=dense, w=w1: S.point(p, w), max(1, repeat // 3))
+        diff = float(np.abs(a.X - b.X).max() / np.abs(b.X).max())
+        rows.append(Row("scale", case, "HB point: dense LAPACK (before)", t_d,
+                        repeat=max(1, repeat // 3), ratio=t_d / t_lr, ref="low-rank",
+                        note=f"CPU {c_d * 1e3:.1f} ms; max |dX|/|X| = {diff:.1e}"))
+    return rows
+
+
+def full_rows(quick: bool = False, repeat: int = 3) -> list[Row]:
+    """The full-model HB point (every DOF an unknown, no condensation) at Omega = 0.97 w1,
+    tol 1e-13: CSR Jacobian + SuperLU (``harmonic.full_sparse``) against the dense
+    Jacobian + LAPACK of before (up to DENSE_FULL_MAX elements), the condensed point for
+    scale."""
+    from benchmarks import scale_hb as S
+    from rotorsfd.harmonic import full_sparse
+    from rotorsfd.harmonic.periodic import solve_periodic
+
+    def full(problem, w1):
+        return solve_periodic(problem, 0.97 * w1, S.H, tol=1e-13, condensed=False)
+
+    sizes = QUICK_SIZES if quick else (80, 160, 320, TARGET_SIZE)
+    rows: list[Row] = []
+    for n in sizes:
+        system, problem, w1, _ = S.build(n)
+        case = f"{n} elements ({system.n_dof} DOF), full HB H={S.H} ({7 * system.n_dof} unknowns)"
+        full(problem, w1)
+        t_s, c_s, a = S.timed(lambda p=problem, w=w1: full(p, w), repeat)
+        t_c, c_c, _ = S.timed(lambda p=problem, w=w1: solve_periodic(
+            p, 0.97 * w, S.H, tol=1e-13, condensed=True), repeat)
+        rows += [Row("scale", case, "full HB point: CSR + SuperLU", t_s, repeat=repeat,
+                     ratio=1.0, ref="sparse", note=f"CPU {c_s * 1e3:.1f} ms; {a.iterations} iter."),
+                 Row("scale", case, "condensed HB point (banded)", t_c, repeat=repeat,
+                     ratio=t_c / t_s, ref="sparse", note=f"CPU {c_c * 1e3:.1f} ms")]
+        if n > (QUICK_SIZES[0] if quick else DENSE_FULL_MAX):
+            continue
+        old = full_sparse.SPARSE_MIN_DOF
+        full_sparse.SPARSE_MIN_DOF = 10**9                  # the dense FullHB of before
+        try:
+            t_d, c_d, b = S.timed(lambda p=problem, w=w1: full(p, w), 1)
+        finally:
+            full_sparse.SPARSE_MIN_DOF = old
+        diff = float(np.abs(a.X - b.X).max() / np.abs(b.X).max())
+        rows.append(Row("scale", case, "full HB point: dense Jacobian + LAPACK (before)", t_d,
+                        ratio=t_d / t_s, ref="sparse",
+                        note=f"CPU {c_d * 1e3:.1f} ms; max |dX|/|X| = {diff:.1e}"))
+    return rows
+
+
 if __name__ == "__main__":
     from benchmarks.__main__ import fmt_value
 
     quick = "--quick" in sys.argv
-    bench = hb_rows if "--hb" in sys.argv else run
+    bench = (hb_rows if "--hb" in sys.argv else modal_rows if "--modal" in sys.argv
+             else full_rows if "--full" in sys.argv else run)
     for r in bench(quick=quick, repeat=1 if quick else 3):
         print(f"{r.case} | {r.method}: {fmt_value(r)}  {r.note}")

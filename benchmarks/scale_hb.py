@@ -44,6 +44,8 @@ ROOT = Path(__file__).resolve().parents[1]
 N_POINTS = 56
 H = 3
 N_INTERVALS = 400
+MODAL_RATIO = 0.002
+MODAL_MODES = 6
 
 
 def splu_condense(self: Any, lam: float, deriv: bool = True) -> Any:
@@ -105,16 +107,53 @@ def splu_baseline() -> Iterator[None]:
         CondensedHB.condense = ours
 
 
-def build(n_elements: int) -> tuple[Any, Any, float, dict[str, Any]]:
-    """(system, problem, first critical speed [rad/s], continuation options)."""
-    from benchmarks.bench_scale import config
+@contextlib.contextmanager
+def no_refinement() -> Iterator[None]:
+    """The banded condensation without its refinement step (the code before it) inside
+    the block."""
+    from rotorsfd.harmonic import banded
+
+    ours = banded.refinement_steps
+    banded.refinement_steps = lambda n: 0
+    try:
+        yield
+    finally:
+        banded.refinement_steps = ours
+
+
+def dense_problem(problem: Any) -> Any:
+    """The problem with its linear part as plain dense matrices (no band, no low-rank
+    term): the condensation scans them, finds no band and runs dense LAPACK LU (the path
+    of modal damping before)."""
+    import dataclasses
+
+    part = problem.matrices
+    return dataclasses.replace(problem, matrices=lambda lam: part(lam),
+                               dmatrices=part.derivatives)
+
+
+def build(n_elements: int, modal_modes: int | None = None
+          ) -> tuple[Any, Any, float, dict[str, Any]]:
+    """(system, problem, first critical speed [rad/s], continuation options); with
+    ``modal_modes``, modal damping zeta = MODAL_RATIO of that many modes."""
+    from benchmarks.bench_scale import config, stepped_rotor_config
     from benchmarks.common import response_options
     from rotorsfd import api
+    from rotorsfd.io.config import config_from_dict
     from rotorsfd.linear import critical_speeds
 
-    cfg = config(n_elements)
+    if modal_modes is None:
+        cfg = config(n_elements)
+    else:
+        d = stepped_rotor_config(n_elements)
+        d["rotor"]["damping"] = {"kind": "modal", "ratio": MODAL_RATIO,
+                                 "modes": modal_modes}
+        cfg = config_from_dict(d)
     system = api.build_system(cfg)
-    w1 = critical_speeds(system, n=1, speed_range=(
+    # w1 of the rotor without the modal damping (its linear analyses form the full
+    # damping matrix: not what is measured here; 0.2 % damping moves w1 by ~1e-6)
+    plain = system if modal_modes is None else api.build_system(config(n_elements))
+    w1 = critical_speeds(plain, n=1, speed_range=(
         0.0, cfg.analysis.modal.critical_speed_max))[0].speed_rad_s
     return system, system.periodic_problem(), w1, response_options(cfg)
 

@@ -130,6 +130,7 @@ def test_bad_set(raw, override, field):
     ("base.pitching.law=harmonic", "base.pitching.frequency", "needs a frequency"),
     ("base.yawing.amplitude=1", "base.yawing.amplitude", "not used with law = 'off'"),
     ("rotor.damping.kind=modal", "rotor.damping.ratio", "needs the damping ratio"),
+    ("rotor.damping.modes=4", "rotor.damping.modes", "not used with kind = 'none'"),
     ("analysis.response.parameter=base.pitching.valu", "analysis.response.speed",
      "needs exactly one fixed speed"),
     ("reference.speed=fast", "reference.speed", "first_critical"),

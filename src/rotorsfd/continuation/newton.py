@@ -21,6 +21,8 @@ from dataclasses import dataclass
 from typing import Protocol
 
 import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 from scipy.linalg import lapack
 
@@ -52,7 +54,15 @@ class NewtonResult:
 
 def _bordered_solve(J: FloatArray, a: FloatArray, rhs: FloatArray) -> FloatArray:
     """Solve ``[J; a^T] x = rhs`` (LAPACK gesv without numpy's per-call overhead, which
-    dominates for the small condensed systems); LinAlgError if exactly singular."""
+    dominates for the small condensed systems; SuperLU for a scipy.sparse J, the full
+    HB of a large model); LinAlgError if exactly singular."""
+    if sp.issparse(J):
+        A = sp.vstack([J, sp.csr_matrix(np.asarray(a, dtype=float)[None, :])], format="csc")
+        try:
+            x = spla.splu(A).solve(np.asarray(rhs, dtype=float))
+        except RuntimeError as err:      # SuperLU: "Factor is exactly singular"
+            raise np.linalg.LinAlgError(str(err)) from err
+        return x
     n = J.shape[0]
     A = np.empty((n + 1, n + 1))
     A[:n] = J
@@ -72,7 +82,7 @@ def _safe_evaluate(system: ContinuationSystem, z: FloatArray
         R, J = system.evaluate(z)
     except (FloatingPointError, np.linalg.LinAlgError, ZeroDivisionError) as err:
         return f"evaluation failed: {err}"
-    if not (np.all(np.isfinite(R)) and np.all(np.isfinite(J))):
+    if not (np.all(np.isfinite(R)) and np.all(np.isfinite(J.data if sp.issparse(J) else J))):
         return "non-finite residual or Jacobian"
     return R, J
 
@@ -141,6 +151,8 @@ def tangent(J: FloatArray, t_prev: FloatArray, weights: FloatArray | None = None
         if not np.all(np.isfinite(t)):
             raise np.linalg.LinAlgError
     except np.linalg.LinAlgError:
+        if sp.issparse(J):
+            raise
         t = np.linalg.svd(J)[2][-1]
     t = t / np.sqrt(t @ (w * t))
     return t if t @ (w * t_prev) >= 0 else -t

@@ -40,6 +40,7 @@ from rotorsfd.harmonic.aft_kernels import (
     force_coefficients,
     project,
 )
+from rotorsfd.harmonic.banded_lowrank import condense_bands_lowrank
 from rotorsfd.harmonic.fourier import aft_matrices, aliasing_error, to_complex, to_real
 from rotorsfd.harmonic.problem import NonlinearLaw, PeriodicProblem
 from rotorsfd.harmonic.residual import nonlinear_coefficients, nonlinear_samples, real_blocks
@@ -203,8 +204,15 @@ class CondensedHB:
             kl, ku = band
             mb = p.matrices.banded(lam)
             dmb = p.matrices.dbanded(lam) if deriv else mb
-            status = banded.condense_bands(*mb, *dmb, w, dw, kl, ku, s, diag, F, dF, deriv,
-                                           sol, dsol, Ht, Pt, dHt, dPt)
+            lowrank = getattr(p.matrices, "lowrank", None)   # U diag(c) U^T beside D
+            if lowrank is None:
+                status = banded.condense_bands(*mb, *dmb, w, dw, kl, ku, s, diag, F, dF,
+                                               deriv, sol, dsol, Ht, Pt, dHt, dPt,
+                                               banded.refinement_steps(n))
+            else:
+                status = condense_bands_lowrank(*mb, *dmb, *lowrank, w, dw, kl, ku, s, diag,
+                                                F, dF, deriv, sol, dsol, Ht, Pt, dHt, dPt,
+                                                banded.refinement_steps(n))
         else:
             status = self._dense_condense(lam, deriv, w, dw, F, dF, diag, sol, dsol, Ht,
                                           Pt, dHt, dPt)

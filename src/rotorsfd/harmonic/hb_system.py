@@ -12,6 +12,7 @@ that would move DOF i by c_i).
 from __future__ import annotations
 
 import numpy as np
+import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from rotorsfd.harmonic.condensation import CondensedHB
@@ -22,6 +23,7 @@ from rotorsfd.harmonic.fourier import (
     smallest_n_samples,
     to_real,
 )
+from rotorsfd.harmonic.full_sparse import SparseFullHB, full_hb
 from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.harmonic.residual import FullHB, nonlinear_coefficients
 
@@ -37,7 +39,7 @@ class HBSystem:
     def __init__(self, problem: PeriodicProblem, H: int, N: int, condensed: bool,
                  lam_ref: float, lam_scale: float, limit_max: float = 1.0) -> None:
         self.problem, self.H, self.N, self.condensed = problem, H, N, condensed
-        self.hb: CondensedHB | FullHB = (CondensedHB if condensed else FullHB)(problem, H, N)
+        self.hb: CondensedHB | FullHB = (CondensedHB if condensed else full_hb)(problem, H, N)
         self.n = self.hb.n_unknowns
         self.lam_scale = float(lam_scale)
         self.limit_max = limit_max
@@ -46,7 +48,9 @@ class HBSystem:
             self.cx = np.tile(c[problem.nl_dofs], 2 * H + 1)
             self.cr = self.cx
         else:
-            kappa = np.abs(np.diag(problem.matrices(lam_ref)[2]))
+            kappa = np.abs(problem.matrices.sparse(lam_ref)[2].diagonal()
+                           if isinstance(self.hb, SparseFullHB)
+                           else np.diag(problem.matrices(lam_ref)[2]))
             pos = kappa[kappa > 0]
             kappa = np.where(kappa > 0, kappa, pos.mean() if pos.size else 1.0)
             self.cx = np.tile(c, 2 * H + 1)
@@ -69,6 +73,10 @@ class HBSystem:
     def evaluate(self, z: FloatArray) -> tuple[FloatArray, FloatArray]:
         x, lam = self.from_z(z)
         R, J, dR = self.hb.residual(x, lam, jac=True)
+        if sp.issparse(J):     # the sparse full HB: CSR [dR/dx, dR/dlam] scaled
+            Jx = sp.diags(1.0 / self.cr) @ J @ sp.diags(self.cx)
+            col = sp.csr_matrix((dR * (self.lam_scale / self.cr))[:, None])
+            return R.ravel() / self.cr, sp.hstack([Jx, col], format="csr")
         Jz = np.empty((self.n, self.n + 1))
         Jz[:, :-1] = J if self.condensed else J * (self.cx[None, :] / self.cr[:, None])
         Jz[:, -1] = dR * (self.lam_scale / self.cr)
@@ -84,6 +92,11 @@ class HBSystem:
     # results -------------------------------------------------------------------------------
     def physical_jacobian(self, z: FloatArray, Jz: FloatArray) -> FloatArray:
         """[dR/dx, dR/dlam] in physical units (condensed: Schur form) at a solution z."""
+        if sp.issparse(Jz):
+            Jz = sp.csr_matrix(Jz)
+            J = sp.diags(self.cr) @ Jz[:, :-1] @ sp.diags(1.0 / self.cx)
+            dR = Jz[:, -1].toarray().ravel() * (self.cr / self.lam_scale)
+            return sp.hstack([J, sp.csr_matrix(dR[:, None])], format="csr")
         J = Jz[:, :-1] * (self.cr[:, None] / self.cx[None, :])
         dR = Jz[:, -1] * (self.cr / self.lam_scale)
         if isinstance(self.hb, CondensedHB):

@@ -180,17 +180,21 @@ class DampingConfig(Section):
     modal damping ratio on the undamped non-rotating modes."""
 
     kind: Literal["none", "rayleigh", "modal"] = Field(
-        "none", description="'none'; 'rayleigh' (alpha, beta); 'modal' (ratio)")
+        "none", description="'none'; 'rayleigh' (alpha, beta); 'modal' (ratio, modes)")
     alpha: quantity("rayleigh_alpha", "Rayleigh mass coefficient alpha", ge=0,
                     optional=True) = None
     beta: quantity("rayleigh_beta", "Rayleigh stiffness coefficient beta", ge=0,
                    optional=True) = None
     ratio: quantity("ratio", "modal damping ratio zeta", ge=0, lt=1, optional=True) = None
+    modes: integer("kind = 'modal': damp only the lowest this many modes (default: every "
+                   "mode; a few modes keep large models banded)", ge=1,
+                   optional=True) = None
 
     @model_validator(mode="after")
     def _fields_of_kind(self):
-        needs = {"none": (), "rayleigh": ("alpha", "beta"), "modal": ("ratio",)}[self.kind]
-        for name in ("alpha", "beta", "ratio"):
+        needs = {"none": (), "rayleigh": ("alpha", "beta"),
+                 "modal": ("ratio", "modes")}[self.kind]
+        for name in ("alpha", "beta", "ratio", "modes"):
             given = getattr(self, name) is not None
             if given and name not in needs:
                 raise fail(name, getattr(self, name), f"not used with kind = {self.kind!r}")

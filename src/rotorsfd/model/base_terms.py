@@ -343,12 +343,17 @@ class PolynomialTerms:
     read-only.
     """
 
-    def __init__(self, n: int, D: tuple = (), K: tuple = (), F: tuple = ()) -> None:
+    def __init__(self, n: int, D: tuple = (), K: tuple = (), F: tuple = (),
+                 lowrank: tuple[np.ndarray, np.ndarray] | None = None) -> None:
         self.n = n
+        #: (U, c): a constant damping term ``U diag(c) U^T`` beside D (modal damping of a
+        #: few modes); in damping(p) and sparse_damping(p), apart in :meth:`linear_part`
+        self.lowrank = lowrank
+        self._lowrank_dense: np.ndarray | None = None
         self.D, self.K, self.F = (tuple(t) + (None,) * (3 - len(t)) for t in (D, K, F))
         self.D, self.K = _uniform(self.D), _uniform(self.K)
         self.zero_vector = np.zeros(n)
-        self._dense: dict[int, tuple[Any, np.ndarray]] = {}
+        self._dense: dict[Any, tuple[Any, np.ndarray]] = {}
 
     @cached_property
     def zero(self) -> np.ndarray:
@@ -366,23 +371,28 @@ class PolynomialTerms:
                    tuple(_sum_terms(c.c_K, mats) for c in cos),
                    tuple(_sum_terms(c.c_F, basis.vectors) for c in cos))
 
-    def plus(self, D: tuple = (), K: tuple = ()) -> PolynomialTerms:
+    def plus(self, D: tuple = (), K: tuple = (),
+             lowrank: tuple[np.ndarray, np.ndarray] | None = None) -> PolynomialTerms:
         """A copy with the polynomial coefficients ``D``, ``K`` (None: zero) added
-        (``plus(D=(C, G))`` adds C + p G); an added term alone is kept as the object."""
+        (``plus(D=(C, G))`` adds C + p G); an added term alone is kept as the object;
+        ``lowrank`` a low-rank damping term (this one's if None; at most one)."""
         def add(a: tuple, b: tuple) -> tuple:
             b = tuple(b) + (None,) * (3 - len(b))
             return tuple(_add(y, x) for x, y in zip(a, b, strict=True))
-        return PolynomialTerms(self.n, add(self.D, D), add(self.K, K), self.F)
+        if lowrank is not None and self.lowrank is not None:
+            raise ValueError("one low-rank damping term only")
+        return PolynomialTerms(self.n, add(self.D, D), add(self.K, K), self.F,
+                               self.lowrank if lowrank is None else lowrank)
 
     def constant(self, p: float) -> PolynomialTerms:
         """The polynomials frozen at p (degree 0: D(p), K(p), F(p))."""
         return PolynomialTerms(self.n, (self._value(self.D, p),), (self._value(self.K, p),),
-                               (self._value(self.F, p),))
+                               (self._value(self.F, p),), self.lowrank)
 
     def banded(self, M: Any, band: tuple[int, int] | None = None) -> BandedLinearPart:
         """(M, D(p), K(p)) in band storage (:class:`rotorsfd.model.sparse.BandedLinearPart`,
         the band read from the patterns unless given)."""
-        return BandedLinearPart(M, self.D, self.K, band)
+        return BandedLinearPart(M, self.D, self.K, band, self.lowrank)
 
     def linear_part(self, M: Any) -> BandedLinearPart | DenseLinearPart:
         """The ``matrices`` callable of an HB problem: :meth:`banded` when the band is
@@ -431,8 +441,28 @@ class PolynomialTerms:
             return sp.csr_matrix((self.n, self.n))
         return a if sp.issparse(a) and a.format == "csr" else as_csr(a)
 
+    def _lowrank(self) -> np.ndarray:
+        """``U diag(c) U^T`` of :attr:`lowrank`, dense (formed once)."""
+        if self._lowrank_dense is None:
+            u, c = self.lowrank
+            full = (u * c) @ u.T
+            self._lowrank_dense = 0.5 * (full + full.T)
+        return self._lowrank_dense
+
     def damping(self, p: float) -> np.ndarray:
-        return self._as_dense(self._value(self.D, p))
+        out = self._as_dense(self._value(self.D, p))
+        if self.lowrank is None:
+            return out
+        if not self._constant(self.D):
+            return out + self._lowrank()
+        hit = self._dense.get("lowrank")          # a constant D: the same object back
+        if hit is None or hit[0] is not out:
+            hit = self._dense["lowrank"] = (out, out + self._lowrank())
+        return hit[1]
+
+    @staticmethod
+    def _constant(terms: tuple) -> bool:
+        return terms[1] is None and terms[2] is None
 
     def stiffness(self, p: float) -> np.ndarray:
         return self._as_dense(self._value(self.K, p))
@@ -452,8 +482,9 @@ class PolynomialTerms:
         return self.zero_vector if out is None else out
 
     def sparse_damping(self, p: float) -> sp.csr_matrix:
-        """D(p) as CSR."""
-        return self._as_sparse(self._value(self.D, p))
+        """D(p) as CSR (with a low-rank term: a full matrix)."""
+        out = self._as_sparse(self._value(self.D, p))
+        return out if self.lowrank is None else as_csr(out + self._lowrank())
 
     def sparse_stiffness(self, p: float) -> sp.csr_matrix:
         """K(p) as CSR."""

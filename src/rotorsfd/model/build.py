@@ -73,7 +73,7 @@ def build_rotor(config: Config, search_path: Path | None = None) -> Rotor:
     if r.damping.kind == "rayleigh":
         damping = RayleighDamping(r.damping.alpha or 0.0, r.damping.beta or 0.0)
     elif r.damping.kind == "modal":
-        damping = ModalDamping(r.damping.ratio)
+        damping = ModalDamping(r.damping.ratio, r.damping.modes)
     point_masses = [PointMass(p.node, p.mass) for p in r.point_masses]
     if r.shafts:   # several shafts at their speed ratios, global node numbering
         from rotorsfd.model.multishaft_build import multishaft_rotor

@@ -108,12 +108,29 @@ class Rotor(LinearRotor):
         self.K_csr = sparse.assemble(n, stiff)
         self.G_csr = sparse.assemble(n, gyro)
         C = sparse.assemble(n, damp)
-        if self.damping is not None:
+        #: a structural damping ``U diag(c) U^T`` of the lowest modes, as its factors
+        #: (U, c) (ModalDamping with ``modes``): C_csr = C_band_csr + U diag(c) U^T
+        self.damping_lowrank: tuple[np.ndarray, np.ndarray] | None = None
+        if isinstance(self.damping, ModalDamping) and self.damping.modes is not None:
+            self.damping_lowrank = self.damping.factors(self.M_csr, self.K_csr)
+        elif self.damping is not None:
             C = sparse.as_csr(C + self.damping.matrix(self.M_csr, self.K_csr))
-        self.C_csr = C
-        #: (kl, ku) of M, C, G, K together (7, 7 for a beam rotor without modal damping)
+        #: the damping without the low-rank modal term (all of it without one)
+        self.C_band_csr = C
+        #: (kl, ku) of M, C, G, K together (7, 7 for a beam rotor; n - 1 with modal
+        #: damping of every mode; that of the banded part with a low-rank one)
         self.band: tuple[int, int] = sparse.bandwidths(
-            (self.M_csr, self.K_csr, self.G_csr, self.C_csr))
+            (self.M_csr, self.K_csr, self.G_csr, self.C_band_csr))
+
+    @cached_property
+    def C_csr(self):
+        """Damping matrix (supports + structural damping) as CSR; with a low-rank modal
+        term a full matrix, formed on first use (the HB solvers use its factors)."""
+        if self.damping_lowrank is None:
+            return self.C_band_csr
+        u, c = self.damping_lowrank
+        full = (u * c) @ u.T
+        return sparse.as_csr(self.C_band_csr + 0.5 * (full + full.T))
 
     @cached_property
     def M(self) -> np.ndarray:

@@ -145,11 +145,19 @@ class BandedLinearPart:
     banded access beside it: ``band`` = (kl, ku), ``banded(lam)`` and ``dbanded(lam)`` ->
     the band storage of (M, D, K) and of their lam-derivatives, ``sparse(lam)`` -> CSR.
     ``derivatives`` is the matching ``dmatrices(lam)`` callable (dense).
+
+    ``lowrank`` = (U (n, r), c (r,)): a constant damping term ``U diag(c) U^T`` beside the
+    banded D (modal damping of a few modes): ``banded`` and ``dbanded`` leave it out (the
+    condensation applies it by Woodbury, :mod:`rotorsfd.harmonic.banded_lowrank`), the
+    dense and sparse forms include it (a full matrix, formed once on request).
     """
 
     def __init__(self, M: object, D: Sequence[object | None], K: Sequence[object | None],
-                 band: tuple[int, int] | None = None) -> None:
+                 band: tuple[int, int] | None = None,
+                 lowrank: tuple[np.ndarray, np.ndarray] | None = None) -> None:
         terms = [M, *D, *K]
+        self.lowrank = lowrank
+        self._lowrank_dense: np.ndarray | None = None
         self.n = int(M.shape[0])
         self.band = bandwidths(terms) if band is None else band
         kl, ku = self.band
@@ -175,9 +183,20 @@ class BandedLinearPart:
         return self.M.slope(lam), self.D.slope(lam), self.K.slope(lam)
 
     def sparse(self, lam: float) -> tuple[sp.csr_matrix, ...]:
-        """(M, D(lam), K(lam)) as CSR."""
+        """(M, D(lam), K(lam)) as CSR (D with the low-rank term: then full)."""
         kl, ku = self.band
-        return tuple(band_to_csr(a, kl, ku) for a in self.banded(lam))
+        M, D, K = (band_to_csr(a, kl, ku) for a in self.banded(lam))
+        if self.lowrank is not None:
+            D = as_csr(D + self.lowrank_dense())
+        return M, D, K
+
+    def lowrank_dense(self) -> np.ndarray:
+        """``U diag(c) U^T`` of ``lowrank`` as a dense matrix (formed once)."""
+        if self._lowrank_dense is None:
+            u, c = self.lowrank
+            full = (u * c) @ u.T
+            self._lowrank_dense = 0.5 * (full + full.T)
+        return self._lowrank_dense
 
     # -- dense (the PeriodicProblem protocol) --------------------------------------------
     def _as_dense(self, ab: np.ndarray) -> np.ndarray:
@@ -195,8 +214,10 @@ class BandedLinearPart:
     def __call__(self, lam: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         last = self._last
         if last[0] != lam or last[1] is None:
-            last[0], last[1], last[2] = lam, tuple(self._as_dense(a) for a in
-                                                   self.banded(lam)), None
+            M, D, K = (self._as_dense(a) for a in self.banded(lam))
+            if self.lowrank is not None:
+                D = D + self.lowrank_dense()
+            last[0], last[1], last[2] = lam, (M, D, K), None
         return last[1]
 
     def derivatives(self, lam: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

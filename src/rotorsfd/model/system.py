@@ -143,17 +143,20 @@ class RotorSystem:
         st = self.constant_base_state() if state is None else state
         r = self.rotor
         par = find_parameter(parameter)
+        lowrank = getattr(r, "damping_lowrank", None)  # modal damping of a few modes
+        C = r.C_csr if lowrank is None else r.C_band_csr
         if par.kind == "speed":
             if self.base.is_fixed and state is None:
-                return PolynomialTerms(self.n_dof, D=(r.C_csr, r.G_csr), K=(r.K_csr,))
+                return PolynomialTerms(self.n_dof, D=(C, r.G_csr), K=(r.K_csr,),
+                                       lowrank=lowrank)
             return PolynomialTerms.of_base(self.basis, st, 0.0, "speed").plus(
-                D=(r.C_csr, r.G_csr), K=(r.K_csr,))
+                D=(C, r.G_csr), K=(r.K_csr,), lowrank=lowrank)
         if par.kind != "base_rate":
             raise ConfigError("parameter", parameter,
                               "linear terms are polynomial in the speed or a base rate")
         om = float(speed)
         return PolynomialTerms.of_base(self.basis, st, om, par.rate_name).plus(
-            D=(r.C_csr + om * r.G_csr,), K=(r.K_csr,))
+            D=(C + om * r.G_csr,), K=(r.K_csr,), lowrank=lowrank)
 
     def _speed_polynomial(self) -> PolynomialTerms:
         """linear_terms("speed") of the current base state, cached by that state."""
