@@ -271,14 +271,15 @@ class Trajectory:
     newton_iterations_max: int = 0
     snapshot: tuple[np.ndarray, np.ndarray, float] | None = None
     element_diagnostics: dict[str, float] = field(default_factory=dict)
+    ended: Exception | None = None    #: the contact error that ended the run early
 
 
 def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_period: int,
                       periods: int, record_dofs: Sequence[int], record_periods: int,
                       poincare_periods: int, method_options: dict[str, Any] | None = None,
                       chunk_periods: int | None = None, progress: Any = None,
-                      t0: float = 0.0,
-                      snapshot_period: int | None = None) -> Trajectory:
+                      t0: float = 0.0, snapshot_period: int | None = None,
+                      on_contact: str = "raise") -> Trajectory:
     """Integrate ``periods`` rotor periods in chunks from ``(q0, v0)`` at ``t0``.
 
     ``snapshot_period`` (0 < p < periods): a chunk ends after p periods and the full state
@@ -291,6 +292,12 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
     largest validity measure of the elements over the run (None if none has one),
     ``element_diagnostics`` every element's orbit diagnostics over the recorded periods
     (``eps_max_<name>``, :meth:`~rotorsfd.elements.ElementSet.diagnostics`).
+
+    ``on_contact="end"``: a state outside an element's law ends the run as a result
+    (issue 22): the Trajectory holds the recorded periods up to the last converged step
+    (every step of at most the last ``max(record_periods, poincare_periods)`` periods
+    before it, with their Poincare points), its state there as the final state, and the
+    element's contact error in ``ended``; every chunk then records the kept columns.
 
     With ``inputs.reduction`` the run steps the reduced coordinates ``p`` from
     ``p0 = P q0``; every output (the columns of ``record_dofs``, the elements' DOFs, the
@@ -339,12 +346,16 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
     done = 0
     snapshot = None
     snap = snapshot_period if snapshot_period and 0 < snapshot_period < periods else None
+    if on_contact not in ("raise", "end"):
+        raise ValueError(f"on_contact must be 'raise' or 'end', got {on_contact!r}")
+    tail = on_contact == "end"     # every chunk records: the periods before a contact
+    ended = None
     while done < periods:
         k = min(chunk, periods - done)
         if snap is not None and done < snap:
             k = min(k, snap - done)
         # a chunk before the kept windows records only the elements' DOFs (for the limit)
-        window = (done + k) * spp >= first_kept
+        window = tail or (done + k) * spp >= first_kept
         rec = rec_all if window else (nl if limited else nl[:0])
         status, smp, info = run(ps, state, k * spp, record_dofs=rec, record_every=1,
                                 record_start=0, poincare_every=spp if window else 0,
@@ -358,22 +369,38 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
             t = ps.t0 + step * dt
             where = (f"t={t:.6g} s, rotor period {step / spp:.2f} of {periods} "
                      f"(step {step})")
-            if status == nm.CONTACT and elements is not None:
-                m = nl.size
-                f_q, f_v = smp["fail"][:m], smp["fail"][m:2 * m]   # the last iterate
-                where += (": the step's Newton iterates left the element's force law "
-                          "(state of the last iterate)")
-                err = elements.located_contact(f_q, f_v, where)
-                err.time, err.period = t, step / spp
+            if status != nm.CONTACT or elements is None:
+                raise ConvergenceError(f"time integration: {MESSAGES.get(status)} at "
+                                       f"{where}")
+            m = nl.size
+            f_q, f_v = smp["fail"][:m], smp["fail"][m:2 * m]   # the last iterate
+            where += (": the step's Newton iterates left the element's force law "
+                      "(state of the last iterate)")
+            err = elements.located_contact(f_q, f_v, where)
+            err.time, err.period = t, step / spp
+            if not tail:
                 raise err
-            raise ConvergenceError(f"time integration: {MESSAGES.get(status)} at {where}")
-        done += k
+            ended = err
+        if ended is None:
+            done += k
+        if tail:    # keep the chunks that cover the last kept periods before the end
+            for key, part in (("t", smp["t"]), ("q", smp["q"]), ("v", smp["v"]),
+                              ("pt", smp["pt"]), ("pq", smp["pq"]), ("pv", smp["pv"])):
+                parts[key].append(part)
+            t_now = ps.t0 + state.step * dt
+            while len(parts["t"]) > 1 and parts["t"][1].size and \
+                    parts["t"][1][0] <= t_now - (max(record_periods, poincare_periods)
+                                                 * spp - 0.5) * dt:
+                for key in ("t", "q", "v", "pt", "pq", "pv"):
+                    parts[key].pop(0)
+            if ended is not None:
+                break
         if done == snap:
             snapshot = (out(state.X[:r]).copy(), out(state.X[r:2 * r]).copy(),
                         ps.t0 + state.step * dt)
         if progress is not None:
             progress(done)
-        if not window:
+        if not window or tail:
             continue
         keep = smp["t"] >= ps.t0 + (rec_start - 0.5) * dt
         parts["t"].append(smp["t"][keep])
@@ -385,10 +412,38 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
         parts["pt"].append(smp["pt"][keep])
         parts["pq"].append(out(smp["pq"][keep], c_rd))
         parts["pv"].append(out(smp["pv"][keep], c_rd))
-    cat = {k: np.concatenate(v) for k, v in parts.items()}
+    if tail:
+        parts = _kept_tail(parts, out, c_rd, c_nl, ps.t0 + state.step * dt, dt,
+                           record_periods * spp, (poincare_periods - 1) * spp)
+    cat = {k: np.concatenate(v) if v else np.zeros((0, rd.size)) for k, v in parts.items()}
+    cat["t"], cat["pt"] = cat["t"].reshape(-1), cat["pt"].reshape(-1)
     q_end, v_end = out(state.X[:r]).copy(), out(state.X[r:2 * r]).copy()
     return Trajectory(cat["t"], cat["q"], cat["v"], cat["pt"], cat["pq"], cat["pv"], rd,
                       q_end, v_end, ps.t0 + state.step * dt,
                       eps_max if limited else None, newton_max, snapshot,
                       elements.diagnostics(cat["qn"], cat["vn"])
-                      if elements is not None and len(elements) and cat["qn"].shape[0] else {})
+                      if elements is not None and len(elements) and cat["qn"].shape[0] else {},
+                      ended)
+
+
+def _kept_tail(raw: dict[str, list[np.ndarray]], out: Any, c_rd: np.ndarray,
+               c_nl: np.ndarray, t_end: float, dt: float, n_record: int, n_poincare: int
+               ) -> dict[str, list[np.ndarray]]:
+    """The chunks of an ``on_contact="end"`` run as the Trajectory's parts: every step of
+    the last ``n_record`` steps before ``t_end`` and the Poincare points from
+    ``n_poincare`` steps before it, in physical rows."""
+    parts: dict[str, list[np.ndarray]] = {k: [] for k in ("t", "q", "v", "pt", "pq", "pv",
+                                                          "qn", "vn")}
+    for t, q, v, pt, pq, pv in zip(*(raw[k] for k in ("t", "q", "v", "pt", "pq", "pv")),
+                                   strict=True):
+        keep = t >= t_end - (n_record + 0.5) * dt
+        parts["t"].append(t[keep])
+        parts["q"].append(out(q[keep], c_rd))
+        parts["v"].append(out(v[keep], c_rd))
+        parts["qn"].append(out(q[keep], c_nl))
+        parts["vn"].append(out(v[keep], c_nl))
+        keep = pt >= t_end - (n_poincare + 0.5) * dt
+        parts["pt"].append(pt[keep])
+        parts["pq"].append(out(pq[keep], c_rd))
+        parts["pv"].append(out(pv[keep], c_rd))
+    return parts
