@@ -23,13 +23,12 @@ from typing import Any
 
 import numpy as np
 
-from rotorsfd.elements.composite import ElementSet
 from rotorsfd.errors import ConfigError, ConvergenceError
 from rotorsfd.model.system import RotorSystem
-from rotorsfd.timedomain import Forcing, HarmonicLoad, TimeVaryingMatrices
+from rotorsfd.second_order import SecondOrderSystem
 from rotorsfd.timedomain import newmark as nm
-from rotorsfd.timedomain.integrate import MESSAGES, initial_state, prepare, run
-from rotorsfd.timedomain.reduced import ReducedStep, reduce_step
+from rotorsfd.timedomain.integrate import MESSAGES, initial_state, prepare_system, run
+from rotorsfd.timedomain.reduced import reduce_system
 
 FIELD = "analysis.simulate"
 DIRECTIONS = ("y", "z")
@@ -38,31 +37,10 @@ DIRECTIONS = ("y", "z")
 # ---- inputs of the integrator ------------------------------------------------------------
 
 
-@dataclass
-class TimeDomainInputs:
-    """Everything :func:`rotorsfd.timedomain.integrate` takes, for one rotor speed."""
-
-    M: np.ndarray
-    D: np.ndarray
-    K: np.ndarray
-    nl_dofs: np.ndarray
-    kernel: Any
-    params: np.ndarray | None
-    forcing: Forcing
-    time_varying: TimeVaryingMatrices | None
-    speed: float
-    elements: ElementSet | None = None
-    reduction: ReducedStep | None = None
-
-    @property
-    def period(self) -> float:
-        """Rotor period T = 2 pi / Omega [s]."""
-        return 2.0 * math.pi / self.speed
-
-    @property
-    def n_dof(self) -> int:
-        """Physical DOFs."""
-        return self.M.shape[0]
+TimeDomainInputs = SecondOrderSystem
+"""The integrator's inputs at one rotor speed: the solvers' record
+:class:`~rotorsfd.second_order.SecondOrderSystem` (``RotorSystem.second_order(speed)``,
+with ``reduction`` the Craig-Bampton model the step runs on)."""
 
 
 REDUCTIONS = ("auto", "none")
@@ -86,8 +64,7 @@ def with_reduction(inputs: TimeDomainInputs, reduction: str = "auto",
     if reduction == "none":
         return replace(inputs, reduction=None)
     try:
-        red = reduce_step(inputs.M, inputs.D, inputs.K, inputs.nl_dofs, inputs.forcing,
-                          inputs.time_varying, cutoff * inputs.speed)
+        red = reduce_system(inputs, cutoff * inputs.speed)
     except (ConfigError, np.linalg.LinAlgError):  # a free interior: no Craig-Bampton model
         return replace(inputs, reduction=None)
     omegas = red.model.omegas
@@ -107,10 +84,7 @@ def stepped_system(inputs: TimeDomainInputs, state: tuple[np.ndarray, np.ndarray
     if red is None:
         return inputs, state
     q, v, t = state
-    plain = TimeDomainInputs(red.model.M, red.model.D, red.model.K, red.nl_dofs,
-                             inputs.kernel, inputs.params, red.forcing, red.time_varying,
-                             inputs.speed, inputs.elements)
-    return plain, (red.reduce(q), red.reduce(v), t)
+    return red.stepped(inputs), (red.reduce(q), red.reduce(v), t)
 
 
 CHECK_FACTOR = 4.0
@@ -169,66 +143,13 @@ def reduction_summary(inputs: TimeDomainInputs, cutoff: float | None = None
             "reduction_highest_mode_rad_s": top}
 
 
-def _fold_constant(pairs: Sequence[tuple[Any, np.ndarray]], probe: np.ndarray
-                   ) -> tuple[list[tuple[Any, np.ndarray]], np.ndarray | None]:
-    """Split ``(coefficient, array)`` pairs into time-varying ones and the sum of those
-    whose coefficient is constant on ``probe`` (that sum, or None)."""
-    varying: list[tuple[Any, np.ndarray]] = []
-    const = None
-    for c, X in pairs:
-        values = np.broadcast_to(np.asarray(c(probe), dtype=float), probe.shape)
-        if np.ptp(values) == 0.0:
-            term = float(values[0]) * np.asarray(X, dtype=float)
-            const = term if const is None else const + term
-        else:
-            varying.append((c, X))
-    return varying, const
-
-
 def time_domain_inputs(system: RotorSystem, speed: float, *,
                        horizon: float | None = None) -> TimeDomainInputs:
-    """Integrator inputs of ``system`` at rotor speed ``speed`` [rad/s].
-
-    Constant base (``system.base.is_constant``): ``matrices(speed)``, the constant force
-    ``static_force(speed)`` and the unbalance harmonics at ``Omega``. Otherwise
-    ``M, C + Omega G, K`` plus the base terms as time-varying matrices and series loads;
-    ``horizon`` [s] (default 1000 rotor periods) is the interval on which a coefficient
-    must be constant to be folded into the constant matrices.
-    """
-    if not speed > 0.0:
-        raise ConfigError(f"{FIELD}.speed", speed, "the rotor speed must be > 0 rad/s")
-    r = system.rotor
-    nl = system.nl_dofs
-    el = system.elements_at(speed)   # a law of the speed (journal bearing) set to it
-    kernel, params = (el.kernel, el.kernel_params) if len(el) else (None, None)
-    events = any(u.start > 0.0 for u in system.unbalances)   # a sudden unbalance: series
-    if system.base.is_constant and not events:
-        M, D, K = system.matrices(speed)
-        Fc, Fs = system.unbalance_harmonics(speed)
-        harm = [HarmonicLoad(1.0, Fc, Fs)] if system.unbalances else []
-        forcing = Forcing(omega=speed, constant=system.static_force(speed), harmonics=harm)
-        return TimeDomainInputs(M, D.copy(), K.copy(), nl, kernel, params, forcing, None,
-                                float(speed), el)
-    from rotorsfd.model.base_terms import time_varying_terms
-    from rotorsfd.model.unbalance import unbalance_series
-
-    T = 2.0 * math.pi / speed
-    span = horizon if horizon is not None else 1000.0 * T
-    probe = np.concatenate([np.linspace(0.0, span, 257),
-                            span * (np.arange(1, 64) * math.sqrt(2.0) % 1.0),
-                            system.base.support_times()])   # where a pulse or record acts
-    damping, stiffness, force = time_varying_terms(system.basis, system.base, speed)
-    damping, dC = _fold_constant(damping, probe)
-    stiffness, dK = _fold_constant(stiffness, probe)
-    force, f0 = _fold_constant(force, probe)
-    D = r.C + speed * r.G + (dC if dC is not None else 0.0)
-    K = r.K + (dK if dK is not None else 0.0)
-    series = list(force) + unbalance_series(system.unbalances, r, speed, system.base)
-    forcing = Forcing(omega=speed, constant=f0, series=series)
-    tv = TimeVaryingMatrices(damping=damping, stiffness=stiffness) \
-        if damping or stiffness else None
-    return TimeDomainInputs(r.M, np.asarray(D, float), np.asarray(K, float), nl, kernel,
-                            params, forcing, tv, float(speed), el)
+    """Integrator inputs of ``system`` at rotor speed ``speed`` [rad/s]:
+    :meth:`RotorSystem.second_order <rotorsfd.model.system.RotorSystem.second_order>`
+    (``horizon`` [s], default 1000 rotor periods: the interval on which a base
+    coefficient must be constant to be folded into the constant matrices)."""
+    return system.second_order(speed, horizon=horizon)
 
 
 def scheme_options(scheme: str, alpha: float) -> dict[str, Any]:
@@ -310,24 +231,20 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
     rd = np.asarray(record_dofs, dtype=np.int64)
     rows = np.concatenate([rd, inputs.nl_dofs]).astype(np.int64)  # physical rows kept
     if red is None:
-        M, D, K, forcing, tv = inputs.M, inputs.D, inputs.K, inputs.forcing, \
-            inputs.time_varying
-        nl_step = inputs.nl_dofs
+        stepped = inputs
         x0, xv0 = q0, v0
         rec_all = rows
 
         def out(x: np.ndarray, cols: np.ndarray | None = None) -> np.ndarray:
             return x if cols is None else x[..., cols]
     else:
-        M, D, K = red.model.M, red.model.D, red.model.K
-        forcing, tv, nl_step = red.forcing, red.time_varying, red.nl_dofs
+        stepped = red.stepped(inputs)
         x0, xv0 = red.reduce(q0), red.reduce(v0)
         rec_all = np.arange(red.n_dof, dtype=np.int64)          # every reduced coordinate
 
         def out(x: np.ndarray, cols: np.ndarray | None = None) -> np.ndarray:
             return red.physical(x, None if cols is None else rows[cols])
-    ps = prepare(M, D, K, nl_step, inputs.kernel, inputs.params, forcing, dt, n_steps, t0=t0,
-                 time_varying=tv, **(method_options or {}))
+    ps = prepare_system(stepped, dt, n_steps, t0=t0, options=method_options)
     r = ps.n_dof
     nl = ps.nl
     elements = inputs.elements
