@@ -18,8 +18,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from rotorsfd.analyses.modal import first_critical
+from rotorsfd.analyses.modal import reference_speed as config_reference_speed
 from rotorsfd.errors import ConfigError
+from rotorsfd.io.config import show_config
 from rotorsfd.io.schema import ModalAnalysis, ResponseAnalysis
+from rotorsfd.model.build import build_system
 
 if TYPE_CHECKING:
     from rotorsfd.io.schema import Config
@@ -54,8 +58,6 @@ class RunContext:
         below ``modal.critical_speed_max`` (as ``reference.speed = 'first_critical'``)."""
         if self.reference_speed is not None:
             return float(self.reference_speed)
-        from rotorsfd.analyses.modal import first_critical
-
         return first_critical(system, self.modal.critical_speed_max)
 
     def output_nodes(self, system: RotorSystem) -> tuple[int, ...]:
@@ -69,8 +71,6 @@ class RunContext:
 
 def build(config: Config, search_path: Path | None = None) -> RotorSystem:
     """The :class:`RotorSystem` of a configuration (the one builder every analysis uses)."""
-    from rotorsfd.model.build import build_system
-
     return build_system(config, search_path)
 
 
@@ -81,9 +81,6 @@ def config_context(config: Config, system: RotorSystem, section: str, *,
     ``[reference]`` (``reference_speed`` overrides it), ``[analysis.response]``,
     ``[analysis.modal]``, the section's output nodes (default: element and disk nodes),
     the title and the resolved configuration."""
-    from rotorsfd.analyses.modal import reference_speed as config_reference_speed
-    from rotorsfd.io.config import show_config
-
     ref = reference_speed if reference_speed is not None \
         else config_reference_speed(config, system)
     return RunContext(float(ref), config.analysis.response, config.analysis.modal,

@@ -37,7 +37,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from rotorsfd.analyses.modal import first_critical
+from rotorsfd.analyses.context import RunContext
 from rotorsfd.continuation.branch import Branch, BranchPoint
 from rotorsfd.errors import ConfigError, ConvergenceError
 from rotorsfd.harmonic.periodic import continue_periodic
@@ -153,8 +153,9 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
     if isinstance(config_or_system, RotorSystem):
         system = config_or_system
         path = parameter or "speed"
-        ref = reference_speed if reference_speed is not None else first_critical(system)
-        H = harmonics or 3
+        ctx = RunContext(reference_speed)   # an empty configuration's defaults
+        ref = ctx.reference(system)
+        H = harmonics or ctx.harmonics
         opts: dict[str, Any] = {}
         if start is None or stop is None:
             raise ConfigError("start/stop", (start, stop), "give the parameter range in SI")
