@@ -218,7 +218,9 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
     (issue 22): the Trajectory holds the recorded periods up to the last converged step
     (every step of at most the last ``max(record_periods, poincare_periods)`` periods
     before it, with their Poincare points), its state there as the final state, and the
-    element's contact error in ``ended``; every chunk then records the kept columns.
+    element's contact error in ``ended``: the state at the start of every chunk is kept
+    (a copy of the step state, nothing recorded), and the periods before the contact are
+    integrated again from the one that starts them (the same arithmetic, the same values).
 
     With ``inputs.reduction`` the run steps the reduced coordinates ``p`` from
     ``p0 = P q0``; every output (the columns of ``record_dofs``, the elements' DOFs, the
@@ -265,14 +267,17 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
     snap = snapshot_period if snapshot_period and 0 < snapshot_period < periods else None
     if on_contact not in ("raise", "end"):
         raise ValueError(f"on_contact must be 'raise' or 'end', got {on_contact!r}")
-    tail = on_contact == "end"     # every chunk records: the periods before a contact
+    tail = on_contact == "end"     # keep the chunk starts: the periods before a contact
     ended = None
+    starts: list[Any] = []
     while done < periods:
         k = min(chunk, periods - done)
         if snap is not None and done < snap:
             k = min(k, snap - done)
         # a chunk before the kept windows records only the elements' DOFs (for the limit)
-        window = tail or (done + k) * spp >= first_kept
+        window = (done + k) * spp >= first_kept
+        if tail:
+            starts.append(state.copy())
         rec = rec_all if window else (nl if limited else nl[:0])
         status, smp, info = run(ps, state, k * spp, record_dofs=rec, record_every=1,
                                 record_start=0, poincare_every=spp if window else 0,
@@ -298,26 +303,16 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
             if not tail:
                 raise err
             ended = err
-        if ended is None:
-            done += k
-        if tail:    # keep the chunks that cover the last kept periods before the end
-            for key, part in (("t", smp["t"]), ("q", smp["q"]), ("v", smp["v"]),
-                              ("pt", smp["pt"]), ("pq", smp["pq"]), ("pv", smp["pv"])):
-                parts[key].append(part)
-            t_now = ps.t0 + state.step * dt
-            while len(parts["t"]) > 1 and parts["t"][1].size and \
-                    parts["t"][1][0] <= t_now - (max(record_periods, poincare_periods)
-                                                 * spp - 0.5) * dt:
-                for key in ("t", "q", "v", "pt", "pq", "pv"):
-                    parts[key].pop(0)
-            if ended is not None:
-                break
+            parts = _before_contact(ps, starts, state.step, rec_all, spp,
+                                    max(record_periods, poincare_periods) * spp)
+            break
+        done += k
         if done == snap:
             snapshot = (out(state.X[:r]).copy(), out(state.X[r:2 * r]).copy(),
                         ps.t0 + state.step * dt)
         if progress is not None:
             progress(done)
-        if not window or tail:
+        if not window:
             continue
         keep = smp["t"] >= ps.t0 + (rec_start - 0.5) * dt
         parts["t"].append(smp["t"][keep])
@@ -329,7 +324,7 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
         parts["pt"].append(smp["pt"][keep])
         parts["pq"].append(out(smp["pq"][keep], c_rd))
         parts["pv"].append(out(smp["pv"][keep], c_rd))
-    if tail:
+    if ended is not None:
         parts = _kept_tail(parts, out, c_rd, c_nl, ps.t0 + state.step * dt, dt,
                            record_periods * spp, (poincare_periods - 1) * spp)
     cat = {k: np.concatenate(v) if v else np.zeros((0, rd.size)) for k, v in parts.items()}
@@ -343,12 +338,25 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
                       ended)
 
 
+def _before_contact(ps: Any, starts: list[Any], last: int, rows: np.ndarray, spp: int,
+                    n_keep: int) -> dict[str, list[np.ndarray]]:
+    """The raw samples (every step, Poincare points every ``spp``) of the columns ``rows``
+    from the latest kept chunk start at least ``n_keep`` steps before step ``last`` (the
+    last converged one) up to it: integrated again from that start's copied state."""
+    first = next((st for st in reversed(starts) if st.step <= last - n_keep), starts[0])
+    st = first.copy()
+    _, smp, _ = run(ps, st, last - st.step, record_dofs=rows, record_every=1,
+                    record_start=0, poincare_every=spp, poincare_start=0)
+    return {k: [smp[key]] for k, key in (("t", "t"), ("q", "q"), ("v", "v"), ("pt", "pt"),
+                                         ("pq", "pq"), ("pv", "pv"))}
+
+
 def _kept_tail(raw: dict[str, list[np.ndarray]], out: Any, c_rd: np.ndarray,
                c_nl: np.ndarray, t_end: float, dt: float, n_record: int, n_poincare: int
                ) -> dict[str, list[np.ndarray]]:
-    """The chunks of an ``on_contact="end"`` run as the Trajectory's parts: every step of
-    the last ``n_record`` steps before ``t_end`` and the Poincare points from
-    ``n_poincare`` steps before it, in physical rows."""
+    """The samples of an ``on_contact="end"`` run before its contact as the Trajectory's
+    parts: every step of the last ``n_record`` steps before ``t_end`` and the Poincare
+    points from ``n_poincare`` steps before it, in physical rows."""
     parts: dict[str, list[np.ndarray]] = {k: [] for k in ("t", "q", "v", "pt", "pq", "pv",
                                                           "qn", "vn")}
     for t, q, v, pt, pq, pv in zip(*(raw[k] for k in ("t", "q", "v", "pt", "pq", "pv")),
