@@ -68,3 +68,23 @@ def test_bifurcation_diagram_config_path_is_the_system_path(config):
         assert p.speed == q.speed and p.start == q.start == ("hb" if p is a.points[0]
                                                              else "previous")
         np.testing.assert_array_equal(p.poincare_q, q.poincare_q)
+
+
+def test_response_config_path_is_the_system_path_with_its_section(config):
+    """``run_response(config)`` = ``run_response(build(config), settings=section,
+    context=config_context(...))``: the same speed range (Omega~ on the same reference),
+    continuation options, H, nodes and branch, point for point."""
+    from rotorsfd.analyses.response import run_response
+    from rotorsfd.io.config import with_values
+
+    cfg = with_values(config, {"analysis.response.speed_range.stop_ratio": 0.8,
+                               "analysis.stability.enabled": False})
+    a = run_response(cfg, progress=False)
+    system = build(cfg)
+    b = run_response(system, settings=cfg.analysis.response,
+                     context=config_context(cfg, system, "response"), progress=False)
+    assert a.branch.n_points == b.branch.n_points > 5
+    np.testing.assert_array_equal(a.branch.lam, b.branch.lam)
+    np.testing.assert_array_equal(a.branch.X, b.branch.X)
+    assert (a.nodes, a.directions, a.reference_speed, a.title) == \
+        (b.nodes, b.directions, b.reference_speed, b.title)
