@@ -258,7 +258,9 @@ class SimulationResult:
         scale = self.clearance if self.clearance else 1.0
         title = (f"node {node}, Omega = {self.speed:.5g} rad/s"
                  + (f" (Omega~ = {self.speed_ratio:.4g})" if self.speed_ratio else "")
-                 + f": {self.motion_name}" + (f" -- {self.title}" if self.title else ""))
+                 + (f": {self.motion_name}" if self.ended == "range" else
+                    f": ended at the validity limit (contact) at t = {self.t_final:.4g} s")
+                 + (f" -- {self.title}" if self.title else ""))
         return simulation_figures(
             y=self.q[:, j, 0] / scale, z=self.q[:, j, 1] / scale,
             vy=self.v[:, j, 0] / (scale * self.speed),
