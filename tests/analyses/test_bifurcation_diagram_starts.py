@@ -63,9 +63,12 @@ def test_hb_start_avoids_the_contact_of_the_displaced_start(clearance, tmp_path)
 
 def test_sweep_survives_a_contact_and_says_why(clearance, tmp_path):
     """Displaced start: contact at the first speed is recorded (where, eps, which start)
-    and the sweep goes on from the HB orbit at the next speed instead of ending."""
+    and the sweep goes on from the HB orbit at the next speed instead of ending; the
+    contact is a validity limit, a result (issue 22 item 3): ``ended = "limit"`` for that
+    speed and the diagram, success (no numerical failure)."""
     r = run_bifurcation_diagram(clearance, progress=False, start_state="displaced")
-    assert len(r.points) == 3 and not r.success
+    assert len(r.points) == 3 and r.success and r.ended == "limit"
+    assert [p.ended for p in r.points] == ["limit", "range", "range"]
     first, second, third = r.points
     assert first.motion == "contact" and first.start == "displaced"
     assert "journal contact" in first.contact and "eps=0.999" in first.contact
@@ -76,11 +79,14 @@ def test_sweep_survives_a_contact_and_says_why(clearance, tmp_path):
     assert "the sweep goes on" in r.summary()
     r.write(tmp_path, plots=False)
     info = json.loads((tmp_path / "diagram.json").read_text())
+    assert info["ended"] == "limit"
     assert info["contacts"] == [{"direction": "up", "speed_rad_s": first.speed,
-                                 "start": "displaced", "message": first.contact}]
+                                 "start": "displaced", "ended": "limit",
+                                 "message": first.contact}]
     with (tmp_path / "speeds.csv").open() as fh:
         rows = list(csv.DictReader(fh))
     assert [row["contact"] for row in rows] == ["1", "0", "0"]
+    assert [row["ended"] for row in rows] == ["limit", "range", "range"]
     assert [row["start"] for row in rows] == ["displaced", "hb", "previous"]
 
 
@@ -143,3 +149,40 @@ def test_falls_back_to_the_displaced_state_without_hb(small, monkeypatch, error)
 def test_unknown_start_rejected(small):
     with pytest.raises(ConfigError, match="start_state"):
         run_bifurcation_diagram(small, progress=False, start_state="orbit")
+
+
+@pytest.mark.parametrize("error, status", [
+    (JournalContactError(0.9991, 1e-4, 0.0, 0.0, 0.0, "t=0.01 s (test)"), 0),
+    (ConvergenceError("time integration: Newton did not converge (test)"), 1)])
+def test_cli_contact_is_a_result_a_numerical_failure_exit_1(tmp_path, monkeypatch, capsys,
+                                                            error, status):
+    """A speed that reaches the contact limit: a warning line naming the speed and the
+    contact, exit 0, ``ended = limit`` in speeds.csv and diagram.json; a numerical failure
+    of the time stepping: an error line and exit 1 (issue 22 item 3)."""
+    from rotorsfd.cli import main
+
+    real = step_control.integrate_periods
+
+    def once(inputs, *args, **kwargs):
+        if abs(inputs.speed - 800.0) < 1e-9 * 800.0 and kwargs.get("periods") == 30:
+            raise error
+        return real(inputs, *args, **kwargs)
+
+    monkeypatch.setattr(step_control, "integrate_periods", once)
+    path = small_rotor_toml(tmp_path / "small.toml", unbalance="200 g*mm",
+                            reference="800 rad/s")
+    out = tmp_path / "out"
+    code = main(["bifurcation-diagram", str(path), "-o", str(out), "-q",
+                 "--set", FIXED, "--set", SWEEP + "speed_range.start_ratio=1.0",
+                 "--set", SWEEP + "speed_range.stop_ratio=1.1",
+                 "--set", SWEEP + "speed_range.n=2", "--set", SWEEP + "direction=up",
+                 "--set", SWEEP + "settle_periods=20", "--set", SWEEP + "record_periods=10"])
+    err = [line for line in capsys.readouterr().err.splitlines()
+           if line.startswith("rotorsfd:")]
+    assert code == status
+    ended = "limit" if status == 0 else "failed"
+    head = "rotorsfd: warning: " if status == 0 else "rotorsfd: error: "
+    assert len(err) == 1 and err[0].startswith(head) and "800 rad/s" in err[0], err
+    with (out / "speeds.csv").open() as fh:
+        assert [row["ended"] for row in csv.DictReader(fh)] == [ended, "range"]
+    assert json.loads((out / "diagram.json").read_text())["ended"] == ended

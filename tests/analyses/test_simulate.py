@@ -4,6 +4,7 @@ time-varying (harmonic) base path against the frozen-coefficient limit, contact.
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -17,7 +18,6 @@ from rotorsfd.analyses.simulate import (
     system_from_config,
     time_domain_inputs,
 )
-from rotorsfd.errors import JournalContactError
 from rotorsfd.harmonic.periodic import solve_periodic
 from rotorsfd.model.base_motion import BaseMotion, CallableLaw, Harmonic
 from rotorsfd.model.base_terms import base_coefficients
@@ -157,11 +157,15 @@ def test_harmonic_pitching_follows_frozen_coefficients(tmp_path) -> None:
     assert err < 2e-3 * peak, err / peak           # measured: 1.5e-4 of 0.49 C
 
 
-def test_contact_raises_with_time_period_and_eccentricity(tmp_path) -> None:
+def test_contact_ends_the_run_with_time_period_and_eccentricity(tmp_path) -> None:
     """The squeeze film alone keeps eps < 1 (its force is unbounded there); with a
     contact limit eps_max = 0.9 and U = 1000 g mm at resonance (steady eps ~ 0.96 without
-    the limit) the run stops with JournalContactError: time, rotor period and eps in one
-    line, eps at the limit."""
+    the limit) the run ends at the limit as a result (issue 22 item 3): ``ended`` is
+    "limit", the message says where (time, rotor period) and why (eps at the limit) in
+    one line, the recorded periods are the ones just before the contact (their eps below
+    the limit and rising to it), and the files carry ``ended``."""
+    import xarray as xr
+
     from rotorsfd.elements.sfd import SFDElement
     from rotorsfd.model.sfd import SFD
 
@@ -170,13 +174,30 @@ def test_contact_raises_with_time_period_and_eccentricity(tmp_path) -> None:
     f = e.film
     sfd = SFD(f.viscosity, f.radius, f.length, f.clearance, f.cavitation, eps_max=0.9)
     system = RotorSystem(base.rotor, [SFDElement("sfd", e.node, sfd)], base.unbalances)
-    with pytest.raises(JournalContactError) as info:
-        run_simulation(system, 1.0 * REF, steps_per_period=200, periods=200,
-                       poincare_periods=10, lyapunov_periods=0, progress=False)
-    err = info.value
-    msg = str(err)
+    res = run_simulation(system, 1.0 * REF, steps_per_period=200, periods=200,
+                         poincare_periods=10, lyapunov_periods=0, progress=False)
+    assert res.ended == "limit" and res.motion_name == "contact"
+    msg = res.message
     assert "\n" not in msg and "rotor period" in msg and "t=" in msg
-    assert 0.89 <= err.eps <= 0.95 and 0 < err.period < 200
+    eps = float(msg.split("eps=")[1].split()[0])
+    assert 0.89 <= eps <= 0.95
+    period = float(msg.split("rotor period ")[1].split()[0])
+    assert 0 < period < 200
+    assert res.settings["periods_run"] == int(period)
+    # the last 10 periods before the contact, up to the last converged step
+    T = 2 * np.pi / REF
+    assert res.t.size > 0 and res.t[-1] == pytest.approx(res.t_final, abs=1e-12)
+    assert res.t[-1] - res.t[0] == pytest.approx(min(10 * T, res.t_final), rel=1e-9)
+    j = res.nodes.index(res.element_node)
+    radius = np.hypot(res.q[:, j, 0], res.q[:, j, 1]) / res.clearance
+    assert radius.max() < 0.9 and radius[-1] > 0.8
+    assert res.max_eccentricity == pytest.approx(radius.max(), rel=1e-12)
+    res.write(tmp_path / "out")
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["ended"] == "limit" and summary["outcome"] == msg
+    with xr.open_dataset(tmp_path / "out" / "timeseries.nc") as ds:
+        assert ds.attrs["ended"] == "limit" and "eps=" in ds.attrs["outcome"]
+        np.testing.assert_allclose(ds["final_displacement"].values, res.q_final)
 
 
 def test_gravity_settles_on_the_static_deflection(tmp_path) -> None:

@@ -93,9 +93,10 @@ def test_from_hb_starts_on_the_orbit(run, tmp_path) -> None:
     assert abs(float(ref[-1]["y"]) - y[-1]) < 2e-3 * C
 
 
-def test_contact_is_one_line_exit_1_nothing_written(tmp_path, capsys) -> None:
+def test_contact_ends_the_run_exit_0_with_a_warning(tmp_path, capsys) -> None:
     """Too coarse a step for a large unbalance: the Newton iterates reach the contact
-    limit; one line on stderr with time and rotor period, exit 1, no output folder."""
+    limit; the run ends there as a result (issue 22 item 3): exit 0, the files written
+    with ``ended = "limit"``, one warning line with time, rotor period and eps."""
     cfg = small_rotor_toml(tmp_path / "small.toml", unbalance="5000 g*mm",
                            reference="800 rad/s")
     out = tmp_path / "out"
@@ -103,11 +104,15 @@ def test_contact_is_one_line_exit_1_nothing_written(tmp_path, capsys) -> None:
                    "--set", "analysis.simulate.steps_per_period=8",
                    "--set", "analysis.simulate.periods=50",
                    "--set", "analysis.simulate.poincare_periods=10"])
-    err = capsys.readouterr().err.strip().splitlines()
-    assert status == 1
-    assert len(err) == 1 and "journal contact" in err[0] and "rotor period" in err[0]
+    err = [line for line in capsys.readouterr().err.strip().splitlines()
+           if line.startswith("rotorsfd:")]
+    assert status == 0
+    assert len(err) == 1 and err[0].startswith("rotorsfd: warning: ")
+    assert "journal contact" in err[0] and "rotor period" in err[0]
     assert "eccentricity ratio eps=" in err[0]
-    assert not out.exists()
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["ended"] == "limit" and summary["motion"] == "contact"
+    assert (out / "timeseries.nc").is_file() and not (out / "INCOMPLETE.txt").exists()
 
 
 @pytest.mark.parametrize("argv", [["--speed", "800", "--speed-ratio", "1"], []])

@@ -14,9 +14,15 @@ a failed one still from the HB orbit). Each speed records its start (``previous`
 ``displaced``). Runs at each speed start at t = 0, so the unbalance angle ``Omega t`` is
 continuous (every run lasts a whole number of periods); a time-varying base law restarts
 its phase at each speed. Coexisting attractors show as a difference of the up and down
-sweeps (jumps and hysteresis). A speed that meets journal contact (or whose time stepping
-fails) is recorded as failed with the reason, and the sweep goes on at the next speed from
-a fresh start; the failures are listed and reported.
+sweeps (jumps and hysteresis). A speed whose journal reaches its validity limit (contact)
+ends there as a result (``ended = "limit"``, issue 22 item 3: the CLI warns and exits 0); a
+speed whose time stepping fails numerically is ``ended = "failed"`` (exit 1); either way
+the reason is recorded and the sweep goes on at the next speed from a fresh start.
+
+``run_bifurcation_diagram(system, settings, simulate=..., context=...)`` takes the
+``[analysis.bifurcation_diagram]`` and ``[analysis.simulate]`` sections and a
+:class:`~rotorsfd.analyses.context.RunContext`; ``run_bifurcation_diagram(config)`` is that
+call on the config's (:func:`~rotorsfd.analyses.context.config_context`).
 
 The step is that of ``[analysis.simulate]``: ``steps_per_period = "auto"`` (default) runs
 each speed's settling periods at T/200, halves the step over the last
@@ -31,23 +37,22 @@ import math
 import sys
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from rotorsfd.analyses.simulate import (
-    DIRECTIONS,
-    classify,
-    displaced_state,
-    hb_start,
-    scheme_options,
-    system_from_config,
-    time_domain_inputs,
-)
+from rotorsfd.analyses.context import RunContext, build, config_context
+from rotorsfd.analyses.simulate import classify
 from rotorsfd.analyses.step_control import integrate_controlled
-from rotorsfd.analyses.td_integration import with_reduction
+from rotorsfd.analyses.td_integration import (
+    DIRECTIONS,
+    scheme_options,
+    time_domain_inputs,
+    with_reduction,
+)
+from rotorsfd.analyses.td_start import displaced_state, hb_start
 from rotorsfd.errors import ConfigError, ConvergenceError, ElementDomainError, RotorsfdError
 from rotorsfd.model import dofs
 from rotorsfd.model.system import RotorSystem
@@ -55,11 +60,13 @@ from rotorsfd.model.system import RotorSystem
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-    from rotorsfd.io.schema import Config
+    from rotorsfd.io.schema import BifurcationDiagramAnalysis, Config, SimulateAnalysis
 
 FIELD = "analysis.bifurcation_diagram"
 #: Fresh starts of a sweep (``run_bifurcation_diagram(start_state=...)``).
 FRESH_STARTS = ("hb", "displaced")
+#: How a speed that did not run to its end is named in the summary, by its ``ended``.
+END_WORDS = {"limit": "ended at a validity limit", "failed": "failed"}
 
 
 @dataclass
@@ -81,6 +88,7 @@ class SpeedPoint:
     steps_per_period: int | None = None     #: the step of the recorded periods
     step_error: float | None = None         #: change of the last halving [C]
     step_converged: bool | None = None      #: that change below step_tolerance
+    ended: str = "range"    #: "range" (ran), "limit" (contact) or "failed" (numerics)
 
 
 @dataclass
@@ -100,11 +108,25 @@ class BifurcationDiagramResult:
 
     @property
     def contacts(self) -> list[SpeedPoint]:
+        """The speeds that did not run to their end (contact or a numerical failure)."""
         return [p for p in self.points if p.contact is not None]
 
     @property
+    def failures(self) -> list[SpeedPoint]:
+        """The speeds whose time stepping failed numerically (``ended = "failed"``)."""
+        return [p for p in self.points if p.ended == "failed"]
+
+    @property
     def success(self) -> bool:
-        return not self.contacts
+        """No numerical failure (a speed ended at a validity limit is a result)."""
+        return not self.failures
+
+    @property
+    def ended(self) -> str:
+        """``"failed"`` if a speed failed numerically, else ``"limit"`` if one ended at
+        an element's validity limit, else ``"range"`` (the response's vocabulary)."""
+        ends = {p.ended for p in self.points}
+        return "failed" if "failed" in ends else "limit" if "limit" in ends else "range"
 
     def table(self) -> dict[str, np.ndarray]:
         """``diagram.csv``: ``direction, speed_rad_s, speed_ratio, node, period, y, z, vy,
@@ -134,7 +156,9 @@ class BifurcationDiagramResult:
     def speeds_table(self) -> dict[str, np.ndarray]:
         """``speeds.csv``: per speed ``direction, speed_rad_s, speed_ratio, motion,
         n_distinct_poincare (-1: unknown), max_eccentricity (-1: none), contact (0/1: the
-        speed failed, journal contact or time stepping; diagram.json says why), settled (0:
+        speed did not run to its end), ended (``range``, ``limit``: the journal reached its
+        validity limit, ``failed``: the time stepping failed; diagram.json says why),
+        settled (0:
         a period-n class whose Poincare points still drift), start`` (initial state:
         ``previous`` speed's end state, ``hb`` orbit or ``displaced``), ``steps_per_period``
         of the recorded periods, ``step_error`` (change of the last halving of the step,
@@ -151,6 +175,7 @@ class BifurcationDiagramResult:
                 "max_eccentricity": [-1.0 if p.max_eccentricity is None
                                      else p.max_eccentricity for p in self.points],
                 "contact": [p.contact is not None for p in self.points],
+                "ended": [p.ended for p in self.points],
                 "settled": [p.settled for p in self.points],
                 "start": [p.start for p in self.points],
                 "steps_per_period": [-1 if p.steps_per_period is None else p.steps_per_period
@@ -174,9 +199,10 @@ class BifurcationDiagramResult:
                  "diagram.json": atomic.write_json(out / "diagram.json", atomic.json_safe({
                      "settings": self.settings, "nodes": list(self.nodes),
                      "clearance_m": self.clearance, "elapsed_s": self.elapsed,
+                     "ended": self.ended,
                      "contacts": [{"direction": p.direction, "speed_rad_s": p.speed,
-                                   "start": p.start, "message": p.contact}
-                                  for p in self.contacts],
+                                   "start": p.start, "ended": p.ended,
+                                   "message": p.contact} for p in self.contacts],
                      "notes": self.notes, "title": self.title}))}
         if plots:
             paths["diagram.png"] = atomic.save_figure(self.plot(), out / "diagram.png",
@@ -222,8 +248,8 @@ class BifurcationDiagramResult:
         for p in self.points:
             starts[p.start] = starts.get(p.start, 0) + 1
         lines.append("starts: " + ", ".join(f"{k} {v}" for k, v in sorted(starts.items())))
-        lines += [f"failed ({p.direction} sweep, {p.start} start) at {p.speed:.6g} rad/s: "
-                  f"{p.contact}" for p in self.contacts]
+        lines += [f"{END_WORDS[p.ended]} ({p.direction} sweep, {p.start} start) at "
+                  f"{p.speed:.6g} rad/s: {p.contact}" for p in self.contacts]
         lines += [f"note: {n}" for n in self.notes]
         return "\n".join(lines)
 
@@ -241,7 +267,10 @@ def sweep_speeds(start: float, stop: float, n: int, direction: str
     return runs
 
 
-def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
+def run_bifurcation_diagram(config_or_system: Config | RotorSystem,
+                            settings: BifurcationDiagramAnalysis | None = None, *,
+                            simulate: SimulateAnalysis | None = None,
+                            context: RunContext | None = None,
                             search_path: Path | None = None, start: float | None = None,
                             stop: float | None = None, n: int | None = None,
                             direction: str | None = None, settle_periods: int | None = None,
@@ -254,8 +283,12 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
                             reference_speed: float | None = None,
                             nodes: Sequence[int] | None = None, progress: bool = True,
                             title: str | None = None) -> BifurcationDiagramResult:
-    """Sweep the speed (rad/s; from a Config: ``[analysis.bifurcation_diagram]``, the
-    scheme, steps per period and initial displacement of ``[analysis.simulate]``).
+    """Sweep the speed (rad/s): ``settings`` the ``[analysis.bifurcation_diagram]``
+    section, ``simulate`` the ``[analysis.simulate]`` one (scheme, step, initial
+    displacement), ``context`` the reference speed, H of the HB start, nodes and title
+    (defaults: an empty configuration's; from a Config: its sections and
+    :func:`config_context`, the same code). The speed range is the settings' (in
+    Omega~ on the reference speed) unless ``start``/``stop`` are given.
 
     ``start_state`` the fresh start (module docstring): ``"hb"`` (default; the displaced
     state where no HB solution can be computed) or ``"displaced"``; ``from_hb=True`` is
@@ -266,29 +299,27 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
 
     if isinstance(config_or_system, RotorSystem):
         system = config_or_system
-        bd, sim = BifurcationDiagramAnalysis(), SimulateAnalysis()
-        ref = reference_speed
-        if start is None or stop is None:
-            raise ConfigError("start/stop", (start, stop), "give the speed range [rad/s]")
-        H = harmonics or 3
-        name = title or ""
-        out_nodes = tuple(nodes) if nodes else system.output_nodes
+        bd = settings if settings is not None else BifurcationDiagramAnalysis()
+        sim = simulate if simulate is not None else SimulateAnalysis()
+        ctx = context if context is not None else RunContext(search_path=search_path)
+        if reference_speed is not None:
+            ctx = replace(ctx, reference_speed=float(reference_speed))
     else:
         config = config_or_system
-        system = system_from_config(config, search_path)
-        bd, sim = config.analysis.bifurcation_diagram, config.analysis.simulate
-        if reference_speed is not None:
-            ref = reference_speed
-        else:
-            from rotorsfd.analyses.modal import reference_speed as config_reference_speed
-
-            ref = config_reference_speed(config, system)
+        system = build(config, search_path)
+        bd = config.analysis.bifurcation_diagram if settings is None else settings
+        sim = config.analysis.simulate if simulate is None else simulate
+        ctx = config_context(config, system, "simulate", search_path=search_path,
+                             reference_speed=reference_speed)
+    ref = ctx.reference_speed
+    if start is None or stop is None:
+        ref = ctx.reference(system)
         lo, hi = bd.speed_range.bounds(ref)
         start = lo if start is None else start
         stop = hi if stop is None else stop
-        H = harmonics or config.analysis.response.start_harmonics
-        name = config.title if title is None else title
-        out_nodes = tuple(nodes) if nodes else tuple(config.output_nodes("simulate"))
+    H = harmonics or ctx.harmonics
+    name = ctx.title if title is None else title
+    out_nodes = tuple(nodes) if nodes else ctx.output_nodes(system)
     if from_hb:
         start_state = "hb"
     if start_state not in FRESH_STARTS:
@@ -365,11 +396,13 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem, *,
             except (ElementDomainError, ConvergenceError) as exc:
                 msg = " ".join(str(exc).split())
                 empty = np.zeros((0, nn, 2))
-                kind = "contact" if isinstance(exc, ElementDomainError) else "failed"
-                points.append(SpeedPoint(d, speed, np.zeros(0), empty, empty, kind, None,
-                                         None, msg, start=origin))
-                notes.append(f"{d} sweep: {kind} at {speed:.6g} rad/s ({origin} start); "
-                             "the sweep goes on from a fresh start")
+                limit = isinstance(exc, ElementDomainError)
+                points.append(SpeedPoint(d, speed, np.zeros(0), empty, empty,
+                                         "contact" if limit else "failed", None, None, msg,
+                                         start=origin, ended="limit" if limit else "failed"))
+                notes.append(f"{d} sweep: {'contact' if limit else 'failed'} at "
+                             f"{speed:.6g} rad/s ({origin} start); the sweep goes on from a "
+                             "fresh start")
                 state, restart = None, True
                 continue
             start_of_run, origin, restart = origin, "previous", False

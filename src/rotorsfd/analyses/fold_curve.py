@@ -36,7 +36,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from rotorsfd.analyses.modal import first_critical
+from rotorsfd.analyses.context import RunContext
 from rotorsfd.analyses.response_result import PARAMETER_UNITS, column_slug, system_parameter
 from rotorsfd.continuation.folds import (
     FoldBranch,
@@ -332,7 +332,7 @@ def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_par
                           "the second parameter must differ from the speed")
     if range2[0] == range2[1]:
         raise ConfigError("--to", range2[1], "must differ from --from (the start value)")
-    ref = float(reference_speed if reference_speed is not None else first_critical(system))
+    ref = RunContext(reference_speed).reference(system)   # an empty configuration's bound
     out_nodes = tuple(nodes) if nodes else system.output_nodes
     family = system.two_parameter_problem(param)
     t0 = time.perf_counter()

@@ -37,7 +37,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from rotorsfd.analyses.modal import first_critical
+from rotorsfd.analyses.context import RunContext
 from rotorsfd.continuation.branch import Branch, BranchPoint
 from rotorsfd.errors import ConfigError, ConvergenceError
 from rotorsfd.harmonic.periodic import continue_periodic
@@ -116,14 +116,21 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
                  stability_options: StabilityOptions | bool | None = None,
                  callback: Callable[[BranchPoint], bool | None] | None = None,
                  title: str | None = None, from_orbit: Any = None,
-                 closure_tol: float | None = None, **options: Any) -> ResponseResult:
+                 closure_tol: float | None = None, settings: ResponseAnalysis | None = None,
+                 context: RunContext | None = None, **options: Any) -> ResponseResult:
     """Continue periodic solutions and return a :class:`ResponseResult`.
 
     From a Config: everything from ``[analysis.response]`` and ``[reference]``; keyword
-    arguments override. From a :class:`RotorSystem`: ``start, stop`` (SI: rad/s for the
-    speed and base rates, kg m for the unbalance) are required, ``speed`` too for
-    parameters other than the speed; ``reference_speed`` defaults to the first forward
-    critical speed. ``options`` go to :func:`~rotorsfd.harmonic.periodic.continue_periodic`.
+    arguments override. From a :class:`RotorSystem` with ``settings`` (an
+    ``[analysis.response]`` section) and ``context`` (:class:`RunContext`: the reference
+    speed, nodes, title): the same run as from a config with that section (its speed
+    range in Omega~, its continuation options, H, nodes, directions; ``start, stop`` in
+    SI for a parameter other than the speed). From a RotorSystem without settings:
+    ``start, stop`` (SI: rad/s for the speed and base rates, kg m for the unbalance) are
+    required, ``speed`` too for parameters other than the speed, and the continuation
+    runs on :func:`~rotorsfd.harmonic.periodic.continue_periodic`'s own defaults, H = 3;
+    ``reference_speed`` defaults to the first forward critical speed. ``options`` go to
+    :func:`~rotorsfd.harmonic.periodic.continue_periodic`.
     ``stability(point)`` may return a :class:`PointStability` per point; otherwise
     ``stability_options`` (None: from ``[analysis.stability]`` of a Config, off for a
     RotorSystem; True: defaults; False: off) computes the multipliers of every point and
@@ -152,14 +159,31 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
                                       callback=callback)
     if isinstance(config_or_system, RotorSystem):
         system = config_or_system
-        path = parameter or "speed"
-        ref = reference_speed if reference_speed is not None else first_critical(system)
-        H = harmonics or 3
-        opts: dict[str, Any] = {}
+        ctx = context if context is not None else RunContext()
+        if reference_speed is not None:
+            ctx = dataclasses.replace(ctx, reference_speed=float(reference_speed))
+        ref = ctx.reference(system)
+        r = settings
+        path = (parameter or (r.parameter if r is not None else "speed")).strip()
+        opts: dict[str, Any] = {} if r is None else _options(r)
+        if r is None:
+            H = harmonics or ctx.harmonics
+        else:
+            H = harmonics or r.start_harmonics
+            if harmonics:       # a given H is fixed
+                opts["adaptive_harmonics"] = False
+            if system_parameter(path) == "speed":
+                lo, hi = r.speed_range.bounds(ref)
+                start = lo if start is None else start
+                stop = hi if stop is None else stop
+            elif speed is None:
+                speed = r.fixed_speed(ref)
+            directions = directions or tuple(r.directions)
         if start is None or stop is None:
             raise ConfigError("start/stop", (start, stop), "give the parameter range in SI")
-        out_nodes = tuple(nodes) if nodes else system.output_nodes
-        name = title or ""
+        out_nodes = tuple(nodes or (r.nodes if r is not None else ())) \
+            or ctx.output_nodes(system)
+        name = ctx.title if title is None else title
         floquet = _stability_options(None, stability_options)
     else:
         system, path, ref, H, opts, (start, stop, speed), out_nodes = _from_config(

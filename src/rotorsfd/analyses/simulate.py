@@ -38,12 +38,13 @@ import math
 import sys
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from rotorsfd.analyses.context import RunContext, build, config_context
 from rotorsfd.analyses.simulation_result import (
     FILE_SAMPLES_PER_PERIOD,
     SimulationResult,
@@ -70,8 +71,16 @@ from rotorsfd.analyses.td_integration import (
     with_reduction,
 )
 from rotorsfd.analyses.td_lyapunov import lyapunov_pair
+from rotorsfd.analyses.td_start import (
+    SavedState,
+    displaced_state,
+    hb_start,
+    hb_state,
+    load_state,
+    shift_phase,
+    timeseries_path,
+)
 from rotorsfd.errors import ConfigError, ConvergenceError, ElementDomainError
-from rotorsfd.io.config import show_config
 from rotorsfd.model import dofs
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.timedomain import (
@@ -85,6 +94,7 @@ __all__ = [
     "FIELD",
     "FILE_SAMPLES_PER_PERIOD",
     "STEP_TOLERANCE",
+    "RunContext",
     "SavedState",
     "SimulationResult",
     "StepCheck",
@@ -95,123 +105,31 @@ __all__ = [
     "displaced_state",
     "file_stride",
     "hb_start",
+    "hb_state",
     "integrate_periods",
     "load_state",
     "run_simulation",
     "scheme_options",
+    "shift_phase",
     "system_from_config",
     "time_domain_inputs",
+    "timeseries_path",
 ]
 
 if TYPE_CHECKING:
-
-    from rotorsfd.io.schema import Config
+    from rotorsfd.io.schema import Config, SimulateAnalysis
 
 
 REDUCTION_CHECK_PERIODS = 10
 """Periods of the reduction check (at most ``step_check_periods``; 0 turns it off too)."""
 
 
-def displaced_state(n_dof: int, displacement: float) -> np.ndarray:
-    """``q0`` with every node's y and z displaced by ``displacement`` (rotations zero)."""
-    q0 = np.zeros(n_dof)
-    q0[0::4] = q0[1::4] = displacement
-    return q0
-
-
-def hb_state(X: np.ndarray, speed: float) -> tuple[np.ndarray, np.ndarray]:
-    """``(q(0), v(0))`` of ``q(t) = Re sum_k X_k exp(i k Omega t)``, X (H+1, n_dof)."""
-    k = np.arange(X.shape[0])[:, None]
-    return X.sum(axis=0).real.copy(), (1j * k * speed * X).sum(axis=0).real.copy()
-
-
-def shift_phase(X: np.ndarray, phase: float) -> np.ndarray:
-    """Coefficients of ``q(t + phase T)``: ``X_k exp(i k 2 pi phase)``, X (H+1, ...)."""
-    k = np.arange(X.shape[0]).reshape((-1,) + (1,) * (X.ndim - 1))
-    return X * np.exp(2j * math.pi * k * float(phase))
-
-
-def hb_start(system: RotorSystem, speed: float, harmonics: int = 3,
-             n_samples: int | None = None, phase: float = 0.0
-             ) -> tuple[np.ndarray, np.ndarray]:
-    """Initial state on the HB periodic solution at ``speed`` (constant base only), taken
-    a fraction ``phase`` of the period later (:func:`shift_phase`).
-
-    Newton from the linearised response; if that fails (strongly nonlinear points), the
-    branch is continued from ``speed / 2`` and its first arrival at ``speed`` taken.
-    """
-    from rotorsfd.harmonic.periodic import continue_periodic, solve_periodic
-
-    problem = system.periodic_problem()
-    try:
-        sol = solve_periodic(problem, speed, harmonics, n_samples=n_samples)
-        return hb_state(shift_phase(sol.X, phase), speed)
-    except ConvergenceError as first:
-        branch = continue_periodic(problem, 0.5 * speed, speed, harmonics,
-                                   n_samples=n_samples, limit_max=0.999)
-        if not (branch.n_points and abs(branch.lam[-1] - speed) <= 1e-9 * speed):
-            raise ConvergenceError(
-                f"HB start at {speed:.6g} rad/s: {' '.join(str(first).split())}; "
-                f"continuation from {0.5 * speed:.6g} rad/s: {branch.message}") from None
-        return hb_state(shift_phase(branch.X[-1], phase), speed)
-
-
-@dataclass(frozen=True)
-class SavedState:
-    """The final state of a run (``timeseries.nc``): every DOF's displacement ``q`` [m]
-    and velocity ``v`` [m/s] at time ``t`` [s], rotor speed ``speed`` [rad/s]."""
-
-    q: np.ndarray
-    v: np.ndarray
-    t: float
-    speed: float
-    source: str = ""
-
-    @property
-    def phase(self) -> float:
-        """Rotor phase ``Omega t mod 2 pi`` at the saved time [rad]."""
-        return float(math.fmod(self.speed * self.t, 2.0 * math.pi))
-
-    def start_time(self, speed: float) -> float:
-        """Start time of a run at ``speed`` from this state: the saved time at the same
-        speed (exact continuation), else the time where ``speed * t`` is the saved phase."""
-        if abs(speed - self.speed) <= 1e-12 * self.speed:
-            return self.t
-        return self.phase / speed
-
-
-def timeseries_path(path: str | Path) -> Path:
-    """``path`` itself, or ``path/timeseries.nc`` for a directory."""
-    p = Path(path)
-    return p / "timeseries.nc" if p.is_dir() else p
-
-
-def load_state(path: str | Path) -> SavedState:
-    """The final state stored in a ``timeseries.nc`` (or a directory holding one)."""
-    import xarray as xr
-
-    p = timeseries_path(path)
-    if not p.is_file():
-        raise ConfigError("initial_state", str(path), "no such file (give a simulate "
-                          "output directory or its timeseries.nc)")
-    with xr.open_dataset(p) as ds:
-        if "final_displacement" not in ds or "t_final_s" not in ds.attrs:
-            raise ConfigError("initial_state", str(path), "this timeseries.nc has no final "
-                              "state (written by an older rotorsfd): run it again")
-        return SavedState(np.asarray(ds["final_displacement"].values, float),
-                          np.asarray(ds["final_velocity"].values, float),
-                          float(ds.attrs["t_final_s"]), float(ds.attrs["speed_rad_s"]),
-                          str(p))
-
-
 # ---- running ------------------------------------------------------------------------------
 
 
 def system_from_config(config: Config, search_path: Path | None = None) -> RotorSystem:
-    """The :class:`RotorSystem` of a configuration."""
-    from rotorsfd.model.build import build_system
-
-    return build_system(config, search_path)
+    """The :class:`RotorSystem` of a configuration (:func:`~rotorsfd.analyses.context.build`)."""
+    return build(config, search_path)
 
 
 def _progress_bar(enabled: bool, total: int, desc: str) -> Any:
@@ -222,6 +140,8 @@ def _progress_bar(enabled: bool, total: int, desc: str) -> Any:
 
 
 def run_simulation(config_or_system: Config | RotorSystem, speed: float | None = None, *,
+                   settings: SimulateAnalysis | None = None,
+                   context: RunContext | None = None,
                    speed_ratio: float | None = None, search_path: Path | None = None,
                    reference_speed: float | None = None, scheme: str | None = None,
                    alpha: float | None = None, steps_per_period: int | None = None,
@@ -240,10 +160,16 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
                    speed_law: Any = None) -> SimulationResult:
     """Integrate the nonlinear rotor at one speed and classify the motion.
 
-    From a Config: ``[analysis.simulate]`` and ``[reference]``, keyword arguments override
-    (``speed`` [rad/s] or ``speed_ratio``). From a :class:`RotorSystem`: ``speed`` is
-    required, other settings default to the paper's (200 steps per period, 2000 periods,
-    100 Poincare periods, 1 um, Newmark). ``record_periods`` (default
+    ``run_simulation(system, speed, settings=..., context=...)``: ``settings`` the
+    ``[analysis.simulate]`` section (default: its defaults, the paper's: 200 steps per
+    period checked, 2000 periods, 100 Poincare periods, 1 um, Newmark), ``context`` the
+    reference speed, HB settings, nodes and title (:class:`RunContext`; default: an empty
+    configuration's). ``run_simulation(config)`` is that call with
+    ``build(config)``, ``config.analysis.simulate`` and :func:`config_context`: the two
+    paths cannot disagree. Keyword arguments override the settings (``speed`` [rad/s] or
+    ``speed_ratio``; ``reference_speed`` the context's Omega_ref; without one a speed
+    ratio is taken on the first forward critical speed).
+    ``record_periods`` (default
     ``poincare_periods``): periods kept in the time series; ``lyapunov_periods`` (default
     ``min(100, periods)``, 0: none): length of the Lyapunov run from the final state.
     ``q0, v0`` override the initial state (full DOF vectors). ``from_hb`` with
@@ -268,36 +194,37 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
     final state against the full step (models up to 400 DOF) or the reduced step at 4x
     the cutoff, in C (the orbit's largest value without an element there; an upper
     estimate, :func:`~rotorsfd.analyses.td_integration.reduction_check`).
+
+    A journal reaching its element's validity limit (contact) ends the run as a result
+    (issue 22): ``result.ended == "limit"``, the periods recorded up to there, the
+    warning :attr:`SimulationResult.message`; a numerical failure raises.
     """
     from rotorsfd.io.schema import SimulateAnalysis
 
-    h_samples = None
     if isinstance(config_or_system, RotorSystem):
         system = config_or_system
-        sim = SimulateAnalysis()
-        ref = reference_speed
-        H = harmonics or 3
-        name = title or ""
-        out_nodes = tuple(nodes) if nodes else system.output_nodes
-        config_toml = ""
+        sim = settings if settings is not None else SimulateAnalysis()
+        ctx = context if context is not None else RunContext(search_path=search_path)
+        if reference_speed is not None:
+            ctx = replace(ctx, reference_speed=float(reference_speed))
     else:
         config = config_or_system
-        system = system_from_config(config, search_path)
-        sim = config.analysis.simulate
-        config_toml = show_config(config)
-        if reference_speed is not None:
-            ref = reference_speed
-        else:
-            from rotorsfd.analyses.modal import reference_speed as config_reference_speed
-
-            ref = config_reference_speed(config, system)
-        H = harmonics or config.analysis.response.start_harmonics
-        h_samples = config.analysis.response.n_samples
-        name = config.title if title is None else title
-        out_nodes = tuple(nodes) if nodes else tuple(config.output_nodes("simulate"))
-        if speed is None and speed_ratio is None and speed_law is None:
-            speed = sim.fixed_speed(ref)
+        system = build(config, search_path)
+        sim = config.analysis.simulate if settings is None else settings
+        ctx = config_context(config, system, "simulate", search_path=search_path,
+                             reference_speed=reference_speed)
+    search_path = ctx.search_path
+    ref = ctx.reference_speed
+    H = harmonics or ctx.harmonics
+    h_samples = ctx.response.n_samples
+    name = ctx.title if title is None else title
+    out_nodes = tuple(nodes) if nodes else ctx.output_nodes(system)
+    config_toml = ctx.config_toml
     law = speed_law if speed_law is not None else sim.speed_law
+    if speed is None and speed_ratio is None and law is None:
+        speed, speed_ratio = sim.speed, sim.speed_ratio
+    if speed is None and speed_ratio is not None and ref is None:
+        ref = ctx.reference(system)
     if law is not None:            # a run-up / coast-down: analyses/runup_simulation.py
         from rotorsfd.analyses.runup_simulation import law_of, run_speed_law_simulation
 
@@ -309,8 +236,6 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
             steps_per_period=steps_per_period, periods=periods, scheme=scheme,
             alpha=alpha, initial_displacement=initial_displacement)
     if speed is None and speed_ratio is not None:
-        if not ref:
-            raise ConfigError("speed_ratio", speed_ratio, "needs a reference speed")
         speed = speed_ratio * ref
     if speed is None or not speed > 0.0:
         raise ConfigError(f"{FIELD}.speed", speed, "give the rotor speed (> 0): --speed, "
@@ -356,9 +281,6 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
     alpha = sim.alpha if alpha is None else alpha
     opts = scheme_options(scheme, alpha)
     disp = sim.initial_displacement if initial_displacement is None else initial_displacement
-    for n in out_nodes:
-        if not 1 <= n <= system.rotor.n_nodes:
-            raise ConfigError(f"{FIELD}.nodes", n, f"must be 1..{system.rotor.n_nodes}")
     T = 2.0 * math.pi / speed
     n = system.n_dof
     t_start = 0.0
@@ -426,10 +348,11 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
             check_column=jc, check_node=out_nodes[jc], check_periods=n_chk, tolerance=tol,
             max_steps_per_period=cap, method_options=opts, chunk_periods=chunk_periods,
             check_clearance=clearance if out_nodes[jc] == primary else None,
-            t0=t_start, progress=tick)
+            t0=t_start, progress=tick, on_contact="end")
     finally:
         bar.close()
     traj, control, eps_run = run_.trajectory, run_.control, run_.max_eccentricity_run
+    ended = traj.ended is not None
     spp = control.steps_per_period if control is not None else spp
     settings["periods_run"] = run_.periods_run
     settings["steps_per_period"] = spp
@@ -443,7 +366,10 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
     pq = traj.poincare_q.reshape(-1, nn, 2)
     pv = traj.poincare_v.reshape(-1, nn, 2)
     notes: list[str] = []
-    if inputs.reduction is not None and n_chk > 0:
+    if ended:
+        notes.append("no Lyapunov exponent, no motion class: the run ended at the "
+                     "element's validity limit")
+    if inputs.reduction is not None and n_chk > 0 and not ended:
         # the reduction against the full step (or a 4x finer cutoff on large models),
         # the check node's orbit over a few periods from the final state
         tic_chk = time.perf_counter()
@@ -458,7 +384,7 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
         settings["elapsed_reduction_check_s"] = time.perf_counter() - tic_chk
     lyap = lyap_full = None
     tic_ly = time.perf_counter()
-    if n_ly > 0:
+    if n_ly > 0 and not ended:
         try:
             # on the model the run stepped (the reduced one with "auto")
             ly_inputs, ly_state = stepped_system(inputs, (traj.q_final, traj.v_final,
@@ -470,13 +396,14 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
         except (ElementDomainError, ConvergenceError) as exc:
             notes.append(f"no Lyapunov exponent: {' '.join(str(exc).split())}")
     settings["elapsed_lyapunov_s"] = time.perf_counter() - tic_ly
-    motion = classify(traj.poincare_q, traj.poincare_v, traj.q, traj.v, T / spp, speed,
-                      lyap, first=2 * jc, n_record=n_keep * spp)
-    if motion is None:
+    motion = None if ended else classify(traj.poincare_q, traj.poincare_v, traj.q, traj.v,
+                                         T / spp, speed, lyap, first=2 * jc,
+                                         n_record=n_keep * spp)
+    if motion is None and not ended:
         notes.append("fewer than 8 Poincare points: motion not classified")
     elapsed = time.perf_counter() - tic
     eps_rec = None
-    if clearance is not None and primary in out_nodes:
+    if clearance is not None and primary in out_nodes and q.shape[0]:
         j = out_nodes.index(primary)
         eps_rec = float(np.max(np.hypot(q[:, j, 0], q[:, j, 1]))) / clearance
     elif clearance is not None:
@@ -485,7 +412,9 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
                             pv, motion, lyap, clearance, primary, settings, eps_rec,
                             eps_run, traj.q_final, traj.v_final,
                             traj.t_final, elapsed, name, notes, control, lyap_full,
-                            traj.element_diagnostics, config_toml)
+                            traj.element_diagnostics, config_toml,
+                            "limit" if ended else "range",
+                            " ".join(str(traj.ended).split()) if ended else "")
 
 
 def _first_column(nodes: Sequence[int], node: int | None) -> int:

@@ -72,6 +72,8 @@ class SimulationResult:
     lyapunov_full: LyapunovResult | None = None
     element_diagnostics: dict[str, float] = field(default_factory=dict)
     config_toml: str = ""       # the resolved configuration it was run from, if any
+    ended: str = "range"        #: "range" (every period run) or "limit" (contact)
+    end_reason: str = ""        #: the element's contact report when ``ended == "limit"``
 
     FILES = ("timeseries.nc", "poincare.csv", "summary.json", "simulation.png", "orbit.png",
              "phase.png", "poincare.png", "spectrum.png")
@@ -86,8 +88,20 @@ class SimulationResult:
         return None if not self.reference_speed else self.speed / self.reference_speed
 
     @property
+    def message(self) -> str:
+        """The outcome in the user's terms: every period run, or where and why the run
+        ended at an element's validity limit (the response's vocabulary, ``ended``)."""
+        if self.ended == "limit":
+            return (f"simulation ended after {self.settings.get('periods_run', 0)} of "
+                    f"{self.settings.get('periods')} periods (t = {self.t_final:.6g} s; the "
+                    f"files hold the periods before it): {self.end_reason}")
+        return f"ran {self.settings.get('periods_run', self.settings.get('periods'))} periods"
+
+    @property
     def motion_name(self) -> str:
-        return self.motion.motion if self.motion is not None else "unclassified"
+        if self.motion is None:
+            return "contact" if self.ended == "limit" else "unclassified"
+        return self.motion.motion
 
     @property
     def plot_node(self) -> int:
@@ -103,6 +117,8 @@ class SimulationResult:
         whole number of periods (Blackman-Harris window, mean removed)."""
         j = self.column(self.plot_node if node is None else node)
         x = self.q[:, j, DIRECTIONS.index(direction)]
+        if x.size < 4:                # a run that ended before its recorded periods
+            return np.zeros(0), np.zeros(0)
         spp = int(self.settings["steps_per_period"])
         n = (x.size - 1) // spp * spp if x.size > spp else x.size
         freq, amp = amplitude_spectrum(x[:n], self.period / spp, detrend=True)
@@ -142,6 +158,8 @@ class SimulationResult:
         attrs["t_final_s"] = float(self.t_final)
         attrs["final_phase_rad"] = float(math.fmod(self.speed * self.t_final, 2 * math.pi))
         attrs["initial_state"] = str(self.settings.get("initial_state", ""))
+        attrs["ended"] = self.ended
+        attrs["outcome"] = self.message
         if self.config_toml:
             attrs["config_toml"] = self.config_toml
         coords["dof"] = ("dof", np.arange(self.q_final.size, dtype=np.int32),
@@ -183,7 +201,7 @@ class SimulationResult:
                                     for f, a, r in lines]
         ly = self.lyapunov
         return atomic.json_safe({
-            "motion": self.motion_name,
+            "motion": self.motion_name, "ended": self.ended, "outcome": self.message,
             "speed_rad_s": self.speed, "speed_ratio": self.speed_ratio,
             "evidence": ev,
             "lyapunov": None if ly is None else {
@@ -240,7 +258,9 @@ class SimulationResult:
         scale = self.clearance if self.clearance else 1.0
         title = (f"node {node}, Omega = {self.speed:.5g} rad/s"
                  + (f" (Omega~ = {self.speed_ratio:.4g})" if self.speed_ratio else "")
-                 + f": {self.motion_name}" + (f" -- {self.title}" if self.title else ""))
+                 + (f": {self.motion_name}" if self.ended == "range" else
+                    f": ended at the validity limit (contact) at t = {self.t_final:.4g} s")
+                 + (f" -- {self.title}" if self.title else ""))
         return simulation_figures(
             y=self.q[:, j, 0] / scale, z=self.q[:, j, 1] / scale,
             vy=self.v[:, j, 0] / (scale * self.speed),
@@ -287,4 +307,6 @@ class SimulationResult:
         warning = self.step_check.warning() if self.step_check is not None else None
         if warning:
             lines.append(f"warning: {warning}")
+        if self.ended != "range":
+            lines.append(f"ended at a validity limit: {self.message}")
         return "\n".join(lines)

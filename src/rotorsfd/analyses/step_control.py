@@ -400,16 +400,18 @@ def integrate_controlled(inputs: TimeDomainInputs, q0: Any, v0: Any, *,
                          method_options: dict[str, Any] | None = None,
                          chunk_periods: int | None = None,
                          check_clearance: float | None = None, t0: float = 0.0,
-                         progress: Any = None) -> ControlledRun:
+                         progress: Any = None, on_contact: str = "raise") -> ControlledRun:
     """``periods`` periods from ``(q0, v0)`` at ``t0`` with the step control of the module
     docstring: ``steps_per_period = "auto"`` (transient at :data:`AUTO_START`, the ladder
     over ``check_periods``, the last ``record_periods`` at the accepted step; needs
     ``periods > record_periods``) or an integer (one halving over the last
     ``check_periods <= poincare_periods``, 0: none). ``check_column``: the column pair
     (y at ``2 j``) of ``record_dofs`` that is node ``check_node``, compared in units of
-    ``check_clearance`` (None: the orbit's max radius)."""
+    ``check_clearance`` (None: the orbit's max radius). ``on_contact="end"``: a contact
+    ends the run as a result (:func:`integrate_periods`; ``trajectory.ended``, no step
+    record), also one met by the step control's finer runs (their start's trajectory)."""
     common = {"record_dofs": record_dofs, "method_options": method_options,
-              "chunk_periods": chunk_periods}
+              "chunk_periods": chunk_periods, "on_contact": on_contact}
     chk = {"node": check_node, "tolerance": tolerance, "method_options": method_options,
            "clearance": check_clearance}
     cols = slice(2 * check_column, 2 * check_column + 2)
@@ -421,12 +423,20 @@ def integrate_controlled(inputs: TimeDomainInputs, q0: Any, v0: Any, *,
                                record_periods=record_periods,
                                poincare_periods=poincare_periods, progress=tick, t0=t0,
                                snapshot_period=periods - n_chk if n_chk else None, **common)
+        if tr.ended is not None:
+            return ControlledRun(tr, None, tr.max_eccentricity_run, _periods_of(tr))
         control = None
         if n_chk:
             tic = time.perf_counter()
             base = window_of(tr.t, tr.q[:, cols], tr.poincare_q[:, cols], spp, n_chk,
                              (tr.q_final, tr.v_final, tr.t_final))
-            one = halving_check(inputs, tr.snapshot or (q0, v0, t0), base, **chk)
+            try:
+                one = halving_check(inputs, tr.snapshot or (q0, v0, t0), base, **chk)
+            except ElementDomainError as exc:
+                if on_contact == "raise":
+                    raise
+                return ControlledRun(replace(tr, ended=exc), None, tr.max_eccentricity_run,
+                                     periods)
             control = StepControl("fixed", spp, (one,), tolerance, None,
                                   time.perf_counter() - tic)
         return ControlledRun(tr, control, tr.max_eccentricity_run, periods)
@@ -437,16 +447,32 @@ def integrate_controlled(inputs: TimeDomainInputs, q0: Any, v0: Any, *,
     main = integrate_periods(inputs, q0, v0, steps_per_period=AUTO_START, periods=n_main,
                              record_periods=n_chk, poincare_periods=n_chk, progress=tick,
                              t0=t0, snapshot_period=n_main - n_chk, **common)
+    if main.ended is not None:
+        return ControlledRun(main, None, main.max_eccentricity_run, _periods_of(main))
     s0 = main.snapshot or (q0, v0, t0)
     base = window_of(main.t, main.q[:, cols], main.poincare_q[:, cols], AUTO_START, n_chk,
                      (main.q_final, main.v_final, main.t_final))
-    control, accepted = auto_step(inputs, s0, base, max_steps_per_period=max_steps_per_period,
-                                  **chk)
+    try:
+        control, accepted = auto_step(inputs, s0, base,
+                                      max_steps_per_period=max_steps_per_period, **chk)
+    except ElementDomainError as exc:
+        if on_contact == "raise":
+            raise
+        return ControlledRun(replace(main, ended=exc), None, main.max_eccentricity_run,
+                             n_main)
     q1, v1, t1 = accepted.end
     tr = integrate_periods(inputs, q1, v1, steps_per_period=accepted.steps_per_period,
                            periods=record_periods, record_periods=record_periods,
                            poincare_periods=poincare_periods, t0=t1,
                            progress=lambda done: tick(n_main + done), **common)
     runs = [e for e in (main.max_eccentricity_run, tr.max_eccentricity_run) if e is not None]
-    return ControlledRun(tr, control, max(runs) if runs else None,
-                         periods + accepted.periods - n_chk)
+    done = periods + accepted.periods - n_chk
+    if tr.ended is not None:
+        done = n_main + accepted.periods - n_chk + _periods_of(tr)
+    return ControlledRun(tr, control, max(runs) if runs else None, done)
+
+
+def _periods_of(tr: Trajectory) -> int:
+    """Whole periods a run that ended at a contact integrated (its own count)."""
+    period = getattr(tr.ended, "period", None)
+    return int(period) if period is not None else 0

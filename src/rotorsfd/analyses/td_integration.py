@@ -23,13 +23,12 @@ from typing import Any
 
 import numpy as np
 
-from rotorsfd.elements.composite import ElementSet
 from rotorsfd.errors import ConfigError, ConvergenceError
 from rotorsfd.model.system import RotorSystem
-from rotorsfd.timedomain import Forcing, HarmonicLoad, TimeVaryingMatrices
+from rotorsfd.second_order import SecondOrderSystem
 from rotorsfd.timedomain import newmark as nm
-from rotorsfd.timedomain.integrate import MESSAGES, initial_state, prepare, run
-from rotorsfd.timedomain.reduced import ReducedStep, reduce_step
+from rotorsfd.timedomain.integrate import MESSAGES, initial_state, prepare_system, run
+from rotorsfd.timedomain.reduced import reduce_system
 
 FIELD = "analysis.simulate"
 DIRECTIONS = ("y", "z")
@@ -38,31 +37,10 @@ DIRECTIONS = ("y", "z")
 # ---- inputs of the integrator ------------------------------------------------------------
 
 
-@dataclass
-class TimeDomainInputs:
-    """Everything :func:`rotorsfd.timedomain.integrate` takes, for one rotor speed."""
-
-    M: np.ndarray
-    D: np.ndarray
-    K: np.ndarray
-    nl_dofs: np.ndarray
-    kernel: Any
-    params: np.ndarray | None
-    forcing: Forcing
-    time_varying: TimeVaryingMatrices | None
-    speed: float
-    elements: ElementSet | None = None
-    reduction: ReducedStep | None = None
-
-    @property
-    def period(self) -> float:
-        """Rotor period T = 2 pi / Omega [s]."""
-        return 2.0 * math.pi / self.speed
-
-    @property
-    def n_dof(self) -> int:
-        """Physical DOFs."""
-        return self.M.shape[0]
+TimeDomainInputs = SecondOrderSystem
+"""The integrator's inputs at one rotor speed: the solvers' record
+:class:`~rotorsfd.second_order.SecondOrderSystem` (``RotorSystem.second_order(speed)``,
+with ``reduction`` the Craig-Bampton model the step runs on)."""
 
 
 REDUCTIONS = ("auto", "none")
@@ -86,8 +64,7 @@ def with_reduction(inputs: TimeDomainInputs, reduction: str = "auto",
     if reduction == "none":
         return replace(inputs, reduction=None)
     try:
-        red = reduce_step(inputs.M, inputs.D, inputs.K, inputs.nl_dofs, inputs.forcing,
-                          inputs.time_varying, cutoff * inputs.speed)
+        red = reduce_system(inputs, cutoff * inputs.speed)
     except (ConfigError, np.linalg.LinAlgError):  # a free interior: no Craig-Bampton model
         return replace(inputs, reduction=None)
     omegas = red.model.omegas
@@ -107,10 +84,7 @@ def stepped_system(inputs: TimeDomainInputs, state: tuple[np.ndarray, np.ndarray
     if red is None:
         return inputs, state
     q, v, t = state
-    plain = TimeDomainInputs(red.model.M, red.model.D, red.model.K, red.nl_dofs,
-                             inputs.kernel, inputs.params, red.forcing, red.time_varying,
-                             inputs.speed, inputs.elements)
-    return plain, (red.reduce(q), red.reduce(v), t)
+    return red.stepped(inputs), (red.reduce(q), red.reduce(v), t)
 
 
 CHECK_FACTOR = 4.0
@@ -169,66 +143,13 @@ def reduction_summary(inputs: TimeDomainInputs, cutoff: float | None = None
             "reduction_highest_mode_rad_s": top}
 
 
-def _fold_constant(pairs: Sequence[tuple[Any, np.ndarray]], probe: np.ndarray
-                   ) -> tuple[list[tuple[Any, np.ndarray]], np.ndarray | None]:
-    """Split ``(coefficient, array)`` pairs into time-varying ones and the sum of those
-    whose coefficient is constant on ``probe`` (that sum, or None)."""
-    varying: list[tuple[Any, np.ndarray]] = []
-    const = None
-    for c, X in pairs:
-        values = np.broadcast_to(np.asarray(c(probe), dtype=float), probe.shape)
-        if np.ptp(values) == 0.0:
-            term = float(values[0]) * np.asarray(X, dtype=float)
-            const = term if const is None else const + term
-        else:
-            varying.append((c, X))
-    return varying, const
-
-
 def time_domain_inputs(system: RotorSystem, speed: float, *,
                        horizon: float | None = None) -> TimeDomainInputs:
-    """Integrator inputs of ``system`` at rotor speed ``speed`` [rad/s].
-
-    Constant base (``system.base.is_constant``): ``matrices(speed)``, the constant force
-    ``static_force(speed)`` and the unbalance harmonics at ``Omega``. Otherwise
-    ``M, C + Omega G, K`` plus the base terms as time-varying matrices and series loads;
-    ``horizon`` [s] (default 1000 rotor periods) is the interval on which a coefficient
-    must be constant to be folded into the constant matrices.
-    """
-    if not speed > 0.0:
-        raise ConfigError(f"{FIELD}.speed", speed, "the rotor speed must be > 0 rad/s")
-    r = system.rotor
-    nl = system.nl_dofs
-    el = system.elements_at(speed)   # a law of the speed (journal bearing) set to it
-    kernel, params = (el.kernel, el.kernel_params) if len(el) else (None, None)
-    events = any(u.start > 0.0 for u in system.unbalances)   # a sudden unbalance: series
-    if system.base.is_constant and not events:
-        M, D, K = system.matrices(speed)
-        Fc, Fs = system.unbalance_harmonics(speed)
-        harm = [HarmonicLoad(1.0, Fc, Fs)] if system.unbalances else []
-        forcing = Forcing(omega=speed, constant=system.static_force(speed), harmonics=harm)
-        return TimeDomainInputs(M, D.copy(), K.copy(), nl, kernel, params, forcing, None,
-                                float(speed), el)
-    from rotorsfd.model.base_terms import time_varying_terms
-    from rotorsfd.model.unbalance import unbalance_series
-
-    T = 2.0 * math.pi / speed
-    span = horizon if horizon is not None else 1000.0 * T
-    probe = np.concatenate([np.linspace(0.0, span, 257),
-                            span * (np.arange(1, 64) * math.sqrt(2.0) % 1.0),
-                            system.base.support_times()])   # where a pulse or record acts
-    damping, stiffness, force = time_varying_terms(system.basis, system.base, speed)
-    damping, dC = _fold_constant(damping, probe)
-    stiffness, dK = _fold_constant(stiffness, probe)
-    force, f0 = _fold_constant(force, probe)
-    D = r.C + speed * r.G + (dC if dC is not None else 0.0)
-    K = r.K + (dK if dK is not None else 0.0)
-    series = list(force) + unbalance_series(system.unbalances, r, speed, system.base)
-    forcing = Forcing(omega=speed, constant=f0, series=series)
-    tv = TimeVaryingMatrices(damping=damping, stiffness=stiffness) \
-        if damping or stiffness else None
-    return TimeDomainInputs(r.M, np.asarray(D, float), np.asarray(K, float), nl, kernel,
-                            params, forcing, tv, float(speed), el)
+    """Integrator inputs of ``system`` at rotor speed ``speed`` [rad/s]:
+    :meth:`RotorSystem.second_order <rotorsfd.model.system.RotorSystem.second_order>`
+    (``horizon`` [s], default 1000 rotor periods: the interval on which a base
+    coefficient must be constant to be folded into the constant matrices)."""
+    return system.second_order(speed, horizon=horizon)
 
 
 def scheme_options(scheme: str, alpha: float) -> dict[str, Any]:
@@ -271,14 +192,15 @@ class Trajectory:
     newton_iterations_max: int = 0
     snapshot: tuple[np.ndarray, np.ndarray, float] | None = None
     element_diagnostics: dict[str, float] = field(default_factory=dict)
+    ended: Exception | None = None    #: the contact error that ended the run early
 
 
 def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_period: int,
                       periods: int, record_dofs: Sequence[int], record_periods: int,
                       poincare_periods: int, method_options: dict[str, Any] | None = None,
                       chunk_periods: int | None = None, progress: Any = None,
-                      t0: float = 0.0,
-                      snapshot_period: int | None = None) -> Trajectory:
+                      t0: float = 0.0, snapshot_period: int | None = None,
+                      on_contact: str = "raise") -> Trajectory:
     """Integrate ``periods`` rotor periods in chunks from ``(q0, v0)`` at ``t0``.
 
     ``snapshot_period`` (0 < p < periods): a chunk ends after p periods and the full state
@@ -292,6 +214,14 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
     ``element_diagnostics`` every element's orbit diagnostics over the recorded periods
     (``eps_max_<name>``, :meth:`~rotorsfd.elements.ElementSet.diagnostics`).
 
+    ``on_contact="end"``: a state outside an element's law ends the run as a result
+    (issue 22): the Trajectory holds the recorded periods up to the last converged step
+    (every step of at most the last ``max(record_periods, poincare_periods)`` periods
+    before it, with their Poincare points), its state there as the final state, and the
+    element's contact error in ``ended``: the state at the start of every chunk is kept
+    (a copy of the step state, nothing recorded), and the periods before the contact are
+    integrated again from the one that starts them (the same arithmetic, the same values).
+
     With ``inputs.reduction`` the run steps the reduced coordinates ``p`` from
     ``p0 = P q0``; every output (the columns of ``record_dofs``, the elements' DOFs, the
     final state and the snapshot) is the physical ``Psi p`` of the rows it needs.
@@ -303,24 +233,20 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
     rd = np.asarray(record_dofs, dtype=np.int64)
     rows = np.concatenate([rd, inputs.nl_dofs]).astype(np.int64)  # physical rows kept
     if red is None:
-        M, D, K, forcing, tv = inputs.M, inputs.D, inputs.K, inputs.forcing, \
-            inputs.time_varying
-        nl_step = inputs.nl_dofs
+        stepped = inputs
         x0, xv0 = q0, v0
         rec_all = rows
 
         def out(x: np.ndarray, cols: np.ndarray | None = None) -> np.ndarray:
             return x if cols is None else x[..., cols]
     else:
-        M, D, K = red.model.M, red.model.D, red.model.K
-        forcing, tv, nl_step = red.forcing, red.time_varying, red.nl_dofs
+        stepped = red.stepped(inputs)
         x0, xv0 = red.reduce(q0), red.reduce(v0)
         rec_all = np.arange(red.n_dof, dtype=np.int64)          # every reduced coordinate
 
         def out(x: np.ndarray, cols: np.ndarray | None = None) -> np.ndarray:
             return red.physical(x, None if cols is None else rows[cols])
-    ps = prepare(M, D, K, nl_step, inputs.kernel, inputs.params, forcing, dt, n_steps, t0=t0,
-                 time_varying=tv, **(method_options or {}))
+    ps = prepare_system(stepped, dt, n_steps, t0=t0, options=method_options)
     r = ps.n_dof
     nl = ps.nl
     elements = inputs.elements
@@ -339,12 +265,19 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
     done = 0
     snapshot = None
     snap = snapshot_period if snapshot_period and 0 < snapshot_period < periods else None
+    if on_contact not in ("raise", "end"):
+        raise ValueError(f"on_contact must be 'raise' or 'end', got {on_contact!r}")
+    tail = on_contact == "end"     # keep the chunk starts: the periods before a contact
+    ended = None
+    starts: list[Any] = []
     while done < periods:
         k = min(chunk, periods - done)
         if snap is not None and done < snap:
             k = min(k, snap - done)
         # a chunk before the kept windows records only the elements' DOFs (for the limit)
         window = (done + k) * spp >= first_kept
+        if tail:
+            starts.append(state.copy())
         rec = rec_all if window else (nl if limited else nl[:0])
         status, smp, info = run(ps, state, k * spp, record_dofs=rec, record_every=1,
                                 record_start=0, poincare_every=spp if window else 0,
@@ -358,15 +291,21 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
             t = ps.t0 + step * dt
             where = (f"t={t:.6g} s, rotor period {step / spp:.2f} of {periods} "
                      f"(step {step})")
-            if status == nm.CONTACT and elements is not None:
-                m = nl.size
-                f_q, f_v = smp["fail"][:m], smp["fail"][m:2 * m]   # the last iterate
-                where += (": the step's Newton iterates left the element's force law "
-                          "(state of the last iterate)")
-                err = elements.located_contact(f_q, f_v, where)
-                err.time, err.period = t, step / spp
+            if status != nm.CONTACT or elements is None:
+                raise ConvergenceError(f"time integration: {MESSAGES.get(status)} at "
+                                       f"{where}")
+            m = nl.size
+            f_q, f_v = smp["fail"][:m], smp["fail"][m:2 * m]   # the last iterate
+            where += (": the step's Newton iterates left the element's force law "
+                      "(state of the last iterate)")
+            err = elements.located_contact(f_q, f_v, where)
+            err.time, err.period = t, step / spp
+            if not tail:
                 raise err
-            raise ConvergenceError(f"time integration: {MESSAGES.get(status)} at {where}")
+            ended = err
+            parts = _before_contact(ps, starts, state.step, rec_all, spp,
+                                    max(record_periods, poincare_periods) * spp)
+            break
         done += k
         if done == snap:
             snapshot = (out(state.X[:r]).copy(), out(state.X[r:2 * r]).copy(),
@@ -385,10 +324,51 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
         parts["pt"].append(smp["pt"][keep])
         parts["pq"].append(out(smp["pq"][keep], c_rd))
         parts["pv"].append(out(smp["pv"][keep], c_rd))
-    cat = {k: np.concatenate(v) for k, v in parts.items()}
+    if ended is not None:
+        parts = _kept_tail(parts, out, c_rd, c_nl, ps.t0 + state.step * dt, dt,
+                           record_periods * spp, (poincare_periods - 1) * spp)
+    cat = {k: np.concatenate(v) if v else np.zeros((0, rd.size)) for k, v in parts.items()}
+    cat["t"], cat["pt"] = cat["t"].reshape(-1), cat["pt"].reshape(-1)
     q_end, v_end = out(state.X[:r]).copy(), out(state.X[r:2 * r]).copy()
     return Trajectory(cat["t"], cat["q"], cat["v"], cat["pt"], cat["pq"], cat["pv"], rd,
                       q_end, v_end, ps.t0 + state.step * dt,
                       eps_max if limited else None, newton_max, snapshot,
                       elements.diagnostics(cat["qn"], cat["vn"])
-                      if elements is not None and len(elements) and cat["qn"].shape[0] else {})
+                      if elements is not None and len(elements) and cat["qn"].shape[0] else {},
+                      ended)
+
+
+def _before_contact(ps: Any, starts: list[Any], last: int, rows: np.ndarray, spp: int,
+                    n_keep: int) -> dict[str, list[np.ndarray]]:
+    """The raw samples (every step, Poincare points every ``spp``) of the columns ``rows``
+    from the latest kept chunk start at least ``n_keep`` steps before step ``last`` (the
+    last converged one) up to it: integrated again from that start's copied state."""
+    first = next((st for st in reversed(starts) if st.step <= last - n_keep), starts[0])
+    st = first.copy()
+    _, smp, _ = run(ps, st, last - st.step, record_dofs=rows, record_every=1,
+                    record_start=0, poincare_every=spp, poincare_start=0)
+    return {k: [smp[key]] for k, key in (("t", "t"), ("q", "q"), ("v", "v"), ("pt", "pt"),
+                                         ("pq", "pq"), ("pv", "pv"))}
+
+
+def _kept_tail(raw: dict[str, list[np.ndarray]], out: Any, c_rd: np.ndarray,
+               c_nl: np.ndarray, t_end: float, dt: float, n_record: int, n_poincare: int
+               ) -> dict[str, list[np.ndarray]]:
+    """The samples of an ``on_contact="end"`` run before its contact as the Trajectory's
+    parts: every step of the last ``n_record`` steps before ``t_end`` and the Poincare
+    points from ``n_poincare`` steps before it, in physical rows."""
+    parts: dict[str, list[np.ndarray]] = {k: [] for k in ("t", "q", "v", "pt", "pq", "pv",
+                                                          "qn", "vn")}
+    for t, q, v, pt, pq, pv in zip(*(raw[k] for k in ("t", "q", "v", "pt", "pq", "pv")),
+                                   strict=True):
+        keep = t >= t_end - (n_record + 0.5) * dt
+        parts["t"].append(t[keep])
+        parts["q"].append(out(q[keep], c_rd))
+        parts["v"].append(out(v[keep], c_rd))
+        parts["qn"].append(out(q[keep], c_nl))
+        parts["vn"].append(out(v[keep], c_nl))
+        keep = pt >= t_end - (n_poincare + 0.5) * dt
+        parts["pt"].append(pt[keep])
+        parts["pq"].append(out(pq[keep], c_rd))
+        parts["pv"].append(out(pv[keep], c_rd))
+    return parts

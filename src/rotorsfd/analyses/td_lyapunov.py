@@ -31,7 +31,7 @@ from rotorsfd.analyses.td_integration import TimeDomainInputs
 from rotorsfd.errors import ConfigError
 from rotorsfd.stability.reduction import craig_bampton
 from rotorsfd.timedomain import LyapunovResult
-from rotorsfd.timedomain.lyapunov import Projector, lyapunov_exponents, modal_projector
+from rotorsfd.timedomain.lyapunov import Projector, modal_projector, system_lyapunov
 
 #: Kept fixed-interface modes: ``omega <= HIGH_MODE_LIMIT / T`` (Floquet's 400 / 4).
 HIGH_MODE_LIMIT = 100.0
@@ -95,11 +95,8 @@ def lyapunov_pair(inputs: TimeDomainInputs, state: tuple[np.ndarray, np.ndarray,
     T = inputs.period
     proj = high_mode_projector(inputs)
     projectors = (None,) if proj is None else (None, proj[0])
-    found = lyapunov_exponents(inputs.M, inputs.D, inputs.K, inputs.nl_dofs, inputs.kernel,
-                               inputs.params, inputs.forcing,
-                               steps_per_period=steps_per_period, n_periods=periods, q0=q0,
-                               v0=v0, t0=t0, time_varying=inputs.time_varying,
-                               method="newmark", projectors=projectors)
+    found = system_lyapunov(inputs, q0, v0, steps_per_period=steps_per_period,
+                            n_periods=periods, t0=t0, projectors=projectors)
     full = lyapunov_estimate(found[0], T)
     if proj is None:
         return LyapunovPair(full, full, None, None)

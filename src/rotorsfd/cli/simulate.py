@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import Any
 
 from rotorsfd.cli import options
-from rotorsfd.cli.output import print_written
+from rotorsfd.cli.output import print_warning, print_written
 from rotorsfd.cli.registry import arg, command
 from rotorsfd.errors import ConfigError
 
@@ -38,8 +38,10 @@ def check_simulate(args: argparse.Namespace, config: Any) -> None:
 
 @command("simulate", "time integration at one speed ([analysis.simulate]): timeseries.nc, "
          "poincare.csv, summary.json (motion: period-n, quasi-periodic or chaotic, with the "
-         "evidence), simulation.png and orbit/phase/poincare/spectrum.png; journal contact: "
-         "one line, exit 1, nothing written", output=True, quiet=True,
+         "evidence), simulation.png and orbit/phase/poincare/spectrum.png; a journal that "
+         "reaches its validity limit (contact) ends the run as a result: the periods "
+         "before it written, a warning line saying where and why, exit 0 (ended = limit "
+         "in summary.json); a numerical failure: one line, exit 1", output=True, quiet=True,
          arguments=[arg("--speed", type=options.positive_speed, metavar="SPEED",
                         help="rotor speed, e.g. 850 or '8000 rpm' (rad/s if no unit)"),
                     arg("--speed-ratio", type=options.positive_ratio, metavar="X",
@@ -83,4 +85,6 @@ def simulate(args: argparse.Namespace, config: Any) -> int:
                                 **({"speed_law": law} if law else {}))
     paths = result.write(args.output)
     print_written(result, paths, args.quiet, args.verbose)
+    if getattr(result, "ended", "range") == "limit":   # a result up to the limit: say so
+        print_warning(result.message, args.verbose)
     return 0

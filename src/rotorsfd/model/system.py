@@ -6,9 +6,11 @@
 elements such as an SFD's centring spring), the nonlinear elements acting on their DOFs
 ``q_n`` (:class:`~rotorsfd.elements.ElementSet`: squeeze films, rubs, ...), the unbalances
 and the base motion (with gravity). This module is the only place where the
-physics meets the solvers: it hands the harmonic-balance solver a
-:class:`~rotorsfd.harmonic.problem.PeriodicProblem` and the linear analyses the
-``LinearDynamics`` protocol (``n_dof``, ``matrices(speed)``).
+physics meets the solvers: it hands time stepping, Lyapunov and Floquet the
+:class:`~rotorsfd.second_order.SecondOrderSystem` at a speed (:meth:`second_order`), the
+harmonic-balance solver the same equation as a family in a continuation parameter, a
+:class:`~rotorsfd.harmonic.problem.PeriodicProblem` (:meth:`periodic_problem`), and the
+linear analyses the ``LinearDynamics`` protocol (``n_dof``, ``matrices(speed)``).
 """
 
 from __future__ import annotations
@@ -35,11 +37,13 @@ from rotorsfd.model.base_terms import (
 )
 from rotorsfd.model.parameters import PARAMETERS, find_parameter
 from rotorsfd.model.rotor import Rotor
+from rotorsfd.model.time_terms import second_order_system
 from rotorsfd.model.unbalance import (
     Unbalance,
     unbalance_harmonics,
     unbalance_harmonics_derivatives,
 )
+from rotorsfd.second_order import SecondOrderSystem
 
 
 @dataclass
@@ -355,6 +359,17 @@ class RotorSystem:
             raise ConfigError("parameter", par.name, f"{e.describe()} has no field "
                               f"{par.field!r} to continue in (it has: "
                               + (", ".join(e.parameters) or "none") + ")")
+
+    # ---- the solvers' record ---------------------------------------------------------------
+    def second_order(self, speed: float, *, horizon: float | None = None
+                     ) -> SecondOrderSystem:
+        """The system at rotor speed ``speed`` [rad/s] as the solvers' record
+        (:class:`~rotorsfd.second_order.SecondOrderSystem`: M, D, K, the time-varying base
+        terms as bases x coefficients, the forcing and the elements' force law at that
+        speed), what time stepping, Lyapunov and Floquet take
+        (:func:`~rotorsfd.model.time_terms.second_order_system`; ``horizon`` [s]: the
+        interval on which a base coefficient must be constant to be folded into D, K)."""
+        return second_order_system(self, speed, horizon=horizon)
 
     def elements_at(self, speed: float) -> ElementSet:
         """The nonlinear elements at rotor speed ``speed`` [rad/s] (a journal bearing's law

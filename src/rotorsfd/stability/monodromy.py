@@ -38,6 +38,8 @@ exact for constant coefficients, used as a reference.
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.linalg as sla
@@ -52,6 +54,9 @@ from rotorsfd.stability.floquet import (
 )
 from rotorsfd.stability.monodromy_kernels import generalized_alpha_loop, newmark_loop
 from rotorsfd.stability.reduction import craig_bampton
+
+if TYPE_CHECKING:
+    from rotorsfd.second_order import SecondOrderSystem
 
 JacobianInput = Callable[[float], ArrayLike] | ArrayLike | None
 """A callable ``t -> (m, m)``, or samples ``(N+1, m, m)`` at ``t_j = j T/N`` (``j = 0..N``),
@@ -354,3 +359,43 @@ def floquet_multipliers(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float,
     res.info.update(n_dof_full=np.asarray(M).shape[0], n_modes=red.omegas.size,
                     omega_max_kept=float(red.omegas.max()) if red.omegas.size else 0.0)
     return res
+
+
+@dataclass(frozen=True)
+class MonodromyOptions:
+    """How the monodromy is computed (:func:`floquet_multipliers`): ``n_intervals`` N over
+    the period, ``reduction`` (``"craig-bampton"`` or None: the full model), its
+    ``n_modes`` / ``omega_max``, the ``scheme`` (``"newmark"`` or ``"generalized-alpha"``
+    with ``rho_inf``), the stability tolerance and the compiled loop."""
+
+    n_intervals: int = 400
+    reduction: str | None = "craig-bampton"
+    n_modes: int | None = None
+    omega_max: float | None = None
+    scheme: str = "newmark"
+    rho_inf: float = 0.6
+    tol: float = STABILITY_TOL
+    compiled: bool = True
+
+
+def system_multipliers(system: SecondOrderSystem, dFdq: JacobianInput = None,
+                       dFdv: JacobianInput = None,
+                       options: MonodromyOptions | None = None) -> FloquetResult:
+    """Floquet multipliers of a periodic orbit of a
+    :class:`~rotorsfd.second_order.SecondOrderSystem` with constant matrices (the
+    perturbation equation of the module docstring over its period ``T = 2 pi / Omega``):
+    ``dFdq``, ``dFdv`` the force law's Jacobians on the orbit (:data:`JacobianInput`),
+    ``options`` a :class:`MonodromyOptions`. A law with an acceleration Jacobian (fluid
+    inertia) needs its added mass in the recursion, which the loops do not take yet."""
+    o = options if options is not None else MonodromyOptions()
+    if system.time_varying is not None and system.time_varying.n_terms:
+        raise ConfigError("base", "time-varying", "the orbit's monodromy needs constant "
+                          "matrices (a constant base motion)")
+    if system.has_inertia:
+        raise NotImplementedError("a force law with an acceleration Jacobian (fluid "
+                                  "inertia) needs the added mass in the monodromy")
+    return floquet_multipliers(system.M, system.D, system.K, system.period,
+                               nl_dofs=system.nl_dofs, dFdq=dFdq, dFdv=dFdv,
+                               n_intervals=o.n_intervals, reduction=o.reduction,
+                               n_modes=o.n_modes, omega_max=o.omega_max, scheme=o.scheme,
+                               rho_inf=o.rho_inf, tol=o.tol, compiled=o.compiled)

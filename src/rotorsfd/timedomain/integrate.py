@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -20,6 +20,45 @@ from rotorsfd.errors import ConvergenceError, JournalContactError
 from rotorsfd.timedomain import newmark as nm
 from rotorsfd.timedomain.forcing import Forcing, TimeVaryingMatrices, sample_coefficient
 from rotorsfd.timedomain.kernels import as_cfunc, null_kernel
+
+if TYPE_CHECKING:
+    from rotorsfd.second_order import SecondOrderSystem
+
+
+@dataclass(frozen=True)
+class StepOptions:
+    """How the time step runs: the scheme (``method`` ``"newmark"``, ``"hht"`` with
+    ``alpha`` or ``"generalized-alpha"`` with ``rho_inf``) and the tolerances of the
+    Newton iteration on the nonlinear DOFs and of the time-varying matrices' fixed point."""
+
+    method: str = "newmark"
+    alpha: float = 0.05
+    rho_inf: float = 0.9
+    newton_rtol: float = 1e-10
+    newton_atol: float = 0.0
+    max_newton: int = 50
+    tv_rtol: float = 1e-12
+    max_tv: int = 50
+
+    @classmethod
+    def of(cls, options: StepOptions | dict[str, Any] | None) -> StepOptions:
+        """An options record from a record, the keywords of :func:`integrate` (e.g.
+        ``{"method": "hht", "alpha": 0.05}``) or None (the defaults)."""
+        if isinstance(options, StepOptions):
+            return options
+        return cls(**(options or {}))
+
+    @property
+    def scheme(self) -> dict[str, Any]:
+        """The scheme keywords of :func:`prepare`."""
+        return {"method": self.method, "alpha": self.alpha, "rho_inf": self.rho_inf}
+
+    @property
+    def iteration(self) -> dict[str, Any]:
+        """The iteration keywords of :func:`run`."""
+        return {"newton_rtol": self.newton_rtol, "newton_atol": self.newton_atol,
+                "max_newton": self.max_newton, "tv_rtol": self.tv_rtol,
+                "max_tv": self.max_tv}
 
 
 @dataclass
@@ -189,6 +228,22 @@ def prepare(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: Any,
         t0=float(t0), omega=float(forcing.omega), f0=f0, hmult=hmult, fc=fc, fs=fs, fj=fj,
         KF0=np.ascontiguousarray(ops.solve(f0)), KFc=kinv(fc), KFs=kinv(fs), KFj=kinv(fj),
         scoef=scoef, tvcoef=tvcoef, tvkind=tvkind, tvmat=tvmat, PX=PX)
+
+
+def prepare_system(system: SecondOrderSystem, dt: float, n_steps: int, *,
+                   t0: float = 0.0,
+                   options: StepOptions | dict[str, Any] | None = None) -> PreparedSystem:
+    """:func:`prepare` of a :class:`~rotorsfd.second_order.SecondOrderSystem` (its
+    matrices, nonlinear DOFs, force kernel, forcing and time-varying terms) with the
+    scheme of ``options`` (:class:`StepOptions` or its keywords): the compiled loop's
+    arrays packed once."""
+    if system.has_inertia:
+        raise NotImplementedError("a force law with an acceleration Jacobian (fluid "
+                                  "inertia) needs the added mass in the step's iteration "
+                                  "matrix, which the compiled loop does not take yet")
+    return prepare(system.M, system.D, system.K, system.nl_dofs, system.kernel,
+                   system.params, system.forcing, dt, n_steps, t0=t0,
+                   time_varying=system.time_varying, **StepOptions.of(options).scheme)
 
 
 def force_at_step(ps: PreparedSystem, k: int) -> np.ndarray:
@@ -424,3 +479,17 @@ def integrate(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: Any,
                                  ps.t0 + (steps_done + 1) * dt, steps_done, res)
         raise ConvergenceError(msg)
     return res
+
+
+def integrate_system(system: SecondOrderSystem, q0: Any = 0.0, v0: Any = 0.0, *,
+                     options: StepOptions | dict[str, Any] | None = None,
+                     **kwargs: Any) -> TimeResult:
+    """:func:`integrate` of a :class:`~rotorsfd.second_order.SecondOrderSystem` with the
+    scheme and tolerances of ``options``; ``kwargs``: the step and the recording
+    (``dt, n_steps`` or ``steps_per_period, n_periods``, ``t0``, ``record_dofs``, ...)."""
+    o = StepOptions.of(options)
+    if system.has_inertia:
+        prepare_system(system, 1.0, 0)      # the clear error of a law with inertia
+    return integrate(system.M, system.D, system.K, system.nl_dofs, system.kernel,
+                     system.params, system.forcing, q0=q0, v0=v0,
+                     time_varying=system.time_varying, **o.scheme, **o.iteration, **kwargs)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -22,11 +22,19 @@ from rotorsfd.timedomain import newmark as nm
 from rotorsfd.timedomain.forcing import Forcing, TimeVaryingMatrices
 from rotorsfd.timedomain.integrate import (
     MESSAGES,
+    StepOptions,
     contact_error,
     initial_state,
     prepare,
     run,
 )
+
+if TYPE_CHECKING:
+    from rotorsfd.second_order import SecondOrderSystem
+
+#: The step of a Lyapunov run: Newmark with the Newton iteration converged to 1e-12 (the
+#: perturbation of ``d0 ~ 1e-7`` of the state must not drown in the iteration's error).
+LYAPUNOV_STEP = StepOptions(newton_rtol=1e-12)
 
 Projector = Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]
 """``(dq, dv) -> (dq, dv)``: a linear map of perturbations (displacement, velocity)."""
@@ -168,6 +176,19 @@ def lyapunov_exponents(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params
         per = lam * 2 * math.pi / omega if omega > 0 else math.nan
         out.append(LyapunovResult(lam, per, hist, times_a, spread, float(d0), renorm_every))
     return out
+
+
+def system_lyapunov(system: SecondOrderSystem, q0: Any = 0.0, v0: Any = 0.0, *,
+                    options: StepOptions | dict[str, Any] | None = None,
+                    **kwargs: Any) -> list[LyapunovResult]:
+    """:func:`lyapunov_exponents` of a :class:`~rotorsfd.second_order.SecondOrderSystem`
+    with the scheme and Newton tolerance of ``options`` (default :data:`LYAPUNOV_STEP`);
+    ``kwargs``: the step, the run length, ``t0``, ``projectors``, ..."""
+    o = LYAPUNOV_STEP if options is None else StepOptions.of(options)
+    return lyapunov_exponents(system.M, system.D, system.K, system.nl_dofs, system.kernel,
+                              system.params, system.forcing, q0=q0, v0=v0,
+                              time_varying=system.time_varying, newton_rtol=o.newton_rtol,
+                              **o.scheme, **kwargs)
 
 
 def modal_projector(M: np.ndarray, basis: np.ndarray) -> Projector:

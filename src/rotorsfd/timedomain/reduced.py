@@ -50,13 +50,16 @@ integrated accurately by the full step either.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import Any
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from rotorsfd.stability.reduction import ReducedModel, craig_bampton
 from rotorsfd.timedomain.forcing import Forcing, HarmonicLoad, TimeVaryingMatrices
+
+if TYPE_CHECKING:
+    from rotorsfd.second_order import SecondOrderSystem
 
 #: Models with more DOFs are projected with CSR matrices (O(nnz) products and solves).
 DENSE_MAX = 400
@@ -228,6 +231,14 @@ class ReducedStep:
         psi = self.basis if rows is None else self.basis[np.asarray(rows, dtype=np.intp)]
         return np.asarray(p, dtype=float) @ psi.T
 
+    def stepped(self, system: SecondOrderSystem) -> SecondOrderSystem:
+        """The reduced model as the solvers' record: ``system`` (the one this step
+        reduces) in the coordinates ``p`` (nonlinear DOFs ``0..m-1``, the same force law,
+        no further reduction)."""
+        return replace(system, M=self.model.M, D=self.model.D, K=self.model.K,
+                       nl_dofs=self.nl_dofs, forcing=self.forcing,
+                       time_varying=self.time_varying, reduction=None)
+
 
 def state_projector(basis: np.ndarray, M: Any, boundary: np.ndarray) -> np.ndarray:
     """``P`` (r, n) with ``p = P q`` (module docstring): the boundary DOFs taken as they
@@ -288,3 +299,10 @@ def reduce_step(M: np.ndarray, D: np.ndarray, K: np.ndarray, nl_dofs: np.ndarray
             stiffness=tuple((c, mat(X)) for c, X in time_varying.stiffness))
     return ReducedStep(model, red_forcing, red_tv, state_projector(psi, M, nl),
                        float(omega_max))
+
+
+def reduce_system(system: SecondOrderSystem, omega_max: float) -> ReducedStep:
+    """:func:`reduce_step` of a :class:`~rotorsfd.second_order.SecondOrderSystem`, modes
+    kept up to ``omega_max`` [rad/s]."""
+    return reduce_step(system.M, system.D, system.K, system.nl_dofs, system.forcing,
+                       system.time_varying, omega_max)

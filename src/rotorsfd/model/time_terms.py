@@ -1,0 +1,86 @@
+"""The rotor system at one speed as the solvers' :class:`~rotorsfd.second_order.
+SecondOrderSystem` (what :meth:`rotorsfd.model.system.RotorSystem.second_order` returns).
+
+    M q'' + (C + Omega G + C_base(t)) q' + (K + K_base(t)) q = F_mu(t) + F_base(t) + F_nl
+
+A constant base (and no unbalance that starts later: a sudden unbalance is a series load)
+gives constant matrices ``matrices(speed)``, the constant load ``static_force(speed)`` and
+the unbalance harmonics at Omega; a harmonic, callable, pulse or recorded base
+gives the base terms as time-varying matrices and series loads
+(:func:`~rotorsfd.model.base_terms.time_varying_terms`,
+:func:`~rotorsfd.model.unbalance.unbalance_series`), a coefficient that stays constant
+over the run folded into the constant matrices.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from rotorsfd.errors import ConfigError
+from rotorsfd.second_order import SecondOrderSystem
+from rotorsfd.timedomain.forcing import Forcing, HarmonicLoad, TimeVaryingMatrices
+
+__all__ = ["second_order_system"]
+
+
+def fold_constant(pairs: Sequence[tuple[Any, np.ndarray]], probe: np.ndarray
+                  ) -> tuple[list[tuple[Any, np.ndarray]], np.ndarray | None]:
+    """Split ``(coefficient, array)`` pairs into time-varying ones and the sum of those
+    whose coefficient is constant on ``probe`` (that sum, or None)."""
+    varying: list[tuple[Any, np.ndarray]] = []
+    const = None
+    for c, X in pairs:
+        values = np.broadcast_to(np.asarray(c(probe), dtype=float), probe.shape)
+        if np.ptp(values) == 0.0:
+            term = float(values[0]) * np.asarray(X, dtype=float)
+            const = term if const is None else const + term
+        else:
+            varying.append((c, X))
+    return varying, const
+
+
+def second_order_system(system: Any, speed: float, *,
+                        horizon: float | None = None) -> SecondOrderSystem:
+    """``system`` (a :class:`~rotorsfd.model.system.RotorSystem`, which calls this from
+    its ``second_order``) at rotor speed ``speed`` [rad/s] (module docstring); ``horizon`` [s]
+    (default 1000 rotor periods) is the interval on which a coefficient must be constant
+    to be folded into the constant matrices."""
+    if not speed > 0.0:
+        raise ConfigError("analysis.simulate.speed", speed,
+                          "the rotor speed must be > 0 rad/s")
+    r = system.rotor
+    nl = system.nl_dofs
+    el = system.elements_at(speed)   # a law of the speed (journal bearing) set to it
+    kernel, params = (el.kernel, el.kernel_params) if len(el) else (None, None)
+    events = any(u.start > 0.0 for u in system.unbalances)   # a sudden unbalance: series
+    if system.base.is_constant and not events:
+        M, D, K = system.matrices(speed)
+        Fc, Fs = system.unbalance_harmonics(speed)
+        harm = [HarmonicLoad(1.0, Fc, Fs)] if system.unbalances else []
+        forcing = Forcing(omega=speed, constant=system.static_force(speed), harmonics=harm)
+        return SecondOrderSystem(M, D.copy(), K.copy(), nl, kernel, params, forcing, None,
+                                 float(speed), el)
+    from rotorsfd.model.base_terms import time_varying_terms
+    from rotorsfd.model.unbalance import unbalance_series
+
+    T = 2.0 * math.pi / speed
+    span = horizon if horizon is not None else 1000.0 * T
+    probe = np.concatenate([np.linspace(0.0, span, 257),
+                            span * (np.arange(1, 64) * math.sqrt(2.0) % 1.0),
+                            system.base.support_times()])   # where a pulse or record acts
+    damping, stiffness, force = time_varying_terms(system.basis, system.base, speed)
+    damping, dC = fold_constant(damping, probe)
+    stiffness, dK = fold_constant(stiffness, probe)
+    force, f0 = fold_constant(force, probe)
+    D = r.C + speed * r.G + (dC if dC is not None else 0.0)
+    K = r.K + (dK if dK is not None else 0.0)
+    series = list(force) + unbalance_series(system.unbalances, r, speed, system.base)
+    forcing = Forcing(omega=speed, constant=f0, series=series)
+    tv = TimeVaryingMatrices(damping=damping, stiffness=stiffness) \
+        if damping or stiffness else None
+    return SecondOrderSystem(r.M, np.asarray(D, float), np.asarray(K, float), nl, kernel,
+                             params, forcing, tv, float(speed), el)

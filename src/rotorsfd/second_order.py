@@ -1,0 +1,133 @@
+"""The solver-level description of the dynamics: the one record the solvers take.
+
+    M q'' + D(t) q' + K(t) q = f(t) + P F_nl(P^T q, P^T q')
+
+with ``D(t) = D + sum_i d_i(t) D_i``, ``K(t) = K + sum_i k_i(t) K_i`` (the time-varying
+terms as bases times coefficients, :class:`~rotorsfd.timedomain.forcing.TimeVaryingMatrices`;
+None when the matrices are constant), the load ``f(t)`` (a constant, harmonics of the
+speed and bases times coefficient series, :class:`~rotorsfd.timedomain.forcing.Forcing`)
+and the nonlinear force ``F_nl`` on the DOFs ``nl_dofs`` (``P`` selects them) given by a
+force law (:class:`ForceLaw`: its compiled kernel with its parameter vector, and its
+numpy form). ``speed`` is the rotor speed Omega; its period ``T = 2 pi / Omega`` is the
+period of the forcing, the Poincare section and the Floquet problem.
+
+The model builds it in one place, :meth:`rotorsfd.model.system.RotorSystem.second_order`
+(the harmonic-balance problem :meth:`~rotorsfd.model.system.RotorSystem.periodic_problem`
+is the same equation as a family in a continuation parameter: at the speed ``Omega`` its
+matrices and its first harmonic are this record's, a test keeps the two equal). The
+solvers take it with an options record:
+
+- time stepping: :func:`rotorsfd.timedomain.integrate.prepare_system` (the compiled
+  loop's arrays packed once) and :func:`~rotorsfd.timedomain.integrate.integrate_system`
+  with :class:`~rotorsfd.timedomain.integrate.StepOptions`;
+- the reduced step: :func:`rotorsfd.timedomain.reduced.reduce_system` (its
+  :meth:`~rotorsfd.timedomain.reduced.ReducedStep.stepped` is again a SecondOrderSystem);
+- Lyapunov exponents: :func:`rotorsfd.timedomain.lyapunov.system_lyapunov`;
+- Floquet multipliers of an orbit of it: :func:`rotorsfd.stability.monodromy.system_multipliers`
+  with :class:`~rotorsfd.stability.monodromy.MonodromyOptions`.
+
+A force law that depends on the journal acceleration (fluid inertia) declares
+``acceleration_jacobian(q, v) -> dF/dq''`` (m x m, on the nonlinear DOFs): the solvers'
+iteration matrix then holds ``M - P (dF/dq'') P^T`` (:meth:`SecondOrderSystem.added_mass`;
+None for laws without it, every law today).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from rotorsfd.timedomain.forcing import Forcing, TimeVaryingMatrices
+
+__all__ = ["ForceLaw", "SecondOrderSystem"]
+
+
+@runtime_checkable
+class ForceLaw(Protocol):
+    """The force-law contract of the nonlinear elements as the solvers see it
+    (:class:`~rotorsfd.elements.composite.ElementSet` implements it): the compiled
+    ``kernel(q, v, params, F, dFdq, dFdv) -> status`` with ``kernel_params``, the numpy
+    ``force``/``jacobian``, the validity measure ``limit`` (largest over samples), the
+    error of a rejected state ``located_contact`` and per-orbit ``diagnostics``."""
+
+    @property
+    def kernel(self) -> Any: ...
+
+    @property
+    def kernel_params(self) -> np.ndarray: ...
+
+    def force(self, q: np.ndarray, v: np.ndarray) -> np.ndarray: ...
+
+    def jacobian(self, q: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]: ...
+
+    def limit(self, q: np.ndarray) -> float: ...
+
+    def located_contact(self, q: np.ndarray, v: np.ndarray, where: str = "") -> Exception:
+        ...
+
+    def diagnostics(self, q: np.ndarray, v: np.ndarray) -> dict[str, float]: ...
+
+
+@dataclass
+class SecondOrderSystem:
+    """``M q'' + D(t) q' + K(t) q = f(t) + P F_nl`` at rotor speed ``speed`` (module
+    docstring). ``M, D, K``: the constant parts (n, n), D with ``Omega G`` and the constant
+    base terms; ``kernel``/``params``: the compiled force law and its parameters (None: no
+    nonlinear force); ``elements``: the law's numpy form (:class:`ForceLaw`), for
+    validity, contact reports and diagnostics; ``reduction``: the Craig-Bampton model the
+    time step runs on (:class:`~rotorsfd.timedomain.reduced.ReducedStep`), None: the full
+    step."""
+
+    M: np.ndarray
+    D: np.ndarray
+    K: np.ndarray
+    nl_dofs: np.ndarray
+    kernel: Any
+    params: np.ndarray | None
+    forcing: Forcing
+    time_varying: TimeVaryingMatrices | None
+    speed: float
+    elements: ForceLaw | None = None
+    reduction: Any = None
+
+    @property
+    def period(self) -> float:
+        """Rotor period T = 2 pi / Omega [s]."""
+        return 2.0 * math.pi / self.speed
+
+    @property
+    def n_dof(self) -> int:
+        """Physical DOFs."""
+        return self.M.shape[0]
+
+    @property
+    def n_nl(self) -> int:
+        """Nonlinear DOFs m."""
+        return int(np.asarray(self.nl_dofs).size)
+
+    @property
+    def has_inertia(self) -> bool:
+        """True if the force law depends on the acceleration (``acceleration_jacobian``)."""
+        return callable(getattr(self.elements, "acceleration_jacobian", None))
+
+    def added_mass(self, q_nl: np.ndarray, v_nl: np.ndarray) -> np.ndarray | None:
+        """``-dF_nl/dq''`` (m, m) at the nonlinear state: the mass the force law adds on
+        the nonlinear DOFs (None for a law without acceleration dependence)."""
+        if not self.has_inertia:
+            return None
+        return -np.asarray(self.elements.acceleration_jacobian(q_nl, v_nl), dtype=float)
+
+    def matrices_at(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(M, D(t), K(t))`` (callable coefficients only)."""
+        D, K = np.array(self.D, dtype=float), np.array(self.K, dtype=float)
+        tv = self.time_varying
+        if tv is not None:
+            for c, X in tv.damping:
+                D += float(np.asarray(c(np.asarray([t])))[0]) * np.asarray(X)
+            for c, X in tv.stiffness:
+                K += float(np.asarray(c(np.asarray([t])))[0]) * np.asarray(X)
+        return np.asarray(self.M, dtype=float), D, K
