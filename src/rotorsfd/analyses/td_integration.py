@@ -320,7 +320,9 @@ def integrate_periods(inputs: TimeDomainInputs, q0: Any, v0: Any, *, steps_per_p
         def out(x: np.ndarray, cols: np.ndarray | None = None) -> np.ndarray:
             return red.physical(x, None if cols is None else rows[cols])
     ps = prepare(M, D, K, nl_step, inputs.kernel, inputs.params, forcing, dt, n_steps, t0=t0,
-                 time_varying=tv, **(method_options or {}))
+                 time_varying=tv, **(method_options or {}),
+                 inertial_kernel=None if inputs.elements is None
+                 else inputs.elements.inertial_kernel)
     r = ps.n_dof
     nl = ps.nl
     elements = inputs.elements
