@@ -44,12 +44,33 @@ def orbit_samples(X: ArrayLike, omega: float, n_intervals: int, *,
     return (E @ X).real, (E @ (1j * omega * k[:, None] * X)).real
 
 
+def orbit_accelerations(X: ArrayLike, omega: float, n_intervals: int, *,
+                        endpoint: bool = True) -> NDArray:
+    """``q''(t_j) = Re sum -(k w)^2 X_k e^{i k w t}`` at the samples of
+    :func:`orbit_samples`."""
+    X = np.asarray(X, dtype=complex)
+    k = np.arange(X.shape[0])
+    E = _phases(int(n_intervals), X.shape[0], bool(endpoint))
+    return (E @ (-((omega * k) ** 2)[:, None] * X)).real
+
+
+def inertial_jacobians(jacobians: Callable, X: ArrayLike, omega: float, n_intervals: int,
+                       *, endpoint: bool = True) -> tuple[NDArray, NDArray, NDArray]:
+    """``(dF/dq, dF/dv, dF/da)`` on the orbit's samples of a force of the acceleration
+    too, ``jacobians(q, v, a) -> (F, dF/dq, dF/dv, dF/da)``."""
+    q, v = orbit_samples(X, omega, n_intervals, endpoint=endpoint)
+    a = orbit_accelerations(X, omega, n_intervals, endpoint=endpoint)
+    _, Jq, Jv, Ja = jacobians(q, v, a)
+    return Jq, Jv, Ja
+
+
 def orbit_floquet(M: ArrayLike, D: ArrayLike, K: ArrayLike, X: ArrayLike, omega: float,
                   nl_dofs: ArrayLike, nl_jacobian: NLJacobian, *,
                   method: str = "newmark-cb", n_intervals: int = 400,
                   n_harmonics: int = 8, n_modes: int | None = None,
                   omega_max: float | None = None, rho_inf: float = 0.6,
-                  tol: float = STABILITY_TOL) -> FloquetResult:
+                  tol: float = STABILITY_TOL, nl_jacobians: Callable | None = None
+                  ) -> FloquetResult:
     """Floquet multipliers of the periodic solution ``X`` (H+1, n) or (H+1, m) of
     ``M q'' + D q' + K q = f(t) + F_nl(q[nl], q'[nl])``, fundamental frequency ``omega``.
 
@@ -58,6 +79,8 @@ def orbit_floquet(M: ArrayLike, D: ArrayLike, K: ArrayLike, X: ArrayLike, omega:
     ``'generalized-alpha'`` / ``'generalized-alpha-cb'`` (with ``rho_inf``),
     ``'hill'`` / ``'hill-koopman'`` (Hill with ``n_harmonics`` on the same reduced model;
     Jacobian harmonics up to ``2 n_harmonics`` from 8 (2 n_harmonics + 1) samples).
+    ``nl_jacobians(q, v, a) -> (F, dF/dq, dF/dv, dF/da)``: a force of the acceleration
+    too (fluid inertia), whose added mass ``dF/da`` joins the Newmark methods' mass.
     """
     nl = np.asarray(nl_dofs, dtype=np.intp).ravel()
     X = np.asarray(X, dtype=complex)
@@ -67,15 +90,22 @@ def orbit_floquet(M: ArrayLike, D: ArrayLike, K: ArrayLike, X: ArrayLike, omega:
         raise ConfigError("X", X.shape, f"(H+1, {n}) or (H+1, {nl.size}) coefficients")
     T = 2 * np.pi / omega
     if method in ("newmark", "newmark-cb", "generalized-alpha", "generalized-alpha-cb"):
-        q, v = orbit_samples(Xnl, omega, n_intervals)
-        Jq, Jv = nl_jacobian(q, v)
-        return floquet_multipliers(M, D, K, T, nl_dofs=nl, dFdq=Jq, dFdv=Jv,
+        Ja = None
+        if nl_jacobians is not None:
+            Jq, Jv, Ja = inertial_jacobians(nl_jacobians, Xnl, omega, n_intervals)
+        else:
+            Jq, Jv = nl_jacobian(*orbit_samples(Xnl, omega, n_intervals))
+        return floquet_multipliers(M, D, K, T, nl_dofs=nl, dFdq=Jq, dFdv=Jv, dFda=Ja,
                                    n_intervals=n_intervals,
                                    reduction="craig-bampton" if method.endswith("-cb") else None,
                                    n_modes=n_modes, omega_max=omega_max,
                                    scheme=method.removesuffix("-cb"), rho_inf=rho_inf,
                                    tol=tol)
     if method in ("hill", "hill-koopman"):
+        if nl_jacobians is not None:
+            raise ConfigError("method", method, "a Newmark or generalized-alpha method: "
+                              "Hill's method does not take an added mass (fluid inertia) "
+                              "yet")
         L = 2 * n_harmonics
         q, v = orbit_samples(Xnl, omega, 4 * (2 * L + 1), endpoint=False)
         Jq, Jv = nl_jacobian(q, v)
