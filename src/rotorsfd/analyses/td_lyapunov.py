@@ -99,7 +99,9 @@ def lyapunov_pair(inputs: TimeDomainInputs, state: tuple[np.ndarray, np.ndarray,
                                inputs.params, inputs.forcing,
                                steps_per_period=steps_per_period, n_periods=periods, q0=q0,
                                v0=v0, t0=t0, time_varying=inputs.time_varying,
-                               method="newmark", projectors=projectors)
+                               method="newmark", projectors=projectors,
+                               inertial_kernel=None if inputs.elements is None
+                               else inputs.elements.inertial_kernel)
     full = lyapunov_estimate(found[0], T)
     if proj is None:
         return LyapunovPair(full, full, None, None)
