@@ -285,8 +285,10 @@ def test_floquet_with_added_mass_against_finite_difference_monodromy(hb_pair):
     """The Newmark monodromy of the linearised equation with the time-varying added mass
     M - P dF/da(t) P^T (full model, N = 400) against the finite-difference monodromy of
     the nonlinear time stepper (the same scheme, 400 steps a period, central
-    differences in each state direction): the largest multipliers agree to 2e-5 while
-    the added mass moves them by more than 1e-4."""
+    differences in each state direction): the four largest agree to 2e-6 (measured
+    2.3e-7) while without the added mass they are 2.4e-2 off. (At N = 400 the full model's
+    largest ones belong to unresolved stiff modes, omega h >> 1, which the Craig-Bampton
+    default leaves out; here they test the scheme's linearisation, the point.)"""
     from rotorsfd.stability.monodromy import floquet_multipliers
     from rotorsfd.stability.orbit import inertial_jacobians
 
@@ -318,8 +320,8 @@ def test_floquet_with_added_mass_against_finite_difference_monodromy(hb_pair):
     mu_fd = np.sort(np.abs(np.linalg.eigvals(Phi)))[::-1][:4]
     mu = np.sort(np.abs(res.multipliers))[::-1][:4]
     mu0 = np.sort(np.abs(plain.multipliers))[::-1][:4]
-    assert np.max(np.abs(mu - mu_fd)) < 2e-5
-    assert np.max(np.abs(mu0 - mu_fd)) > 1e-4
+    assert np.max(np.abs(mu - mu_fd)) < 2e-6
+    assert np.max(np.abs(mu0 - mu_fd)) > 1e-3
 
 
 def test_floquet_compiled_and_numpy_loops_agree_with_added_mass(hb_pair):
@@ -336,3 +338,52 @@ def test_floquet_compiled_and_numpy_loops_agree_with_added_mass(hb_pair):
                                     dFdv=Jv, dFda=Ja, n_intervals=200, scheme=scheme,
                                     compiled=c) for c in (True, False))
         np.testing.assert_allclose(a.multipliers, b.multipliers, rtol=0, atol=1e-10)
+
+
+def test_reduced_step_with_inertia(hb_pair):
+    """The Craig-Bampton reduced step (timedomain.reduced, the nonlinear DOFs kept
+    physical, so the added mass acts on the same rows) with the inertial kernel stays on
+    the HB orbit within 1e-3 C."""
+    from rotorsfd.timedomain.forcing import Forcing, HarmonicLoad
+    from rotorsfd.timedomain.integrate import integrate
+    from rotorsfd.timedomain.reduced import reduce_step
+
+    system, problem, sol = hb_pair[True]
+    M, D, K = system.matrices(SPEED)
+    Fc, Fs = system.unbalance_harmonics(SPEED)
+    forcing = Forcing(omega=SPEED, constant=system.static_force(SPEED),
+                      harmonics=[HarmonicLoad(1.0, Fc, Fs)])
+    red = reduce_step(M, D, K, system.nl_dofs, forcing, None, omega_max=30 * SPEED)
+    assert red.model.M.shape[0] < M.shape[0]
+    el = system.elements_at(SPEED)
+    k = np.arange(sol.X.shape[0])
+    q0 = np.real(sol.X.sum(0))
+    v0 = np.real((1j * k[:, None] * SPEED * sol.X).sum(0))
+    spp, periods = 800, 20
+    res = integrate(red.model.M, red.model.D, red.model.K, red.nl_dofs, el.kernel,
+                    el.kernel_params, red.forcing, steps_per_period=spp, n_periods=periods,
+                    q0=red.reduce(q0), v0=red.reduce(v0), record_every=1,
+                    record_start=(periods - 1) * spp, inertial_kernel=el.inertial_kernel)
+    phase = np.exp(1j * np.outer(res.t * SPEED, k))
+    hb = np.real(phase @ sol.X[:, problem.nl_dofs])
+    assert np.max(np.abs(res.q - hb)) / C_SMALL < 1e-3
+
+
+def test_zero_added_mass_path_is_the_usual_recursion(hb_pair):
+    """The Newmark monodromy that carries the acceleration (taken with dFda) = the usual
+    (x, v) recursion when the added mass is zero."""
+    from rotorsfd.stability.monodromy import floquet_multipliers
+    from rotorsfd.stability.orbit import inertial_jacobians
+
+    _, problem, sol = hb_pair[True]
+    M, D, K = problem.matrices(SPEED)
+    nl = problem.nl_dofs
+    Jq, Jv, Ja = inertial_jacobians(problem.law(SPEED).force_jacobians, sol.X[:, nl],
+                                    SPEED, 200)
+    T = 2 * np.pi / SPEED
+    a = floquet_multipliers(M, D, K, T, nl_dofs=nl, dFdq=Jq, dFdv=Jv,
+                            dFda=np.zeros_like(Ja), n_intervals=200, reduction=None)
+    b = floquet_multipliers(M, D, K, T, nl_dofs=nl, dFdq=Jq, dFdv=Jv, n_intervals=200,
+                            reduction=None)
+    np.testing.assert_allclose(np.sort_complex(a.multipliers), np.sort_complex(b.multipliers),
+                               rtol=0, atol=1e-10)
