@@ -25,11 +25,14 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import NDArray
 
-from rotorsfd.errors import ConfigError
 from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.stability.branch_options import REDUCED_METHODS, StabilityOptions
 from rotorsfd.stability.floquet import FloquetResult
-from rotorsfd.stability.hill import fourier_coefficients, hill_floquet
+from rotorsfd.stability.hill import (
+    fourier_coefficients,
+    hill_floquet,
+    sampled_first_order_coefficients,
+)
 from rotorsfd.stability.monodromy import floquet_multipliers
 from rotorsfd.stability.orbit import inertial_jacobians, orbit_floquet, orbit_samples
 from rotorsfd.stability.outside import averaged_eigenvalues, exact_multipliers, largest_modulus
@@ -256,19 +259,25 @@ class FloquetEvaluator:
             res = self._reduced_newmark(red, T, Jq, Jv, n_intervals, p.n_dof, Ja)
             res.info.update(self.outside(red, T, Jq, Jv, Ja=Ja))
             return res
-        if p.law(lam).force_jacobians is not None:
-            raise ConfigError("analysis.stability.method", o.method, "a Newmark or "
-                              "generalized-alpha method: Hill's method does not take the "
-                              "added mass of the fluid inertia yet")
         H = o.n_harmonics if o.n_harmonics is not None else max(8, X.shape[0] - 1)
         L = 2 * H
+        law = p.law(lam)
+        hill_method = "koopman" if o.method == "hill-koopman" else "symmetric"
+        if law.force_jacobians is not None:   # the added mass: A(t) from its samples
+            Jq, Jv, Ja = inertial_jacobians(law.force_jacobians, Xnl, w, 4 * (2 * L + 1),
+                                            endpoint=False)
+            res = hill_floquet(red.M, red.D, red.K, w, n_harmonics=H, method=hill_method,
+                               tol=o.tol, A_hat=sampled_first_order_coefficients(
+                                   red.M, red.D, red.K, red.nl_dofs, Jq, Jv, Ja, L))
+            res.info.update(n_dof_full=p.n_dof, **self.outside(red, T, Jq, Jv,
+                                                               endpoint=False, Ja=Ja))
+            return res
         q, v = orbit_samples(Xnl, w, 4 * (2 * L + 1), endpoint=False)
-        Jq, Jv = p.law(lam).jacobian(q, v)
+        Jq, Jv = law.jacobian(q, v)
         res = hill_floquet(red.M, red.D, red.K, w, nl_dofs=red.nl_dofs,
                            dFdq_hat=fourier_coefficients(Jq, L),
                            dFdv_hat=fourier_coefficients(Jv, L), n_harmonics=H,
-                           method="koopman" if o.method == "hill-koopman" else "symmetric",
-                           tol=o.tol)
+                           method=hill_method, tol=o.tol)
         res.info.update(n_dof_full=p.n_dof, **self.outside(red, T, Jq, Jv, endpoint=False))
         return res
 

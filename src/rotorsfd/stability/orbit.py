@@ -16,7 +16,11 @@ from numpy.typing import ArrayLike, NDArray
 
 from rotorsfd.errors import ConfigError
 from rotorsfd.stability.floquet import STABILITY_TOL, FloquetResult
-from rotorsfd.stability.hill import fourier_coefficients, hill_floquet
+from rotorsfd.stability.hill import (
+    fourier_coefficients,
+    hill_floquet,
+    sampled_first_order_coefficients,
+)
 from rotorsfd.stability.monodromy import floquet_multipliers
 from rotorsfd.stability.reduction import craig_bampton
 
@@ -102,21 +106,26 @@ def orbit_floquet(M: ArrayLike, D: ArrayLike, K: ArrayLike, X: ArrayLike, omega:
                                    scheme=method.removesuffix("-cb"), rho_inf=rho_inf,
                                    tol=tol)
     if method in ("hill", "hill-koopman"):
-        if nl_jacobians is not None:
-            raise ConfigError("method", method, "a Newmark or generalized-alpha method: "
-                              "Hill's method does not take an added mass (fluid inertia) "
-                              "yet")
         L = 2 * n_harmonics
-        q, v = orbit_samples(Xnl, omega, 4 * (2 * L + 1), endpoint=False)
-        Jq, Jv = nl_jacobian(q, v)
         if n_modes is None and omega_max is None:
             omega_max = 0.25 * n_intervals / T
         red = craig_bampton(M, D, K, nl, n_modes=n_modes, omega_max=omega_max)
+        hill_method = "koopman" if method == "hill-koopman" else "symmetric"
+        if nl_jacobians is not None:   # a time-varying added mass: A(t) from samples
+            Jq, Jv, Ja = inertial_jacobians(nl_jacobians, Xnl, omega, 4 * (2 * L + 1),
+                                            endpoint=False)
+            res = hill_floquet(red.M, red.D, red.K, omega, n_harmonics=n_harmonics,
+                               method=hill_method, tol=tol,
+                               A_hat=sampled_first_order_coefficients(
+                                   red.M, red.D, red.K, red.nl_dofs, Jq, Jv, Ja, L))
+            res.info.update(n_dof_full=n, n_modes=red.omegas.size)
+            return res
+        q, v = orbit_samples(Xnl, omega, 4 * (2 * L + 1), endpoint=False)
+        Jq, Jv = nl_jacobian(q, v)
         res = hill_floquet(red.M, red.D, red.K, omega, nl_dofs=red.nl_dofs,
                            dFdq_hat=fourier_coefficients(Jq, L),
                            dFdv_hat=fourier_coefficients(Jv, L), n_harmonics=n_harmonics,
-                           method="koopman" if method == "hill-koopman" else "symmetric",
-                           tol=tol)
+                           method=hill_method, tol=tol)
         res.info.update(n_dof_full=n, n_modes=red.omegas.size)
         return res
     raise ConfigError("method", method, "'newmark', 'newmark-cb', 'generalized-alpha', "
