@@ -406,3 +406,37 @@ def test_hill_with_added_mass_matches_newmark(hb_pair):
     assert np.max(np.abs(hill - newmark)) < 1e-5
     _, problem0, sol0 = hb_pair[False]
     assert np.max(np.abs(top(problem0, sol0.X, "newmark-cb") - newmark)) > 3e-3
+
+
+def test_high_eccentricity_quadrature():
+    """The Gauss-Legendre panels near contact (the integrand's poles next to the thinnest
+    film): the force against adaptive quadrature at eps = 0.95 and 0.99 (pi and 2 pi
+    film), 1e-10."""
+    for cavitation in ("pi", "none"):
+        e = element(cavitation)
+        for eps in (0.95, 0.99):
+            q = eps * C * np.array([math.cos(0.3), math.sin(0.3)])
+            v = np.array([-40.0, 90.0]) * C
+            a = np.array([2e4, -3e4]) * C
+            F_in = e.force_and_jacobians(q, v, a)[0] - e.film.nl_force(q, v)
+            lo = 0.3
+            hi = lo + (math.pi if cavitation == "pi" else 2 * math.pi)
+
+            def f(phi, k, q=q, v=v, a=a):
+                n = np.array([math.cos(phi), math.sin(phi)])
+                h = C - q @ n
+                g = (n @ a) / h + 2.4 * (n @ v) ** 2 / h**2
+                return -RHO * R * L**3 / 12 * g * n[k]
+
+            ref = np.array([quad(f, lo, hi, args=(k,), epsabs=0, epsrel=1e-13, limit=400,
+                                 points=[lo + 1e-9, hi - 1e-9])[0] for k in range(2)])
+            np.testing.assert_allclose(F_in, ref, rtol=1e-10,
+                                       atol=1e-10 * np.max(np.abs(ref)))
+
+
+def test_torus_response_rejects_inertia(tmp_path):
+    from rotorsfd.quasiperiodic.torus_system import torus_problem
+
+    system = small_system(tmp_path, True)
+    with pytest.raises(ConfigError, match="fluid_inertia"):
+        torus_problem(system)
