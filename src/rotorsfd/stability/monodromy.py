@@ -258,7 +258,8 @@ def _alpha_recursion(M: NDArray, D: NDArray, K: NDArray, nl: NDArray, h: float,
         c = np.ascontiguousarray  # one compiled specialisation (C layout) for every input
         return generalized_alpha_loop(c(SM), c(SD), c(SK), Z, G, nl.astype(np.int64), Kn,
                                       Cn, c(A0), float(h), am, af, g, b,
-                                      None if Mn is None else c(Mn))
+                                      np.zeros((1, m, m)) if Mn is None else c(Mn),
+                                      Mn is not None)
     return _generalized_alpha_numpy(SM, SD, SK, Z, G, nl, Kn, Cn, A0, h, am, af, g, b, Mn)
 
 
