@@ -26,10 +26,11 @@ solvers take it with an options record:
 - Floquet multipliers of an orbit of it: :func:`rotorsfd.stability.monodromy.system_multipliers`
   with :class:`~rotorsfd.stability.monodromy.MonodromyOptions`.
 
-A force law that depends on the journal acceleration (fluid inertia) declares
-``acceleration_jacobian(q, v) -> dF/dq''`` (m x m, on the nonlinear DOFs): the solvers'
-iteration matrix then holds ``M - P (dF/dq'') P^T`` (:meth:`SecondOrderSystem.added_mass`;
-None for laws without it, every law today).
+A force law that depends on the journal acceleration (fluid inertia: an SFD with
+``fluid_inertia = true``) is ``inertial`` and has an ``inertial_kernel`` ``(q, v, a,
+params, F, dFdq, dFdv, dFda)`` (:mod:`rotorsfd.kernels`); the record hands it to the
+solvers (:attr:`SecondOrderSystem.inertial_kernel`), whose iteration matrices then hold
+the added mass ``M - P (dF/dq'') P^T``.
 """
 
 from __future__ import annotations
@@ -111,15 +112,13 @@ class SecondOrderSystem:
 
     @property
     def has_inertia(self) -> bool:
-        """True if the force law depends on the acceleration (``acceleration_jacobian``)."""
-        return callable(getattr(self.elements, "acceleration_jacobian", None))
+        """True if the force law depends on the acceleration (fluid inertia)."""
+        return bool(getattr(self.elements, "inertial", False))
 
-    def added_mass(self, q_nl: np.ndarray, v_nl: np.ndarray) -> np.ndarray | None:
-        """``-dF_nl/dq''`` (m, m) at the nonlinear state: the mass the force law adds on
-        the nonlinear DOFs (None for a law without acceleration dependence)."""
-        if not self.has_inertia:
-            return None
-        return -np.asarray(self.elements.acceleration_jacobian(q_nl, v_nl), dtype=float)
+    @property
+    def inertial_kernel(self) -> Any:
+        """The law's compiled inertial kernel (None without acceleration dependence)."""
+        return self.elements.inertial_kernel if self.has_inertia else None
 
     def matrices_at(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``(M, D(t), K(t))`` (callable coefficients only)."""

@@ -76,25 +76,25 @@ def test_floquet_of_the_linear_record_against_the_matrix_exponential(system):
     assert np.max(np.abs(res.multipliers)) == pytest.approx(ref[0], rel=1e-4)
 
 
-def test_a_force_law_with_an_acceleration_jacobian_is_carried(system):
-    so = system.second_order(SPEED)
+def test_a_force_law_with_fluid_inertia_is_carried(tmp_path):
+    """An SFD with fluid inertia: the record is inertial and hands its compiled inertial
+    kernel to the time step, whose run equals integrate() given that kernel directly
+    (bit for bit); without inertia the record has no inertial kernel."""
+    from rotorsfd.timedomain.integrate import integrate
 
-    class Inertial:
-        def __init__(self, law):
-            self.law = law
-
-        def __getattr__(self, name):
-            return getattr(self.law, name)
-
-        def acceleration_jacobian(self, q, v):
-            return -2.0 * np.eye(q.size)
-
-    from dataclasses import replace
-
-    heavy = replace(so, elements=Inertial(so.elements))
-    assert heavy.has_inertia
-    m = so.n_nl
-    np.testing.assert_array_equal(heavy.added_mass(np.zeros(m), np.zeros(m)), 2 * np.eye(m))
-    with pytest.raises(NotImplementedError, match="acceleration Jacobian"):
-        prepare_system(heavy, so.period / 100, 10)
-    assert so.added_mass(np.zeros(m), np.zeros(m)) is None
+    path = small_rotor_toml(tmp_path / "r.toml", unbalance="100 g*mm")
+    inertial = api.build_system(api.load_config(path, [
+        "elements.sfd.density=850 kg/m^3", "elements.sfd.fluid_inertia=true"]))
+    so = inertial.second_order(SPEED)
+    assert so.has_inertia and so.inertial_kernel is not None
+    plain = api.build_system(api.load_config(path)).second_order(SPEED)
+    assert not plain.has_inertia and plain.inertial_kernel is None
+    kw = dict(steps_per_period=64, n_periods=3, record_dofs=[0, 1])
+    a = integrate_system(so, 0.0, 0.0, options=StepOptions(), **kw)
+    b = integrate(so.M, so.D, so.K, so.nl_dofs, so.kernel, so.params, so.forcing,
+                  time_varying=so.time_varying, inertial_kernel=so.inertial_kernel,
+                  **StepOptions().scheme, **StepOptions().iteration, **kw)
+    np.testing.assert_array_equal(a.q, b.q)
+    c = integrate_system(plain, 0.0, 0.0, options=StepOptions(), **kw)
+    assert np.max(np.abs(a.q - c.q)) > 0.0          # the added mass acts
+    assert prepare_system(so, so.period / 100, 10).n_dof == so.n_dof

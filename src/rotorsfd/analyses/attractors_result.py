@@ -93,7 +93,8 @@ def period_n_problem(problem: Any, n: int) -> Any:
         scaling=problem.scaling, nl_limit=problem.nl_limit,
         name=f"{problem.name} (period {n})", nl_force_jacobian=problem.nl_force_jacobian,
         nl_kernel=problem.nl_kernel, nl_kernel_params=problem.nl_kernel_params,
-        nl_at=problem.nl_at)
+        nl_at=problem.nl_at, nl_force_jacobians=problem.nl_force_jacobians,
+        nl_inertial_kernel=problem.nl_inertial_kernel)
 
 
 def hb_correction(model: Any, outcome: Any, harmonics: int) -> dict[str, Any]:

@@ -8,9 +8,14 @@ with its exact Jacobians ``dF/dq_e`` and ``dF/dv_e`` in two forms that must agre
 vectorised over samples (:meth:`NonlinearElement.force_and_jacobian`, the reference and
 the form of the Python paths), and a compiled kernel of the contract of
 :mod:`rotorsfd.kernels` with its parameter vector (the form of every compiled loop: HB-AFT,
-the condensation, time stepping). An element may have a validity limit (a film's
-eccentricity ratio, which must stay below 1; a contact law has none), a length scale for
-the Newton test and the plots, and per-orbit diagnostics for the results files.
+the condensation, time stepping). A law that depends on the acceleration too (a film's
+fluid inertia) says so with :attr:`NonlinearElement.inertial` and gives
+``F = f(q_e, v_e, a_e)`` with ``dF/da_e`` (an added mass on its DOFs) by
+:meth:`NonlinearElement.force_and_jacobians` and :attr:`NonlinearElement.inertial_kernel`;
+the solvers take that path only when an element is inertial. An element may have a
+validity limit (a film's eccentricity ratio, which must stay below 1; a contact law has
+none), a length scale for the Newton test and the plots, and per-orbit diagnostics for the
+results files.
 
 A new kind is two modules: ``<kind>.py`` with a subclass of :class:`NonlinearElement`, its
 config model and one :func:`rotorsfd.elements.registry.register` call (no numba), and
@@ -52,6 +57,8 @@ class NonlinearElement(ABC):
     parameters: ClassVar[tuple[str, ...]] = ()
     #: key of :meth:`diagnostics` -> (long name, SI unit), for the results files
     diagnostic_info: ClassVar[dict[str, tuple[str, str]]] = {}
+    #: the force depends on the acceleration too (set per instance by such a law)
+    inertial: bool = False
 
     def __init__(self, name: str, dofs: Any, scale: float, nodes: tuple[int, ...] = ()
                  ) -> None:
@@ -78,6 +85,21 @@ class NonlinearElement(ABC):
     def force(self, q: FloatArray, v: FloatArray) -> FloatArray:
         """``F (..., m)`` alone (the Jacobians skipped where the law can)."""
         return self.force_and_jacobian(q, v)[0]
+
+    def force_and_jacobians(self, q: FloatArray, v: FloatArray, a: FloatArray
+                            ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        """``(F, dF/dq, dF/dv, dF/da)`` at samples ``q, v, a (..., m)``; an element whose
+        force does not depend on the acceleration gives ``dF/da = 0`` (an inertial one
+        overrides this; its :meth:`force_and_jacobian` is then the force at ``a = 0``)."""
+        F, Jq, Jv = self.force_and_jacobian(q, v)
+        return F, Jq, Jv, np.zeros_like(Jq)
+
+    @property
+    def inertial_kernel(self) -> Any:
+        """The compiled law with the acceleration, ``kernel(q, v, a, params, F, dFdq,
+        dFdv, dFda) -> int`` (:mod:`rotorsfd.kernels`), None when :attr:`inertial` is
+        False."""
+        return None
 
     @property
     @abstractmethod

@@ -138,6 +138,9 @@ class IntershaftSFDConfig(SFDConfig):
         if self.film_length != "short":
             raise fail("film_length", self.film_length, "the intershaft SFD has the short "
                        "film only: 'short'")
+        if self.fluid_inertia:
+            raise fail("fluid_inertia", True, "the intershaft SFD has no fluid inertia "
+                       "force yet (false)")
         return self
 
     @property

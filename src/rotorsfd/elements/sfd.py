@@ -10,7 +10,11 @@ centre; zero by default)::
 with ``F_film`` the short-bearing force of :class:`rotorsfd.model.sfd.SFD` (pi, 2 pi or
 Guembel film; derivation in ``docs/sfd.md``) or, with ``film_length = "finite"``, the
 finite-length Reynolds film of :class:`rotorsfd.model.film_finite.FiniteSFD` (open ends
-or end seals of end-flow coefficient ``end_flow``). Diagnostics per orbit: the
+or end seals of end-flow coefficient ``end_flow``). With ``fluid_inertia`` and an oil
+density, the short film adds the fluid inertia force of the short open-ended SFD (San
+Andres' averaged-inertia form, :mod:`rotorsfd.model.film_inertia`), which depends on the
+journal acceleration: ``F = F_film(q - o, q') + F_in(q - o, q', q'')`` with the added
+mass ``-dF/dq''`` on the node's (y, z). Diagnostics per orbit: the
 eccentricity, the peak film pressure, the cavitated arc and, with an oil density, the
 squeeze Reynolds number (:mod:`rotorsfd.model.film_diagnostics`). The centring spring
 is linear and becomes a support of the rotor (:meth:`SFDConfig.linear_supports`). Static
@@ -71,7 +75,7 @@ class SFDElement(NonlinearElement):
 
     def __init__(self, name: str, node: int, film: SFD | FiniteSFD,
                  offset: tuple[float, float] = (0.0, 0.0), density: float | None = None,
-                 film_report: bool | None = None) -> None:
+                 film_report: bool | None = None, fluid_inertia: bool = False) -> None:
         super().__init__(name, [dof_index(node, "y"), dof_index(node, "z")],
                          film.clearance, nodes=(node,))
         self.node = int(node)
@@ -79,13 +83,19 @@ class SFDElement(NonlinearElement):
         self.finite = hasattr(film, "pressure")  # FiniteSFD: its parameters hold o
         self.offset = np.array([float(offset[0]), float(offset[1])])
         self.density = None if density is None else float(density)
+        #: the fluid inertia force is included (short film, a density > 0)
+        self.inertial = bool(fluid_inertia) and bool(self.density)
+        if self.inertial and self.finite:
+            raise ConfigError(f"elements.{name}.fluid_inertia", True, "the fluid inertia "
+                              "force is implemented for film_length = 'short' only")
         if self.finite:
             from rotorsfd.model.film_finite_kernels import P_OFFSET_Y, P_OFFSET_Z
 
             self._params = film.kernel_params
             self._params[P_OFFSET_Y], self._params[P_OFFSET_Z] = self.offset
         else:
-            self._params = np.concatenate([film.kernel_params, self.offset])
+            self._params = np.concatenate([film.kernel_params, self.offset, [
+                self.density if self.inertial else 0.0]])
         #: report p_max, p_min, cavitated_arc (default: for the finite film only)
         self.film_report = self.finite if film_report is None else bool(film_report)
         self.diagnostic_info = {**type(self).diagnostic_info,
@@ -99,15 +109,50 @@ class SFDElement(NonlinearElement):
 
     def force_and_jacobian(self, q: FloatArray, v: FloatArray
                            ) -> tuple[FloatArray, FloatArray, FloatArray]:
-        """Film force and exact Jacobians at ``q - o`` (module doc)."""
+        """Film force and exact Jacobians at ``q - o`` (module doc); with the fluid
+        inertia, the force at zero acceleration (the convective inertia included)."""
         q = np.asarray(q, dtype=np.float64)
         v = np.asarray(v, dtype=np.float64)
+        if self.inertial:
+            return self.force_and_jacobians(q, v, np.zeros_like(q))[:3]
         return self.film.force_and_jacobian(q[..., 0] - self.offset[0],
                                             q[..., 1] - self.offset[1], v[..., 0], v[..., 1])
 
     def force(self, q: FloatArray, v: FloatArray) -> FloatArray:
         q = np.asarray(q, dtype=np.float64)
+        if self.inertial:
+            return self.force_and_jacobian(q, v)[0]
         return self.film.nl_force(q - self.offset, v)
+
+    def force_and_jacobians(self, q: FloatArray, v: FloatArray, a: FloatArray
+                            ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        """``(F, dF/dq, dF/dv, dF/da)`` with the fluid inertia (module doc), by the
+        compiled inertial kernel over the samples; without inertia ``dF/da = 0``."""
+        if not self.inertial:
+            return super().force_and_jacobians(q, v, a)
+        from rotorsfd.elements.sfd_kernel import sfd_inertial_batch  # deferred: numba
+
+        q, v, a = np.broadcast_arrays(*(np.asarray(x, dtype=np.float64) for x in (q, v, a)))
+        shape = q.shape[:-1]
+        flat = [np.ascontiguousarray(x).reshape(-1, 2) for x in (q, v, a)]
+        n = flat[0].shape[0]
+        F, Jq, Jv, Ja = np.empty((n, 2)), np.empty((n, 2, 2)), np.empty((n, 2, 2)), \
+            np.empty((n, 2, 2))
+        bad = sfd_inertial_batch(*flat, self._params, F, Jq, Jv, Ja)
+        if bad >= 0:
+            raise self.contact_error(flat[0][bad], flat[1][bad])
+        return (F.reshape((*shape, 2)), Jq.reshape((*shape, 2, 2)),
+                Jv.reshape((*shape, 2, 2)), Ja.reshape((*shape, 2, 2)))
+
+    @property
+    def inertial_kernel(self):
+        """:func:`rotorsfd.elements.sfd_kernel.sfd_inertial_kernel` when the fluid inertia
+        is included, else None."""
+        if not self.inertial:
+            return None
+        from rotorsfd.elements.sfd_kernel import sfd_inertial_kernel  # deferred: numba
+
+        return sfd_inertial_kernel
 
     @property
     def kernel(self):
@@ -123,7 +168,8 @@ class SFDElement(NonlinearElement):
 
     @property
     def kernel_params(self) -> FloatArray:
-        """``[mu, R, L, C, eps_max, film code, o_y, o_z]`` (finite film: the layout of
+        """``[mu, R, L, C, eps_max, film code, o_y, o_z, rho]`` (rho = 0 without the fluid
+        inertia; finite film: the layout of
         :mod:`rotorsfd.model.film_finite_kernels`)."""
         return self._params.copy()
 
@@ -177,6 +223,9 @@ class SFDElement(NonlinearElement):
         centre), ``dF/dC = -(2 F + dF/dq (q - o) + dF/dv v) / C``; the chain rule through
         the table's geometry (:meth:`SFDConfig.geometry_derivative`)."""
         table = self._table(name)
+        if self.inertial:
+            raise ConfigError(f"elements.{self.name}.{name}", None, "continuation in a "
+                              "field of an SFD with fluid_inertia is not supported yet")
         if self.finite:
             raise ConfigError(f"elements.{self.name}.{name}", None, "continuation in a "
                               "field of the finite-length film is not supported yet "
@@ -263,7 +312,13 @@ class SFDConfig(Section):
                           "Hermite, its error against the grid solver measured) instead "
                           "of solving the grid at every sample")
     density: quantity("density", "oil density rho (for the squeeze Reynolds number "
-                      "rho omega C^2 / mu in the results)", gt=0, optional=True) = None
+                      "rho omega C^2 / mu in the results, and the fluid inertia force "
+                      "with fluid_inertia = true)", gt=0, optional=True) = None
+    fluid_inertia: bool = Field(
+        False, description="add the fluid inertia force of the short open-ended film (San "
+                           "Andres' averaged inertia, temporal and convective; needs "
+                           "density; short film only): an added mass pi rho R L^3/(24 C) "
+                           "per direction at the centre for the pi film")
     film_report: bool | None = Field(
         None, description="report the peak film pressure p_max, the lowest uncavitated "
                           "pressure p_min and the cavitated arc per orbit in the results "
@@ -288,6 +343,12 @@ class SFDConfig(Section):
                        "than the journal radius")
         self._derivedin_range()
         self._film_fields()
+        if self.fluid_inertia and self.density is None:
+            raise fail("fluid_inertia", True, "needs the oil density: give density "
+                       "(e.g. density = \"850 kg/m^3\")")
+        if self.fluid_inertia and self.film_length == "finite":
+            raise fail("fluid_inertia", True, "is implemented for film_length = 'short' "
+                       "only")
         return self
 
     def _film_fields(self) -> None:
@@ -383,7 +444,8 @@ class SFDConfig(Section):
 
             film = SFD(*geometry, cavitation=self.cavitation)
         element = SFDElement(name, self.node, film, (self.offset_y, self.offset_z),
-                             density=self.density, film_report=self.film_report)
+                             density=self.density, film_report=self.film_report,
+                             fluid_inertia=self.fluid_inertia)
         element.table = self   # its fields as continuation parameters
         return element
 

@@ -58,7 +58,8 @@ def period_doubled(problem: PeriodicProblem) -> PeriodicProblem:
         scaling=problem.scaling, nl_limit=problem.nl_limit,
         name=f"{problem.name} (period 2)", nl_force_jacobian=problem.nl_force_jacobian,
         nl_kernel=problem.nl_kernel, nl_kernel_params=problem.nl_kernel_params,
-        nl_at=problem.nl_at)
+        nl_at=problem.nl_at, nl_force_jacobians=problem.nl_force_jacobians,
+        nl_inertial_kernel=problem.nl_inertial_kernel)
 
 
 def doubled_coefficients(X: ComplexArray, H2: int | None = None) -> ComplexArray:

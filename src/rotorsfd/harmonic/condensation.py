@@ -33,13 +33,8 @@ from numpy.typing import NDArray
 from scipy.linalg import lapack
 
 from rotorsfd.harmonic import banded
-from rotorsfd.harmonic.aft_kernels import (
-    as_kernel_cfunc,
-    condensed_assembly,
-    condensed_residual,
-    force_coefficients,
-    project,
-)
+from rotorsfd.harmonic.aft_inertia import condensed_residual, force_coefficients, hb_kernel
+from rotorsfd.harmonic.aft_kernels import condensed_assembly, project
 from rotorsfd.harmonic.banded_lowrank import condense_bands_lowrank
 from rotorsfd.harmonic.fourier import aft_matrices, aliasing_error, to_complex, to_real
 from rotorsfd.harmonic.problem import NonlinearLaw, PeriodicProblem
@@ -135,8 +130,7 @@ class CondensedHB:
         self._band: tuple[int, int] | None = None  # (kl, ku); (-1, -1): dense
         self._scanned: tuple = (None,) * 6   # matrices known to lie inside the band
         self._last: tuple | None = None      # (lam, xs, G) of the last AFT
-        self._kernel = (as_kernel_cfunc(problem.nl_kernel)
-                        if problem.nl_kernel is not None else None)
+        self._kernel = hb_kernel(problem)   # the inertial kernel when the law has one
         self._work: tuple | None = None      # AFT work arrays
 
     # -- shift --------------------------------------------------------------------------

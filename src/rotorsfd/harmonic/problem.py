@@ -40,6 +40,10 @@ class NonlinearLaw:
                              tuple[FloatArray, FloatArray, FloatArray]] | None = None
     kernel_params: FloatArray | None = None
     dforce: Callable[[FloatArray, FloatArray], FloatArray] | None = None
+    #: ``(q, v, a) -> (F, dF/dq, dF/dv, dF/da)`` of a law that depends on the
+    #: acceleration too (fluid inertia); None otherwise
+    force_jacobians: Callable[[FloatArray, FloatArray, FloatArray],
+                              tuple[FloatArray, FloatArray, FloatArray, FloatArray]] | None = None
 
 
 @dataclass
@@ -76,6 +80,11 @@ class PeriodicProblem:
         lam-derivative ``dforce``; solvers then ask :meth:`law` and the fixed fields above
         are not used. ``dR/dlam`` gains ``-S^T dG/dlam|_x`` with ``dG/dlam`` the AFT of
         ``dforce``.
+    nl_force_jacobians(q_nl, v_nl, a_nl) -> (F, dF/dq, dF/dv, dF/da), nl_inertial_kernel:
+        for a force that depends on the acceleration too (a film's fluid inertia), its
+        numpy form and its inertial kernel (``kernel(q, v, a, params, F, dFdq, dFdv,
+        dFda)``, :mod:`rotorsfd.kernels`); the AFT then samples ``a = w^2 Edd xs`` and
+        ``dG/dx`` gains ``P dF/da w^2 Edd`` (:mod:`rotorsfd.harmonic.aft_inertia`).
     """
 
     n_dof: int
@@ -96,6 +105,9 @@ class PeriodicProblem:
     nl_kernel: Any = None
     nl_kernel_params: FloatArray | None = None
     nl_at: Callable[[float], NonlinearLaw] | None = None
+    nl_force_jacobians: Callable[..., tuple[FloatArray, FloatArray, FloatArray, FloatArray]
+                                 ] | None = None
+    nl_inertial_kernel: Any = None
 
     def __post_init__(self) -> None:
         self.nl_dofs = np.atleast_1d(np.asarray(self.nl_dofs, dtype=np.int64))
@@ -111,7 +123,8 @@ class PeriodicProblem:
         if not np.all(np.isfinite(c)) or np.any(c <= 0):
             raise ValueError(f"scaling must be positive and finite, got {self.scaling!r}")
         self._fixed_law = NonlinearLaw(self.nl_force, self.nl_jacobian,
-                                       self.nl_force_jacobian, self.nl_kernel_params)
+                                       self.nl_force_jacobian, self.nl_kernel_params,
+                                       force_jacobians=self.nl_force_jacobians)
         self._law_at: tuple[float, NonlinearLaw] | None = None
 
     def law(self, lam: float) -> NonlinearLaw:
@@ -122,6 +135,11 @@ class PeriodicProblem:
         if self._law_at is None or self._law_at[0] != lam:
             self._law_at = (lam, self.nl_at(lam))
         return self._law_at[1]
+
+    @property
+    def inertial(self) -> bool:
+        """True when the nonlinear force depends on the acceleration too."""
+        return self.nl_force_jacobians is not None
 
     @property
     def parametric(self) -> bool:

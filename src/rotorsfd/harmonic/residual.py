@@ -63,6 +63,8 @@ def nonlinear_coefficients(problem: PeriodicProblem, aft: AFTMatrices, xs: Float
     q = aft.E @ xs
     dq_tau = aft.Ed @ xs
     v = w * dq_tau
+    if law.force_jacobians is not None:   # a force of the acceleration too
+        return _inertial_coefficients(law, aft, xs, w, jac, q, dq_tau)
     if jac and law.force_jacobian is not None:
         f, dfq, dfv = law.force_jacobian(q, v)
     else:
@@ -83,6 +85,32 @@ def nonlinear_coefficients(problem: PeriodicProblem, aft: AFTMatrices, xs: Float
     return NonlinearCoefficients(G, dG, dGdw, q)
 
 
+def _inertial_coefficients(law: NonlinearLaw, aft: AFTMatrices, xs: FloatArray, w: float,
+                           jac: bool, q: FloatArray, dq_tau: FloatArray
+                           ) -> NonlinearCoefficients:
+    """:func:`nonlinear_coefficients` of a law ``F(q, v, a)``: ``a = w^2 Edd xs`` with
+    ``Edd = -k^2 E`` per harmonic column, ``dG/dx`` gains ``P (dF/da w^2 Edd)`` and
+    ``dG/dw`` gains ``P (2 w dF/da . q''_tau)``."""
+    k2 = ((np.arange(aft.E.shape[1]) + 1) // 2) ** 2
+    Edd = -aft.E * k2
+    ddq_tau = Edd @ xs
+    f, dfq, dfv, dfa = law.force_jacobians(q, w * dq_tau, w * w * ddq_tau)
+    f = np.asarray(f, dtype=float)
+    if not np.all(np.isfinite(f)):
+        raise FloatingPointError("non-finite nonlinear force in AFT")
+    G = aft.P @ f
+    if not jac:
+        return NonlinearCoefficients(G, None, None, q)
+    N, m = q.shape
+    nh = aft.E.shape[1]
+    T = (dfq[..., None] * aft.E[:, None, None, :] + w * dfv[..., None] * aft.Ed[:, None, None, :]
+         + w * w * dfa[..., None] * Edd[:, None, None, :])
+    dG = (aft.P @ T.reshape(N, -1)).reshape(nh, m, m, nh).transpose(0, 1, 3, 2)
+    dGdw = aft.P @ (np.einsum("nij,nj->ni", dfv, dq_tau)
+                    + 2.0 * w * np.einsum("nij,nj->ni", dfa, ddq_tau))
+    return NonlinearCoefficients(G, dG, dGdw, q)
+
+
 def nonlinear_samples(problem: PeriodicProblem, aft: AFTMatrices, xs: FloatArray,
                       w: float, jac: bool = True, lam: float | None = None
                       ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
@@ -90,6 +118,9 @@ def nonlinear_samples(problem: PeriodicProblem, aft: AFTMatrices, xs: FloatArray
     dF/dv (N, m, m), dq/dtau (N, m))``, C-contiguous (dF/dq, dF/dv of shape (1, m, m)
     and not computed when not jac)."""
     law = law_at(problem, lam)
+    if law.force_jacobians is not None:
+        raise ValueError(f"the force of {problem.name!r} depends on the acceleration: "
+                         "its samples need the compiled inertial kernel (nl_inertial_kernel)")
     dq_tau = aft.Ed @ xs
     q, v = aft.E @ xs, w * dq_tau
     if jac and law.force_jacobian is not None:

@@ -345,7 +345,9 @@ class RotorSystem:
             nl_force=el.force, nl_jacobian=el.jacobian, nl_force_jacobian=el.force_and_jacobian,
             nl_kernel=el.kernel, nl_kernel_params=el.kernel_params, scaling=self.dof_scale(),
             nl_limit=el.limit if limited else None,
-            name=f"rotor response in {parameter}", nl_at=nl_at)
+            name=f"rotor response in {parameter}", nl_at=nl_at,
+            nl_force_jacobians=el.force_and_jacobians if el.inertial else None,
+            nl_inertial_kernel=el.inertial_kernel)
 
     def _check_element_parameter(self, par) -> None:
         """ConfigError unless the element of an ``"element"`` parameter exists and has the
@@ -451,7 +453,8 @@ def _law_at(elements: ElementSet, name: str, element: str | None, value: float
     element named ``element``) at ``value``, with ``dF/dvalue``."""
     el = elements.with_parameter(name, float(value), element=element)
     return NonlinearLaw(el.force, el.jacobian, el.force_and_jacobian, el.kernel_params,
-                        functools.partial(el.dforce, name=name, element=element))
+                        functools.partial(el.dforce, name=name, element=element),
+                        el.force_and_jacobians if el.inertial else None)
 
 
 def _time_varying(base: BaseMotion) -> tuple[str, str]:

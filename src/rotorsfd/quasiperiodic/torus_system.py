@@ -98,6 +98,11 @@ def torus_problem(system: RotorSystem, parameter: str = "speed",
                           " or ".join(PARAMETERS))
     if parameter != "speed" and not (speed is not None and speed > 0):
         raise ConfigError("speed", speed, f"continuing in {parameter} needs a speed > 0")
+    for e in system.elements:
+        if e.inertial:
+            raise ConfigError(f"elements.{e.name}.fluid_inertia", True, "the quasi-periodic "
+                              "(torus) response does not take a force of the acceleration "
+                              "yet: set it to false")
     w_b = base_frequency(system)
     r, basis = system.rotor, system.basis
     n = system.n_dof

@@ -28,9 +28,13 @@ from numpy.typing import NDArray
 from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.stability.branch_options import REDUCED_METHODS, StabilityOptions
 from rotorsfd.stability.floquet import FloquetResult
-from rotorsfd.stability.hill import fourier_coefficients, hill_floquet
+from rotorsfd.stability.hill import (
+    fourier_coefficients,
+    hill_floquet,
+    sampled_first_order_coefficients,
+)
 from rotorsfd.stability.monodromy import floquet_multipliers
-from rotorsfd.stability.orbit import orbit_floquet, orbit_samples
+from rotorsfd.stability.orbit import inertial_jacobians, orbit_floquet, orbit_samples
 from rotorsfd.stability.outside import averaged_eigenvalues, exact_multipliers, largest_modulus
 from rotorsfd.stability.reduction import FixedInterfaceBasis, ReducedModel
 
@@ -128,7 +132,7 @@ class FloquetEvaluator:
         return red
 
     def outside(self, red: ReducedModel, period: float, Jq: NDArray, Jv: NDArray,
-                endpoint: bool = True) -> dict[str, float | int]:
+                endpoint: bool = True, Ja: NDArray | None = None) -> dict[str, float | int]:
         """The modes above the cut-off of the last :meth:`reduced` model, from the averaged
         model (:mod:`rotorsfd.stability.outside`; ``Jq, Jv`` the Jacobian samples of one
         period, ``t = T`` included unless ``endpoint=False``): ``max_multiplier_outside`` (largest
@@ -137,7 +141,8 @@ class FloquetEvaluator:
         averaged model; sparse: its Ritz values on the Craig-Bampton basis extended to
         :data:`OUTSIDE_FACTOR` x the cut-off (the constraint modes carry the elements'
         coupling; fixed-interface modes found by the same Lanczos run), modes in
-        ``(omega_cut, ~OUTSIDE_FACTOR omega_cut)``."""
+        ``(omega_cut, ~OUTSIDE_FACTOR omega_cut)``; an added mass ``Ja`` (fluid inertia)
+        averaged into M."""
         M, D, K = self._lin
         Jq, Jv = np.asarray(Jq), np.asarray(Jv)
         if endpoint:      # t = 0 and t = T: one sample of the period
@@ -149,6 +154,11 @@ class FloquetEvaluator:
             nl = ext.nl_dofs
         else:
             nl = self.nl
+        if Ja is not None:
+            Ja = np.asarray(Ja)
+            Ja = (Ja[:-1] if endpoint else Ja).mean(axis=0)
+            M = M.copy()
+            M[np.ix_(nl, nl)] = M[np.ix_(nl, nl)] - Ja
         lam = averaged_eigenvalues(M, D, K, nl, Jq, Jv, omega_max=self._cut)
         return {"max_multiplier_outside": largest_modulus(exact_multipliers(lam, period)),
                 "n_modes": int(red.omegas.size), "omega_cut": float(self._cut)}
@@ -187,29 +197,39 @@ class FloquetEvaluator:
         Xnl = X[:, self.nl] if X.shape[1] == p.n_dof else X
         red = self.reduced(lam, T)
         extra: dict[str, float | int] = {}
-        cache: dict[int, tuple[NDArray, NDArray]] = {}
+        cache: dict[int, tuple[NDArray, NDArray, NDArray | None]] = {}
 
         def run(n: int) -> FloquetResult:
             if n not in cache:
                 if 2 * n in cache:
-                    Jq, Jv = cache[2 * n]
-                    cache[n] = (Jq[::2], Jv[::2])
+                    cache[n] = tuple(None if J is None else J[::2] for J in cache[2 * n])
                 else:
-                    cache[n] = p.law(lam).jacobian(*orbit_samples(Xnl, w, n))
-            Jq, Jv = cache[n]
-            res = self._reduced_newmark(red, T, Jq, Jv, n, p.n_dof)
+                    cache[n] = self._jacobians(lam, Xnl, w, n)
+            Jq, Jv, Ja = cache[n]
+            res = self._reduced_newmark(red, T, Jq, Jv, n, p.n_dof, Ja)
             if not extra:
-                extra.update(self.outside(red, T, Jq, Jv))
+                extra.update(self.outside(red, T, Jq, Jv, Ja=Ja))
             res.info.update(extra)
             return res
 
         return run
 
+    def _jacobians(self, lam: float, Xnl: NDArray, w: float, n: int
+                   ) -> tuple[NDArray, NDArray, NDArray | None]:
+        """``(dF/dq, dF/dv, dF/da or None)`` on the orbit's n + 1 samples: the added mass
+        ``dF/da`` of a force of the acceleration (fluid inertia), None without."""
+        law = self.problem.law(lam)
+        if law.force_jacobians is not None:
+            return inertial_jacobians(law.force_jacobians, Xnl, w, n)
+        Jq, Jv = law.jacobian(*orbit_samples(Xnl, w, n))
+        return Jq, Jv, None
+
     def _reduced_newmark(self, red: ReducedModel, T: float, Jq: NDArray, Jv: NDArray,
-                         n_intervals: int, n_dof: int) -> FloquetResult:
+                         n_intervals: int, n_dof: int, Ja: NDArray | None = None
+                         ) -> FloquetResult:
         o = self.options
         res = floquet_multipliers(red.M, red.D, red.K, T, nl_dofs=red.nl_dofs, dFdq=Jq,
-                                  dFdv=Jv, n_intervals=n_intervals, reduction=None,
+                                  dFdv=Jv, dFda=Ja, n_intervals=n_intervals, reduction=None,
                                   scheme=o.method.removesuffix("-cb"),
                                   rho_inf=o.rho_inf, tol=o.tol)
         res.method += "-cb"
@@ -228,25 +248,36 @@ class FloquetEvaluator:
             M, D, K = p.matrices(lam)
             res = orbit_floquet(M, D, K, Xnl, w, self.nl, p.law(lam).jacobian,
                                 method=o.method,
-                                n_intervals=n_intervals, rho_inf=o.rho_inf, tol=o.tol)
+                                n_intervals=n_intervals, rho_inf=o.rho_inf, tol=o.tol,
+                                nl_jacobians=p.law(lam).force_jacobians)
             # the full basis: every interior DOF in it, nothing outside
             res.info.update(n_modes=p.n_dof - self.nl.size, max_multiplier_outside=0.0)
             return res
         red = self.reduced(lam, T)    # the basis of the options' M, whatever the step
         if not o.method.startswith("hill"):
-            Jq, Jv = p.law(lam).jacobian(*orbit_samples(Xnl, w, n_intervals))
-            res = self._reduced_newmark(red, T, Jq, Jv, n_intervals, p.n_dof)
-            res.info.update(self.outside(red, T, Jq, Jv))
+            Jq, Jv, Ja = self._jacobians(lam, Xnl, w, n_intervals)
+            res = self._reduced_newmark(red, T, Jq, Jv, n_intervals, p.n_dof, Ja)
+            res.info.update(self.outside(red, T, Jq, Jv, Ja=Ja))
             return res
         H = o.n_harmonics if o.n_harmonics is not None else max(8, X.shape[0] - 1)
         L = 2 * H
+        law = p.law(lam)
+        hill_method = "koopman" if o.method == "hill-koopman" else "symmetric"
+        if law.force_jacobians is not None:   # the added mass: A(t) from its samples
+            Jq, Jv, Ja = inertial_jacobians(law.force_jacobians, Xnl, w, 4 * (2 * L + 1),
+                                            endpoint=False)
+            res = hill_floquet(red.M, red.D, red.K, w, n_harmonics=H, method=hill_method,
+                               tol=o.tol, A_hat=sampled_first_order_coefficients(
+                                   red.M, red.D, red.K, red.nl_dofs, Jq, Jv, Ja, L))
+            res.info.update(n_dof_full=p.n_dof, **self.outside(red, T, Jq, Jv,
+                                                               endpoint=False, Ja=Ja))
+            return res
         q, v = orbit_samples(Xnl, w, 4 * (2 * L + 1), endpoint=False)
-        Jq, Jv = p.law(lam).jacobian(q, v)
+        Jq, Jv = law.jacobian(q, v)
         res = hill_floquet(red.M, red.D, red.K, w, nl_dofs=red.nl_dofs,
                            dFdq_hat=fourier_coefficients(Jq, L),
                            dFdv_hat=fourier_coefficients(Jv, L), n_harmonics=H,
-                           method="koopman" if o.method == "hill-koopman" else "symmetric",
-                           tol=o.tol)
+                           method=hill_method, tol=o.tol)
         res.info.update(n_dof_full=p.n_dof, **self.outside(red, T, Jq, Jv, endpoint=False))
         return res
 

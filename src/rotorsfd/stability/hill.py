@@ -109,6 +109,34 @@ def first_order_coefficients(M: ArrayLike, D: ArrayLike, K: ArrayLike,
     return A
 
 
+def sampled_first_order_coefficients(M: ArrayLike, D: ArrayLike, K: ArrayLike,
+                                     nl_dofs: ArrayLike, dFdq: ArrayLike, dFdv: ArrayLike,
+                                     dFda: ArrayLike, n_harmonics: int
+                                     ) -> NDArray[np.complex128]:
+    """Two-sided coefficients (k = -L..L) of ``A(t)`` with a time-varying mass
+    ``M(t) = M - P dFda(t) P^T`` (a force of the acceleration, fluid inertia):
+    ``A = [[0, I], [-M(t)^-1 K(t), -M(t)^-1 D(t)]]`` formed at the samples of one period
+    (``t_j = j T / N``, N > 2L, axis 0 of the Jacobian samples) and transformed (the
+    inverse mass makes A's series infinite: the samples' aliasing is its truncation)."""
+    M, D, K = (np.atleast_2d(np.asarray(x, float)) for x in (M, D, K))
+    n = M.shape[0]
+    nl = np.asarray(nl_dofs, dtype=np.intp).ravel()
+    Jq, Jv, Ja = (np.asarray(x, float) for x in (dFdq, dFdv, dFda))
+    N = Jq.shape[0]
+    if N <= 2 * n_harmonics:
+        raise ConfigError("samples", N, f"more than 2L = {2 * n_harmonics} samples")
+    A = np.zeros((N, 2 * n, 2 * n))
+    A[:, :n, n:] = np.eye(n)
+    block = np.ix_(nl, nl)
+    for j in range(N):
+        Mj, Dj, Kj = M.copy(), D.copy(), K.copy()
+        Mj[block] -= Ja[j]
+        Dj[block] -= Jv[j]
+        Kj[block] -= Jq[j]
+        A[j, n:, :] = -np.linalg.solve(Mj, np.hstack([Kj, Dj]))
+    return two_sided(fourier_coefficients(A, n_harmonics))
+
+
 LADDER_TOL = 1e-2
 """An exponent is resolved by the Hill truncation when its ladder defect (module
 docstring, units of w) is at most this; it is spurious above ``SPURIOUS_DEFECT``."""
@@ -176,15 +204,20 @@ def hill_floquet(M: ArrayLike, D: ArrayLike, K: ArrayLike, omega: float, *,
                  nl_dofs: ArrayLike = (), dFdq_hat: ArrayLike | None = None,
                  dFdv_hat: ArrayLike | None = None, n_harmonics: int = 10,
                  method: Literal["symmetric", "koopman"] = "symmetric",
-                 tol: float = STABILITY_TOL) -> FloquetResult:
+                 tol: float = STABILITY_TOL, A_hat: ArrayLike | None = None
+                 ) -> FloquetResult:
     """Floquet multipliers of ``M q'' + (D - P C_nl P^T) q' + (K - P K_nl P^T) q = 0``.
 
     ``dFdq_hat``, ``dFdv_hat``: one-sided Fourier coefficients (L+1, m, m) of the
     nonlinear Jacobians on the orbit (``fourier_coefficients`` of samples), fundamental
     frequency ``omega`` (period ``T = 2 pi / omega``). ``n_harmonics``: Hill truncation H
-    (coefficients up to ``2H`` are used when given).
+    (coefficients up to ``2H`` are used when given). ``A_hat``: the first-order system's
+    two-sided coefficients instead (``sampled_first_order_coefficients``: a time-varying
+    added mass).
     """
-    A_hat = first_order_coefficients(M, D, K, nl_dofs, dFdq_hat, dFdv_hat)
+    if A_hat is None:
+        A_hat = first_order_coefficients(M, D, K, nl_dofs, dFdq_hat, dFdv_hat)
+    A_hat = np.asarray(A_hat, dtype=complex)
     if not np.all(np.isfinite(A_hat)):
         raise ConvergenceError("Hill matrix not finite: check the Jacobian coefficients")
     Ns = A_hat.shape[1]

@@ -115,8 +115,18 @@ def _prepare(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, n_interval
     return M, D, K, np.asarray(nl_dofs, dtype=np.intp).ravel(), N, period / N
 
 
-def _trace_MinvD(M: NDArray, D: NDArray, nl: NDArray, Cn: NDArray) -> NDArray:
-    """tr(M^-1 (D - P C_nl(t_j) P^T)) at every sample: the Liouville integrand."""
+def _trace_MinvD(M: NDArray, D: NDArray, nl: NDArray, Cn: NDArray,
+                 Mn: NDArray | None = None) -> NDArray:
+    """tr(M^-1 (D - P C_nl(t_j) P^T)) at every sample: the Liouville integrand (with an
+    added mass ``Mn``, ``M_j = M - P Mn_j P^T`` in place of M)."""
+    if Mn is not None:
+        out = np.empty(Cn.shape[0])
+        for j in range(Cn.shape[0]):
+            Mj, Dj = M.copy(), D.copy()
+            Mj[np.ix_(nl, nl)] -= Mn[j]
+            Dj[np.ix_(nl, nl)] -= Cn[j]
+            out[j] = float(np.trace(np.linalg.solve(Mj, Dj)))
+        return out
     Minv = np.linalg.inv(M)
     tr0 = float(np.sum(Minv * D.T))
     if not nl.size:
@@ -148,7 +158,7 @@ def _newmark_numpy(AB: NDArray, AE: NDArray, Z: NDArray, G: NDArray, nl: NDArray
 def _generalized_alpha_numpy(SM: NDArray, SD: NDArray, SK: NDArray, Z: NDArray,
                              G: NDArray, nl: NDArray, Kn: NDArray, Cn: NDArray,
                              A: NDArray, h: float, am: float, af: float, g: float,
-                             b: float) -> NDArray:
+                             b: float, Mn: NDArray | None = None) -> NDArray:
     """The generalized-alpha recursion in numpy (the reference of
     ``generalized_alpha_loop``): ``[X; V]``."""
     n, m, N = SM.shape[0], nl.size, Kn.shape[0] - 1
@@ -165,6 +175,9 @@ def _generalized_alpha_numpy(SM: NDArray, SD: NDArray, SK: NDArray, Z: NDArray,
                   + (1 - af) * (Cn[j + 1] @ Vp[nl] + Kn[j + 1] @ Xp[nl]))
             Y += Z @ rP
             W = (1 - af) * (g * h * Cn[j + 1] + b * h**2 * Kn[j + 1])
+            if Mn is not None:   # the added mass: M_j = M - P Mn_j P^T
+                Y += Z @ (am * Mn[j] @ A[nl])
+                W = W + (1 - am) * Mn[j + 1]
             Y += Z @ (W @ np.linalg.solve(Im - G @ W, Y[nl]))
         A = Y
         X = Xp + b * h**2 * A
@@ -175,7 +188,8 @@ def _generalized_alpha_numpy(SM: NDArray, SD: NDArray, SK: NDArray, Z: NDArray,
 def monodromy_newmark(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, *,
                       nl_dofs: ArrayLike = (), dFdq: JacobianInput = None,
                       dFdv: JacobianInput = None, n_intervals: int = 400,
-                      tol: float = STABILITY_TOL, compiled: bool = True) -> FloquetResult:
+                      tol: float = STABILITY_TOL, compiled: bool = True,
+                      dFda: JacobianInput = None) -> FloquetResult:
     """Floquet multipliers by average-acceleration Newmark (module docstring recursion).
 
     Parameters
@@ -185,6 +199,11 @@ def monodromy_newmark(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, *
     nl_dofs : the m DOFs where the nonlinear force acts.
     dFdq, dFdv : ``dF_nl/dq``, ``dF_nl/dq'`` on the orbit (see ``JacobianInput``).
     n_intervals : N (paper: 400).
+    dFda : ``dF_nl/dq''`` on the orbit (a force of the acceleration: the added mass, mass
+        ``M - P dFda(t) P^T``), None without; then the same average-acceleration scheme
+        runs with the acceleration carried (the generalized-alpha recursion with
+        ``a_m = a_f = 0, beta = 1/4, gamma = 1/2``: the mass varies, so it cannot be
+        eliminated with the constant M).
     compiled : the recursion in one compiled loop
         (:func:`rotorsfd.stability.monodromy_kernels.newmark_loop`, the same arithmetic);
         False: the numpy loop (the reference, ~50x slower on 8 DOF).
@@ -195,6 +214,14 @@ def monodromy_newmark(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, *
     n, m = M.shape[0], nl.size
     Kn = sample_jacobian(dFdq, period, N, m)
     Cn = sample_jacobian(dFdv, period, N, m)
+    if dFda is not None and m:
+        Mn = sample_jacobian(dFda, period, N, m)
+        Phi = _finite(_alpha_recursion(M, D, K, nl, h, Kn, Cn, Mn, 0.0, 0.0, 0.5, 0.25,
+                                       compiled), "newmark", period)
+        mu = sort_multipliers(np.linalg.eigvals(Phi))
+        trace = _trace_MinvD(M, D, nl, Cn, Mn)
+        return FloquetResult(mu, float(period), "newmark", liouville_log_det(trace, period),
+                             Phi, tol, {"n_intervals": N, "n_dof": n})
 
     S0 = 4.0 / h**2 * M + 2.0 / h * D + K
     S0inv = np.linalg.inv(S0)
@@ -214,11 +241,39 @@ def monodromy_newmark(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float, *
                          Phi, tol, {"n_intervals": N, "n_dof": n})
 
 
+def _alpha_recursion(M: NDArray, D: NDArray, K: NDArray, nl: NDArray, h: float,
+                     Kn: NDArray, Cn: NDArray, Mn: NDArray | None, am: float, af: float,
+                     g: float, b: float, compiled: bool) -> NDArray:
+    """The monodromy ``[X; V]`` of the alpha recursion (``monodromy_generalized_alpha``)
+    with the Jacobian samples ``Kn, Cn`` and the added mass ``Mn`` (or None)."""
+    m = nl.size
+    S0 = (1 - am) * M + (1 - af) * (g * h * D + b * h**2 * K)
+    S0inv = np.linalg.inv(S0)
+    SM, SD, SK = S0inv @ M, S0inv @ D, S0inv @ K
+    Z = np.ascontiguousarray(S0inv[:, nl])
+    G = np.ascontiguousarray(Z[nl, :])
+    Mt0, Dt0, Kt0 = M.copy(), D.copy(), K.copy()
+    if m:
+        Dt0[np.ix_(nl, nl)] -= Cn[0]
+        Kt0[np.ix_(nl, nl)] -= Kn[0]
+        if Mn is not None:
+            Mt0[np.ix_(nl, nl)] -= Mn[0]
+    A0 = -np.linalg.solve(Mt0, np.hstack([Kt0, Dt0]))  # -M_0^-1 (D_0 V + K_0 X)
+    if compiled:
+        c = np.ascontiguousarray  # one compiled specialisation (C layout) for every input
+        return generalized_alpha_loop(c(SM), c(SD), c(SK), Z, G, nl.astype(np.int64), Kn,
+                                      Cn, c(A0), float(h), am, af, g, b,
+                                      np.zeros((1, m, m)) if Mn is None else c(Mn),
+                                      Mn is not None)
+    return _generalized_alpha_numpy(SM, SD, SK, Z, G, nl, Kn, Cn, A0, h, am, af, g, b, Mn)
+
+
 def monodromy_generalized_alpha(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float,
                                 *, nl_dofs: ArrayLike = (), dFdq: JacobianInput = None,
                                 dFdv: JacobianInput = None, n_intervals: int = 400,
                                 rho_inf: float = 0.6, tol: float = STABILITY_TOL,
-                                compiled: bool = True) -> FloquetResult:
+                                compiled: bool = True, dFda: JacobianInput = None
+                                ) -> FloquetResult:
     """Floquet multipliers by generalized-alpha (Chung & Hulbert 1993), second order.
 
     ``alpha_m = (2 rho - 1)/(rho + 1)``, ``alpha_f = rho/(rho + 1)``,
@@ -237,7 +292,8 @@ def monodromy_generalized_alpha(M: ArrayLike, D: ArrayLike, K: ArrayLike, period
     default 0.6: on the paper rotor at N = 400 it brings the max |mu| of the full model
     to the SFD-coupled multiplier of the reference (6e-5 off) while the partially
     resolved modes (``omega h ~ 0.3..3``) drop below it; the modal error constant grows
-    by ~1.5 from rho_inf = 0.99 to 0.5 (tests). ``compiled``: as ``monodromy_newmark``.
+    by ~1.5 from rho_inf = 0.99 to 0.5 (tests). ``compiled``, ``dFda`` (the added mass
+    ``M_j = M - P dFda_j P^T`` in the balance): as ``monodromy_newmark``.
     """
     if not 0.0 <= rho_inf < 1.0:
         raise ConfigError("rho_inf", rho_inf, "0 <= rho_inf < 1")
@@ -249,25 +305,11 @@ def monodromy_generalized_alpha(M: ArrayLike, D: ArrayLike, K: ArrayLike, period
     b = 0.25 * (1 - am + af) ** 2
     Kn = sample_jacobian(dFdq, period, N, m)
     Cn = sample_jacobian(dFdv, period, N, m)
-    S0 = (1 - am) * M + (1 - af) * (g * h * D + b * h**2 * K)
-    S0inv = np.linalg.inv(S0)
-    SM, SD, SK = S0inv @ M, S0inv @ D, S0inv @ K
-    Z = np.ascontiguousarray(S0inv[:, nl])
-    G = np.ascontiguousarray(Z[nl, :])
-    Dt0, Kt0 = D.copy(), K.copy()
-    if m:
-        Dt0[np.ix_(nl, nl)] -= Cn[0]
-        Kt0[np.ix_(nl, nl)] -= Kn[0]
-    A0 = -np.linalg.solve(M, np.hstack([Kt0, Dt0]))  # -M^-1 (D_0 V + K_0 X), X=[I 0], V=[0 I]
-    if compiled:
-        c = np.ascontiguousarray  # one compiled specialisation (C layout) for every input
-        Phi = generalized_alpha_loop(c(SM), c(SD), c(SK), Z, G, nl.astype(np.int64), Kn, Cn,
-                                     c(A0), float(h), am, af, g, b)
-    else:
-        Phi = _generalized_alpha_numpy(SM, SD, SK, Z, G, nl, Kn, Cn, A0, h, am, af, g, b)
+    Mn = sample_jacobian(dFda, period, N, m) if dFda is not None and m else None
+    Phi = _alpha_recursion(M, D, K, nl, h, Kn, Cn, Mn, am, af, g, b, compiled)
     Phi = _finite(Phi, "generalized-alpha", period)
     mu = sort_multipliers(np.linalg.eigvals(Phi))
-    trace = _trace_MinvD(M, D, nl, Cn)
+    trace = _trace_MinvD(M, D, nl, Cn, Mn)
     return FloquetResult(mu, float(period), "generalized-alpha",
                          liouville_log_det(trace, period), Phi, tol,
                          {"n_intervals": N, "n_dof": n, "rho_inf": rho_inf})
@@ -321,7 +363,7 @@ def floquet_multipliers(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float,
                         reduction: str | None = "craig-bampton", n_modes: int | None = None,
                         omega_max: float | None = None, scheme: str = "newmark",
                         rho_inf: float = 0.6, tol: float = STABILITY_TOL,
-                        compiled: bool = True) -> FloquetResult:
+                        compiled: bool = True, dFda: JacobianInput = None) -> FloquetResult:
     """Floquet multipliers by Newmark, on the full model or a Craig-Bampton reduced one.
 
     ``reduction=None`` is the paper's literal method (full model, N = 400).
@@ -335,6 +377,8 @@ def floquet_multipliers(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float,
     that sit, undamped, at ``|mu| ~ 1`` in the exact model as well.
     ``scheme='generalized-alpha'`` (with ``rho_inf``) damps unresolved modes instead.
     ``compiled=False`` runs the numpy reference loop (same multipliers to round-off).
+    ``dFda``: the added mass of a force of the acceleration on the orbit (the reduction
+    keeps the nonlinear DOFs physical, so it acts on the same rows), None without.
     """
     if scheme == "newmark":
         def run(*a, **k):
@@ -347,14 +391,14 @@ def floquet_multipliers(M: ArrayLike, D: ArrayLike, K: ArrayLike, period: float,
         raise ConfigError("scheme", scheme, "'newmark' or 'generalized-alpha'")
     if reduction is None:
         return run(M, D, K, period, nl_dofs=nl_dofs, dFdq=dFdq, dFdv=dFdv,
-                   n_intervals=n_intervals, tol=tol)
+                   n_intervals=n_intervals, tol=tol, dFda=dFda)
     if reduction != "craig-bampton":
         raise ConfigError("reduction", reduction, "None or 'craig-bampton'")
     if n_modes is None and omega_max is None:
         omega_max = 0.25 * n_intervals / period
     red = craig_bampton(M, D, K, nl_dofs, n_modes=n_modes, omega_max=omega_max)
     res = run(red.M, red.D, red.K, period, nl_dofs=red.nl_dofs, dFdq=dFdq, dFdv=dFdv,
-              n_intervals=n_intervals, tol=tol)
+              n_intervals=n_intervals, tol=tol, dFda=dFda)
     res.method += "-cb"
     res.info.update(n_dof_full=np.asarray(M).shape[0], n_modes=red.omegas.size,
                     omega_max_kept=float(red.omegas.max()) if red.omegas.size else 0.0)
@@ -380,22 +424,24 @@ class MonodromyOptions:
 
 def system_multipliers(system: SecondOrderSystem, dFdq: JacobianInput = None,
                        dFdv: JacobianInput = None,
-                       options: MonodromyOptions | None = None) -> FloquetResult:
+                       options: MonodromyOptions | None = None,
+                       dFda: JacobianInput = None) -> FloquetResult:
     """Floquet multipliers of a periodic orbit of a
     :class:`~rotorsfd.second_order.SecondOrderSystem` with constant matrices (the
     perturbation equation of the module docstring over its period ``T = 2 pi / Omega``):
     ``dFdq``, ``dFdv`` the force law's Jacobians on the orbit (:data:`JacobianInput`),
-    ``options`` a :class:`MonodromyOptions`. A law with an acceleration Jacobian (fluid
-    inertia) needs its added mass in the recursion, which the loops do not take yet."""
+    ``options`` a :class:`MonodromyOptions`; ``dFda`` the acceleration Jacobian on the
+    orbit of a law with fluid inertia (its added mass; required for such a law)."""
     o = options if options is not None else MonodromyOptions()
     if system.time_varying is not None and system.time_varying.n_terms:
         raise ConfigError("base", "time-varying", "the orbit's monodromy needs constant "
                           "matrices (a constant base motion)")
-    if system.has_inertia:
-        raise NotImplementedError("a force law with an acceleration Jacobian (fluid "
-                                  "inertia) needs the added mass in the monodromy")
+    if system.has_inertia and dFda is None:
+        raise ValueError("a force law with fluid inertia needs its acceleration Jacobian "
+                         "dFda on the orbit (the added mass of the monodromy)")
     return floquet_multipliers(system.M, system.D, system.K, system.period,
                                nl_dofs=system.nl_dofs, dFdq=dFdq, dFdv=dFdv,
                                n_intervals=o.n_intervals, reduction=o.reduction,
                                n_modes=o.n_modes, omega_max=o.omega_max, scheme=o.scheme,
-                               rho_inf=o.rho_inf, tol=o.tol, compiled=o.compiled)
+                               rho_inf=o.rho_inf, tol=o.tol, compiled=o.compiled,
+                               dFda=dFda)

@@ -147,9 +147,14 @@ def newmark_loop(AB: np.ndarray, AE: np.ndarray, Z: np.ndarray, G: np.ndarray,
 def generalized_alpha_loop(SM: np.ndarray, SD: np.ndarray, SK: np.ndarray, Z: np.ndarray,
                            G: np.ndarray, nl: np.ndarray, Kn: np.ndarray, Cn: np.ndarray,
                            A0: np.ndarray, h: float, am: float, af: float, g: float,
-                           b: float) -> np.ndarray:
+                           b: float, Mn: np.ndarray, inertial: bool) -> np.ndarray:
     """Monodromy ``[X; V]`` (2n, 2n) of generalized-alpha over N = len(Kn) - 1 steps from
-    ``X = [I 0]``, ``V = [0 I]``, ``A = A0`` (``monodromy_generalized_alpha``)."""
+    ``X = [I 0]``, ``V = [0 I]``, ``A = A0`` (``monodromy_generalized_alpha``).
+
+    ``Mn`` (N+1, m, m): the added mass ``dF/da`` of a force of the acceleration on the
+    orbit, the mass ``M - P Mn(t) P^T``: ``r += a_m Mn_j A[nl]`` and
+    ``W += (1 - a_m) Mn_{j+1}`` in the rank-m update when ``inertial``; otherwise (the
+    usual case) ``Mn`` is a placeholder and skipped (one compiled specialisation)."""
     n = SM.shape[0]
     m = nl.shape[0]
     p = 2 * n
@@ -204,6 +209,14 @@ def generalized_alpha_loop(SM: np.ndarray, SD: np.ndarray, SK: np.ndarray, Z: np
                 for e in range(m):
                     W[a, e] = (1.0 - af) * (g * h * Cn[j + 1, a, e]
                                             + b * h * h * Kn[j + 1, a, e])
+            if inertial:   # the added mass (docstring)
+                for a in range(m):
+                    for e in range(m):
+                        k = nl[e]
+                        ma = am * Mn[j, a, e]
+                        W[a, e] += (1.0 - am) * Mn[j + 1, a, e]
+                        for c in range(p):
+                            rP[a, c] += ma * R[k, c]
             _rank_m_update(Y, Z, G, W, nl, rP, IGW, u)
         for i in range(n):
             for c in range(p):

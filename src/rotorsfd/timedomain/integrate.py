@@ -17,9 +17,10 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from rotorsfd.errors import ConvergenceError, JournalContactError
+from rotorsfd.kernels import as_inertial_cfunc
 from rotorsfd.timedomain import newmark as nm
 from rotorsfd.timedomain.forcing import Forcing, TimeVaryingMatrices, sample_coefficient
-from rotorsfd.timedomain.kernels import as_cfunc, null_kernel
+from rotorsfd.timedomain.kernels import as_cfunc, null_inertial_kernel, null_kernel
 
 if TYPE_CHECKING:
     from rotorsfd.second_order import SecondOrderSystem
@@ -71,10 +72,12 @@ class StepState:
     G: np.ndarray
     T: np.ndarray
     step: int
+    #: acceleration of the nonlinear DOFs (an inertial force law's input)
+    Anl: np.ndarray | None = None
 
     def copy(self) -> StepState:
         return StepState(self.X.copy(), self.F.copy(), self.G.copy(), self.T.copy(),
-                         self.step)
+                         self.step, None if self.Anl is None else self.Anl.copy())
 
 
 @dataclass
@@ -138,6 +141,8 @@ class PreparedSystem:
     tvkind: np.ndarray
     tvmat: np.ndarray
     PX: np.ndarray
+    #: the compiled inertial kernel (a force of the acceleration too), None without
+    kernel_a: Any = None
 
     @property
     def n_dof(self) -> int:
@@ -167,9 +172,12 @@ def _vector(a: Any, n: int, name: str) -> np.ndarray:
 def prepare(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: Any,
             forcing: Forcing | None, dt: float, n_steps: int, *, t0: float = 0.0,
             time_varying: TimeVaryingMatrices | None = None, method: str = "newmark",
-            alpha: float = 0.05, rho_inf: float = 0.9) -> PreparedSystem:
+            alpha: float = 0.05, rho_inf: float = 0.9, inertial_kernel: Any = None
+            ) -> PreparedSystem:
     """Validate the inputs, factorise the effective matrix and sample the coefficients
-    on the grid ``t_k = t0 + k dt``, ``k = 0..n_steps``."""
+    on the grid ``t_k = t0 + k dt``, ``k = 0..n_steps``. ``inertial_kernel``: the law's
+    inertial kernel when its force depends on the acceleration (then used instead of
+    ``kernel``, :mod:`rotorsfd.kernels`)."""
     M = _matrix(M, None, "M")
     n = M.shape[0]
     D = _matrix(D, n, "D")
@@ -227,7 +235,8 @@ def prepare(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: Any,
         ops=ops, kernel=kern, params=params, M=M, D=D, K=K, n_steps=int(n_steps),
         t0=float(t0), omega=float(forcing.omega), f0=f0, hmult=hmult, fc=fc, fs=fs, fj=fj,
         KF0=np.ascontiguousarray(ops.solve(f0)), KFc=kinv(fc), KFs=kinv(fs), KFj=kinv(fj),
-        scoef=scoef, tvcoef=tvcoef, tvkind=tvkind, tvmat=tvmat, PX=PX)
+        scoef=scoef, tvcoef=tvcoef, tvkind=tvkind, tvmat=tvmat, PX=PX,
+        kernel_a=None if inertial_kernel is None else as_inertial_cfunc(inertial_kernel))
 
 
 def prepare_system(system: SecondOrderSystem, dt: float, n_steps: int, *,
@@ -237,13 +246,10 @@ def prepare_system(system: SecondOrderSystem, dt: float, n_steps: int, *,
     matrices, nonlinear DOFs, force kernel, forcing and time-varying terms) with the
     scheme of ``options`` (:class:`StepOptions` or its keywords): the compiled loop's
     arrays packed once."""
-    if system.has_inertia:
-        raise NotImplementedError("a force law with an acceleration Jacobian (fluid "
-                                  "inertia) needs the added mass in the step's iteration "
-                                  "matrix, which the compiled loop does not take yet")
     return prepare(system.M, system.D, system.K, system.nl_dofs, system.kernel,
                    system.params, system.forcing, dt, n_steps, t0=t0,
-                   time_varying=system.time_varying, **StepOptions.of(options).scheme)
+                   time_varying=system.time_varying, **StepOptions.of(options).scheme,
+                   inertial_kernel=system.inertial_kernel)
 
 
 def force_at_step(ps: PreparedSystem, k: int) -> np.ndarray:
@@ -278,12 +284,30 @@ def initial_state(ps: PreparedSystem, q0: Any, v0: Any, step: int = 0) -> StepSt
     v = _vector(v0, n, "v0")
     m = nl.size
     F = np.zeros(m)
-    if m:
+    Ja = np.zeros((m, m))
+    if m and ps.kernel_a is not None:   # F(q0, v0, 0) and dF/da: F is affine in a
+        status = nm.eval_inertial_kernel(ps.kernel_a, ps.params, np.ascontiguousarray(
+            q[nl]), np.ascontiguousarray(v[nl]), np.zeros(m), F, np.zeros((m, m)),
+            np.zeros((m, m)), Ja)
+        if status != 0:
+            raise contact_error(q[nl], v[nl], ps.t0 + step * ps.ops.dt, step, None)
+    elif m:
         status = nm.eval_kernel(ps.kernel, ps.params, np.ascontiguousarray(q[nl]),
                                 np.ascontiguousarray(v[nl]), F, np.zeros((m, m)),
                                 np.zeros((m, m)))
         if status != 0:
             raise contact_error(q[nl], v[nl], ps.t0 + step * ps.ops.dt, step, None)
+    Anl = None
+    if ps.kernel_a is not None:
+        # a0 from (M - S^T dF/da S) a0 = f + S^T F(q0, v0, 0) - D v0 - K q0
+        Dk, Kk = matrices_at_step(ps, step)
+        g = force_at_step(ps, step)
+        g[nl] += F
+        Me = ps.M.copy()
+        Me[np.ix_(nl, nl)] -= Ja
+        a0 = np.linalg.solve(Me, g - Dk @ v - Kk @ q)
+        Anl = np.ascontiguousarray(a0[nl])
+        F = F + Ja @ Anl
     T = np.zeros(n)
     for p, kind in enumerate(ps.tvkind):
         T -= ps.tvcoef[step, p] * (ps.PX[p] @ (v if kind == 0 else q))
@@ -291,11 +315,14 @@ def initial_state(ps: PreparedSystem, q0: Any, v0: Any, step: int = 0) -> StepSt
     G = ps.ops.solve(f) + ps.ops.B @ F + T
     parts = [q, v]
     if ps.ops.scheme.kind == nm.GENERALIZED_ALPHA:
-        Dk, Kk = matrices_at_step(ps, step)
-        g = f.copy()
-        g[nl] += F
-        parts.append(np.linalg.solve(ps.M, g - Dk @ v - Kk @ q))
-    return StepState(np.concatenate(parts), F, np.ascontiguousarray(G), T, step)
+        if Anl is not None:
+            parts.append(a0)
+        else:
+            Dk, Kk = matrices_at_step(ps, step)
+            g = f.copy()
+            g[nl] += F
+            parts.append(np.linalg.solve(ps.M, g - Dk @ v - Kk @ q))
+    return StepState(np.concatenate(parts), F, np.ascontiguousarray(G), T, step, Anl)
 
 
 def contact_error(y: np.ndarray, vy: np.ndarray, t: float, step: int,
@@ -376,12 +403,24 @@ def run(ps: PreparedSystem, state: StepState, n_steps: int, *,
         ps.tvkind, ps.PX, state.X, state.F, state.G, state.T, k_a, n_steps,
         rd, record_every, record_start, rec_t, rec_q, rec_v,
         poincare_every, poincare_start, pc_t, pc_q, pc_v,
-        newton_rtol, newton_atol, max_newton, tv_rtol, max_tv, info, fail)
+        newton_rtol, newton_atol, max_newton, tv_rtol, max_tv, info, fail,
+        *_inertial_arguments(ps, state))
     state.step = int(info[nm.I_STEP]) if n_steps else k_a
     nr, npc = int(info[nm.I_NREC]), int(info[nm.I_NPC])
     samples = dict(t=rec_t[:nr], q=rec_q[:nr], v=rec_v[:nr], pt=pc_t[:npc], pq=pc_q[:npc],
                    pv=pc_v[:npc], fail=fail)
     return int(status), samples, info
+
+
+def _inertial_arguments(ps: PreparedSystem, state: StepState) -> tuple:
+    """``(kernel_a, inertial, Anl)`` of the compiled loop: the inertial kernel and the
+    nonlinear DOFs' acceleration, or a placeholder that the loop does not call."""
+    if ps.kernel_a is None:
+        return as_inertial_cfunc(null_inertial_kernel), False, np.zeros(ps.nl.size)
+    if state.Anl is None:
+        raise ValueError("the state of an inertial force law needs its nonlinear DOFs' "
+                         "acceleration (initial_state)")
+    return ps.kernel_a, True, state.Anl
 
 
 def integrate(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: Any,
@@ -394,7 +433,7 @@ def integrate(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: Any,
               poincare_every: int | None = None, poincare_start: int | None = None,
               newton_rtol: float = 1e-10, newton_atol: float = 0.0, max_newton: int = 50,
               tv_rtol: float = 1e-12, max_tv: int = 50,
-              on_failure: str = "raise") -> TimeResult:
+              on_failure: str = "raise", inertial_kernel: Any = None) -> TimeResult:
     """Integrate ``M q'' + D(t) q' + K(t) q = f(t) + F_nl(q[nl], q'[nl])`` from ``t0``.
 
     Parameters
@@ -416,6 +455,8 @@ def integrate(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: Any,
         ``record_start``).
     on_failure : ``"raise"`` (contact: ``JournalContactError``; other failures:
         ``ConvergenceError``) or ``"return"`` (``success=False`` and the samples so far).
+    inertial_kernel : the law's inertial kernel when its force depends on the
+        acceleration too (``kernel(q, v, a, params, F, dFdq, dFdv, dFda)``), else None.
     """
     if steps_per_period is not None or n_periods is not None:
         if forcing is None or not forcing.omega > 0.0:
@@ -430,7 +471,8 @@ def integrate(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params: Any,
     if on_failure not in ("raise", "return"):
         raise ValueError(f"on_failure must be 'raise' or 'return', got {on_failure!r}")
     ps = prepare(M, D, K, nl_dofs, kernel, params, forcing, dt, n_steps, t0=t0,
-                 time_varying=time_varying, method=method, alpha=alpha, rho_inf=rho_inf)
+                 time_varying=time_varying, method=method, alpha=alpha, rho_inf=rho_inf,
+                 inertial_kernel=inertial_kernel)
     n = ps.n_dof
     if record_dofs is None:
         rd = ps.nl if ps.nl.size else np.arange(n)
@@ -488,8 +530,7 @@ def integrate_system(system: SecondOrderSystem, q0: Any = 0.0, v0: Any = 0.0, *,
     scheme and tolerances of ``options``; ``kwargs``: the step and the recording
     (``dt, n_steps`` or ``steps_per_period, n_periods``, ``t0``, ``record_dofs``, ...)."""
     o = StepOptions.of(options)
-    if system.has_inertia:
-        prepare_system(system, 1.0, 0)      # the clear error of a law with inertia
     return integrate(system.M, system.D, system.K, system.nl_dofs, system.kernel,
                      system.params, system.forcing, q0=q0, v0=v0,
-                     time_varying=system.time_varying, **o.scheme, **o.iteration, **kwargs)
+                     time_varying=system.time_varying, **o.scheme, **o.iteration,
+                     inertial_kernel=system.inertial_kernel, **kwargs)

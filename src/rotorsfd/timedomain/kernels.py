@@ -18,7 +18,7 @@ from numba import njit
 from rotorsfd.kernels import KERNEL_SIGNATURE, KERNEL_TYPE, as_cfunc
 
 __all__ = ["KERNEL_SIGNATURE", "KERNEL_TYPE", "as_cfunc", "cubic_spring_kernel",
-           "null_kernel"]
+           "null_inertial_kernel", "null_kernel"]
 
 
 @njit(cache=True)
@@ -30,6 +30,21 @@ def null_kernel(q: np.ndarray, v: np.ndarray, params: np.ndarray, F: np.ndarray,
         for j in range(F.shape[0]):
             dFdq[i, j] = 0.0
             dFdv[i, j] = 0.0
+    return 0
+
+
+@njit(cache=True)
+def null_inertial_kernel(q: np.ndarray, v: np.ndarray, a: np.ndarray, params: np.ndarray,
+                         F: np.ndarray, dFdq: np.ndarray, dFdv: np.ndarray,
+                         dFda: np.ndarray) -> int:
+    """No force (the inertial contract): the placeholder the stepping loops get when the
+    law has no acceleration dependence (never called then)."""
+    for i in range(F.shape[0]):
+        F[i] = 0.0
+        for j in range(F.shape[0]):
+            dFdq[i, j] = 0.0
+            dFdv[i, j] = 0.0
+            dFda[i, j] = 0.0
     return 0
 
 

@@ -74,7 +74,7 @@ def lyapunov_exponents(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params
                        method: str = "newmark", alpha: float = 0.05, rho_inf: float = 0.9,
                        newton_rtol: float = 1e-12,
                        projectors: tuple[Projector | None, ...] = (None,),
-                       ) -> list[LyapunovResult]:
+                       inertial_kernel: Any = None) -> list[LyapunovResult]:
     """Largest Lyapunov exponents of the system of :func:`integrate` (same inputs), one
     per entry of ``projectors``, all around one reference trajectory (each perturbation
     costs one trajectory, the reference is shared; the same random start direction,
@@ -105,7 +105,8 @@ def lyapunov_exponents(M: Any, D: Any, K: Any, nl_dofs: Any, kernel: Any, params
     w = velocity_scale if velocity_scale is not None else (omega if omega > 0 else 1.0)
     total = transient_steps + n_steps
     ps = prepare(M, D, K, nl_dofs, kernel, params, forcing, dt, total, t0=t0,
-                 time_varying=time_varying, method=method, alpha=alpha, rho_inf=rho_inf)
+                 time_varying=time_varying, method=method, alpha=alpha, rho_inf=rho_inf,
+                 inertial_kernel=inertial_kernel)
     n = ps.n_dof
     opts = dict(newton_rtol=newton_rtol, record_initial=False)
 
@@ -188,7 +189,7 @@ def system_lyapunov(system: SecondOrderSystem, q0: Any = 0.0, v0: Any = 0.0, *,
     return lyapunov_exponents(system.M, system.D, system.K, system.nl_dofs, system.kernel,
                               system.params, system.forcing, q0=q0, v0=v0,
                               time_varying=system.time_varying, newton_rtol=o.newton_rtol,
-                              **o.scheme, **kwargs)
+                              inertial_kernel=system.inertial_kernel, **o.scheme, **kwargs)
 
 
 def modal_projector(M: np.ndarray, basis: np.ndarray) -> Projector:

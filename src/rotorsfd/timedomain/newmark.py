@@ -24,9 +24,11 @@ form keeps the velocity free of the cancellation in ``cv (q1 - q0)``). ``A``,
 ``Kinv f_j`` and ``Kinv D_i``, ``Kinv K_i`` are formed once per run (one LU). With
 ``B = Kinv[:, nl]``, ``S = Kinv[nl, nl]`` the nonlinear DOFs solve the exact condensed
 m-dimensional equation ``y = dl[nl] + wn1 S F(q0[nl] + y, vhat[nl] + cv y)`` by Newton,
-then ``d = dl + wn1 B F``. Time-varying matrices add ``Kinv g_tv(q1, v1)`` to ``dl``,
-found by fixed-point iteration (each pass: one product with each ``Kinv D_i``,
-``Kinv K_i``).
+then ``d = dl + wn1 B F``. A force of the acceleration too (a film's fluid inertia,
+an inertial kernel) is evaluated at the scheme's ``a1 = ahat + y/(b h^2)`` and its
+``dF/da/(b h^2)`` joins the Newton matrix (an added mass on the nonlinear DOFs).
+Time-varying matrices add ``Kinv g_tv(q1, v1)`` to ``dl``, found by fixed-point iteration
+(each pass: one product with each ``Kinv D_i``, ``Kinv K_i``).
 """
 
 from __future__ import annotations
@@ -146,6 +148,12 @@ def eval_kernel(kernel, params, y, vy, F, dq, dv) -> int:
 
 
 @njit(cache=True)
+def eval_inertial_kernel(kernel_a, params, y, vy, ay, F, dq, dv, da) -> int:
+    """Call a first-class inertial kernel once (for initial forces)."""
+    return kernel_a(y, vy, ay, params, F, dq, dv, da)
+
+
+@njit(cache=True)
 def _solve_small(J: np.ndarray, r: np.ndarray, x: np.ndarray) -> bool:
     """``x = J^-1 r`` by Gauss elimination with partial pivoting (J, r overwritten)."""
     m = r.shape[0]
@@ -177,9 +185,12 @@ def _solve_small(J: np.ndarray, r: np.ndarray, x: np.ndarray) -> bool:
 
 @njit(cache=True, fastmath=_FASTMATH)
 def _newton_nl(kernel, params, q0, dl, vhat, cv, wn1, S, nl, y, yprev, qy, F, dq, dv,
-               J, r, dy, vy, rtol, atol, max_newton):
+               J, r, dy, vy, rtol, atol, max_newton, kernel_a, inertial, ahat, c0, ay, da):
     """Solve ``y = dl[nl] + wn1 S F(q0[nl] + y, vhat[nl] + cv y)`` for the increment ``y``
-    of the nonlinear DOFs by Newton from the given ``y``.
+    of the nonlinear DOFs by Newton from the given ``y``. With ``inertial`` the force is
+    ``F(q, v, a)`` of the inertial kernel ``kernel_a`` at the scheme's acceleration
+    ``a = ahat + c0 y`` (``c0 = 1/(beta h^2)``), and the Newton matrix gains the added
+    mass ``c0 dF/da``: ``J = I - wn1 S (dF/dq + cv dF/dv + c0 dF/da)``.
 
     Converged when ``|residual|_inf <= rtol s + atol`` (``s = max(|y|, |dl[nl]|)``), or
     when a Newton update is ``<= sqrt(rtol) s + atol``: by quadratic convergence the
@@ -194,7 +205,12 @@ def _newton_nl(kernel, params, q0, dl, vhat, cv, wn1, S, nl, y, yprev, qy, F, dq
         for a in range(m):
             qy[a] = q0[nl[a]] + y[a]
             vy[a] = vhat[nl[a]] + cv * y[a]
-        st = kernel(qy, vy, params, F, dq, dv)
+            if inertial:
+                ay[a] = ahat[a] + c0 * y[a]
+        if inertial:
+            st = kernel_a(qy, vy, ay, params, F, dq, dv, da)
+        else:
+            st = kernel(qy, vy, params, F, dq, dv)
         n_back = 0
         while st != 0 and n_back < 40:
             touched = True
@@ -202,7 +218,12 @@ def _newton_nl(kernel, params, q0, dl, vhat, cv, wn1, S, nl, y, yprev, qy, F, dq
                 y[a] = yprev[a] + 0.5 * (y[a] - yprev[a])
                 qy[a] = q0[nl[a]] + y[a]
                 vy[a] = vhat[nl[a]] + cv * y[a]
-            st = kernel(qy, vy, params, F, dq, dv)
+                if inertial:
+                    ay[a] = ahat[a] + c0 * y[a]
+            if inertial:
+                st = kernel_a(qy, vy, ay, params, F, dq, dv, da)
+            else:
+                st = kernel(qy, vy, params, F, dq, dv)
             n_back += 1
         if st != 0:
             return 1, it + 1, touched
@@ -224,6 +245,8 @@ def _newton_nl(kernel, params, q0, dl, vhat, cv, wn1, S, nl, y, yprev, qy, F, dq
                 s = 0.0
                 for c in range(m):
                     s += S[a, c] * (dq[c, b] + cv * dv[c, b])
+                    if inertial:
+                        s += S[a, c] * c0 * da[c, b]
                 J[a, b] = -wn1 * s
             J[a, a] += 1.0
         if not _solve_small(J, r, dy):
@@ -238,6 +261,8 @@ def _newton_nl(kernel, params, q0, dl, vhat, cv, wn1, S, nl, y, yprev, qy, F, dq
                 s = 0.0
                 for b in range(m):
                     s += (dq[a, b] + cv * dv[a, b]) * dy[b]
+                    if inertial:
+                        s += c0 * da[a, b] * dy[b]
                 F[a] += s
             return 0, it + 1, touched
     return (1 if touched else 2), max_newton, touched
@@ -249,8 +274,15 @@ def run_steps(kernel, params, kind, coef, A, B, S, nl,
               X, Fn, Gn, Tn, step0, n_steps,
               rec_dofs, rec_every, rec_start, rec_t, rec_q, rec_v,
               pc_every, pc_start, pc_t, pc_q, pc_v,
-              rtol, atol, max_newton, tv_rtol, max_tv, info, fail_state):
+              rtol, atol, max_newton, tv_rtol, max_tv, info, fail_state,
+              kernel_a, inertial, Anl):
     """Advance ``X = [q; v(; a)]`` by ``n_steps`` from global step ``step0``.
+
+    With ``inertial`` the force is the inertial kernel's ``F(q, v, a)`` (``kernel_a``,
+    :mod:`rotorsfd.kernels`) at the scheme's acceleration of the nonlinear DOFs,
+    ``a1 = ahat + c0 y``: generalized-alpha ``ahat = -c0 (h v0 + h^2 (1/2 - b) a0)``,
+    Newmark ``ahat = -(4/h) v0 - a0`` with ``a0`` the nonlinear DOFs' acceleration carried
+    in ``Anl`` (m), updated in place.
 
     ``Fn`` (m), ``Gn = Kinv g_n`` (n), ``Tn = Kinv g_tv,n`` (n) carry the force terms of
     the current step and are updated in place, so chunked calls continue exactly.
@@ -295,6 +327,9 @@ def run_steps(kernel, params, kind, coef, A, B, S, nl,
     r = np.empty(m)
     dy = np.empty(m)
     vy = np.empty(m)
+    ay = np.empty(m)
+    ahat = np.zeros(m)
+    da = np.zeros((m, m))
 
     status = 0
     for i in range(n_steps):
@@ -327,6 +362,12 @@ def run_steps(kernel, params, kind, coef, A, B, S, nl,
                 dtil[j] = h * X[n + j] + h * h * (0.5 - beta) * X[2 * n + j]
                 vtil[j] = X[n + j] + h * (1.0 - gamma) * X[2 * n + j]
                 vhat[j] = vtil[j] - cv * dtil[j]
+        if inertial:
+            for a in range(m):
+                if kind == 0:
+                    ahat[a] = -2.0 * cv * X[n + nl[a]] - Anl[a]
+                else:
+                    ahat[a] = -c0 * dtil[nl[a]]
         # -- Newton on the nonlinear DOFs, inside the fixed point of the varying matrices
         for j in range(n):
             T[j] = Tn[j] if P > 0 else 0.0
@@ -344,7 +385,8 @@ def run_steps(kernel, params, kind, coef, A, B, S, nl,
             if m > 0:
                 st, its, touched = _newton_nl(kernel, params, X, dl, vhat, cv, wn1, S, nl,
                                               y, yprev, qy, F, dq, dv, J, r, dy, vy, rtol,
-                                              atol, max_newton)
+                                              atol, max_newton, kernel_a, inertial, ahat,
+                                              c0, ay, da)
                 info[I_NEWTON_TOTAL] += its
                 if its > info[I_NEWTON_MAX]:
                     info[I_NEWTON_MAX] = its
@@ -402,6 +444,9 @@ def run_steps(kernel, params, kind, coef, A, B, S, nl,
             info[I_STEP] = k1 - 1
             break
         # -- new state and force terms
+        if inertial:
+            for a in range(m):
+                Anl[a] = ahat[a] + c0 * dn[nl[a]]
         chk = 0.0
         if kind == 0:
             for j in range(n):
