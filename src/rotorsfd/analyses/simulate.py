@@ -157,7 +157,8 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
                    max_steps_per_period: int | None = None,
                    reduction: str | None = None,
                    reduction_cutoff: float | None = None,
-                   speed_law: Any = None) -> SimulationResult:
+                   speed_law: Any = None, overlay: str | Path | None = None
+                   ) -> SimulationResult:
     """Integrate the nonlinear rotor at one speed and classify the motion.
 
     ``run_simulation(system, speed, settings=..., context=...)``: ``settings`` the
@@ -185,7 +186,8 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
     error; a step that fails the tolerance puts a warning in the summary.
     ``speed_law`` (default ``[analysis.simulate] speed_law``; a config table or a
     :mod:`~rotorsfd.timedomain.speed_law` law): a run-up or coast-down instead
-    (:func:`~rotorsfd.analyses.runup_simulation.run_speed_law_simulation`, a RunUpResult).
+    (:func:`~rotorsfd.analyses.runup_simulation.run_speed_law_simulation`, a RunUpResult;
+    ``overlay`` a branch.nc of ``rotorsfd response`` drawn over its envelope).
     ``reduction`` / ``reduction_cutoff`` (default ``[analysis.simulate]``, "auto" and 40):
     the step on the Craig-Bampton model with the fixed-interface modes up to
     ``reduction_cutoff`` x Omega (:func:`~rotorsfd.analyses.td_integration.with_reduction`);
@@ -234,7 +236,8 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
         return run_speed_law_simulation(
             system, law_of(law, search_path), sim=sim, nodes=out_nodes, title=name,
             steps_per_period=steps_per_period, periods=periods, scheme=scheme,
-            alpha=alpha, initial_displacement=initial_displacement)
+            alpha=alpha, initial_displacement=initial_displacement, overlay=overlay,
+            config_toml=config_toml or "")
     if speed is None and speed_ratio is not None:
         speed = speed_ratio * ref
     if speed is None or not speed > 0.0:

@@ -34,6 +34,13 @@ def check_simulate(args: argparse.Namespace, config: Any) -> None:
         )
 
         speed_law_from_config(parse_speed_law_text(args.speed_law), Path.cwd())
+    if args.overlay is not None:
+        if args.speed_law is None and config.analysis.simulate.speed_law is None:
+            raise ConfigError("--overlay", str(args.overlay), "needs a speed law (a run-up "
+                              "or coast-down: --speed-law or [analysis.simulate] speed_law)")
+        if not args.overlay.is_file():
+            raise ConfigError("--overlay", str(args.overlay), "an existing branch.nc of "
+                              "rotorsfd response")
 
 
 @command("simulate", "time integration at one speed ([analysis.simulate]): timeseries.nc, "
@@ -61,6 +68,9 @@ def check_simulate(args: argparse.Namespace, config: Any) -> None:
                              "'ramp,start=500 rad/s,stop=1200 rad/s,duration=2 s' (or "
                              "rate=...), 'constant,speed=...' or a CSV table (time [s], "
                              "speed [rad/s]); default [analysis.simulate] speed_law"),
+                    arg("--overlay", type=Path, metavar="BRANCH_NC",
+                        help="with a speed law: draw this steady branch (the branch.nc of "
+                             "rotorsfd response) over the run's envelope"),
                     arg("--record-periods", type=options.integer(1), metavar="N",
                         help="last periods kept in timeseries.nc (default: poincare_periods)"),
                     arg("--lyapunov-periods", type=options.integer(0), metavar="N",
@@ -82,7 +92,8 @@ def simulate(args: argparse.Namespace, config: Any) -> int:
                                 record_periods=args.record_periods,
                                 lyapunov_periods=args.lyapunov_periods,
                                 progress=not args.quiet,
-                                **({"speed_law": law} if law else {}))
+                                **({"speed_law": law} if law else {}),
+                                **({"overlay": args.overlay} if args.overlay else {}))
     paths = result.write(args.output)
     print_written(result, paths, args.quiet, args.verbose)
     if getattr(result, "ended", "range") == "limit":   # a result up to the limit: say so
