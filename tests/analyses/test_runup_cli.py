@@ -97,3 +97,26 @@ def test_bad_config_field_exit_2(tmp_path, capsys):
     status = main(["simulate", str(cfg), "-o", str(tmp_path / "out"), "-q"])
     err = capsys.readouterr().err.strip()
     assert status == 2 and "speed_law.spin" in err and len(err.splitlines()) == 1, err
+
+
+def test_overlay_of_a_branch(run, tmp_path, capsys):
+    """--overlay draws a response's branch over the run-up (recorded in summary.json and
+    the figure written); without a speed law, or with a missing file: one line, exit 2,
+    before any work."""
+    _, out = run
+    cfg = small_rotor_toml(tmp_path / "r.toml")
+    assert main(["response", str(cfg), "-o", str(tmp_path / "b"), "-q"]) == 0
+    branch = tmp_path / "b" / "branch.nc"
+    assert main(["simulate", str(cfg), "--speed-law", RAMP, "--overlay", str(branch),
+                 "-o", str(tmp_path / "s"), "-q"]) == 0
+    summary = json.loads((tmp_path / "s" / "summary.json").read_text())
+    assert summary["overlay"] == str(branch)
+    assert (tmp_path / "s" / "envelope.png").stat().st_size > 10_000
+    capsys.readouterr()
+    for argv, field in [(["--overlay", str(branch)], "needs a speed law"),
+                        (["--speed-law", RAMP, "--overlay", str(tmp_path / "no.nc")],
+                         "an existing branch.nc")]:
+        assert main(["simulate", str(cfg), *argv, "-o", str(tmp_path / "x"), "-q"]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and field in err[0] and "--overlay" in err[0]
+        assert not (tmp_path / "x").exists()
