@@ -99,11 +99,10 @@ def test_bad_config_field_exit_2(tmp_path, capsys):
     assert status == 2 and "speed_law.spin" in err and len(err.splitlines()) == 1, err
 
 
-def test_overlay_of_a_branch(run, tmp_path, capsys):
+def test_overlay_of_a_branch(tmp_path, capsys):
     """--overlay draws a response's branch over the run-up (recorded in summary.json and
     the figure written); without a speed law, or with a missing file: one line, exit 2,
     before any work."""
-    _, out = run
     cfg = small_rotor_toml(tmp_path / "r.toml")
     assert main(["response", str(cfg), "-o", str(tmp_path / "b"), "-q"]) == 0
     branch = tmp_path / "b" / "branch.nc"
