@@ -8,8 +8,8 @@ from base_helpers import make_rotor
 
 from rotorsfd.model import Disk, dof_index
 from rotorsfd.model.base_motion import BaseMotion, BaseState, UniformAcceleration
+from rotorsfd.model.base_polynomial import MovingBaseRotor
 from rotorsfd.model.base_terms import (
-    MovingBaseRotor,
     assemble_base,
     base_basis,
     base_static_deflection,

@@ -165,7 +165,7 @@ def test_banded_linear_part_dense_view_and_derivatives() -> None:
 def test_modal_damping_keeps_the_dense_path_with_the_same_results() -> None:
     """A full modal damping matrix has no band: the HB problem gets dense storage
     (DenseLinearPart) and the same solution as the direct assembly."""
-    from rotorsfd.model.base_terms import DenseLinearPart
+    from rotorsfd.model.base_polynomial import DenseLinearPart
     from rotorsfd.model.damping import ModalDamping
 
     sfd = SFD(viscosity=0.0051, radius=0.0262, length=0.017, clearance=0.127e-3)

@@ -10,11 +10,8 @@ import pytest
 from rotorsfd.elements.sfd import SFDElement
 from rotorsfd.model import Disk, LinearSupport, Material, Rotor, uniform_shaft
 from rotorsfd.model.base_motion import BaseMotion, BaseState, UniformAcceleration
-from rotorsfd.model.base_terms import (
-    POLYNOMIAL_VARIABLES,
-    base_coefficients,
-    coefficient_polynomial,
-)
+from rotorsfd.model.base_polynomial import POLYNOMIAL_VARIABLES, coefficient_polynomial
+from rotorsfd.model.base_terms import base_coefficients
 from rotorsfd.model.gravity import Gravity
 from rotorsfd.model.system import PARAMETERS, RotorSystem
 from rotorsfd.model.unbalance import Unbalance
@@ -132,7 +129,8 @@ def test_unknown_assembly_is_refused() -> None:
 
 
 def test_moving_base_rotor_equals_the_direct_combination() -> None:
-    from rotorsfd.model.base_terms import MovingBaseRotor, assemble_base
+    from rotorsfd.model.base_polynomial import MovingBaseRotor
+    from rotorsfd.model.base_terms import assemble_base
 
     system = small_system(BaseMotion())
     state = BaseState.constant(w=(3.0, -4.0, 2.5), a0=(0.0, 1.0, -2.0))

@@ -41,7 +41,7 @@ def linear_system(config: Config, model: Model | None = None) -> Any:
                                   "'constant'); time-varying rates: use a stability chart")
     if base is None or not np.any(base.rates(0.0) != 0.0):
         return model.rotor
-    from rotorsfd.model.base_terms import MovingBaseRotor
+    from rotorsfd.model.base_polynomial import MovingBaseRotor
 
     return MovingBaseRotor(model.rotor, base.state(0.0))
 

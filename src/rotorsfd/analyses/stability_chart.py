@@ -120,7 +120,7 @@ def _natural_frequencies(rotor: Rotor, specs: Sequence[RateSpec], speed: float |
     if speed is None:
         return np.zeros(0)
     from rotorsfd.linear.modal import eigen
-    from rotorsfd.model.base_terms import MovingBaseRotor
+    from rotorsfd.model.base_polynomial import MovingBaseRotor
 
     mean = [s.value if s.law in ("constant", "harmonic") else 0.0 for s in specs]
     try:

@@ -27,10 +27,10 @@ from rotorsfd.elements.composite import ElementSet
 from rotorsfd.errors import ConfigError
 from rotorsfd.harmonic.problem import NonlinearLaw, PeriodicProblem
 from rotorsfd.model.base_motion import BaseMotion, BaseState, Constant
+from rotorsfd.model.base_polynomial import PolynomialTerms
 from rotorsfd.model.base_terms import (
     BaseBasis,
     BaseCoefficients,
-    PolynomialTerms,
     base_basis,
     base_coefficient_derivatives,
     base_coefficients,
@@ -143,7 +143,7 @@ class RotorSystem:
         (film off, no unbalance) in the speed, or in a constant base rate
         (``base.rolling|pitching|yawing``) at the fixed ``speed``; ``state`` (default: the
         constant base state) with the parameter's own value ignored. See
-        :class:`~rotorsfd.model.base_terms.PolynomialTerms`."""
+        :class:`~rotorsfd.model.base_polynomial.PolynomialTerms`."""
         st = self.constant_base_state() if state is None else state
         r = self.rotor
         par = find_parameter(parameter)

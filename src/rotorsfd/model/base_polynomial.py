@@ -1,0 +1,313 @@
+"""The linear terms of a rotor on a moving base as polynomials in one parameter, assembled
+once: the speed (degree 1) or a constant base rate (degree 2), for the continuation's
+linear part (:class:`PolynomialTerms`, :class:`DenseLinearPart`) and the LinearDynamics
+view of a rotor on a base in a constant state (:class:`MovingBaseRotor`). The
+coefficients and the basis they multiply are :mod:`rotorsfd.model.base_terms`.
+"""
+
+from __future__ import annotations
+
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+
+from rotorsfd.model.base_motion import BaseState
+from rotorsfd.model.base_terms import (
+    RATE_NAMES,
+    BaseBasis,
+    BaseCoefficients,
+    base_basis,
+    base_coefficient_derivatives,
+    base_coefficients,
+    sum_terms,
+)
+from rotorsfd.model.sparse import BandedLinearPart, as_csr, bandwidths
+
+# ---------------------------------------------------------------------------------------
+# polynomial form in one parameter (the linear part of a continuation, assembled once)
+# ---------------------------------------------------------------------------------------
+#: Variables in which the coefficients are polynomials: the speed (degree 1) and a constant
+#: base rate (degree 2), everything else of the base state held.
+POLYNOMIAL_VARIABLES: tuple[str, ...] = ("speed", "wx", "wy", "wz")
+
+
+def coefficient_polynomial(state: BaseState, speed: float, variable: str
+                           ) -> tuple[BaseCoefficients, BaseCoefficients, BaseCoefficients]:
+    """(c0, c1, c2) with coefficients(p) = c0 + p c1 + p^2 c2 exactly (algebraically), p
+    the speed or one base rate (``variable`` in POLYNOMIAL_VARIABLES), the rest of
+    (state, speed) held; the value of p in (state, speed) itself is ignored.
+
+    The coefficients (module docstring) are affine in Omega and at most quadratic in each
+    rate: c0 is their value at p = 0, c1 their p-derivative there and c2 half the second
+    derivative, which does not depend on the state (small integers, found exactly from
+    the derivative at p = 1 and p = 0 with everything else zero).
+    """
+    if variable not in POLYNOMIAL_VARIABLES:
+        raise ValueError(f"variable must be one of {POLYNOMIAL_VARIABLES}, not {variable!r}")
+    if variable == "speed":
+        c2 = BaseCoefficients(np.zeros(12), np.zeros(12), np.zeros(8))
+        return (base_coefficients(state, 0.0),
+                base_coefficient_derivatives(state, 0.0)["speed"], c2)
+    i = RATE_NAMES.index(variable) - 1
+    w = np.array(state.w, dtype=float)
+    w[i] = 0.0
+    st0 = BaseState(w, np.asarray(state.dw, dtype=float), state.a0, state.v0, state.g)
+    zero = BaseState.fixed()
+    unit = BaseState(np.eye(3)[i], np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3))
+    d1 = base_coefficient_derivatives(unit, 0.0)[variable]
+    d0 = base_coefficient_derivatives(zero, 0.0)[variable]
+    c2 = BaseCoefficients(0.5 * (d1.c_C - d0.c_C), 0.5 * (d1.c_K - d0.c_K),
+                          0.5 * (d1.c_F - d0.c_F))
+    return (base_coefficients(st0, speed),
+            base_coefficient_derivatives(st0, speed)[variable], c2)
+
+
+def _add(a: Any, b: Any) -> Any:
+    """a + b, None for zero; dense if either is dense (never an np.matrix)."""
+    if a is None:
+        return b
+    if b is None:
+        return a
+    if sp.issparse(a) != sp.issparse(b):
+        a, b = (x.toarray() if sp.issparse(x) else x for x in (a, b))
+    return a + b
+
+
+def _uniform(terms: tuple) -> tuple:
+    """The matrix terms all sparse, or all dense if one of them is dense."""
+    if all(t is None or sp.issparse(t) for t in terms):
+        return terms
+    return tuple(t.toarray() if sp.issparse(t) else t for t in terms)
+
+
+class PolynomialTerms:
+    """Damping, stiffness and load as polynomials in one parameter p, assembled once:
+
+        D(p) = sum_j p^j D_j,  K(p) = sum_j p^j K_j,  F(p) = sum_j p^j F_j   (j = 0, 1, 2)
+
+    with ``None`` for a zero term; the matrix terms are stored as given (scipy.sparse from
+    the rotor and the base basis; dense arrays are accepted). ``damping(p)``,
+    ``stiffness(p)`` and their derivatives return dense arrays (built on request: one
+    scaled add per nonzero term of degree >= 1); a quantity with no such term is the same
+    array object at every p (so that callers can tell it is constant, as the condensation's
+    band scan does), a zero one and a constant one's derivative the shared ``zero``
+    (``zero_vector``). ``sparse_damping(p)`` etc. give CSR without a dense n x n array and
+    :meth:`banded` the band-storage form of the HB solvers. Treat the returned arrays as
+    read-only.
+    """
+
+    def __init__(self, n: int, D: tuple = (), K: tuple = (), F: tuple = (),
+                 lowrank: tuple[np.ndarray, np.ndarray] | None = None) -> None:
+        self.n = n
+        #: (U, c): a constant damping term ``U diag(c) U^T`` beside D (modal damping of a
+        #: few modes); in damping(p) and sparse_damping(p), apart in :meth:`linear_part`
+        self.lowrank = lowrank
+        self._lowrank_dense: np.ndarray | None = None
+        self.D, self.K, self.F = (tuple(t) + (None,) * (3 - len(t)) for t in (D, K, F))
+        self.D, self.K = _uniform(self.D), _uniform(self.K)
+        self.zero_vector = np.zeros(n)
+        self._dense: dict[Any, tuple[Any, np.ndarray]] = {}
+
+    @cached_property
+    def zero(self) -> np.ndarray:
+        """The shared dense n x n zero (built on first use)."""
+        return np.zeros((self.n, self.n))
+
+    @classmethod
+    def of_base(cls, basis: BaseBasis, state: BaseState, speed: float, variable: str
+                ) -> PolynomialTerms:
+        """C_base, K_base, F_base of the base state as polynomials in ``variable``
+        (:func:`coefficient_polynomial`), only the nonzero coefficients combined (sparse)."""
+        cos = coefficient_polynomial(state, speed, variable)
+        mats = basis.sparse_matrices
+        return cls(basis.n_dof, tuple(sum_terms(c.c_C, mats) for c in cos),
+                   tuple(sum_terms(c.c_K, mats) for c in cos),
+                   tuple(sum_terms(c.c_F, basis.vectors) for c in cos))
+
+    def plus(self, D: tuple = (), K: tuple = (),
+             lowrank: tuple[np.ndarray, np.ndarray] | None = None) -> PolynomialTerms:
+        """A copy with the polynomial coefficients ``D``, ``K`` (None: zero) added
+        (``plus(D=(C, G))`` adds C + p G); an added term alone is kept as the object;
+        ``lowrank`` a low-rank damping term (this one's if None; at most one)."""
+        def add(a: tuple, b: tuple) -> tuple:
+            b = tuple(b) + (None,) * (3 - len(b))
+            return tuple(_add(y, x) for x, y in zip(a, b, strict=True))
+        if lowrank is not None and self.lowrank is not None:
+            raise ValueError("one low-rank damping term only")
+        return PolynomialTerms(self.n, add(self.D, D), add(self.K, K), self.F,
+                               self.lowrank if lowrank is None else lowrank)
+
+    def constant(self, p: float) -> PolynomialTerms:
+        """The polynomials frozen at p (degree 0: D(p), K(p), F(p))."""
+        return PolynomialTerms(self.n, (self._value(self.D, p),), (self._value(self.K, p),),
+                               (self._value(self.F, p),), self.lowrank)
+
+    def banded(self, M: Any, band: tuple[int, int] | None = None) -> BandedLinearPart:
+        """(M, D(p), K(p)) in band storage (:class:`rotorsfd.model.sparse.BandedLinearPart`,
+        the band read from the patterns unless given)."""
+        return BandedLinearPart(M, self.D, self.K, band, self.lowrank)
+
+    def linear_part(self, M: Any) -> BandedLinearPart | DenseLinearPart:
+        """The ``matrices`` callable of an HB problem: :meth:`banded` when the band is
+        narrow enough for the banded condensation to pay off (``3 (kl + ku + 1) < n``, the
+        beam rotor's 7 + 7 + 1 from 46 DOFs on), else :class:`DenseLinearPart` (a full
+        modal damping matrix)."""
+        kl, ku = bandwidths((M, *self.D, *self.K))
+        if 3 * (kl + ku + 1) < self.n:
+            return self.banded(M, (kl, ku))
+        return DenseLinearPart(M, self)
+
+    @staticmethod
+    def _value(terms: tuple, p: float) -> Any:
+        out = terms[0]
+        if terms[1] is not None:
+            out = p * terms[1] if out is None else out + p * terms[1]
+        if terms[2] is not None:
+            out = (p * p) * terms[2] if out is None else out + (p * p) * terms[2]
+        return out
+
+    @staticmethod
+    def _slope(terms: tuple, p: float) -> Any:
+        if terms[2] is None:
+            return terms[1]
+        out = (2.0 * p) * terms[2]
+        return out if terms[1] is None else terms[1] + out
+
+    def _as_dense(self, a: Any) -> np.ndarray:
+        """Dense form of a value: the shared zero for None, the array itself if dense, a
+        sparse stored term's dense form built once (the same object at every call)."""
+        if a is None:
+            return self.zero
+        if not sp.issparse(a):
+            return a
+        hit = self._dense.get(id(a))
+        if hit is not None and hit[0] is a:
+            return hit[1]
+        out = a.toarray()
+        if any(a is t for t in self.D + self.K):
+            self._dense[id(a)] = (a, out)
+        return out
+
+    def _as_sparse(self, a: Any) -> sp.csr_matrix:
+        """CSR form of a value (a stored CSR term itself: the same object at every call)."""
+        if a is None:
+            return sp.csr_matrix((self.n, self.n))
+        return a if sp.issparse(a) and a.format == "csr" else as_csr(a)
+
+    def _lowrank(self) -> np.ndarray:
+        """``U diag(c) U^T`` of :attr:`lowrank`, dense (formed once)."""
+        if self._lowrank_dense is None:
+            u, c = self.lowrank
+            full = (u * c) @ u.T
+            self._lowrank_dense = 0.5 * (full + full.T)
+        return self._lowrank_dense
+
+    def damping(self, p: float) -> np.ndarray:
+        out = self._as_dense(self._value(self.D, p))
+        if self.lowrank is None:
+            return out
+        if not self._constant(self.D):
+            return out + self._lowrank()
+        hit = self._dense.get("lowrank")          # a constant D: the same object back
+        if hit is None or hit[0] is not out:
+            hit = self._dense["lowrank"] = (out, out + self._lowrank())
+        return hit[1]
+
+    @staticmethod
+    def _constant(terms: tuple) -> bool:
+        return terms[1] is None and terms[2] is None
+
+    def stiffness(self, p: float) -> np.ndarray:
+        return self._as_dense(self._value(self.K, p))
+
+    def load(self, p: float) -> np.ndarray:
+        out = self._value(self.F, p)
+        return self.zero_vector if out is None else out
+
+    def ddamping(self, p: float) -> np.ndarray:
+        return self._as_dense(self._slope(self.D, p))
+
+    def dstiffness(self, p: float) -> np.ndarray:
+        return self._as_dense(self._slope(self.K, p))
+
+    def dload(self, p: float) -> np.ndarray:
+        out = self._slope(self.F, p)
+        return self.zero_vector if out is None else out
+
+    def sparse_damping(self, p: float) -> sp.csr_matrix:
+        """D(p) as CSR (with a low-rank term: a full matrix)."""
+        out = self._as_sparse(self._value(self.D, p))
+        return out if self.lowrank is None else as_csr(out + self._lowrank())
+
+    def sparse_stiffness(self, p: float) -> sp.csr_matrix:
+        """K(p) as CSR."""
+        return self._as_sparse(self._value(self.K, p))
+
+
+class DenseLinearPart:
+    """``matrices(lam) -> (M, D(lam), K(lam))`` dense from :class:`PolynomialTerms` (the
+    same objects for the same lam, and for constant ones at every lam); ``derivatives``
+    is the matching ``dmatrices``."""
+
+    def __init__(self, M: Any, terms: PolynomialTerms) -> None:
+        self.M = M.toarray() if sp.issparse(M) else np.asarray(M, dtype=float)
+        self.terms = terms
+        self._last: list = [None, None, None]
+
+    def __call__(self, lam: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        last = self._last
+        if last[0] != lam:
+            last[0], last[1], last[2] = lam, None, None
+        if last[1] is None:
+            last[1] = (self.M, self.terms.damping(lam), self.terms.stiffness(lam))
+        return last[1]
+
+    def derivatives(self, lam: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        last = self._last
+        if last[0] != lam:
+            last[0], last[1], last[2] = lam, None, None
+        if last[2] is None:
+            t = self.terms
+            last[2] = (t.zero, t.ddamping(lam), t.dstiffness(lam))
+        return last[2]
+
+
+
+class MovingBaseRotor:
+    """LinearDynamics view of a rotor on a base in a constant state.
+
+    ``matrices(speed) -> (M, C + speed G + C_base, K + K_base)``; ``force(speed) -> F_base``
+    (the base terms assembled once as polynomials in the speed, :class:`PolynomialTerms`).
+    """
+
+    def __init__(self, rotor, state: BaseState) -> None:
+        self.rotor = rotor
+        self.state = state
+        self.basis = base_basis(rotor)
+        self.n_dof = rotor.n_dof
+        self._terms: PolynomialTerms | None = None
+
+    @property
+    def terms(self) -> PolynomialTerms:
+        if self._terms is None:
+            r = self.rotor
+            self._terms = PolynomialTerms.of_base(self.basis, self.state, 0.0, "speed").plus(
+                D=(r.C_csr, r.G_csr), K=(r.K_csr,))
+        return self._terms
+
+    def matrices(self, speed: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        t = self.terms
+        return self.rotor.M, t.damping(speed), t.stiffness(speed)
+
+    def sparse_matrices(self, speed: float) -> tuple[sp.csr_matrix, sp.csr_matrix,
+                                                      sp.csr_matrix]:
+        """(M, D, K) at ``speed`` as CSR (no dense n x n array)."""
+        t = self.terms
+        return self.rotor.M_csr, t.sparse_damping(speed), t.sparse_stiffness(speed)
+
+    def force(self, speed: float) -> np.ndarray:
+        return self.terms.load(speed).copy()
+
+
