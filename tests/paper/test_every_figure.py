@@ -16,12 +16,12 @@ import numpy as np
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plots"))
-from figure_text import legend_labels, legends_over_panels, texts  # noqa: E402
+from figure_text import legend_labels, legends_over_panels, texts
 
-from rotorsfd.paper.cases import CAL, CASES, FIGURES  # noqa: E402
-from rotorsfd.paper.figures import draw  # noqa: E402
-from rotorsfd.paper.report import DIAGNOSES, write_report  # noqa: E402
-from rotorsfd.paper.run import Outcome  # noqa: E402
+from rotorsfd.paper.cases import CAL, CASES, FIGURES
+from rotorsfd.paper.figures import draw
+from rotorsfd.paper.report import DIAGNOSES, write_report
+from rotorsfd.paper.run import Outcome
 
 #: A case id in a text: fig7-u144, u360, w9, cal-..., damp-...
 CASE_ID = re.compile(r"\b(fig\d+[a-z]?-|cal-|damp-|sens-|u\d{2,3}\b|w\d{1,2}\b)")
