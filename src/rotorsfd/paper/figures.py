@@ -339,7 +339,8 @@ def draw(spec: FigureSpec, outcomes: Mapping[str, Outcome]) -> Figure | None:
         rows = res or cal
         fig = Figure(figsize=_size(spec, rows), layout="constrained")
         plot(spec, rows, fig)
-        if not res:
-            fig.text(0.01, 0.01, READING_TITLES["calibrated"], fontsize=8)
-    fig.suptitle(wrap(f"Figure {spec.number}: {spec.title}", 110), fontsize=10)
+    title = f"Figure {spec.number}: {spec.title}"
+    if cal and not res:                # the calibrated reading alone: said in the title
+        title += f"\n{READING_TITLES['calibrated']}"
+    fig.suptitle(wrap(title, 110), fontsize=10)
     return fig

@@ -368,14 +368,15 @@ def render_markdown(rows: Sequence[Row], figures: Mapping[str, str],
                     diagnoses: Mapping[str, str] | None = None) -> str:
     """report.md: summary, comparison table, differences, explanations, figures, cases."""
     cal = any(r.cal_verdict != "not run" for r in rows)
-    n_lit, p_lit, d_lit = _count(rows, "verdict")
-    summary = (f"{len(outcomes)} cases, {len(rows)} rows. Literal reading: {n_lit} values "
-               f"compared with the paper, {p_lit} of them predictions, {d_lit} of those "
-               "differ")
-    if cal:
-        n_cal, p_cal, d_cal = _count(rows, "cal_verdict")
-        summary += (f". Calibrated reading: {n_cal} compared, {p_cal} predictions, "
-                    f"{d_cal} of those differ")
+    parts = [f"{len(outcomes)} cases, {len(rows)} rows"]
+    for name, field, ran in (("Literal", "verdict", any(r.verdict != "not run"
+                                                         for r in rows)),
+                             ("Calibrated", "cal_verdict", cal)):
+        if ran:
+            n, p, d = _count(rows, field)
+            parts.append(f"{name} reading: {n} values compared with the paper, {p} of "
+                         f"them predictions, {d} of those differ")
+    summary = ". ".join(parts)
     lines = ["# rotorsfd against Zhang et al. 2025 (Appl. Sci. 15, 1186)", "",
              summary + (f"; run time {elapsed:.0f} s." if elapsed is not None else "."), ""]
     if cal:
