@@ -23,7 +23,9 @@ from rotorsfd.paper.cases import (
     EXTRA_CASES,
     FIGURES,
     KINDS,
+    calibration_overrides,
     examples_dir,
+    literal_name,
     select,
 )
 
@@ -35,8 +37,6 @@ FIGURE_FILES = sorted(p.relative_to(EXAMPLES).as_posix()
 #: Overrides that are not a variant of the figure (their values are not in the paper):
 #: case-name prefix -> (keys, reason).
 EXCEPTIONS = {
-    "damp-": ({"rotor.damping.kind", "rotor.damping.ratio"},
-              "diagnosis: 0.2 % modal damping, which the paper does not state"),
     "sens-": ({"elements.sfd.centring_stiffness", "rotor.supports[0].stiffness"},
               "sensitivity to the support stiffnesses the paper does not give (+/- 5 %)"),
     "fig23-t200-": ({"analysis.simulate.steps_per_period"},
@@ -46,7 +46,7 @@ EXCEPTIONS = {
 
 def _exception(name: str) -> set[str]:
     return next((keys for prefix, (keys, _) in EXCEPTIONS.items()
-                 if name.startswith(prefix)), set())
+                 if literal_name(name).startswith(prefix)), set())
 
 
 def _axes(config) -> dict[str, list[float]]:
@@ -68,11 +68,12 @@ def test_case_config_exists_and_validates(name):
     case = CASES[name]
     assert case.kind in KINDS
     assert (EXAMPLES / case.config).is_file(), case.config
-    if name != "modal":
+    if literal_name(name) != "modal":
         assert case.config in FIGURE_FILES, f"{name}: not a figure config: {case.config}"
+    reading = calibration_overrides() if case.reading == "calibrated" else ()
     for quick in (False, True):
         load_config(EXAMPLES / case.config,
-                    [*case.overrides, *(case.quick if quick else ())])
+                    [*reading, *case.overrides, *(case.quick if quick else ())])
 
 
 @pytest.mark.parametrize("name", sorted(CASES))
@@ -93,9 +94,9 @@ def test_case_overrides_select_a_sweep_variant(name):
                    for v in case.options["values"])
 
 
-def test_the_exceptions_are_only_diagnosis_sensitivity_and_the_paper_step():
+def test_the_exceptions_are_only_sensitivity_and_the_paper_step():
     assert {n for n in CASES if _exception(n)} == {
-        n for n in CASES if n.startswith(("damp-", "sens-", "fig23-t200-"))}
+        n for n in CASES if n.startswith(("sens-", "fig23-t200-"))}
     for name in CASES:
         keys = {parse_override(o)[0] for o in CASES[name].overrides}
         if _exception(name):
@@ -108,7 +109,8 @@ def test_figure_config_runs_the_whole_figure(path):
     `rotorsfd sweep FILE` computes what `rotorsfd paper` draws (Figure 19's grid is finer:
     its cases are fold curves and width sweeps over the rate axis)."""
     config = load_config(EXAMPLES / path)
-    cases = [n for n, c in CASES.items() if c.config == path and not _exception(n)]
+    cases = [n for n, c in CASES.items() if c.config == path and not _exception(n)
+             and c.reading == "literal"]
     axes = _axes(config)
     if not axes:  # Figures 6 (the chart is the figure) and 9 (one branch)
         assert all(CASES[n].kind in ("chart",) for n in cases), cases
@@ -201,9 +203,12 @@ def test_figures_and_claims_name_known_cases():
 def test_select():
     specs, cases = select(["7"])
     assert [s.number for s in specs] == ["7"]
-    assert {c.name for c in cases} == {"modal", "fig7-u72", "fig7-u144", "fig7-u360"}
+    lit = {"modal", "fig7-u72", "fig7-u144", "fig7-u360"}
+    assert {c.name for c in cases} == lit | {"cal-fig7-u144", "cal-fig7-u360"}
+    assert {c.name for c in select(["7"], readings=("literal",))[1]} == lit
     specs, cases = select(None, quick=True)
     assert [s.number for s in specs] == ["7"]
+    assert {c.name for c in cases} == lit | {"cal-fig7-u144", "cal-fig7-u360"}
     specs, cases = select(None)
     assert len(specs) == len(FIGURES) and len(cases) >= 40
     with pytest.raises(KeyError, match="no figure 99"):

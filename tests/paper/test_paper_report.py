@@ -53,7 +53,49 @@ def test_rows_beside_the_paper():
     assert r.difference.startswith("+0.002846")
     assert rows["U = 72.008: bifurcations"].verdict == "agrees"
     assert rows["U = 360.04: upper saddle-node Omega~"].verdict == "differs"
-    assert rows["1st forward critical speed [rad/s]"].verdict == "agrees"
+    assert rows["1st forward critical speed [rad/s]"].verdict == "fitted"
+    # the calibrated reading did not run: its columns say so
+    assert (r.calibrated, r.cal_verdict) == ("not run", "not run")
+
+
+def _calibrated(outcomes):
+    """The outcomes of both readings: the calibrated U = 360.04 case folds."""
+    out = dict(outcomes)
+    out["cal-fig7-u360"] = _response("cal-fig7-u360", [
+        ("saddle-node", 1.28218, 1.0072, 1.0072, 0.0),
+        ("saddle-node", 1.11505, 1.0709, 1.0709, 0.0)])
+    out["cal-fig7-u144"] = _response("cal-fig7-u144", [
+        ("saddle-node", 1.0542, 1.0088, 1.0088, 0.0),
+        ("saddle-node", 1.0513, 1.0068, 1.0068, 0.0)])
+    return out
+
+
+def test_rows_of_both_readings_fitted_and_predicted():
+    rows = {r.quantity: r for r in comparison_rows(_calibrated(_outcomes()))}
+    up = rows["U = 360.04: upper saddle-node Omega~"]
+    assert (up.verdict, up.calibrated, up.cal_verdict) == ("differs", "1.2822", "fitted")
+    lo = rows["U = 360.04: lower saddle-node Omega~"]       # a prediction: -0.84 %
+    assert (lo.calibrated, lo.cal_verdict) == ("1.1151", "differs")
+    assert lo.cal_difference.startswith("-0.00945")
+    u144 = rows["U = 144.02: upper saddle-node Omega~"]
+    assert (u144.ours, u144.calibrated, u144.cal_verdict) == ("1.0593", "1.0542", "agrees")
+    pair = rows["U = 360.04: bifurcations of our branch"]
+    assert (pair.verdict, pair.cal_verdict) == ("differs", "agrees")
+    # the critical speeds: the calibrated modal case did not run
+    assert rows["1st forward critical speed [rad/s]"].cal_verdict == "not run"
+
+
+def test_report_of_both_readings(tmp_path):
+    write_report(tmp_path, _calibrated(_outcomes()), {}, elapsed=1.0)
+    md = (tmp_path / "report.md").read_text()
+    assert "| paper | literal | difference | verdict | calibrated | difference | verdict |" in md
+    assert "Calibrated reading:" in md and "**Calibrated**" in md
+    assert ("| Table 1 | U = 360.04: lower saddle-node Omega~ | 1.1245 | none [reached "
+            "Omega~ = 1.6000] | no such point | differs | 1.1151 | -0.00945" in md)
+    # literal only: no calibrated columns
+    write_report(tmp_path, _outcomes(), {}, elapsed=1.0)
+    md = (tmp_path / "report.md").read_text()
+    assert "| paper | literal | difference | verdict |\n" in md and "**Calibrated**" not in md
 
 
 def test_write_report(tmp_path):

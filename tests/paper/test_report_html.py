@@ -93,3 +93,17 @@ def test_second_peak_row_takes_the_second_peak():
     assert r.ours == "1.385, 1.430" and r.difference.startswith("+0.03")   # 1.43 - 1.40
     r = _peak_row([1.39])                  # one peak only: no second peak
     assert (r.difference, r.verdict) == ("no second peak", "differs")
+
+
+def test_local_peaks_finds_a_shoulder_peak_not_a_wiggle():
+    """Figure 15 at 9 rad/s: the second disk peak stands 3 % of the main peak above its
+    trough (found); a ripple of 1 % crest to trough is not a peak."""
+    from rotorsfd.paper.run import local_peaks
+
+    x = np.linspace(0.5, 1.6, 1101)
+    main = 0.7 / (1 + ((x - 1.09) / 0.04) ** 2)
+    second = 0.035 * np.exp(-((x - 1.39) / 0.05) ** 2)
+    peaks = local_peaks(x, main + 0.25 + second - 0.05 * x)
+    assert len(peaks) == 2 and abs(peaks[1] - 1.39) < 0.01
+    ripple = 0.004 * np.sin(40 * x)              # 0.8 % of the peak, crest to trough
+    assert len(local_peaks(x, main + 0.25 + ripple * (x > 1.3))) == 1

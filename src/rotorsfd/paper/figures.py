@@ -11,7 +11,7 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator
 
-from rotorsfd.paper.cases import CASES, FigureSpec, Outcome
+from rotorsfd.paper.cases import CAL, CASES, FigureSpec, Outcome, literal_name
 from rotorsfd.plots.chart import chart_axes
 from rotorsfd.plots.labels import settings, wrap
 from rotorsfd.plots.response import key_handles, mark_bifurcations, outside_legend, styled_line
@@ -36,6 +36,13 @@ def case_label(name: str, spec: FigureSpec | None = None) -> str:
     return words
 
 
+def _colour(spec: FigureSpec, o: Outcome, i: int) -> str:
+    """A case's colour: by its literal case's place in the figure, so a case has the same
+    colour in both readings' rows."""
+    name = literal_name(o.name)
+    return f"C{(spec.cases.index(name) if name in spec.cases else i) % 10}"
+
+
 def _key(res: list[Outcome]) -> list[Any]:
     """The style and marker key of all the branches drawn."""
     stable = np.concatenate([np.asarray(o.data.get("stable", []), bool) for o in res]
@@ -48,9 +55,8 @@ def _ok(outcomes: Mapping[str, Outcome], spec: FigureSpec) -> list[Outcome]:
     return [outcomes[c] for c in spec.cases if c in outcomes and outcomes[c].data]
 
 
-def _deflection(spec: FigureSpec, res: list[Outcome]) -> Figure:
+def _deflection(spec: FigureSpec, res: list[Outcome], fig: Any) -> None:
     nodes = spec.options.get("nodes", [1, 8])
-    fig = Figure(figsize=(5.0 * len(nodes) + 2.2, 4.4), layout="constrained")
     axes = []
     for k, node in enumerate(nodes):
         ax = fig.add_subplot(1, len(nodes), k + 1)
@@ -59,7 +65,7 @@ def _deflection(spec: FigureSpec, res: list[Outcome]) -> Figure:
             d = o.data
             x, y = d["speed_ratio"], d[f"defl_{node}"]
             styled_line(ax, x, y, d.get("stable"), label=case_label(o.name, spec), lw=1.3,
-                        color=f"C{i % 10}")
+                        color=_colour(spec, o, i))
             if d["bifurcations"]:
                 mark_bifurcations(ax, x, y, d["bifurcations"], "speed_ratio")
         top = max(float(np.max(o.data[f"defl_{node}"])) for o in res)
@@ -70,13 +76,11 @@ def _deflection(spec: FigureSpec, res: list[Outcome]) -> Figure:
         ax.set_title(f"node {node} ({'SFD' if node == 1 else 'disk'})", fontsize=9)
         ax.grid(alpha=0.3)
     outside_legend(fig, axes, _key(res))
-    return fig
 
 
-def _harmonics(spec: FigureSpec, res: list[Outcome]) -> Figure:
+def _harmonics(spec: FigureSpec, res: list[Outcome], fig: Any) -> None:
     nodes = spec.options.get("nodes", [1, 8])
     panels = [(o, n) for o in res for n in nodes]
-    fig = Figure(figsize=(4.8 * len(panels) + 1.6, 4.4), layout="constrained")
     axes = []
     for k, (o, node) in enumerate(panels):
         ax = fig.add_subplot(1, len(panels), k + 1)
@@ -102,7 +106,6 @@ def _harmonics(spec: FigureSpec, res: list[Outcome]) -> Figure:
         ax.set_title(f"{what}, {where}" if what else where, fontsize=9)
         ax.grid(alpha=0.3)
     outside_legend(fig, axes, _key(res))
-    return fig
 
 
 def _clearance(d: Mapping[str, Any], node: int) -> float:
@@ -125,19 +128,16 @@ def _orbits(ax: Any, o: Outcome) -> None:
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
 
 
-def _orbit_fig(spec: FigureSpec, res: list[Outcome]) -> Figure:
-    fig = Figure(figsize=(6.4, 5), layout="constrained")
+def _orbit_fig(spec: FigureSpec, res: list[Outcome], fig: Any) -> None:
     _orbits(fig.add_subplot(), res[0])
-    return fig
 
 
-def _yawing(spec: FigureSpec, res: list[Outcome]) -> Figure:
-    fig = Figure(figsize=(12, 4.6), layout="constrained")
+def _yawing(spec: FigureSpec, res: list[Outcome], fig: Any) -> None:
     ax = fig.add_subplot(1, 2, 1)
     for i, o in enumerate(res):
         d = o.data
         styled_line(ax, d["speed_ratio"], d["defl_1"], d.get("stable"),
-                    label=case_label(o.name, spec), lw=1.3, color=f"C{i % 10}")
+                    label=case_label(o.name, spec), lw=1.3, color=_colour(spec, o, i))
     ax.set_xlabel(XLABEL)
     ax.set_ylabel(r"$\tilde r$ at the SFD node")
     ax.grid(alpha=0.3)
@@ -147,21 +147,30 @@ def _yawing(spec: FigureSpec, res: list[Outcome]) -> Figure:
               loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
     six = [o for o in res if o.name.endswith("w6")] or res[:1]
     _orbits(fig.add_subplot(1, 2, 2), six[0])
-    return fig
 
 
-def _width(spec: FigureSpec, res: list[Outcome]) -> Figure:
-    fig = Figure(figsize=(10, 4.6), layout="constrained")
+def _width(spec: FigureSpec, res: list[Outcome], fig: Any,
+           cal: list[Outcome] | None = None) -> None:
+    """The unstable width against the pitching rate, both readings on one axes (the
+    calibrated curves in the colour of their literal one, thick and pale)."""
     ax = fig.add_subplot()
-    for o in res:
+    colours: dict[str, str] = {}
+    for o in [*res, *(cal or [])]:
         d = o.data
-        case = CASES.get(o.name)
+        lit = literal_name(o.name)
+        case = CASES.get(lit)
         h = case.note.split(" (")[0].split(",")[0] if case else ""
-        label = case_label(o.name) + (f", {h}" if h.startswith("H = ") else "")
+        label = case_label(lit) + (f", {h}" if h.startswith("H = ") else "")
         if np.all(np.isnan(d["width"])):
             label += ": journal contact, no fold"
         style = "-o" if len(d["rate"]) < 30 else ":" if "paper-h" in o.name else "-"
-        ax.plot(d["rate"], d["width"], style, ms=3, label=label)
+        if o.name.startswith(CAL):
+            (line,) = ax.plot(d["rate"], d["width"], style, ms=4, lw=3.0, alpha=0.45,
+                              color=colours.get(lit), label=label + ", calibrated")
+        else:
+            (line,) = ax.plot(d["rate"], d["width"], style, ms=3,
+                              label=label + (", literal" if cal else ""))
+            colours[lit] = line.get_color()
     paper = {"U = 252 g mm (paper)": ([0, 7], [0.041, 0.0]),
              "U = 360.04 g mm (paper)": ([0, 10], [0.195, 0.119])}
     for name, (x, y) in paper.items():
@@ -170,11 +179,9 @@ def _width(spec: FigureSpec, res: list[Outcome]) -> Figure:
     ax.set_ylabel(r"unstable range in $\tilde\Omega$")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
-    return fig
 
 
-def _directions(spec: FigureSpec, res: list[Outcome]) -> Figure:
-    fig = Figure(figsize=(12.5, 4.6), layout="constrained")
+def _directions(spec: FigureSpec, res: list[Outcome], fig: Any) -> None:
     axes = []
     for k, d_name in enumerate(("y", "z")):
         ax = fig.add_subplot(1, 2, k + 1)
@@ -184,7 +191,7 @@ def _directions(spec: FigureSpec, res: list[Outcome]) -> Figure:
             for side in ("max", "min"):
                 y = d[f"{side}_1_{d_name}"]
                 label = case_label(o.name, spec) if len(res) > 1 else "max and min"
-                styled_line(ax, d["speed_ratio"], y, d.get("stable"), color=f"C{i}",
+                styled_line(ax, d["speed_ratio"], y, d.get("stable"), color=_colour(spec, o, i),
                             label=label if side == "max" else None, lw=1.2)
                 if d["bifurcations"]:
                     mark_bifurcations(ax, d["speed_ratio"], y, d["bifurcations"],
@@ -195,11 +202,9 @@ def _directions(spec: FigureSpec, res: list[Outcome]) -> Figure:
                      + ": max and min over a period", fontsize=9)
         ax.grid(alpha=0.3)
     outside_legend(fig, axes, _key(res))
-    return fig
 
 
-def _timedomain(spec: FigureSpec, res: list[Outcome]) -> Figure:
-    fig = Figure(figsize=(12, 3.1 * len(res)), layout="constrained")
+def _timedomain(spec: FigureSpec, res: list[Outcome], fig: Any) -> None:
     for i, o in enumerate(res):
         d = o.data
         ax = fig.add_subplot(len(res), 3, 3 * i + 1)
@@ -218,7 +223,6 @@ def _timedomain(spec: FigureSpec, res: list[Outcome]) -> Figure:
         ax.set_title("phase", fontsize=9)
         ax = fig.add_subplot(len(res), 3, 3 * i + 3)
         _section(ax, d)
-    return fig
 
 
 def _section(ax: Any, d: Mapping[str, Any], fontsize: float = 9) -> None:
@@ -237,7 +241,7 @@ def _section(ax: Any, d: Mapping[str, Any], fontsize: float = 9) -> None:
                  fontsize=fontsize)
 
 
-def _isola(spec: FigureSpec, res: list[Outcome]) -> Figure:
+def _isola(spec: FigureSpec, res: list[Outcome], fig: Any) -> None:
     """Main branch and isola (disk deflection), then the Poincare sections of the
     time-domain runs on the isola (y, y' / (C Omega)): top row at the converged step
     (from the isola's HB orbit at 1.075, then down the isola), bottom row at the paper's
@@ -246,7 +250,6 @@ def _isola(spec: FigureSpec, res: list[Outcome]) -> Figure:
     rows = ([[iso.data["second"], *iso.data["runs"]],
              [iso.data["find"], *iso.data.get("runs_t200", [])]] if iso else [[], []])
     cols = 1 + max(len(r) for r in rows)
-    fig = Figure(figsize=(6.5 + 3.0 * (cols - 1), 7.8), layout="constrained")
     ax = fig.add_subplot(2, cols, 1)
     for i, o in enumerate(res):
         d = o.data
@@ -276,29 +279,68 @@ def _isola(spec: FigureSpec, res: list[Outcome]) -> Figure:
             step = f"T/{d['steps']}, " if "steps" in d else ""
             ax.set_title(rf"{step}$\tilde\Omega$ = {d['speed_ratio']:.3f}: {d['motion']}",
                          fontsize=8)
-    return fig
 
 
-def _chart(spec: FigureSpec, res: list[Outcome]) -> Figure:
-    fig = Figure(figsize=(7.4, 5.4), layout="constrained")
+def _chart(spec: FigureSpec, res: list[Outcome], fig: Any) -> None:
     ax = fig.add_subplot()
     d = res[0].data
     chart_axes(ax, d["x"], d["y"], d["max_abs"], x_label=d["x_label"],
                y_label=d["y_label"], tol=float(d.get("tol", 1e-5)),
                speed=d.get("speed", 250.0))
-    return fig
+
+
+def _size(spec: FigureSpec, res: list[Outcome]) -> tuple[float, float]:
+    """(width, height) in inches of one reading's panels."""
+    nodes = len(spec.options.get("nodes", [1, 8]))
+    if spec.plot == "isola":
+        iso = next((o for o in res if "runs" in o.data), None)
+        n = max(1 + len(iso.data["runs"]), 1 + len(iso.data.get("runs_t200", []))) \
+            if iso else 1
+        return 6.5 + 3.0 * n, 7.8
+    return {"deflection": (5.0 * nodes + 2.2, 4.4),
+            "harmonics": (4.8 * nodes * len(res) + 1.6, 4.4),
+            "orbits": (6.4, 5.0), "yawing": (12.0, 4.6), "width": (10.0, 4.6),
+            "directions": (12.5, 4.6), "timedomain": (12.0, 3.1 * len(res)),
+            "chart": (7.4, 5.4)}[spec.plot]
 
 
 PLOTS = {"deflection": _deflection, "harmonics": _harmonics, "orbits": _orbit_fig,
          "yawing": _yawing, "width": _width, "directions": _directions,
          "timedomain": _timedomain, "chart": _chart, "isola": _isola}
 
+#: Row titles of a figure drawn in both readings.
+READING_TITLES = {"literal": "Literal reading (no structural damping)",
+                  "calibrated": "Calibrated reading (modal damping 0.2197 %, "
+                                "examples/paper_rotor_calibrated.toml)"}
+
 
 def draw(spec: FigureSpec, outcomes: Mapping[str, Outcome]) -> Figure | None:
-    """The figure of ``spec`` (None when none of its cases gave data)."""
+    """The figure of ``spec`` (None when none of its cases gave data): one row of panels
+    per reading that ran (the calibrated one below the literal; Figure 19's widths of
+    both readings on one axes)."""
     res = _ok(outcomes, spec)
-    if not res:
+    cal = [outcomes[CAL + c] for c in spec.cases
+           if CAL + c in outcomes and outcomes[CAL + c].data]
+    if not res and not cal:
         return None
-    fig = PLOTS[spec.plot](spec, res)
-    fig.suptitle(wrap(f"Figure {spec.number}: {spec.title}", 110), fontsize=10)
+    plot = PLOTS[spec.plot]
+    if spec.plot == "width":
+        fig = Figure(figsize=_size(spec, res or cal), layout="constrained")
+        _width(spec, res, fig, cal)
+    elif res and cal:
+        w, h = _size(spec, res)
+        w2, h2 = _size(spec, cal)
+        fig = Figure(figsize=(max(w, w2), h + h2 + 0.6), layout="constrained")
+        top, bottom = fig.subfigures(2, 1, height_ratios=[h, h2])
+        for sub, rows, reading in ((top, res, "literal"), (bottom, cal, "calibrated")):
+            plot(spec, rows, sub)
+            sub.suptitle(READING_TITLES[reading], fontsize=9, fontweight="bold")
+    else:
+        rows = res or cal
+        fig = Figure(figsize=_size(spec, rows), layout="constrained")
+        plot(spec, rows, fig)
+    title = f"Figure {spec.number}: {spec.title}"
+    if cal and not res:                # the calibrated reading alone: said in the title
+        title += f"\n{READING_TITLES['calibrated']}"
+    fig.suptitle(wrap(title, 110), fontsize=10)
     return fig

@@ -21,13 +21,27 @@ from typing import Any
 
 import numpy as np
 
-from rotorsfd.paper.cases import Case, Outcome, examples_dir
+from rotorsfd.paper.cases import (
+    READINGS,
+    Case,
+    Outcome,
+    calibration_overrides,
+    examples_dir,
+    literal_name,
+)
 from rotorsfd.plots.labels import mathtext, setting
 
 # ---- response -------------------------------------------------------------------------------
 
 
-def local_peaks(x: np.ndarray, y: np.ndarray, rel: float = 0.05) -> list[float]:
+#: A disk peak stands out from the troughs on both sides by this fraction of the largest
+#: value (2 %: Figure 15's second peak at 9 rad/s, Omega~ 1.392, rises 3 % of the main
+#: peak above its trough, plainly a local maximum in the figure; the earlier 5 % missed it,
+#: and a smooth branch has no wiggles at that level).
+PEAK_PROMINENCE = 0.02
+
+
+def local_peaks(x: np.ndarray, y: np.ndarray, rel: float = PEAK_PROMINENCE) -> list[float]:
     """x of the local maxima of y(x) along the branch (arc order) that stand out by ``rel``
     of the largest value from the lowest point on both sides up to a higher value."""
     x, y = np.asarray(x, float), np.asarray(y, float)
@@ -118,7 +132,7 @@ def case_title(case: Case, config_title: str) -> str:
     config's title as it is when the case sets nothing."""
     words = [w for w in (setting(o) for o in case.overrides) if w]
     if not words:
-        return config_title
+        return config_title + (f"; {case.note}" if case.reading != "literal" else "")
     head, sep, rest = config_title.partition(":")
     if not sep:
         head, rest = "", config_title
@@ -136,12 +150,14 @@ def case_title(case: Case, config_title: str) -> str:
 
 def load_case_config(case: Case, examples: Path | None = None, quick: bool = False,
                      extra: Sequence[str] = ()) -> Any:
-    """The validated config of ``case`` (its overrides, ``--quick`` ones, ``extra``),
-    titled by :func:`case_title`."""
+    """The validated config of ``case`` (a calibrated case: :func:`calibration_overrides`
+    first; then its overrides, ``--quick`` ones, ``extra``), titled by :func:`case_title`."""
     from rotorsfd.io.config import load_config
 
-    config = load_config((examples or examples_dir()) / case.config,
-                         [*case.overrides, *(case.quick if quick else ()), *extra])
+    folder = examples or examples_dir()
+    reading = calibration_overrides(folder) if case.reading == "calibrated" else ()
+    config = load_config(folder / case.config,
+                         [*reading, *case.overrides, *(case.quick if quick else ()), *extra])
     return config.model_copy(update={"title": case_title(case, config.title)})
 
 
@@ -323,19 +339,35 @@ def _fold_curve(case: Case, config: Any, out: Path | None,
     return n, {"rate": grid, "width": w}
 
 
+def turning_points(result: Any) -> list[float]:
+    """Omega~ of the turning points of a response branch (``dlam/ds = 0``, located on the
+    HB equations alone, relative 1e-6 of the bracket in s, as the response's stability
+    locates its tangent saddle-nodes), in increasing order."""
+    from rotorsfd.continuation.folds import locate_branch_fold
+
+    b = result.branch
+    return sorted(locate_branch_fold(b, int(i), rtol=1e-6).lam / result.reference_speed
+                  for i in b.folds())
+
+
 def _width_sweep(case: Case, config: Any, out: Path | None,
                  plots: bool = False) -> tuple[dict, dict]:
+    """The unstable width (upper minus lower fold) per pitching rate: one branch per rate,
+    its folds its turning points (no Floquet: a fold is a turning point of the branch, the
+    width needs nothing else; the response with stability costs 3-4x)."""
     from rotorsfd.analyses.response import run_response
     from rotorsfd.io.config import with_values
 
     values = [float(v) for v in case.options["values"]]
     widths, notes = [], []
     for v in values:
-        r = run_response(with_values(config, {"base.pitching.value": v}), progress=False)
+        r = run_response(with_values(config, {"base.pitching.value": v}), progress=False,
+                         stability_options=False)
+        folds = turning_points(r)
         num, _ = response_numbers(r)
-        if "width" in num:
-            widths.append(num["width"])
-            notes.append(f"{v:g}: folds {num['sn_lo']:.4f}-{num['sn_hi']:.4f}")
+        if len(folds) >= 2:
+            widths.append(folds[-1] - folds[0])
+            notes.append(f"{v:g}: folds {folds[0]:.4f}-{folds[-1]:.4f}")
         elif r.success:
             widths.append(0.0)
             notes.append(f"{v:g}: no fold")
@@ -410,7 +442,7 @@ def run_cases(cases: Sequence[Case], *, examples: Path | None = None, quick: boo
 
     examples = examples or examples_dir()
     workers = workers or min(2, os.cpu_count() or 1)
-    order = sorted(cases, key=lambda c: -COST.get(c.kind, 1))
+    order = sorted(cases, key=lambda c: -case_cost(c))
     results: dict[str, Outcome] = {}
     bar = tqdm(total=len(order), desc="paper", disable=not progress, file=sys.stderr,
                dynamic_ncols=True)
@@ -434,9 +466,21 @@ def run_cases(cases: Sequence[Case], *, examples: Path | None = None, quick: boo
     return {c.name: results[c.name] for c in cases}
 
 
-#: Rough relative cost per kind (longest first keeps both workers busy).
-COST = {"isola": 12, "chart": 10, "width-sweep": 8, "simulate": 3, "fold-curve": 2, "response": 1,
-        "modal": 1}
+#: Rough cost per kind [CPU s] (longest first keeps both workers busy) ...
+COST = {"isola": 15, "chart": 7, "width-sweep": 8, "simulate": 1.5, "fold-curve": 3,
+        "response": 1.5, "modal": 1.4}
+#: ... and of the cases that cost more than their kind [CPU s, measured 2026-12-02]; a
+#: calibrated case costs about twice its literal one (dense modal damping).
+CASE_COST = {"fig21-cr0.61": 12.5, "fig21-cr0.728": 7, "fig21-cr0.485": 5.3,
+             "fig24-u144": 5.2, "fig24-u360": 4.1, "fig19-u252": 5.3, "fig19-u144": 3.4,
+             "fig17-u252-w9": 3.9, "fig17-u252-w7": 3.1, "fig17-u360-w9": 3.0,
+             "fig17-u360-w7": 2.7, "fig12-w9": 2.3, "fig12-w10": 2.3}
+
+
+def case_cost(case: Case) -> float:
+    """The expected CPU time of a case (:data:`CASE_COST`, else :data:`COST`)."""
+    base = CASE_COST.get(literal_name(case.name), COST.get(case.kind, 1.0))
+    return base * (2.0 if case.reading == "calibrated" else 1.0)
 
 
 @dataclass
@@ -459,11 +503,13 @@ class PaperResult:
 
 def run_paper(output: str | Path, figures: Sequence[str] | None = None, *,
               quick: bool = False, workers: int | None = None, progress: bool = True,
-              examples: Path | None = None, case_plots: bool = False) -> PaperResult:
+              examples: Path | None = None, case_plots: bool = False,
+              readings: Sequence[str] = READINGS) -> PaperResult:
     """Run the cases of ``figures`` (all by default; ``quick``: Figure 7 only, shorter
-    settings), draw the figures and write the report into ``output``; the cases' results
-    files go to ``output/cases/<case>``, with each analysis' own figures only if
-    ``case_plots``."""
+    settings) in the ``readings`` (literal and calibrated; see
+    :mod:`rotorsfd.paper.cases`), draw the figures and write the report into ``output``;
+    the cases' results files go to ``output/cases/<case>``, with each analysis' own
+    figures only if ``case_plots``."""
     import io
 
     from rotorsfd.paper.cases import select
@@ -472,7 +518,7 @@ def run_paper(output: str | Path, figures: Sequence[str] | None = None, *,
 
     t0 = time.perf_counter()
     out = Path(output)
-    specs, cases = select(list(figures or []), quick)
+    specs, cases = select(list(figures or []), quick, tuple(readings))
     outcomes = run_cases(cases, examples=examples, quick=quick, out=out / "cases",
                          workers=workers, progress=progress, plots=case_plots)
     pngs: dict[str, bytes] = {}

@@ -208,7 +208,8 @@ def check_bifurcations(branch: Branch, problem: PeriodicProblem, stability: Bran
                                    or options.n_intervals,
                                    max_intervals=max(options.max_intervals, M_c),
                                    n_harmonics=None if options.n_harmonics is None
-                                   else max(options.n_harmonics, H_c))
+                                   else max(options.n_harmonics, H_c),
+                                   outside=False)     # not reported from the check
         j0, j1 = _window(branch, ia, ib, c.window)
         piece = next((p for p in pieces if p.H_c == H_c and p.j0 <= j1 and j0 <= p.j1),
                      None)

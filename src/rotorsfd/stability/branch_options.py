@@ -50,6 +50,10 @@ class StabilityOptions:
     ``basis``: ``"reduced"`` (the method as given) or ``"full"`` (the unreduced monodromy
     of the whole model for a check: ``newmark-cb`` becomes ``newmark``,
     ``generalized-alpha-cb`` ``generalized-alpha``; Hill has no full form).
+    ``outside``: compute ``max_multiplier_outside`` (the modes above the Craig-Bampton
+    cut-off, one dense eigenproblem per point) at every point of the branch; the
+    bifurcation check's pieces and the located re-solves never report it and run with
+    it off (the multipliers and bifurcations are the same).
     """
 
     method: str = "newmark-cb"
@@ -69,6 +73,7 @@ class StabilityOptions:
     check: bool = False
     check_rtol: float = 1e-3
     basis: str = "reduced"
+    outside: bool = True
 
     def __post_init__(self) -> None:
         if self.method not in METHODS:

@@ -219,6 +219,7 @@ def branch_stability(branch: Branch, problem: PeriodicProblem,
         if progress is not None:
             progress(i + 1, n)
     t_points = time.perf_counter() - t0
+    ev.with_outside = False     # the located re-solves report no max_multiplier_outside
     dlam = branch.dlam_ds if branch.tangents.size else np.full(n, np.nan)
     s = branch.s if branch.s.size == n else np.arange(n, dtype=float)
     samples = [BranchSample(float(s[i]), float(branch.lam[i]), r.multipliers,

@@ -92,6 +92,8 @@ class FloquetEvaluator:
         self._cut = 0.0
         self.n_bases = 0
         self.n_intervals = int(self.options.n_intervals)
+        #: compute the modes above the cut-off (``max_multiplier_outside``) per result
+        self.with_outside = bool(self.options.outside)
 
     @property
     def step_controlled(self) -> bool:
@@ -207,7 +209,7 @@ class FloquetEvaluator:
                     cache[n] = self._jacobians(lam, Xnl, w, n)
             Jq, Jv, Ja = cache[n]
             res = self._reduced_newmark(red, T, Jq, Jv, n, p.n_dof, Ja)
-            if not extra:
+            if not extra and self.with_outside:
                 extra.update(self.outside(red, T, Jq, Jv, Ja=Ja))
             res.info.update(extra)
             return res
@@ -257,7 +259,8 @@ class FloquetEvaluator:
         if not o.method.startswith("hill"):
             Jq, Jv, Ja = self._jacobians(lam, Xnl, w, n_intervals)
             res = self._reduced_newmark(red, T, Jq, Jv, n_intervals, p.n_dof, Ja)
-            res.info.update(self.outside(red, T, Jq, Jv, Ja=Ja))
+            if self.with_outside:
+                res.info.update(self.outside(red, T, Jq, Jv, Ja=Ja))
             return res
         H = o.n_harmonics if o.n_harmonics is not None else max(8, X.shape[0] - 1)
         L = 2 * H
