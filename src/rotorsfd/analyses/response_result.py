@@ -177,12 +177,24 @@ class ResponseResult:
             solver = str(b.message)
             at = solver.find("; warning")
             return (f"reached the end of the range at {last} ({b.n_points} points)"
-                    + (solver[at:] if at >= 0 else ""))
+                    + (self.in_user_terms(solver[at:]) if at >= 0 else ""))
         limit = self.limit_text()
         reason = limit or _failure_words(str(b.message))
         head = (f"response branch {'ended' if limit else 'stopped'} after "
                 f"{b.n_points} points at {last}")
         return f"{head}: {reason} [solver: {b.message}]" if reason else f"{head}: {b.message}"
+
+    def in_user_terms(self, text: str) -> str:
+        """The continuation's ``lam=<value> (H=<n>)`` written as the parameter (Omega~ and
+        rad/s for the speed) and ``H = n``."""
+        def value(m: re.Match) -> str:
+            lam = float(m.group(1))
+            if self.is_speed:
+                return f"Omega~ = {lam / self.reference_speed:.5g} ({lam:.6g} rad/s)"
+            return f"{self.parameter} = {lam:.6g} {self.parameter_units}"
+
+        text = re.sub(r"lam=([-+0-9.eE]+)", value, text)
+        return re.sub(r"\(H=(\d+)\)", r"(H = \1)", text)
 
     @property
     def is_speed(self) -> bool:
