@@ -12,7 +12,9 @@ from rotorsfd import api
 
 
 def test_truncation_warning_names_the_speed(tmp_path):
-    cfg = api.load_config(small_rotor_toml(tmp_path / "r.toml", base='pitching = { law = "constant", value = "6 rad/s" }'),
+    path = small_rotor_toml(tmp_path / "r.toml",
+                            base='pitching = { law = "constant", value = "6 rad/s" }')
+    cfg = api.load_config(path,
                           ["analysis.response.harmonics=1",
                            "analysis.response.harmonics_tolerance=1e-9",
                            "analysis.stability.enabled=false"])
