@@ -29,6 +29,7 @@ def _blocks(language: str) -> list[str]:
 def _command_lines() -> list[str]:
     lines = []
     for block in _blocks("bash"):
+        block = re.sub(r"\\\n\s*", " ", block)      # a command continued with "\"
         for line in block.splitlines():
             line = line.split(" #")[0].strip()
             if line.startswith("rotorsfd "):
