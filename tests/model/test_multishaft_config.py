@@ -77,7 +77,6 @@ def test_intershaft_sfd_from_config(raw: dict) -> None:
     (lambda r: r["rotor"]["intershaft"][0].update(outer_node=3), "another shaft"),
     (lambda r: r["rotor"]["intershaft"][0].update(outer_node=19), "1..18"),
     (lambda r: r["rotor"]["shafts"][1].update(name="lp"), "distinct"),
-    (lambda r: r["unbalance"][0].update(node=15), "two-frequency"),
     (lambda r: r.update(base={"pitching": {"law": "constant", "value": 0.5}}),
      "rotating base"),
     (lambda r: r["rotor"].update(shaft=r["rotor"]["shafts"][0]["sections"]), "exactly one"),

@@ -171,6 +171,12 @@ def run_modal(config: Config, search_path: Path | None = None,
     from tqdm import tqdm
 
     m = config.analysis.modal
+    if len({s.speed_ratio for s in config.rotor.shafts}) > 1:   # shafts at several speeds
+        from rotorsfd.analyses.spool_modal import run_spool_modal
+
+        system = linear_system(config, build_model(config, search_path))
+        ref = reference_speed(config, system)
+        return run_spool_modal(config, system, ref, modal_speeds(config, ref))
     with tqdm(total=3, desc="modal", disable=not progress, file=sys.stderr,
               leave=False) as bar:
         system = linear_system(config, build_model(config, search_path))

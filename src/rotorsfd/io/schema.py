@@ -667,6 +667,9 @@ class ModalAnalysis(Section):
         "forward", description="whirl direction of the critical speeds")
     critical_speed_max: quantity("angular_velocity", "upper end of the critical-speed search",
                                  gt=0) = 2.0e4
+    spool: str | None = Field(None, description="several shafts: the [[rotor.shafts]] name "
+                              "whose speed the Campbell diagram and critical speeds are "
+                              "against (default: the first shaft)")
 
 
 class ResponseAnalysis(Section):
@@ -1014,14 +1017,17 @@ class Config(Section):
                     raise fail(("base", name, "law"), c.law, "a rotating base with shafts "
                                "at different speeds is not supported yet (the base's spin "
                                "terms differ per shaft); base translations and gravity are")
+        other: dict[float, int] = {}     # each shaft's unbalance turns at its own speed
         for i, u in enumerate(self.unbalance):
             k = r.shaft_of(u.node)
-            if k is not None and r.shafts[k].speed_ratio != 1.0:
-                raise fail(("unbalance", i, "node"), u.node, f"is on shaft "
-                           f"{r.shafts[k].name!r} at speed ratio {r.shafts[k].speed_ratio:g}:"
-                           " an unbalance at another frequency than the speed needs the "
-                           "two-frequency harmonic balance (not yet); put unbalances on "
-                           "shafts at ratio 1")
+            ratio = r.shafts[k].speed_ratio if k is not None else 1.0
+            if ratio != 1.0:
+                other.setdefault(ratio, i)
+            if len(other) > 1:
+                raise fail(("unbalance", i, "node"), u.node, f"is on a shaft at speed ratio "
+                           f"{ratio:g} while another unbalance turns at "
+                           f"{next(iter(other)):g}: the two-frequency response takes "
+                           "unbalances at two speeds (ratio 1 and one other)")
 
     @model_validator(mode="after")
     def _cross_checks(self):

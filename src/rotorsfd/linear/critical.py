@@ -102,3 +102,14 @@ def _brackets(table: np.ndarray) -> list[tuple[int, int]]:
                 continue
             out.append((b, k))
     return out
+
+
+def line_critical_speeds(system: LinearDynamics, lines: dict[str, float], n: int = 2,
+                         **options) -> list[tuple[str, CriticalSpeed]]:
+    """The ``n`` lowest critical speeds on each excitation line ``w = h Omega`` of
+    ``lines`` (name -> slope h; a dual-spool rotor: each shaft's unbalance line against one
+    spool's speed, :class:`~rotorsfd.model.multishaft.SpoolSpeed`), as ``(name, critical)``
+    sorted by speed; ``options`` as for :func:`critical_speeds`."""
+    out = [(name, c) for name, h in lines.items()
+           for c in critical_speeds(system, n=n, harmonic=h, **options)]
+    return sorted(out, key=lambda item: item[1].speed_rad_s)

@@ -35,6 +35,7 @@ from rotorsfd.model.base_terms import (
     base_coefficient_derivatives,
     base_coefficients,
 )
+from rotorsfd.model.multishaft_loads import check_one_frequency
 from rotorsfd.model.parameters import PARAMETERS, find_parameter
 from rotorsfd.model.rotor import Rotor
 from rotorsfd.model.time_terms import second_order_system
@@ -221,6 +222,7 @@ class RotorSystem:
         if not len(self.elements):
             raise ConfigError("elements", None, "the nonlinear response needs at least one "
                               "nonlinear element (an [elements.<name>] table)")
+        check_one_frequency(self.rotor, self.unbalances, "the harmonic balance")  # 2 spools
         par = find_parameter(parameter)
         if par.kind != "speed" and (speed is None or speed <= 0):
             raise ConfigError("speed", speed,

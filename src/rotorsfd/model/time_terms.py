@@ -21,6 +21,8 @@ from typing import Any
 import numpy as np
 
 from rotorsfd.errors import ConfigError
+from rotorsfd.model.multishaft_loads import other_spool_harmonics, split_unbalances
+from rotorsfd.model.unbalance import unbalance_harmonics
 from rotorsfd.second_order import SecondOrderSystem
 from rotorsfd.timedomain.forcing import Forcing, HarmonicLoad, TimeVaryingMatrices
 
@@ -57,10 +59,13 @@ def second_order_system(system: Any, speed: float, *,
     el = system.elements_at(speed)   # a law of the speed (journal bearing) set to it
     kernel, params = (el.kernel, el.kernel_params) if len(el) else (None, None)
     events = any(u.start > 0.0 for u in system.unbalances)   # a sudden unbalance: series
+    own, other = split_unbalances(r, system.unbalances)   # each at its own shaft's speed
     if system.base.is_constant and not events:
         M, D, K = system.matrices(speed)
-        Fc, Fs = system.unbalance_harmonics(speed)
-        harm = [HarmonicLoad(1.0, Fc, Fs)] if system.unbalances else []
+        Fc, Fs = unbalance_harmonics(own, r, speed, system.constant_base_state())
+        harm = ([HarmonicLoad(1.0, Fc, Fs)] if own else []) + [
+            HarmonicLoad(k, fc, fs) for k, fc, fs in other_spool_harmonics(
+                r, system.unbalances, speed)]
         forcing = Forcing(omega=speed, constant=system.static_force(speed), harmonics=harm)
         return SecondOrderSystem(M, D.copy(), K.copy(), nl, kernel, params, forcing, None,
                                  float(speed), el)
@@ -78,7 +83,9 @@ def second_order_system(system: Any, speed: float, *,
     force, f0 = fold_constant(force, probe)
     D = r.C + speed * r.G + (dC if dC is not None else 0.0)
     K = r.K + (dK if dK is not None else 0.0)
-    series = list(force) + unbalance_series(system.unbalances, r, speed, system.base)
+    series = list(force) + unbalance_series(own, r, speed, system.base)
+    for k, us in other.items():     # a second spool's unbalances at its speed k Omega
+        series += unbalance_series(us, r, k * speed, system.base)
     forcing = Forcing(omega=speed, constant=f0, series=series)
     tv = TimeVaryingMatrices(damping=damping, stiffness=stiffness) \
         if damping or stiffness else None
