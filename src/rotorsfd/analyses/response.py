@@ -151,8 +151,13 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
     :func:`~rotorsfd.analyses.orbit_branch.continue_both_ways`).
     """
     if not isinstance(config_or_system, RotorSystem):   # a harmonic base law: a torus
+        from rotorsfd.analyses.dual_spool_response import dual_spool, run_dual_spool_response
         from rotorsfd.analyses.torus_response import harmonic_base, run_torus_response
 
+        if dual_spool(config_or_system):     # unbalances on two spools: two frequencies
+            return run_dual_spool_response(config_or_system, search_path=search_path,
+                                           progress=progress, from_orbit=from_orbit,
+                                           callback=callback)
         if harmonic_base(config_or_system):
             return run_torus_response(config_or_system, search_path=search_path,
                                       progress=progress, from_orbit=from_orbit,

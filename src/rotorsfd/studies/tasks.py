@@ -229,7 +229,8 @@ def response_output(result: Any) -> PointOutput:
     else:
         x, x_name = np.asarray(branch.lam, dtype=float), "parameter"
     sc: dict[str, Scalar] = {"branch_points": int(branch.n_points),
-                             "folds": len(branch.folds())}
+                             "folds": len(branch.folds()) if hasattr(branch, "folds")
+                             else None}            # a torus branch: no fold test
     arrays: dict[str, ArrayOut] = {f"branch_{x_name}": ArrayOut(("branch_point",), x)}
     has_stability = result.stable is not None
     bifs = list(result.bifurcations or [])

@@ -1,0 +1,187 @@
+"""``rotorsfd response`` of a dual-spool rotor with unbalances on both spools: the branch of
+two-frequency responses (tori, lines ``k1 Omega_LP + k2 Omega_HP``) along the speed line
+``Omega_HP = r Omega_LP``, its stability, files and plots (issue 20 item 3).
+
+The problem is :func:`~rotorsfd.quasiperiodic.dual_frequency.dual_spool_problem` (the linear
+part time-invariant, each harmonic its own block), continued in Omega_LP by the torus arc
+length (:func:`~rotorsfd.quasiperiodic.continue_torus`) over ``[analysis.response]``'s
+speed range on the box ``|k1|, |k2| <= H`` (H = ``start_harmonics``). With
+``[analysis.stability].enabled`` the largest Lyapunov exponent of the motion started on
+the torus (:func:`~rotorsfd.quasiperiodic.torus_stability.torus_lyapunov`: the time
+integration runs each shaft's unbalance at its own speed) at
+:data:`~rotorsfd.analyses.torus_response.LYAPUNOV_POINTS` points spread along the branch.
+
+Files: ``torus.nc`` and ``torus.csv`` as for a torus under a harmonic base law (there the
+base frequency column ``base_frequency_rad_s`` is Omega_HP; ``torus.csv`` has
+``hp_speed_rad_s`` as well), ``dual_spool_response.png`` (the strongest lines in the
+spools' words, "1X LP", "1X HP", "2X LP - 1X HP", and the Lyapunov exponents).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from rotorsfd.analyses.torus_response import (
+    LYAPUNOV_POINTS,
+    TorusPoint,
+    TorusResponseResult,
+    lyapunov_indices,
+)
+from rotorsfd.errors import ConfigError, ConvergenceError
+
+if TYPE_CHECKING:
+    from rotorsfd.io.schema import Config
+    from rotorsfd.quasiperiodic import TorusLattice
+
+FIELD = "analysis.response"
+__all__ = ["DualSpoolResponseResult", "dual_spool", "run_dual_spool_response"]
+
+
+def dual_spool(config: Config) -> bool:
+    """True when an unbalance of ``config`` is on a shaft at a speed ratio other than 1
+    (the response then has two base frequencies)."""
+    shafts = config.rotor.shafts
+    if not shafts:
+        return False
+    for u in config.unbalance:
+        k = config.rotor.shaft_of(u.node)
+        if k is not None and shafts[k].speed_ratio != 1.0 and u.magnitude != 0.0:
+            return True
+    return False
+
+
+@dataclasses.dataclass
+class DualSpoolResponseResult(TorusResponseResult):
+    """A torus branch along the speed line Omega_HP = r Omega_LP (``speeds``: Omega_LP)."""
+
+    FILES = ("torus.nc", "torus.csv", "dual_spool_response.png")
+    #: no Floquet data per point (the Lyapunov exponents are at a few points: ``lyapunov``)
+    stable = None
+    max_multiplier = None
+    bifurcations = None
+
+    @property
+    def ratio(self) -> float:
+        return float(self.info["speed_ratio"])
+
+    def table(self) -> dict[str, Any]:
+        cols = super().table()
+        out = {k: cols[k] for k in ("point", "speed_rad_s")}
+        out["hp_speed_rad_s"] = np.asarray(self.branch.wb, dtype=float)
+        out.update(cols)
+        return out
+
+    def summary(self) -> str:
+        lines = super().summary().splitlines()
+        b = self.branch
+        lines[0] = (f"dual-spool response (torus, lines k1 Omega_LP + k2 Omega_HP, Omega_HP = "
+                    f"{self.ratio:g} Omega_LP): {b.n_points} points, Omega_LP~ from "
+                    f"{b.omega.min() / self.reference_speed:.5g} to "
+                    f"{b.omega.max() / self.reference_speed:.5g}, box |k1|, |k2| <= "
+                    f"{b.lattice.H1}, grid {b.grid[0]} x {b.grid[1]}, {self.elapsed:.2f} s")
+        return "\n".join(lines)
+
+    def write(self, directory: str | Path, plots: bool = True,
+              multipliers_at: float | None = None) -> dict[str, Path]:
+        """torus.nc, torus.csv and dual_spool_response.png, atomically."""
+        from rotorsfd.io import atomic
+        from rotorsfd.io.branch_files import write_table
+        from rotorsfd.io.torus_files import write_torus_netcdf
+
+        out = Path(directory)
+        ds = self.to_dataset()
+        ds.attrs["speed_ratio_hp_lp"] = self.ratio
+        paths = {"torus.nc": write_torus_netcdf(ds, out / "torus.nc"),
+                 "torus.csv": write_table(out / "torus.csv", self.table())}
+        if plots and self.branch.n_points:
+            from rotorsfd.plots.dual_spool import plot_dual_spool_response
+
+            name = "dual_spool_response.png"
+            paths[name] = atomic.save_figure(plot_dual_spool_response(self), out / name,
+                                             dpi=120)
+        return paths
+
+
+def run_dual_spool_response(config: Config, *, search_path: Path | None = None,
+                            lattice: TorusLattice | None = None, progress: bool = True,
+                            stability: bool | None = None, from_orbit: Any = None,
+                            callback: Callable[[Any], bool | None] | None = None,
+                            lyapunov_points: int = LYAPUNOV_POINTS
+                            ) -> DualSpoolResponseResult:
+    """The two-frequency branch of a dual-spool config over its speed range (module doc);
+    ``stability`` None: ``[analysis.stability].enabled``; ``callback(point)`` returning True
+    stops the branch."""
+    from rotorsfd.analyses.modal import reference_speed
+    from rotorsfd.io.config import show_config
+    from rotorsfd.model.build import build_system
+    from rotorsfd.quasiperiodic import TorusLattice, continue_torus
+    from rotorsfd.quasiperiodic.dual_frequency import dual_spool_problem
+    from rotorsfd.quasiperiodic.torus_stability import torus_lyapunov
+
+    r = config.analysis.response
+    if from_orbit is not None:
+        raise ConfigError("--from-orbit", str(from_orbit), "a dual-spool branch (unbalances "
+                          "on two spools) starts from the linear response, not an orbit")
+    if r.parameter.strip() != "speed":
+        raise ConfigError(f"{FIELD}.parameter", r.parameter, "with unbalances on two spools "
+                          "the branch is continued in 'speed' (Omega_LP) only")
+    if r.adaptive_harmonics:
+        raise ConfigError(f"{FIELD}.harmonics", "auto", "the dual-spool torus takes a fixed "
+                          "number of harmonics (start_harmonics)")
+    if not config.elements:
+        raise ConfigError("elements", None, "the nonlinear response needs at least one "
+                          "nonlinear element (an [elements.<name>] table)")
+    system = build_system(config, search_path)
+    problem = dual_spool_problem(system)      # ConfigError: base law, ratios
+    ref = float(reference_speed(config, system))
+    lo, hi = r.speed_range.bounds(ref)
+    if not (lo > 0 and hi > 0) or lo == hi:
+        raise ConfigError(f"{FIELD}.speed_range", r.speed_range.model_dump(
+            exclude_none=True), "the dual-spool branch needs two different speeds > 0")
+    nodes = tuple(r.nodes) or system.output_nodes
+    for n in nodes:
+        if not 1 <= n <= system.rotor.n_nodes:
+            raise ConfigError(f"{FIELD}.nodes", n, f"must be 1..{system.rotor.n_nodes}")
+    lattice = lattice or TorusLattice(r.start_harmonics, r.start_harmonics)
+
+    def hook(index: int, lam: float, X: Any) -> bool:
+        if progress:
+            import sys
+
+            print(f"\rdual-spool torus: {index + 1} points, at Omega_LP~ = {lam / ref:.4g}",
+                  end="", file=sys.stderr, flush=True)
+        return bool(callback(TorusPoint(index, lam, X))) if callback else False
+
+    t0 = time.perf_counter()
+    try:
+        branch = continue_torus(problem, float(lo), float(hi), lattice, tol=r.tolerance,
+                                ds=r.step_initial, ds_min=r.step_min, ds_max=r.step_max,
+                                max_iter=r.max_iterations, max_points=r.max_points,
+                                max_angle_deg=math.degrees(r.max_tangent_angle),
+                                limit_max=r.max_eccentricity, callback=hook)
+    except ConvergenceError as exc:
+        raise ConvergenceError(f"no torus at the start of the speed range (Omega~ = "
+                               f"{lo / ref:.4g}): {exc}") from None
+    finally:
+        if progress:
+            import sys
+
+            print("\r\033[K", end="", file=sys.stderr, flush=True)
+    enabled = config.analysis.stability.enabled if stability is None else stability
+    lyap = {}
+    if enabled:
+        for i in lyapunov_indices(branch.n_points, lyapunov_points):
+            lyap[i] = torus_lyapunov(system, lattice, branch.X[i], float(branch.omega[i]),
+                                     float(branch.wb[i]))
+    return DualSpoolResponseResult(
+        branch, system, ref, tuple(nodes), tuple(r.directions), config.title,
+        time.perf_counter() - t0, lyap,
+        {"config_toml": show_config(config), "limit_max": float(r.max_eccentricity),
+         "speed_ratio": float(problem.info["speed_ratio"])})

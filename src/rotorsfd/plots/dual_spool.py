@@ -1,0 +1,67 @@
+"""``dual_spool_response.png``: the two-frequency response of a dual-spool rotor along its
+speed line. Per output node the strongest lines ``k1 Omega_LP + k2 Omega_HP`` (radial
+amplitude / C, legends in the spools' words: "1X LP", "1X HP", "2X LP - 1X HP") against
+Omega_LP~, a second axis on top in Omega_HP; below, the largest Lyapunov exponent per LP
+period where computed (filled: stable, open: unstable)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from rotorsfd.plots.labels import mathtext, wrap
+from rotorsfd.plots.torus import radial_amplitude, strongest
+
+
+def spool_label(k1: int, k2: int) -> str:
+    """A line's name: "static", "1X LP", "1X HP", "1X LP + 1X HP", "2X LP - 1X HP"."""
+    if k1 == 0 and k2 == 0:
+        return "static"
+    parts = [f"{k1}X LP"] if k1 else []
+    if k2:
+        parts.append(f"{abs(k2)}X HP" if parts or k2 > 0 else f"-{abs(k2)}X HP")
+    return parts[0] if len(parts) == 1 else f"{parts[0]} {'+' if k2 > 0 else '-'} {parts[1]}"
+
+
+def plot_dual_spool_response(result: Any) -> Figure:
+    """The figure of the module docstring for a
+    :class:`~rotorsfd.analyses.dual_spool_response.DualSpoolResponseResult`."""
+    b = result.branch
+    x = b.omega / result.reference_speed
+    rows = len(result.nodes) + (1 if result.lyapunov else 0)
+    fig = Figure(figsize=(8, 2.8 * rows + 1.0), layout="constrained")
+    axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
+    for ax, n in zip(axes, result.nodes, strict=False):
+        amp = radial_amplitude(result, n)
+        for i in strongest(result, n):
+            k1, k2 = (int(v) for v in b.lattice.k[i])
+            ax.plot(x, amp[:, i], "-", label=spool_label(k1, k2))
+        ax.set_yscale("log")
+        ax.set_ylabel(f"node {n}: " + r"$|X_{k_1,k_2}|\,/\,C$")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7, ncols=2, loc="best", title="line", title_fontsize=7)
+    ratio, ref = result.ratio, result.reference_speed
+    top = axes[0].secondary_xaxis("top", functions=(lambda v: v * ratio * ref,
+                                                    lambda v: v / (ratio * ref)))
+    top.set_xlabel(r"$\Omega_{HP}$ [rad/s]", fontsize=8)
+    if result.lyapunov:
+        ax = axes[-1]
+        idx = sorted(result.lyapunov)
+        lam = np.array([result.lyapunov[i].per_period for i in idx])
+        err = np.array([result.lyapunov[i].uncertainty for i in idx])
+        ok = np.array([result.lyapunov[i].stable for i in idx], dtype=bool)
+        xi = x[idx]
+        ax.errorbar(xi, lam, yerr=err, fmt="none", ecolor="0.5", capsize=2)
+        ax.plot(xi[ok], lam[ok], "o", color="C0", label="stable")
+        ax.plot(xi[~ok], lam[~ok], "o", mfc="none", color="C3", label="unstable")
+        ax.axhline(0.0, color="k", lw=0.8)
+        ax.set_ylabel(mathtext("largest Lyapunov exponent x T_LP"))
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7, loc="best")
+    axes[-1].set_xlabel(r"$\tilde\Omega_{LP} = \Omega_{LP} / \Omega_{ref}$, "
+                        rf"$\Omega_{{ref}}$ = {ref:.4g} rad/s")
+    fig.suptitle(wrap(f"{result.title or 'Dual-spool response'}: lines k1 Omega_LP + "
+                      f"k2 Omega_HP, Omega_HP = {ratio:g} Omega_LP", 90), fontsize=9)
+    return fig
