@@ -82,3 +82,32 @@ def test_the_periodic_harmonic_balance_refuses_a_second_spools_unbalance(system)
         system.periodic_problem()
     with pytest.raises(ConfigError, match="p/q"):
         common_period_problem(system, 3, 2)          # 3/2 is not the ratio 1.8
+
+
+def test_per_harmonic_condensation_equals_the_block_condensation(system) -> None:
+    """HarmonicCondenser (one LU per harmonic) against the generic TorusCondenser (one LU
+    per k1 block) at a shift and speed: Ht, Pt and their exact speed derivatives, and the
+    recovered coefficients; the derivatives also against central differences."""
+    from rotorsfd.quasiperiodic.dual_frequency import HarmonicCondenser
+    from rotorsfd.quasiperiodic.torus_linear import TorusCondenser
+
+    problem = dual_spool_problem(system)
+    lat = TorusLattice(2, 2)
+    m = problem.m
+    rng = np.random.default_rng(3)
+    Kr, Cr = np.diag(rng.uniform(1e5, 1e6, m)), np.diag(rng.uniform(10.0, 100.0, m))
+    fast, ref = HarmonicCondenser(problem, lat), TorusCondenser(problem, lat)
+    for c in (fast, ref):
+        c.set_shift(Kr, Cr, 150.0)
+    a, b = fast.condense(158.0), ref.condense(158.0)
+    for name in ("Ht", "Pt", "dHt", "dPt"):
+        x, y = getattr(a, name), getattr(b, name)
+        assert np.abs(x - y).max() <= 1e-10 * np.abs(y).max(), name
+    xs = rng.normal(size=(lat.n_real, m)) * 1e-5
+    G = rng.normal(size=(lat.n_real, m))
+    X1, X2 = fast.recover(a, xs, G), ref.recover(b, xs, G)
+    assert np.abs(X1 - X2).max() <= 1e-10 * np.abs(X2).max()
+    h = 1e-3
+    up, down = fast.condense(158.0 + h, deriv=False), fast.condense(158.0 - h, deriv=False)
+    fd = (up.Ht - down.Ht) / (2 * h)
+    assert np.abs(fd - a.dHt).max() <= 1e-5 * np.abs(a.dHt).max()     # O(h^2): 1.2e-6

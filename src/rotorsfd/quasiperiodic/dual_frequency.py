@@ -43,6 +43,7 @@ import dataclasses
 from fractions import Fraction
 
 import numpy as np
+from scipy.linalg import lu_factor, lu_solve
 
 from rotorsfd.errors import ConfigError
 from rotorsfd.harmonic.problem import PeriodicProblem
@@ -50,10 +51,21 @@ from rotorsfd.model.multishaft import check_base_motion
 from rotorsfd.model.multishaft_loads import second_ratio, split_unbalances
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.model.unbalance import unbalance_harmonics
-from rotorsfd.quasiperiodic.torus_fourier import TorusLattice
-from rotorsfd.quasiperiodic.torus_linear import TorusProblem
+from rotorsfd.quasiperiodic.torus_fourier import (
+    TorusLattice,
+    block_real_indices,
+    block_real_maps,
+    block_vectors,
+)
+from rotorsfd.quasiperiodic.torus_linear import (
+    TorusCondensed,
+    TorusCondenser,
+    TorusProblem,
+    complex_to_real,
+)
 
-__all__ = ["common_period_problem", "dual_spool_problem", "one_sided", "spool_ratio"]
+__all__ = ["HarmonicCondenser", "common_period_problem", "dual_spool_problem", "one_sided",
+           "spool_ratio"]
 
 
 def one_sided(unbalances, rotor, speed: float) -> np.ndarray:
@@ -139,7 +151,90 @@ def dual_spool_problem(system: RotorSystem, ratio: float | None = None) -> Torus
         elements=system.elements if len(system.elements) else None,
         scaling=system.dof_scale(), name="dual-spool torus in speed",
         info={"speed_ratio": r, "parameter": "speed", "base_band": 0,
+              "condenser": HarmonicCondenser,
               "unbalance_lp": len(own), "unbalance_hp": len(hp)})
+
+
+class HarmonicCondenser(TorusCondenser):
+    """The exact condensation of :class:`~rotorsfd.quasiperiodic.torus_linear.
+    TorusCondenser` for a time-invariant linear part (b = 0, module docstring): the block
+    of one k1 is block diagonal over k2, so each harmonic gets its own n x n LU of
+    ``Z_k + S^T Delta_k S`` instead of one of the whole (2h + 1) n block;
+    ``C = Z_k^-1 S^T``, ``u = Z_k^-1 F_k``, ``dZ_k = dK + i (domega_k D + omega_k dD) -
+    2 omega_k domega_k M``. The same ``TorusCondensed`` (the tests compare the two)."""
+
+    def __init__(self, problem: TorusProblem, lattice: TorusLattice) -> None:
+        super().__init__(problem, lattice)
+        self.last: TorusCondensed | None = None
+
+    def set_shift(self, Kr, Cr, lam: float) -> None:
+        super().set_shift(Kr, Cr, lam)
+        self.last = None
+
+    def condense(self, lam: float, deriv: bool = True) -> TorusCondensed:
+        c = self.last
+        if c is not None and c.lam == lam and (c.dHt is not None or not deriv):
+            return c
+        p_, lat = self.problem, self.lattice
+        n, m, s = p_.n_dof, p_.m, p_.nl_dofs
+        Dc, Kc = p_.coefficients(lam)
+        if Dc.shape[0] != 1:
+            raise ValueError("HarmonicCondenser needs a time-invariant linear part (b = 0)")
+        D, K, M = Dc[0], Kc[0], np.asarray(p_.M, dtype=complex)
+        om, wb = p_.frequencies(lam)
+        F = block_vectors(lat, p_.forcing(lam, lat))
+        if deriv:
+            dDc, dKc = p_.dcoefficients(lam)
+            dD, dK = dDc[0], dKc[0]
+            dom, dwb = p_.dfrequencies(lam)
+            dF = block_vectors(lat, p_.dforcing(lam, lat))
+        nr = lat.n_real
+        Ht, Pt = np.zeros((nr * m, nr * m)), np.zeros((nr, m))
+        dHt = np.zeros_like(Ht) if deriv else None
+        dPt = np.zeros_like(Pt) if deriv else None
+        us, Cs = [], []
+        eye = np.zeros((n, m), dtype=complex)
+        eye[s, np.arange(m)] = 1.0
+        for k1 in range(lat.H1 + 1):
+            h = lat.h(k1)
+            p = 2 * h + 1
+            dl = self.delta(k1)
+            C = np.zeros((p * n, p * m), dtype=complex)
+            u = np.zeros(p * n, dtype=complex)
+            dC = np.zeros((p * m, p * m), dtype=complex)
+            du = np.zeros(p * m, dtype=complex)
+            for r, k2 in enumerate(range(-h, h + 1)):
+                w = k1 * om + k2 * wb
+                Z = K + 1j * w * D - w**2 * M
+                Z[np.ix_(s, s)] += dl[r]
+                lu = lu_factor(Z, check_finite=False)
+                sol = lu_solve(lu, np.column_stack([eye, F[k1][r]]), check_finite=False)
+                rn, rm = slice(r * n, (r + 1) * n), slice(r * m, (r + 1) * m)
+                C[rn, rm], u[rn] = sol[:, :m], sol[:, m]
+                if deriv:
+                    dw = k1 * dom + k2 * dwb
+                    dZ = dK + 1j * (dw * D + w * dD) - 2 * w * dw * M
+                    sol2 = lu_solve(lu, np.column_stack([dZ @ sol[:, :m],
+                                                         dF[k1][r] - dZ @ sol[:, m]]),
+                                    check_finite=False)[s]
+                    dC[rm, rm], du[rm] = sol2[:, :m], sol2[:, m]
+            rows = (np.arange(p)[:, None] * n + s[None, :]).ravel()
+            idx = block_real_indices(lat, k1)
+            _, U = block_real_maps(lat, k1)
+            Pt[idx] = (U @ u[rows].reshape(p, m)).real
+            if m:
+                g, R = complex_to_real(lat, k1, C[rows], m)
+                Ht[np.ix_(g, g)] = R
+            if deriv:
+                dPt[idx] = (U @ du.reshape(p, m)).real
+                if m:
+                    g, R = complex_to_real(lat, k1, -dC, m)
+                    dHt[np.ix_(g, g)] = R
+            us.append(u)
+            Cs.append(C)
+        out = TorusCondensed(lam, Ht, Pt, us, Cs, dHt, dPt)
+        self.last = out
+        return out
 
 
 def common_period_problem(system: RotorSystem, p: int, q: int) -> PeriodicProblem:

@@ -91,7 +91,9 @@ class TorusHB:
                  ) -> None:
         self.problem, self.lattice = problem, lattice
         self.aft = TorusAFT(lattice, N1, N2)
-        self.condenser = TorusCondenser(problem, lattice)
+        # a problem may bring its own condenser class (a time-invariant linear part:
+        # quasiperiodic.dual_frequency.HarmonicCondenser, one LU per harmonic)
+        self.condenser = problem.info.get("condenser", TorusCondenser)(problem, lattice)
         self.n_unknowns = lattice.n_real * problem.m
 
     def set_shift(self, xs: FloatArray, lam: float) -> None:
