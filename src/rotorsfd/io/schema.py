@@ -358,7 +358,8 @@ ElementTable = Annotated[reduce(operator.or_, KINDS.values()), Field(discriminat
 
 class UnbalanceConfig(Section):
     """Unbalance U = m e at a node; force U Omega^2 rotating with the shaft, at angle
-    Omega t + phase from +y towards +z."""
+    Omega t + phase from +y towards +z (several shafts: Omega is the speed of the node's
+    shaft, r Omega)."""
 
     node: NODE
     magnitude: quantity("unbalance", "unbalance m*e", ge=0)
