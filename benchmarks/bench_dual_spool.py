@@ -1,8 +1,10 @@
 """Dual-spool torus branch (issue 20 item 3): the condensation per harmonic
 (:class:`~rotorsfd.quasiperiodic.dual_frequency.HarmonicCondenser`, the linear part is
 time-invariant) against the generic one LU per k1 block
-(:class:`~rotorsfd.quasiperiodic.torus_linear.TorusCondenser`, the honest baseline: what
-the torus code did before), side by side on the same branch; and the branch against time
+(:class:`~rotorsfd.quasiperiodic.torus_linear.TorusCondenser` with its banded columns, the
+honest baseline: what the torus code does for any problem), side by side on the same
+branch. Measured (2 loaded cores): 29 points 5.14 s -> 1.11 s CPU (4.6x), the same branch
+to 7e-13; and the branch against time
 integration at every one of its speeds.
 
 Problem: examples/dual_spool_unbalance.toml (72 DOF, two SFDs, LP 150 g mm and HP

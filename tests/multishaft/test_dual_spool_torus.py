@@ -111,3 +111,26 @@ def test_per_harmonic_condensation_equals_the_block_condensation(system) -> None
     up, down = fast.condense(158.0 + h, deriv=False), fast.condense(158.0 - h, deriv=False)
     fd = (up.Ht - down.Ht) / (2 * h)
     assert np.abs(fd - a.dHt).max() <= 1e-5 * np.abs(a.dHt).max()     # O(h^2): 1.2e-6
+
+
+def test_per_harmonic_response_derivative_equals_the_block_one(system) -> None:
+    """``response_derivative`` (dPt + dHt g, what the torus residual's dR/dlam uses) of the
+    per-harmonic condenser = the block condenser's = dPt + dHt g of the same condenser."""
+    from rotorsfd.quasiperiodic.dual_frequency import HarmonicCondenser
+    from rotorsfd.quasiperiodic.torus_linear import TorusCondenser
+
+    problem = dual_spool_problem(system)
+    lat = TorusLattice(2, 2)
+    m = problem.m
+    rng = np.random.default_rng(5)
+    Kr, Cr = np.diag(rng.uniform(1e5, 1e6, m)), np.diag(rng.uniform(10.0, 100.0, m))
+    fast, ref = HarmonicCondenser(problem, lat), TorusCondenser(problem, lat)
+    for c in (fast, ref):
+        c.set_shift(Kr, Cr, 150.0)
+    g = rng.normal(size=(lat.n_real, m))
+    a = fast.response_derivative(fast.condense(158.0, deriv=False), g)
+    b = ref.response_derivative(ref.condense(158.0, deriv=False), g)
+    full = fast.condense(158.0)
+    c = full.dPt + (full.dHt @ g.reshape(-1)).reshape(g.shape)
+    assert np.abs(a - b).max() <= 1e-10 * np.abs(b).max()
+    assert np.abs(a - c).max() <= 1e-10 * np.abs(b).max()

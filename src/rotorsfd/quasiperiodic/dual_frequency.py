@@ -46,6 +46,7 @@ import numpy as np
 from scipy.linalg import lu_factor, lu_solve
 
 from rotorsfd.errors import ConfigError
+from rotorsfd.harmonic.fourier import to_complex
 from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.model.multishaft import check_base_motion
 from rotorsfd.model.multishaft_loads import second_ratio, split_unbalances
@@ -192,7 +193,7 @@ class HarmonicCondenser(TorusCondenser):
         Ht, Pt = np.zeros((nr * m, nr * m)), np.zeros((nr, m))
         dHt = np.zeros_like(Ht) if deriv else None
         dPt = np.zeros_like(Pt) if deriv else None
-        us, Cs = [], []
+        us, Cs, lus = [], [], []
         eye = np.zeros((n, m), dtype=complex)
         eye[s, np.arange(m)] = 1.0
         for k1 in range(lat.H1 + 1):
@@ -203,11 +204,13 @@ class HarmonicCondenser(TorusCondenser):
             u = np.zeros(p * n, dtype=complex)
             dC = np.zeros((p * m, p * m), dtype=complex)
             du = np.zeros(p * m, dtype=complex)
+            col_lus = []
             for r, k2 in enumerate(range(-h, h + 1)):
                 w = k1 * om + k2 * wb
                 Z = K + 1j * w * D - w**2 * M
                 Z[np.ix_(s, s)] += dl[r]
                 lu = lu_factor(Z, check_finite=False)
+                col_lus.append(lu)
                 sol = lu_solve(lu, np.column_stack([eye, F[k1][r]]), check_finite=False)
                 rn, rm = slice(r * n, (r + 1) * n), slice(r * m, (r + 1) * m)
                 C[rn, rm], u[rn] = sol[:, :m], sol[:, m]
@@ -232,8 +235,39 @@ class HarmonicCondenser(TorusCondenser):
                     dHt[np.ix_(g, g)] = R
             us.append(u)
             Cs.append(C)
-        out = TorusCondensed(lam, Ht, Pt, us, Cs, dHt, dPt)
+            lus.append(col_lus)
+        out = TorusCondensed(lam, Ht, Pt, us, Cs, dHt, dPt, columns=lus)
         self.last = out
+        return out
+
+    def response_derivative(self, cond: TorusCondensed, g: np.ndarray) -> np.ndarray:
+        """``d(Pt + Ht g)/dlam`` at fixed g (n_real, m): per harmonic ``S Zt_k^-1 (dF_k -
+        dZ_k X_k)`` with ``X_k = u_k + C_k g_k`` (one solve with the stored LU)."""
+        p_, lat = self.problem, self.lattice
+        n, m, s = p_.n_dof, p_.m, p_.nl_dofs
+        lam = cond.lam
+        Dc = p_.coefficients(lam)[0]
+        dDc, dKc = p_.dcoefficients(lam)
+        D, dD, dK, M = Dc[0], dDc[0], dKc[0], np.asarray(p_.M, dtype=complex)
+        om, wb = p_.frequencies(lam)
+        dom, dwb = p_.dfrequencies(lam)
+        dF = block_vectors(lat, p_.dforcing(lam, lat))
+        gb = block_vectors(lat, to_complex(np.asarray(g, dtype=float).reshape(-1, m))) \
+            if m else None
+        out = np.zeros((lat.n_real, m))
+        for k1 in range(lat.H1 + 1):
+            h = lat.h(k1)
+            col = np.zeros((2 * h + 1, m), dtype=complex)
+            for r, k2 in enumerate(range(-h, h + 1)):
+                w, dw = k1 * om + k2 * wb, k1 * dom + k2 * dwb
+                X = cond.u[k1][r * n:(r + 1) * n]
+                if m:
+                    X = X + cond.C[k1][r * n:(r + 1) * n, r * m:(r + 1) * m] @ gb[k1][r]
+                dZ = dK + 1j * (dw * D + w * dD) - 2 * w * dw * M
+                col[r] = lu_solve(cond.columns[k1][r], dF[k1][r] - dZ @ X,
+                                  check_finite=False)[s]
+            _, U = block_real_maps(lat, k1)
+            out[block_real_indices(lat, k1)] = (U @ col).real
         return out
 
 
