@@ -280,11 +280,14 @@ class CondensedHB:
         rows = np.empty((H + 1, n, m), dtype=complex) if deriv else None
         block = (slice(None), s[:, None], s[None, :])
         step = max(1, min(H + 1, DENSE_CHUNK // (n * n)))
+        Zbuf = np.empty((step, n, n), dtype=complex)
         for k0 in range(0, H + 1, step):
             ks = np.arange(k0, min(H + 1, k0 + step))
             kw = (ks * w)[:, None, None]
             # C-ordered Z[i], so Z[i].T is Fortran-contiguous: LAPACK factors Z_k^T in place
-            Z = (K - kw**2 * M) + 1j * (kw * D)
+            Z = Zbuf[: ks.size]
+            Z.real = K - kw**2 * M
+            Z.imag = kw * D
             Z[block] += self.delta[ks]
             for i, k in enumerate(ks):
                 lu, piv, info = getrf(Z[i].T, overwrite_a=True)
