@@ -21,9 +21,12 @@ from pathlib import Path
 if __package__ in (None, ""):  # run as a script: make the repository's `benchmarks` importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+import statistics
+import time
+
 import numpy as np
 
-from benchmarks.common import ROOT, Row, interleaved
+from benchmarks.common import ROOT, Row
 
 CASES = {
     "Table 1, fixed base, U = 144.02 g mm": (
@@ -53,25 +56,50 @@ def _note(result) -> str:
             f"{bifs or 'no bifurcation'}")
 
 
-def run(quick: bool = False, repeat: int = 3) -> list[Row]:
+def _interleaved_cpu(funs: dict, repeat: int) -> dict:
+    """Median wall and CPU (``time.process_time``: this process alone, which the other
+    jobs of a shared machine inflate far less than the wall time) of the methods run in
+    turn (A B A B ...), with the per-pair CPU ratios and the last result of each."""
+    wall: dict[str, list[float]] = {k: [] for k in funs}
+    cpu: dict[str, list[float]] = {k: [] for k in funs}
+    outs: dict = {}
+    for _ in range(max(1, repeat)):
+        for k, f in funs.items():
+            t0, c0 = time.perf_counter(), time.process_time()
+            outs[k] = f()
+            cpu[k].append(time.process_time() - c0)
+            wall[k].append(time.perf_counter() - t0)
+    return {k: (statistics.median(wall[k]), statistics.median(cpu[k]), wall[k], cpu[k],
+                outs[k]) for k in funs}
+
+
+def run(quick: bool = False, repeat: int = 5) -> list[Row]:
     from rotorsfd import api
 
     rows: list[Row] = []
     cases = dict(list(CASES.items())[:1]) if quick else CASES
+    ref = "H = 3, M = 400, no check"
     for case, (path, sets) in cases.items():
         configs = {name: api.load_config(path, [*sets, *extra]) for name, extra in
-                   (("H = 3, M = 400, no check", BEFORE), ("defaults (auto H, "
-                    "step-controlled M, checked bifurcations)", DEFAULTS))}
-        api.run_response(configs["H = 3, M = 400, no check"], progress=False)  # compile
-        res = interleaved({k: (lambda c=c: api.run_response(c, progress=False))
-                           for k, c in configs.items()}, repeat=1 if quick else repeat)
-        ref = "H = 3, M = 400, no check"
-        for name, (t, times, out) in res.items():
-            rows.append(Row("convergence", case, name, t, repeat=len(times),
-                            ratio=t / res[ref][0], ref=ref, note=_note(out)))
+                   ((ref, BEFORE), ("defaults (auto H, step-controlled M, checked "
+                                    "bifurcations)", DEFAULTS))}
+        for c in configs.values():          # compile (and load the numba caches) first
+            api.run_response(c, progress=False)
+        res = _interleaved_cpu({k: (lambda c=c: api.run_response(c, progress=False))
+                                for k, c in configs.items()}, 1 if quick else repeat)
+        w0, c0, _, cpu0, _ = res[ref]
+        for name, (w, c, walls, cpus, out) in res.items():
+            pairs = [a / b for a, b in zip(cpus, cpu0, strict=True)]
+            rows.append(Row("convergence", case, name, w, repeat=len(walls),
+                            ratio=w / w0, ref=ref,
+                            note=f"CPU {c:.2f} s (x{c / c0:.2f}, pairs x{min(pairs):.2f}"
+                                 f"-{max(pairs):.2f}); {_note(out)}",
+                            extra={"cpu": c, "cpu_ratio": c / c0, "cpu_times": cpus,
+                                   "wall_times": walls}))
     return rows
 
 
 if __name__ == "__main__":
     for r in run(quick="--quick" in sys.argv):
-        print(f"{r.case:45s} {r.method:60s} {r.value:7.2f} s  x{r.ratio:.2f}  {r.note}")
+        print(f"{r.case:42s} {r.method[:24]:24s} wall {r.value:6.2f} s x{r.ratio:.2f}  "
+              f"{r.note}")

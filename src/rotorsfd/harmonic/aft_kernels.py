@@ -26,6 +26,7 @@ from numba import njit
 from numba.core.ccallback import CFunc
 from numba.core.types.function_type import WrapperAddressProtocol
 
+from rotorsfd.harmonic.aft_jacobian import force_jacobian_coefficients
 from rotorsfd.kernels import KERNEL_SIGNATURE, KERNEL_TYPE, as_cfunc
 
 
@@ -94,7 +95,9 @@ def project(P: np.ndarray, E: np.ndarray, Ed: np.ndarray, w: float, f: np.ndarra
             dfq: np.ndarray, dfv: np.ndarray, dq: np.ndarray, jac: bool, G: np.ndarray,
             dG: np.ndarray, dGdw: np.ndarray) -> bool:
     """G (nh, m), and with jac dG (nh, m, nh, m) and dG/dw (nh, m), from the samples
-    (module docstring). Returns False if G is not finite."""
+    (module docstring; dG from the samples' spectrum,
+    :func:`~rotorsfd.harmonic.aft_jacobian.force_jacobian_coefficients`, for the P, E, Ed
+    of ``aft_matrices``). Returns False if G is not finite."""
     nh, N = P.shape
     m = f.shape[1]
     G[:] = 0.0
@@ -109,30 +112,15 @@ def project(P: np.ndarray, E: np.ndarray, Ed: np.ndarray, w: float, f: np.ndarra
                 return False
     if not jac:
         return True
-    dG[:] = 0.0
     dGdw[:] = 0.0
-    T = np.empty((m, nh, m))
-    g = np.empty(m)
     for n in range(N):
         for i in range(m):
             acc = 0.0
             for j in range(m):
                 acc += dfv[n, i, j] * dq[n, j]
-            g[i] = acc
-            for b in range(nh):
-                e = E[n, b]
-                ed = w * Ed[n, b]
-                for j in range(m):
-                    T[i, b, j] = dfq[n, i, j] * e + dfv[n, i, j] * ed
-        for a in range(nh):
-            pa = P[a, n]
-            if pa == 0.0:
-                continue
-            for i in range(m):
-                dGdw[a, i] += pa * g[i]
-                for b in range(nh):
-                    for j in range(m):
-                        dG[a, i, b, j] += pa * T[i, b, j]
+            for a in range(nh):
+                dGdw[a, i] += P[a, n] * acc
+    force_jacobian_coefficients(dfq, dfv, w, nh, dG)
     return True
 
 

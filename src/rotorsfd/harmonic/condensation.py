@@ -43,6 +43,10 @@ from rotorsfd.harmonic.residual import nonlinear_coefficients, nonlinear_samples
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
 
+#: Entries of the dense Zt_k formed at once by the dense path (a chunk of harmonics, at
+#: least one; 128 kB of complex: small models form all harmonics in a few numpy calls).
+DENSE_CHUNK = 1 << 13
+
 
 @dataclass
 class Condensed:
@@ -261,28 +265,47 @@ class CondensedHB:
 
     def _dense_solves(self, M, D, K, dM, dD, dK, w, dw, F, dF, deriv, sol, dsol) -> None:
         """Dense complex LU (LAPACK) of Zt_k per harmonic; the same outputs as
-        :func:`rotorsfd.harmonic.banded.condense_banded`."""
-        s, m, n = self.problem.nl_dofs, self.problem.m, self.problem.n_dof
-        Zk = np.empty((n, n), dtype=complex)
-        rhs = np.zeros((n, m + 1), dtype=complex, order="F")
-        rhs[s, np.arange(m)] = 1.0
-        block = np.ix_(s, s)          # built once: np.ix_ per harmonic was 40 % of the loop
-        for k in range(self.H + 1):
+        :func:`rotorsfd.harmonic.banded.condense_banded`.
+
+        The Zt_k are formed a chunk of harmonics at a time (:data:`DENSE_CHUNK` entries:
+        all of them for a small model, where the per-harmonic numpy calls cost more than
+        the LU). With deriv, the LU of Zt_k^T also gives the rows ``S Zt_k^-1`` (Zt_k^T
+        y = S^T), so ``dsol_k = S Zt_k^-1 (dF_k e - dZ_k sol_k)`` after the loop, with the
+        products ``dZ_k sol_k`` for all k at once (no dZ_k formed)."""
+        s, m, n, H = self.problem.nl_dofs, self.problem.m, self.problem.n_dof, self.H
+        getrf, getrs = lapack.zgetrf, lapack.zgetrs
+        rhs = np.zeros((m + 1, n), dtype=complex)   # rhs.T: [S^T, F_k], Fortran (n, m+1)
+        rhs[np.arange(m), s] = 1.0
+        unit = np.asfortranarray(rhs[:m].T)        # S^T
+        rows = np.empty((H + 1, n, m), dtype=complex) if deriv else None
+        block = (slice(None), s[:, None], s[None, :])
+        step = max(1, min(H + 1, DENSE_CHUNK // (n * n)))
+        Zbuf = np.empty((step, n, n), dtype=complex)
+        for k0 in range(0, H + 1, step):
+            ks = np.arange(k0, min(H + 1, k0 + step))
+            kw = (ks * w)[:, None, None]
+            # C-ordered Z[i], so Z[i].T is Fortran-contiguous: LAPACK factors Z_k^T in place
+            Z = Zbuf[: ks.size]
+            Z.real = K - kw**2 * M
+            Z.imag = kw * D
+            Z[block] += self.delta[ks]
+            for i, k in enumerate(ks):
+                lu, piv, info = getrf(Z[i].T, overwrite_a=True)
+                if info != 0:
+                    raise FloatingPointError(f"singular dynamic stiffness Z_{k} "
+                                             f"(w={w:.6g})")
+                rhs[m] = F[k]
+                sol[k] = getrs(lu, piv, rhs.T, trans=1)[0]          # Z_k x = rhs
+                if deriv:
+                    rows[k] = getrs(lu, piv, unit, trans=0)[0]      # Z_k^T y = S^T
+        if deriv:
+            # dZ_k = dK - (k w)^2 dM - 2 k^2 w w' M + i k (w' D + w dD), applied to sol_k
+            k = np.arange(H + 1)[:, None, None]
             kw = k * w
-            # Zk is C-ordered, so Zk.T is Fortran-contiguous: LAPACK factors Z_k^T in place
-            Zk.real = K - kw**2 * M
-            Zk.imag = kw * D
-            Zk[block] += self.delta[k]
-            lu, piv, info = lapack.zgetrf(Zk.T, overwrite_a=True)
-            if info != 0:
-                raise FloatingPointError(f"singular dynamic stiffness Z_{k} (w={w:.6g})")
-            rhs[:, m] = F[k]
-            sol[k] = lapack.zgetrs(lu, piv, rhs, trans=1)[0]       # Z_k x = rhs
-            if deriv:
-                dZ = (dK - kw**2 * dM - 2 * k * kw * dw * M) + 1j * k * (dw * D + w * dD)
-                r2 = -(dZ @ sol[k])
-                r2[:, m] += dF[k]
-                dsol[k] = lapack.zgetrs(lu, piv, np.asfortranarray(r2), trans=1)[0][s]
+            r2 = (kw**2 * (dM @ sol) + (2 * dw) * (k * kw) * (M @ sol) - dK @ sol
+                  - 1j * k * ((dw * D + w * dD) @ sol))
+            r2[:, :, m] += dF
+            np.matmul(rows.transpose(0, 2, 1), r2, out=dsol)
 
     # -- residual -----------------------------------------------------------------------
     def _work_arrays(self) -> tuple:

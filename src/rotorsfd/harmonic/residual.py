@@ -13,6 +13,7 @@ where ``G_k`` are the Fourier coefficients of ``F_nl(q_nl(t), q_nl'(t))`` comput
 Jacobians (exact):
 
 - ``dG/dx[a,i,b,j] = sum_n P[a,n] (dF/dq[n,i,j] E[n,b] + w dF/dv[n,i,j] Ed[n,b])``
+  (computed from the spectrum of the samples, :mod:`rotorsfd.harmonic.aft_jacobian`)
 - ``dR_k/dlam = dZ_k X_k - dF_k - S^T (dG_k/dw dw/dlam + P dF_nl/dlam)``, the last term
   for a force that depends on lam itself (:attr:`NonlinearLaw.dforce`), with
   ``dZ_k = dK - (k w)^2 dM - 2 k^2 w w' M + i k (w' D + w dD)`` and
@@ -26,6 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsfd.harmonic.aft_jacobian import force_jacobian_coefficients
 from rotorsfd.harmonic.fourier import AFTMatrices, aft_matrices, to_complex, to_real
 from rotorsfd.harmonic.problem import NonlinearLaw, PeriodicProblem
 
@@ -77,10 +79,11 @@ def nonlinear_coefficients(problem: PeriodicProblem, aft: AFTMatrices, xs: Float
         return NonlinearCoefficients(G, None, None, q)
     if law.force_jacobian is None:
         dfq, dfv = law.jacobian(q, v)
-    N, m = q.shape
+    m = q.shape[1]
     nh = aft.E.shape[1]
-    T = dfq[..., None] * aft.E[:, None, None, :] + w * dfv[..., None] * aft.Ed[:, None, None, :]
-    dG = (aft.P @ T.reshape(N, -1)).reshape(nh, m, m, nh).transpose(0, 1, 3, 2)
+    dG = np.empty((nh, m, nh, m))      # P (dfq E + w dfv Ed), from the samples' spectrum
+    force_jacobian_coefficients(np.ascontiguousarray(dfq, dtype=float),
+                                np.ascontiguousarray(dfv, dtype=float), w, nh, dG)
     dGdw = aft.P @ np.einsum("nij,nj->ni", dfv, dq_tau)
     return NonlinearCoefficients(G, dG, dGdw, q)
 
