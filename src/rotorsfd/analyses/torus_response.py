@@ -5,8 +5,9 @@ in the base frequency, a base law's amplitude or the unbalance, its files and pl
 Under a base law ``w(t) = mean + A sin(w_b t + phi)`` the response lies on a 2-torus,
 ``q(t) = Re sum_k X_k exp(i (k1 Omega + k2 w_b) t)`` over the box ``|k1| <= H1,
 |k2| <= H2`` (:mod:`rotorsfd.quasiperiodic`, docs/quasiperiodic.md). From
-``[analysis.response]``: H1 = the response's (starting) harmonics, H2 = :data:`TORUS_H2`
-(the base terms couple k2 to k2 +- 1, +- 2; the loads sit at |k2| <= 2), the speed range,
+``[analysis.response]``: H1 = the response's (starting) harmonics, H2 = ``base_harmonics``
+(default 2; the base terms couple k2 to k2 +- 1, +- 2 and the loads sit at |k2| <= 2, so
+a large base motion needs more: raise H2 until the lines stop changing), the speed range,
 step sizes, tolerance and ``max_eccentricity``. ``parameter`` in the vocabulary of the
 periodic branches (config paths; :func:`torus_parameter`): ``"speed"`` over
 ``speed_range``, or, at the fixed ``speed`` / ``speed_ratio`` over ``parameter_range`` (in
@@ -57,8 +58,6 @@ if TYPE_CHECKING:
 
 FloatArray = NDArray[np.float64]
 FIELD = "analysis.response"
-#: highest base harmonic |k2| kept (the base terms and loads reach |k2| = 2)
-TORUS_H2 = 2
 #: points of the branch with a Lyapunov exponent (spread along it; about 2 s each on the
 #: 20-DOF test rotor, about 3-6 s on the paper rotor)
 LYAPUNOV_POINTS = 5
@@ -420,7 +419,7 @@ def run_torus_response(config: Config, *, search_path: Path | None = None,
     for n in nodes:
         if not 1 <= n <= system.rotor.n_nodes:
             raise ConfigError(f"{FIELD}.nodes", n, f"must be 1..{system.rotor.n_nodes}")
-    lattice = lattice or TorusLattice(r.start_harmonics, TORUS_H2)
+    lattice = lattice or TorusLattice(r.start_harmonics, r.base_harmonics)
     problem = parameter_problem(system, par, speed)   # ConfigError: unsupported base laws
     unit = "" if par.unit == "1" else f" {par.unit}"
 

@@ -690,6 +690,8 @@ class ResponseAnalysis(Section):
     harmonics_max: integer("largest H with harmonics = 'auto'", ge=1, le=64) = 32
     n_samples: integer("time samples per period N_f of the AFT (default: chosen free of "
                        "aliasing)", ge=3, le=65536, optional=True) = None
+    base_harmonics: integer("highest base harmonic H2 of a torus (harmonic base law): the "
+                            "box |k1| <= harmonics, |k2| <= H2", ge=1, le=64) = 2
     parameter: _path_field("continuation parameter") = "speed"
     speed_range: SpeedRange = SpeedRange(start_ratio=0.5, stop_ratio=1.6)
     speed: quantity("angular_velocity", "fixed speed when the parameter is not 'speed'",
