@@ -176,3 +176,38 @@ def test_flip_transient_into_a_period_1_orbit_is_not_period_2():
     assert settled(true2, opts) == 2                   # a true period-2 orbit
     near = np.tile([[0.3], [0.3 + 1e-3]], (30, 1))     # 2 points within cluster_tol
     assert settled_period(near, 1e-4, 3, 8) == 2 and settled(near, opts) is None
+
+
+def test_capture_by_a_settled_orbit():
+    """A start's returns spiralling into a known period-2 cycle (in phase, contracting,
+    within capture_tol) are captured by it; the same returns growing, out of phase, far,
+    or with capture off, are not."""
+    from rotorsfd.analyses.attractors import captured
+
+    cycle = np.array([[0.3, -0.8], [-0.2, -0.9]])
+    k = np.arange(20)
+    spiral = 4e-3 * 0.8 ** k[:, None] * np.c_[np.cos(2.0 * k), np.sin(2.0 * k)]
+    P = cycle[k % 2] + spiral
+    o = CensusOptions(capture_tol=5e-3)
+    known = [(7, 2, cycle)]
+    assert captured(P, known, o) == 7
+    assert captured(cycle[k % 2] + spiral[::-1], known, o) is None        # growing
+    assert captured(cycle[(k + 1) % 2] + spiral, known, o) == 7            # other phase
+    assert captured(cycle[k // 2 % 2] + spiral, known, o) is None          # not a cycle
+    assert captured(P + 0.02, known, o) is None                            # too far
+    assert captured(P, known, CensusOptions(capture_tol=0.0)) is None
+    assert captured(P[:5], known, o) is None                               # too few
+    with pytest.raises(ConfigError, match=r"attractors\.capture_tol"):
+        CensusOptions(capture_tol=0.02).validate()
+
+
+def test_capture_keeps_the_census(result):
+    """The Duffing census without capture: the same two orbits with the same members
+    (the capture only shortens transients), at more periods."""
+    off = census(duffing_model(), CensusOptions(
+        n_starts=48, steps_per_period=SPP, displacement_fraction=FRACTION,
+        velocity_fraction=FRACTION, max_periods=600, harmonics=7, capture_tol=0.0))
+    assert np.array_equal(off.labels(), result.labels())
+    assert any(r.note.startswith("captured") for r in result.outcomes)
+    assert sum(r.periods_run for r in result.outcomes) < \
+        sum(r.periods_run for r in off.outcomes)

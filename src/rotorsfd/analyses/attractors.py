@@ -22,7 +22,15 @@ the smallest ``n <= n_max`` with
 and the run stops there, unless the returns of a divisor ``m`` of n still shrink
 (:func:`~rotorsfd.timedomain.poincare.converging_period`: a transient spiralling into a
 period-m orbit whose multiplier's angle is near ``2 pi / n`` passes the period-n test
-first). Not settled after ``max_periods``: ``classify_periods`` more
+first). A start is *captured* earlier (``capture_tol > 0``) when its last
+``repeats * n`` returns lie within ``capture_tol`` of the cycle of a period-n orbit another
+start of the same batch (a worker's share, run in order) has already settled on, in
+phase, and still contract (the largest ``|P_{k+n} - P_k|`` over the last ``repeats * n``
+returns below that over the ``repeats * n`` before): it is then in that stable orbit's
+basin, and the rest of its transient (from ``capture_tol`` down to ``settle_tol``) is not
+integrated. The first member of every attractor is a start settled
+by the test above (the one the HB correction starts from). Not settled after
+``max_periods``: ``classify_periods`` more
 periods are recorded and classified as ``rotorsfd simulate`` does
 (:func:`~rotorsfd.analyses.simulate.classify`, spectral and section tests; no Lyapunov
 run). A state outside an element's law is ``contact``. Grouping, HB correction and the
@@ -32,6 +40,7 @@ table: :mod:`~rotorsfd.analyses.attractors_result`.
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
@@ -66,6 +75,7 @@ class CensusOptions:
     repeats: int = 3
     n_max: int = 8
     cluster_tol: float = 1e-2
+    capture_tol: float = 5e-3
     harmonics: int | None = None
     seed: int = 0
     around: str = "rest"
@@ -87,6 +97,8 @@ class CensusOptions:
                   ("repeats", self.repeats >= 1, ">= 1"),
                   ("n_max", 1 <= self.n_max <= self.check_periods, "1..check_periods"),
                   ("cluster_tol", self.cluster_tol > self.settle_tol, "> settle_tol"),
+                  ("capture_tol", 0.0 <= self.capture_tol < self.cluster_tol,
+                   ">= 0 (0: off) and < cluster_tol"),
                   ("harmonics", (self.harmonics or 1) >= 1, ">= 1")]
         for name, ok, allowed in checks:
             if not ok:
@@ -218,12 +230,34 @@ def settled(P: np.ndarray, options: CensusOptions) -> int | None:
     return n             # settled (a slow spiral), not a period-n one
 
 
+def captured(P: np.ndarray, known: Sequence[tuple[int, int, np.ndarray]],
+             options: CensusOptions) -> int | None:
+    """Start number of the settled orbit ``(index, n, cycle points (n, m))`` of ``known``
+    that the returns ``P`` are captured by (module docstring), None if none."""
+    o = options
+    if o.capture_tol <= 0.0:
+        return None
+    for index, n, cycle in known:
+        w = o.repeats * n
+        if P.shape[0] < 2 * w + n:
+            continue
+        s = int(np.argmin(np.max(np.abs(cycle - P[-1]), axis=1)))
+        phase = (s - np.arange(w)[::-1] + n * w) % n         # cycle point of P[-w:]
+        if float(np.max(np.abs(P[-w:] - cycle[phase]))) > o.capture_tol:
+            continue
+        d = np.max(np.abs(P[n:] - P[:-n]), axis=1)          # returns' changes, lag n
+        if float(d[-w:].max()) < float(d[-2 * w:-w].max()):
+            return index
+    return None
+
+
 @dataclass
 class StartOutcome:
     """One start: the class (``period-n``, ``quasi-periodic``, ``chaotic``,
     ``contact``, ``failed``), the periods integrated, the last Poincare points (in
     length scales), the recorded last ``n`` periods of the nonlinear DOFs ``(t, q)``,
-    and the largest validity measure (eccentricity) per element over the last chunk."""
+    and the largest validity measure (eccentricity) per element over the last chunk;
+    ``cpu`` the process CPU time it took [s]."""
 
     index: int
     motion: str
@@ -235,6 +269,7 @@ class StartOutcome:
     eccentricity: dict[str, float] = field(default_factory=dict)
     note: str = ""
     final: tuple[np.ndarray, np.ndarray, float] | None = None
+    cpu: float = 0.0
 
 
 def _chunk(inputs: TimeDomainInputs, q: np.ndarray, v: np.ndarray, t0: float, spp: int,
@@ -242,7 +277,7 @@ def _chunk(inputs: TimeDomainInputs, q: np.ndarray, v: np.ndarray, t0: float, sp
     nl = np.asarray(inputs.nl_dofs)
     return integrate_periods(inputs, q, v, steps_per_period=spp, periods=periods,
                              record_dofs=nl, record_periods=record,
-                             poincare_periods=periods, t0=t0)
+                             poincare_periods=periods, t0=t0, chunk_periods=periods)
 
 
 def _ecc(traj: Any) -> dict[str, float]:
@@ -251,8 +286,10 @@ def _ecc(traj: Any) -> dict[str, float]:
 
 
 def run_start(model: CensusModel, index: int, q0: np.ndarray, v0: np.ndarray,
-              options: CensusOptions) -> StartOutcome:
-    """Integrate one start until it settles (module docstring)."""
+              options: CensusOptions,
+              known: Sequence[tuple[int, int, np.ndarray]] = ()) -> StartOutcome:
+    """Integrate one start until it settles or is captured by a ``known`` orbit
+    (``(start, n, cycle points)``, module docstring)."""
     o = options
     inputs, spp, T = model.inputs, o.steps_per_period, model.inputs.period
     q, v, t = np.asarray(q0, float), np.asarray(v0, float), 0.0
@@ -272,6 +309,13 @@ def run_start(model: CensusModel, index: int, q0: np.ndarray, v0: np.ndarray,
                 sel = traj.t > t - n * T * (1 + 1e-9)
                 return StartOutcome(index, f"period-{n}", n, done, P[-n:], traj.t[sel],
                                     traj.q[sel], _ecc(traj), final=(q, v, t))
+            j = captured(P, known, o) if known else None
+            if j is not None:
+                n = next(k for i, k, _ in known if i == j)
+                sel = traj.t > t - n * T * (1 + 1e-9)
+                return StartOutcome(index, f"period-{n}", n, done, P[-n:], traj.t[sel],
+                                    traj.q[sel], _ecc(traj),
+                                    f"captured by the orbit of start {j}", (q, v, t))
         traj = _chunk(inputs, q, v, t, spp, o.classify_periods, o.classify_periods)
     except ElementDomainError as exc:
         P = np.concatenate(pts) if pts else np.zeros((0, model.nl_dofs.size))
@@ -319,10 +363,28 @@ def step_check(model: CensusModel, outcome: StartOutcome, options: CensusOptions
 
 
 def run_batch(model: CensusModel, indices: np.ndarray, q0: np.ndarray, v0: np.ndarray,
-              options: CensusOptions) -> list[StartOutcome]:
-    """:func:`run_start` of the rows of ``q0, v0`` (start numbers ``indices``)."""
-    return [run_start(model, int(i), q, v, options) for i, q, v in zip(indices, q0, v0,
-                                                                       strict=True)]
+              options: CensusOptions, progress: Any = None) -> list[StartOutcome]:
+    """:func:`run_start` of the rows of ``q0, v0`` (start numbers ``indices``) in order,
+    each captured by the orbits the earlier ones settled on (module docstring)."""
+    known: list[tuple[int, int, np.ndarray]] = []
+    out = []
+    for i, q, v in zip(indices, q0, v0, strict=True):
+        tic = time.process_time()
+        r = run_start(model, int(i), q, v, options, known)
+        r.cpu = time.process_time() - tic
+        if r.period is not None and not r.note:        # settled by the test itself
+            if not any(_near(r.points, c, options.cluster_tol) for _, _, c in known):
+                known.append((r.index, r.period, r.points))
+        out.append(r)
+        if progress is not None:
+            progress(len(out))
+    return out
+
+
+def _near(points: np.ndarray, cycle: np.ndarray, tol: float) -> bool:
+    """True when every point lies within tol of a point of the cycle (same period)."""
+    return points.shape == cycle.shape and all(
+        float(np.min(np.max(np.abs(cycle - p), axis=1))) <= tol for p in points)
 
 
 def run_starts(model: CensusModel, q0: np.ndarray, v0: np.ndarray, options: CensusOptions,
@@ -330,12 +392,7 @@ def run_starts(model: CensusModel, q0: np.ndarray, v0: np.ndarray, options: Cens
     """:func:`run_start` of every row, on ``executor`` (a
     :func:`~rotorsfd.studies.executors.make_executor`; None: in this process)."""
     if executor is None:
-        out = []
-        for i in range(q0.shape[0]):
-            out.append(run_start(model, i, q0[i], v0[i], options))
-            if progress is not None:
-                progress(i + 1)
-        return out
+        return run_batch(model, np.arange(q0.shape[0]), q0, v0, options, progress)
     # the workers get the integrator inputs only (the HB problem holds closures), in
     # batches of starts (four per worker), so each pickles the inputs a few times
     lite = executor.share(replace(model, problem=None))
@@ -355,8 +412,6 @@ def census(model: CensusModel, options: CensusOptions | None = None, *,
            executor: Any = None, progress: Any = None) -> Any:
     """The census at the model's speed: an
     :class:`~rotorsfd.analyses.attractors_result.AttractorCensus`."""
-    import time
-
     from rotorsfd.analyses.attractors_result import AttractorCensus, group
 
     o = (options or CensusOptions()).validate().resolved()
