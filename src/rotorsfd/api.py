@@ -56,6 +56,7 @@ __all__ = [
     "load_config",
     "modal_speeds",
     "reference_speed",
+    "run_bifurcation_curves",
     "run_bifurcation_diagram",
     "run_fit_supports",
     "run_fold_curve",
@@ -205,6 +206,16 @@ def run_fold_curve(config: Any, parameter: str, start: Any, stop: Any, **kwargs:
     of the bistable region and its cusp): see
     :func:`rotorsfd.analyses.fold_curve.run_fold_curve`."""
     from rotorsfd.analyses.fold_curve import run_fold_curve as _run
+
+    return _run(config, parameter, start, stop, **kwargs)
+
+
+def run_bifurcation_curves(config: Any, parameter: str, start: Any, stop: Any,
+                           **kwargs: Any) -> Any:
+    """Saddle-nodes and period doublings of the speed response continued together in a
+    second parameter (fold and period-doubling curves, their turning points): see
+    :func:`rotorsfd.analyses.bifurcation_curves.run_bifurcation_curves`."""
+    from rotorsfd.analyses.bifurcation_curves import run_bifurcation_curves as _run
 
     return _run(config, parameter, start, stop, **kwargs)
 

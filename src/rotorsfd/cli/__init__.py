@@ -41,6 +41,7 @@ from rotorsfd.cli import simulate  # noqa: F401
 from rotorsfd.cli import bifurcation_diagram  # noqa: F401
 from rotorsfd.cli import stability_chart  # noqa: F401
 from rotorsfd.cli import fold_curve  # noqa: F401
+from rotorsfd.cli import bifurcation_curves  # noqa: F401
 from rotorsfd.cli import attractors  # noqa: F401
 from rotorsfd.cli import paper  # noqa: F401
 from rotorsfd.cli import rerun  # noqa: F401

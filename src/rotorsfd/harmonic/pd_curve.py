@@ -134,6 +134,7 @@ def continue_period_doublings(problem: TwoParameterProblem, X: NDArray[np.comple
                               *, H2: int, N: int, scales: tuple[float, float],
                               options: FoldOptions | None = None, limit_max: float = 1.0,
                               on_point: Callable[[FloatArray, int], None] | None = None,
+                              both_ways: bool = True,
                               ) -> tuple[TwoParameterHB, list[FoldBranch]]:
     """The period-doubling curve through the flip near ``(X, lam1)`` at ``lam2``
     (``X`` the period-1 coefficients (H+1, n_dof) there, e.g. of a located flip of a
@@ -142,7 +143,8 @@ def continue_period_doublings(problem: TwoParameterProblem, X: NDArray[np.comple
     Returns the period-2 residual and the two legs (towards ``lam2_range[0]``, then
     towards ``lam2_range[1]``; each turns where the flips of a pair meet and goes on),
     whose points ``z`` are in the even unknowns: ``leg.system.embed(z)`` gives the full
-    period-2 z (its last two entries the scaled lam1, lam2)."""
+    period-2 z (its last two entries the scaled lam1, lam2). ``both_ways=False``: only
+    the leg towards ``lam2_range[1]`` (a start at ``lam2 = lam2_range[0]``)."""
     p2 = period_doubling_problem(problem)
     X2 = doubled_coefficients(np.asarray(X), H2)
     template = p2.first(lam2)
@@ -151,7 +153,7 @@ def continue_period_doublings(problem: TwoParameterProblem, X: NDArray[np.comple
     z0 = hb.to_z(xs0, lam1, lam2)
     lo, hi = lam2_range[0] / scales[1], lam2_range[1] / scales[1]
     legs = []
-    for target in ((hi, lo), (lo, hi)):
+    for target in ((hi, lo), (lo, hi)) if both_ways else ((lo, hi),):
         pd = PeriodDoublingSystem(hb, z0)
         legs.append(continue_folds(hb, z0[pd.cols], target, options, on_point=on_point,
                                    lam_physical=lambda s: s * scales[1],

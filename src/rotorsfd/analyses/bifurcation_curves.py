@@ -1,0 +1,349 @@
+"""Fold and period-doubling curves of the speed response together in (speed, lam2).
+
+From the speed branch at ``range2[0]`` (HB-AFT, condensed, H harmonics) with its Floquet
+stability (:func:`~rotorsfd.stability.branch_stability.branch_stability`):
+
+- every located saddle-node is continued in (Omega, lam2) as a fold curve by
+  :func:`rotorsfd.analyses.fold_curve.fold_curve` (the bordered test function on the HB
+  Jacobian; turns in lam2 are cusps, where a fold pair meets);
+- every located period doubling (a Floquet multiplier through -1) is continued as a
+  period-doubling curve by :func:`rotorsfd.harmonic.pd_curve.continue_period_doublings`:
+  the bordered test function on the odd-harmonic block of the HB Jacobian in harmonics of
+  Omega/2, ``H2 = harmonics_factor * H`` of them (default 4 H, i.e. 2 H harmonics of
+  Omega in the period-1 part: the 4H default of period-2 branch switching), with
+  ``harmonics_factor * N_f`` AFT samples per period 2T. A turn of the curve in lam2 is
+  where the two flips of a pair meet (beyond it no period doubling at that lam2).
+
+A PD curve that passes ``range2[0]`` again at another located period doubling of the start
+branch covers it (it is not continued twice), as for the fold curves.
+
+Table (``curves.csv`` / ``curves.nc``), one row per point: ``kind`` ("saddle-node" or
+"period-doubling"), ``curve`` (numbered per kind), ``segment`` (turns passed), ``s``,
+the second parameter, ``speed_rad_s``, ``speed_ratio`` = Omega / Omega_ref, ``max_eps``
+(the elements' largest validity measure over the orbit, over 2T for a flip),
+``aliasing`` (the change of the scaled residual if N_f doubled) and ``amp_<n>_m``.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rotorsfd.analyses.fold_curve import FoldCurve, fold_curve
+from rotorsfd.analyses.modal import first_critical
+from rotorsfd.analyses.response_result import PARAMETER_UNITS, column_slug, system_parameter
+from rotorsfd.continuation.folds import FoldBranch, FoldOptions, TwoParameterHB
+from rotorsfd.errors import ConfigError, ConvergenceError
+from rotorsfd.harmonic.pd_curve import continue_period_doublings
+from rotorsfd.harmonic.periodic import continue_periodic
+from rotorsfd.harmonic.synthesis import max_radius, orbit_samples
+from rotorsfd.io import atomic
+from rotorsfd.model import dofs
+from rotorsfd.model.parameters import find_parameter
+from rotorsfd.model.system import RotorSystem
+from rotorsfd.stability.branch_stability import StabilityOptions, branch_stability
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from rotorsfd.io.schema import Config
+
+FloatArray = NDArray[np.float64]
+
+KINDS = ("saddle-node", "period-doubling")
+
+
+@dataclass
+class TurningPoint:
+    """A turn of a curve in the second parameter (where the pair of its kind meets)."""
+
+    kind: str               #: "saddle-node" (a cusp) or "period-doubling"
+    speed_rad_s: float
+    speed_ratio: float
+    value: float            #: second parameter (SI)
+
+
+@dataclass
+class BifurcationCurves:
+    """Fold and period-doubling curves in (speed, second parameter); module docstring."""
+
+    parameter: str
+    range2: tuple[float, float]
+    reference_speed: float
+    H: int
+    H2: int
+    n_samples_pd: int
+    start_folds: list[float]
+    start_period_doublings: list[float]
+    table: dict[str, NDArray] = field(repr=False)
+    turns: list[TurningPoint]
+    fold: FoldCurve | None = field(repr=False)
+    pd_hb: TwoParameterHB | None = field(repr=False)
+    pd_curves: list[FoldBranch] = field(repr=False)
+    success: bool = True
+    message: str = ""
+    timings: dict[str, float] = field(default_factory=dict)
+    title: str = ""
+
+    FILES = ("curves.csv", "curves.nc", "summary.json", "curves.png")
+
+    @property
+    def units(self) -> str:
+        return PARAMETER_UNITS[self.parameter]
+
+    @property
+    def value_column(self) -> str:
+        return f"{column_slug(self.parameter)}_{column_slug(self.units)}"
+
+    def speeds_at(self, kind: str, value: float) -> FloatArray:
+        """Speeds [rad/s] of the curves of ``kind`` at second-parameter ``value`` (SI),
+        re-solved by Newton at fixed value, sorted, duplicates merged."""
+        if kind == "saddle-node":
+            return self.fold.speeds_at(value) if self.fold else np.zeros(0)
+        assert self.pd_hb is not None or not self.pd_curves
+        out = []
+        for c in self.pd_curves:
+            for z in c.solve_at(value / self.pd_hb.scales[1]):
+                out.append(self.pd_hb.from_z(c.system.embed(z))[1])
+        return np.unique(np.round(np.array(out, dtype=float), 9))
+
+    # ---- files -------------------------------------------------------------------------
+    def summary(self) -> str:
+        unit = "" if self.units == "1" else f" {self.units}"
+        n = {k: int(np.sum(self.table["kind"] == k)) for k in KINDS}
+        lines = [f"bifurcation curves in (speed, {self.parameter}) over {self.range2[0]:g} "
+                 f"..{self.range2[1]:g}{unit}, H = {self.H} (period doubling: H2 = "
+                 f"{self.H2} harmonics of Omega/2, N_f = {self.n_samples_pd}): "
+                 f"{n['saddle-node']} saddle-node points, {n['period-doubling']} "
+                 f"period-doubling points; {self.message}",
+                 "at the start: saddle-nodes " + (", ".join(
+                     f"{w:.6g}" for w in self.start_folds) or "none") + " rad/s; "
+                 "period doublings " + (", ".join(
+                     f"{w:.6g}" for w in self.start_period_doublings) or "none") + " rad/s"]
+        for t in self.turns:
+            lines.append(f"{t.kind} curve turns at {self.parameter} = {t.value:.6g}{unit}, "
+                         f"Omega~ = {t.speed_ratio:.5f} ({t.speed_rad_s:.2f} rad/s)")
+        lines.append("time: " + ", ".join(f"{k} {v:.2f} s" for k, v in self.timings.items()))
+        return "\n".join(lines)
+
+    def to_json(self) -> dict[str, Any]:
+        return {"parameter": self.parameter, "units": self.units,
+                "range": list(self.range2), "reference_speed_rad_s": self.reference_speed,
+                "harmonics": self.H, "period_doubling_harmonics_of_half_speed": self.H2,
+                "period_doubling_n_samples": self.n_samples_pd,
+                "fold_n_samples": self.fold.n_samples if self.fold else None,
+                "start_saddle_nodes_rad_s": self.start_folds,
+                "start_period_doublings_rad_s": self.start_period_doublings,
+                "turning_points": [vars(t) for t in self.turns],
+                "success": self.success, "message": self.message,
+                "timings_s": self.timings}
+
+    def dataset(self) -> Any:
+        import xarray as xr
+
+        data = {k: ("point", np.asarray(v)) for k, v in self.table.items()}
+        ds = xr.Dataset(data)
+        ds["kind"] = ("point", np.asarray(self.table["kind"], dtype=str))
+        ds.attrs.update(parameter=self.parameter, units=self.units, harmonics=self.H,
+                        period_doubling_harmonics_of_half_speed=self.H2)
+        return ds
+
+    def write(self, directory: str | Path, plot: bool = True) -> dict[str, Path]:
+        """``curves.csv``, ``curves.nc`` (one row per point, ``kind`` column),
+        ``summary.json`` (start points, turns, timings), ``curves.png``; atomically."""
+        out = Path(directory)
+        paths = {name: out / name for name in self.FILES}
+        cols = list(self.table)
+        n = len(self.table["kind"])
+        rows = [tuple(self.table[c][i].item() if hasattr(self.table[c][i], "item")
+                      else self.table[c][i] for c in cols) for i in range(n)]
+        atomic.write_csv(paths["curves.csv"], cols, rows)
+        atomic.write_netcdf(self.dataset(), paths["curves.nc"])
+        atomic.write_json(paths["summary.json"], self.to_json())
+        if plot:
+            atomic.save_figure(self.plot(self.title), paths["curves.png"], dpi=120)
+        else:
+            paths.pop("curves.png")
+        return paths
+
+    def plot(self, title: str = "") -> Figure:
+        """The curves in the (Omega~, parameter) plane, turning points marked
+        (:func:`rotorsfd.plots.bifurcation_curves.bifurcation_curves_figure`)."""
+        from rotorsfd.plots.bifurcation_curves import bifurcation_curves_figure
+
+        t = self.table
+        return bifurcation_curves_figure(
+            t["kind"], t["curve"], t["speed_ratio"], t[self.value_column],
+            turns=[(p.kind, p.speed_ratio, p.value) for p in self.turns],
+            parameter=self.parameter, units=self.units, H=self.H, title=title)
+
+
+def _pd_table(hb: TwoParameterHB | None, curves: list[FoldBranch], system: RotorSystem,
+              ref: float, nodes: tuple[int, ...], value_column: str) -> dict[str, list]:
+    cols: dict[str, list] = {k: [] for k in ("kind", "curve", "segment", "s", value_column,
+                                              "speed_rad_s", "speed_ratio", "max_eps",
+                                              "aliasing")}
+    cols.update({f"amp_{n}_m": [] for n in nodes})
+    el = system.elements
+    for k, c in enumerate(curves):
+        assert hb is not None
+        for ze, seg, s in zip(c.z, c.segment, c.s, strict=True):
+            z = c.system.embed(ze)
+            _, speed, value = hb.from_z(z)
+            X = hb.coefficients(z)
+            cols["kind"].append("period-doubling")
+            cols["curve"].append(k)
+            cols["segment"].append(int(seg))
+            cols["s"].append(float(s))
+            cols[value_column].append(value)
+            cols["speed_rad_s"].append(speed)
+            cols["speed_ratio"].append(speed / ref)
+            cols["max_eps"].append(el.limit(orbit_samples(X[:, el.nl_dofs])[0]))
+            cols["aliasing"].append(hb.sampling_error(z, hb.N))
+            for n in nodes:
+                iy, iz = dofs.dof_index(n, "y"), dofs.dof_index(n, "z")
+                cols[f"amp_{n}_m"].append(float(max_radius(X[:, iy], X[:, iz])))
+    return cols
+
+
+def _merge(fold: FoldCurve | None, pd: dict[str, list]) -> dict[str, NDArray]:
+    """One table: the fold curve's rows (kind "saddle-node") then the PD rows."""
+    cols = list(pd)
+    out: dict[str, list] = {k: list(pd[k]) for k in cols}
+    if fold is not None:
+        n = len(fold.table["speed_rad_s"])
+        for k in cols:
+            head = ["saddle-node"] * n if k == "kind" else list(fold.table[k])
+            out[k] = head + out[k]
+    return {k: (np.asarray(v, dtype=object) if k == "kind" else
+                np.asarray(v, dtype=np.int64 if k in ("curve", "segment") else float))
+            for k, v in out.items()}
+
+
+def bifurcation_curves(system: RotorSystem, speed_range: tuple[float, float],
+                       second_parameter: str, range2: tuple[float, float], H: int = 3, *,
+                       harmonics_factor: int = 4, reference_speed: float | None = None,
+                       nodes: tuple[int, ...] | None = None,
+                       options: FoldOptions | None = None,
+                       stability_options: StabilityOptions | None = None,
+                       branch_options: dict[str, Any] | None = None) -> BifurcationCurves:
+    """Fold and period-doubling curves from the speed branch at ``range2[0]`` (SI),
+    continued towards ``range2[1]`` (module docstring). ConfigError if that branch has
+    neither a saddle-node nor a period doubling; ConvergenceError if it stops first."""
+    param = system_parameter(second_parameter)
+    if param == "speed":
+        raise ConfigError("--parameter", second_parameter,
+                          "the second parameter must differ from the speed")
+    if range2[0] == range2[1]:
+        raise ConfigError("--to", range2[1], "must differ from --from (the start value)")
+    if harmonics_factor not in (2, 4):
+        raise ConfigError("harmonics_factor", harmonics_factor, "2 or 4")
+    ref = float(reference_speed if reference_speed is not None else first_critical(system))
+    out_nodes = tuple(nodes) if nodes else system.output_nodes
+    family = system.two_parameter_problem(param)
+    t0 = time.perf_counter()
+    problem = family.first(range2[0])
+    branch = continue_periodic(problem, speed_range[0], speed_range[1], H,
+                               **dict(branch_options or {}))
+    st = branch_stability(branch, problem, stability_options)
+    flips = [b for b in st.bifurcations if b.kind == "period-doubling"]
+    n_folds = len(branch.folds())
+    t1 = time.perf_counter()
+    where = (f"the speed branch at {param} = {range2[0]:g} in {speed_range[0]:.6g} .. "
+             f"{speed_range[1]:.6g} rad/s")
+    if not n_folds and not flips:
+        if not branch.success:
+            raise ConvergenceError(f"{where} stopped before any bifurcation: "
+                                   f"{branch.message}")
+        raise ConfigError("--from", range2[0], f"{where} has neither a saddle-node nor a "
+                          "period doubling; start where the response has one")
+    fold = None
+    messages = []
+    if n_folds:
+        fold = fold_curve(system, speed_range, param, range2, H, reference_speed=ref,
+                          nodes=out_nodes, options=options, branch_options=branch_options)
+        messages.append(f"saddle-node: {fold.message}")
+    t2 = time.perf_counter()
+    Nb = branch.info["n_samples"]
+    N_b = int(max((Nb[min(int(b.info.get("point", 0)) + k, len(Nb) - 1)] for b in flips
+                   for k in (0, 1)), default=Nb[0] if len(Nb) else 32))
+    H2, N2 = harmonics_factor * H, harmonics_factor * N_b
+    scales = (abs(speed_range[1] - speed_range[0]), abs(range2[1] - range2[0]))
+    pd_hb, pd_curves = None, []
+    covered = [False] * len(flips)
+    for i, b in enumerate(flips):
+        if covered[i]:
+            continue
+        covered[i] = True
+        p = branch.point_at(b.s)
+        pd_hb, legs = continue_period_doublings(family, p.X, p.lam, range2[0], range2,
+                                                H2=H2, N=N2, scales=scales,
+                                                options=options, both_ways=False)
+        leg = legs[0]
+        pd_curves.append(leg)
+        messages.append(f"period doubling at {b.lam:.6g} rad/s: {leg.message}")
+        if not leg.cusps:
+            continue
+        try:
+            back = [pd_hb.from_z(leg.system.embed(z))[1]
+                    for z in leg.solve_at(range2[0] / scales[1])]
+        except ConvergenceError:
+            back = []
+        for j, q in enumerate(flips):
+            if not covered[j] and any(abs(w - q.lam) <= 1e-4 * q.lam for w in back):
+                covered[j] = True
+    t3 = time.perf_counter()
+    col = f"{column_slug(param)}_{column_slug(PARAMETER_UNITS[param])}"
+    table = _merge(fold, _pd_table(pd_hb, pd_curves, system, ref, out_nodes, col))
+    turns = [TurningPoint("saddle-node", c.speed_rad_s, c.speed_ratio, c.value)
+             for c in (fold.cusps if fold else [])]
+    for c in pd_curves:
+        for cp in c.cusps:
+            _, speed, value = pd_hb.from_z(c.system.embed(cp.z))
+            turns.append(TurningPoint("period-doubling", speed, speed / ref, value))
+    success = (fold.success if fold else True) and all(c.success for c in pd_curves)
+    timings = {"speed_branch_and_stability": t1 - t0, "fold_curves": t2 - t1,
+               "period_doubling_curves": t3 - t2, "total": time.perf_counter() - t0}
+    return BifurcationCurves(param, (float(range2[0]), float(range2[1])), ref, H, H2, N2,
+                             fold.start_folds if fold else [],
+                             [float(b.lam) for b in flips], table, turns, fold, pd_hb,
+                             pd_curves, success, "; ".join(messages), timings)
+
+
+def run_bifurcation_curves(config: Config, parameter: str, start: Any, stop: Any, *,
+                           search_path: Path | None = None, harmonics: int | None = None,
+                           harmonics_factor: int = 4,
+                           options: FoldOptions | None = None) -> BifurcationCurves:
+    """:func:`bifurcation_curves` from a configuration: the speed range, H
+    (``start_harmonics``), output nodes and reference speed of ``[analysis.response]`` /
+    ``[reference]``; ``parameter`` a config path and ``start, stop`` its range (numbers in
+    SI or strings with units)."""
+    from rotorsfd.analyses.modal import reference_speed as config_reference_speed
+    from rotorsfd.io.schema import parameter_values
+    from rotorsfd.model.build import build_system
+
+    if not config.elements:
+        raise ConfigError("elements", None, "the bifurcation curves need at least one "
+                          "nonlinear element (an [elements.<name>] table)")
+    param = system_parameter(parameter)
+    if param == "speed":
+        raise ConfigError("--parameter", parameter, "must differ from the speed")
+    system = build_system(config, search_path)
+    ref = config_reference_speed(config, system)
+    r = config.analysis.response
+    lo, hi = r.speed_range.bounds(ref)
+    path = parameter.strip()
+    if path == param:
+        path = find_parameter(param).path
+    v0, v1 = parameter_values(config, path, [start, stop])
+    result = bifurcation_curves(system, (lo, hi), param, (v0, v1),
+                                harmonics or r.start_harmonics,
+                                harmonics_factor=harmonics_factor, reference_speed=ref,
+                                nodes=tuple(r.nodes) or None, options=options)
+    result.title = config.title
+    return result

@@ -1,0 +1,53 @@
+"""The two-parameter bifurcation chart: fold (saddle-node) and period-doubling curves of
+the speed response in the (Omega~, second parameter) plane, their turning points marked,
+the legend in words beside the axes."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from rotorsfd.plots.labels import axis_label, wrap
+
+#: kind -> (legend words, colour, line style)
+STYLE = {"saddle-node": ("saddle-node (fold)", "C0", "-"),
+         "period-doubling": ("period doubling", "C3", "--")}
+TURN_WORDS = {"saddle-node": "cusp (fold pair meets)",
+              "period-doubling": "turning point (period-doubling pair meets)"}
+#: SI unit -> (unit shown, factor): an unbalance in g mm, not 5e-06 kg m
+DISPLAY_UNITS = {"kg*m": ("g*mm", 1e6)}
+
+
+def bifurcation_curves_figure(kind: Any, curve: Any, speed_ratio: Any, value: Any, *,
+                              turns: Sequence[tuple[str, float, float]] = (),
+                              parameter: str, units: str, H: int, title: str = ""
+                              ) -> Figure:
+    """``curves.png``: the points (``speed_ratio``, ``value``) of each curve (``kind``
+    and ``curve`` number them), ``turns`` as (kind, speed_ratio, value)."""
+    kind, curve = np.asarray(kind, dtype=str), np.asarray(curve)
+    ratio, value = np.asarray(speed_ratio, float), np.asarray(value, float)
+    shown, factor = DISPLAY_UNITS.get(units, (units, 1.0))
+    fig = Figure(figsize=(8.5, 5.5), layout="constrained")
+    ax = fig.subplots()
+    for k, (words, colour, style) in STYLE.items():
+        for j, c in enumerate(np.unique(curve[kind == k])):
+            sel = (kind == k) & (curve == c)
+            ax.plot(ratio[sel], factor * value[sel], style, lw=1.6, color=colour,
+                    label=words if j == 0 else None)
+    for k in STYLE:
+        pts = [(r, v) for kk, r, v in turns if kk == k]
+        if pts:
+            r, v = np.array(pts).T
+            ax.plot(r, factor * v, "v" if k == "saddle-node" else "o", ms=7,
+                    color="k" if k == "saddle-node" else STYLE[k][1],
+                    mfc="none" if k == "period-doubling" else None, label=TURN_WORDS[k])
+    ax.set_xlabel(r"speed ratio $\tilde\Omega$")
+    ax.set_ylabel(axis_label(parameter, shown))
+    ax.set_title(wrap((f"{title}\n" if title else "") + "Bifurcation curves in "
+                      rf"($\Omega$, {axis_label(parameter)}), H = {H}", 80), fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
+    return fig
