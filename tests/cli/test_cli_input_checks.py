@@ -24,6 +24,7 @@ FOLDS = ROOT / "examples" / "paper" / "fig19_unstable_range.toml"
 
 #: the arguments each command needs besides CONFIG and -o
 EXTRA = {"fold-curve": ["--from", "0 rad/s", "--to", "6 rad/s"],
+         "bifurcation-curves": ["--from", "0 rad/s", "--to", "6 rad/s"],
          "simulate": ["--speed-ratio", "1.0"],
          "fit-supports": ["--field", "elements.sfd.centring_stiffness", "--target", "811.3"],
          "calibrate": ["--fit", "elements.sfd.centring_stiffness",

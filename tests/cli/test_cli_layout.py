@@ -61,7 +61,8 @@ def test_help_lists_the_commands_in_workflow_order(capsys):
     text = capsys.readouterr().out
     order = ["config", "modal", "fit-supports", "calibrate", "response", "static", "sweep",
              "simulate",
-             "bifurcation-diagram", "stability-chart", "fold-curve", "attractors", "paper",
+             "bifurcation-diagram", "stability-chart", "fold-curve", "bifurcation-curves",
+             "attractors", "paper",
              "rerun", "import-ross",
              "export-matrices"]
     listed = re.findall(r"^ {4}(\S+)", text, flags=re.M)
