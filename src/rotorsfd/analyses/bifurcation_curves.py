@@ -26,6 +26,7 @@ the second parameter, ``speed_rad_s``, ``speed_ratio`` = Omega / Omega_ref, ``ma
 
 from __future__ import annotations
 
+import re
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -116,11 +117,13 @@ class BifurcationCurves:
     def summary(self) -> str:
         unit = "" if self.units == "1" else f" {self.units}"
         n = {k: int(np.sum(self.table["kind"] == k)) for k in KINDS}
+        message = re.sub(r"lam=(\S+?)(;|$)", lambda m: f"{self.parameter} = "
+                         f"{float(m.group(1)):.6g}{unit}{m.group(2)}", self.message)
         lines = [f"bifurcation curves in (speed, {self.parameter}) over {self.range2[0]:g} "
-                 f"..{self.range2[1]:g}{unit}, H = {self.H} (period doubling: H2 = "
+                 f".. {self.range2[1]:g}{unit}, H = {self.H} (period doubling: H2 = "
                  f"{self.H2} harmonics of Omega/2, N_f = {self.n_samples_pd}): "
                  f"{n['saddle-node']} saddle-node points, {n['period-doubling']} "
-                 f"period-doubling points; {self.message}",
+                 f"period-doubling points; {message}",
                  "at the start: saddle-nodes " + (", ".join(
                      f"{w:.6g}" for w in self.start_folds) or "none") + " rad/s; "
                  "period doublings " + (", ".join(
@@ -180,7 +183,8 @@ class BifurcationCurves:
         return bifurcation_curves_figure(
             t["kind"], t["curve"], t["speed_ratio"], t[self.value_column],
             turns=[(p.kind, p.speed_ratio, p.value) for p in self.turns],
-            parameter=self.parameter, units=self.units, H=self.H, title=title)
+            parameter=self.parameter, units=self.units, H=self.H,
+            H2=self.H2 if self.pd_curves else None, title=title)
 
 
 def _pd_table(hb: TwoParameterHB | None, curves: list[FoldBranch], system: RotorSystem,

@@ -23,7 +23,8 @@ DISPLAY_UNITS = {"kg*m": ("g*mm", 1e6)}
 
 def bifurcation_curves_figure(kind: Any, curve: Any, speed_ratio: Any, value: Any, *,
                               turns: Sequence[tuple[str, float, float]] = (),
-                              parameter: str, units: str, H: int, title: str = ""
+                              parameter: str, units: str, H: int, H2: int | None = None,
+                              title: str = ""
                               ) -> Figure:
     """``curves.png``: the points (``speed_ratio``, ``value``) of each curve (``kind``
     and ``curve`` number them), ``turns`` as (kind, speed_ratio, value)."""
@@ -47,7 +48,9 @@ def bifurcation_curves_figure(kind: Any, curve: Any, speed_ratio: Any, value: An
     ax.set_xlabel(r"speed ratio $\tilde\Omega$")
     ax.set_ylabel(axis_label(parameter, shown))
     ax.set_title(wrap((f"{title}\n" if title else "") + "Bifurcation curves in "
-                      rf"($\Omega$, {axis_label(parameter)}), H = {H}", 80), fontsize=9)
+                      rf"($\Omega$, {axis_label(parameter)}), H = {H}"
+                      + (rf" (period doubling: {H2} harmonics of $\Omega$/2)" if H2 else ""),
+                      80), fontsize=9)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
     return fig
