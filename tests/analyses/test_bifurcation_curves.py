@@ -118,3 +118,27 @@ def test_command_bad_parameter_value_before_any_work(tmp_path, capsys):
                    "-o", str(tmp_path / "x")])
     assert status == 2 and "--from" in capsys.readouterr().err
     assert not (tmp_path / "x").exists()
+
+
+def test_fold_curves_of_the_pitching_rotor_through_the_folds_of_another_branch():
+    """The paper rotor, U = 144.02 g mm, pitching 0 .. 6 rad/s (H = 3): only saddle-nodes
+    (kind "saddle-node"), the pair meets at a cusp near 4.4 rad/s, and the curves at
+    3 rad/s are the turning points located on the speed branch computed there (1e-4)."""
+    from rotorsfd.continuation.folds import locate_branch_fold
+
+    cfg = api.load_config(Path(__file__).parents[2] / "examples" / "paper" /
+                          "fig19_unstable_range.toml", ["unbalance[0].magnitude=144.02 g*mm"])
+    result = api.run_bifurcation_curves(cfg, "base.pitching.value", 0.0, "6 rad/s",
+                                        harmonics=3)
+    assert result.success and result.start_period_doublings == []
+    assert set(result.table["kind"].tolist()) == {"saddle-node"}
+    (cusp,) = result.turns
+    assert cusp.kind == "saddle-node" and 4.0 < cusp.value < 4.8
+    system = build_system(cfg).with_parameter("base.pitching", 3.0)
+    r = cfg.analysis.response
+    lo, hi = r.speed_range.bounds(result.reference_speed)
+    b = continue_periodic(system.periodic_problem("speed"), lo, hi, 3,
+                          n_samples=result.fold.n_samples)
+    folds = sorted(locate_branch_fold(b, int(i)).lam for i in b.folds())
+    assert len(folds) == 2
+    assert result.speeds_at("saddle-node", 3.0) == pytest.approx(folds, rel=1e-4)
