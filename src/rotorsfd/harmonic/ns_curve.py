@@ -1,0 +1,173 @@
+"""Two-parameter continuation of Neimark-Sacker (secondary Hopf) points of a forced response.
+
+A perturbation ``dq = exp(i sigma t) p(t)`` of a T-periodic orbit (``p`` T-periodic,
+``p = sum_k p_k exp(i k w t)``) has the Floquet multiplier ``exp(i sigma T)``. Linearising
+``M q'' + D q' + K q = f + g(q, q')`` (``g`` on the nonlinear DOFs, the linear DOFs
+eliminated exactly) gives the shifted Hill operator on the nonlinear DOFs
+
+    A(sigma)_kj = Zs(k w + sigma) delta_kj - Jq_{k-j} - i (j w + sigma) Jv_{k-j},
+    Zs(W) = (S Z(W)^{-1} S^T)^{-1},   Z(W) = K - W^2 M + i W D,
+
+with ``Jq_l, Jv_l`` the two-sided Fourier coefficients of ``dg/dq, dg/dv`` along the
+orbit (AFT). A multiplier on the unit circle at ``exp(i sigma T)``, ``0 < sigma < w/2``,
+is where ``A(sigma)`` is singular. Harmonics ``k = -K .. K-1`` (2K blocks, symmetric
+about ``-sigma/w`` at ``sigma = w/2``: there A is the odd-harmonic block of
+:mod:`rotorsfd.harmonic.pd_curve` with H2 = 2K, a check). The complex bordered test
+function
+
+    [A(sigma) b] [v]   [0]
+    [c^T      0] [g] = [1],        Re g = Im g = 0,
+
+with ``theta = sigma / w`` an extra unknown, added to the period-1 HB equations
+``R(x, lam1, lam2) = 0``, gives ``n + 2`` equations in ``(x, lam1, theta, lam2)``: a
+curve, continued in lam2 by the fold curve's driver
+(:func:`rotorsfd.continuation.folds.continue_folds`, another ``augmented`` system).
+``dg/d(x, lam1, theta, lam2)`` by central differences of g at fixed borders; R exact.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rotorsfd.continuation.folds import (
+    FoldBranch,
+    FoldOptions,
+    TwoParameterHB,
+    TwoParameterProblem,
+    continue_folds,
+)
+from rotorsfd.harmonic.fourier import to_real
+from rotorsfd.harmonic.synthesis import orbit_samples
+
+FloatArray = NDArray[np.float64]
+ComplexArray = NDArray[np.complex128]
+
+NS_FD_STEP = 1e-6
+"""Central-difference step of g in the scaled unknowns."""
+
+
+def shifted_hill(problem, X: ComplexArray, lam: float, theta: float, K: int,
+                 n_samples: int = 64) -> ComplexArray:
+    """``A(sigma)`` (module docstring) of ``problem`` at ``lam`` on the orbit ``X``
+    (H+1, n_dof), ``sigma = theta * w``, harmonics ``k = -K .. K-1``: (2K m, 2K m)."""
+    w = float(problem.frequency(lam))
+    sigma = theta * w
+    nl = np.asarray(problem.nl_dofs)
+    m = nl.size
+    M, D, Kmat = problem.matrices(lam)
+    ks = np.arange(-K, K)
+    A = np.zeros((2 * K * m, 2 * K * m), dtype=complex)
+    for i, k in enumerate(ks):
+        W = k * w + sigma
+        Z = Kmat - W**2 * M + 1j * W * D
+        Hs = np.linalg.solve(Z, np.eye(Z.shape[0])[:, nl])[nl]
+        A[i * m:(i + 1) * m, i * m:(i + 1) * m] = np.linalg.inv(Hs)
+    N = max(n_samples, 4 * K + 2 * X.shape[0])
+    q, v = orbit_samples(np.asarray(X)[:, nl], w, N)
+    Jq, Jv = problem.law(lam).jacobian(q, v)    # the law at lam (speed-dependent films)
+    Jq_hat = np.fft.fft(np.asarray(Jq), axis=0) / N      # Jq_hat[l] ~ exp(+i l w t)
+    Jv_hat = np.fft.fft(np.asarray(Jv), axis=0) / N
+    for i, k in enumerate(ks):
+        for j, kj in enumerate(ks):
+            lag = (k - kj) % N
+            A[i * m:(i + 1) * m, j * m:(j + 1) * m] -= (
+                Jq_hat[lag] + 1j * (kj * w + sigma) * Jv_hat[lag])
+    return A
+
+
+def _bordered(A: ComplexArray, b: ComplexArray, c: ComplexArray
+              ) -> tuple[ComplexArray, complex]:
+    n = A.shape[0]
+    B = np.zeros((n + 1, n + 1), dtype=complex)
+    B[:n, :n], B[:n, n], B[n, :n] = A, b, c
+    rhs = np.zeros(n + 1, dtype=complex)
+    rhs[n] = 1.0
+    sol = np.linalg.solve(B, rhs)
+    return sol[:n], complex(sol[n])
+
+
+class NeimarkSackerSystem:
+    """``F = [R; Re g; Im g]`` in ``z = (x, lam1, theta, lam2)`` over a
+    :class:`~rotorsfd.continuation.folds.TwoParameterHB`; the interface of
+    :class:`~rotorsfd.continuation.folds.FoldSystem` (module docstring)."""
+
+    def __init__(self, base: TwoParameterHB, z0: FloatArray, K: int,
+                 fd_step: float = NS_FD_STEP) -> None:
+        self.base, self.K, self.fd_step = base, K, fd_step
+        self.n = base.n + 2
+        self.weights = None
+        self.unit = 1.0
+        A = self.hill(z0)
+        U, sv, Vh = np.linalg.svd(A)
+        self.unit = 1.0 / sv[0]   # A scaled to unit norm at the start: g ~ 1 / cond
+        self.c, self.b = Vh[-1].copy(), U[:, -1].copy()
+
+    def embed(self, z: FloatArray) -> FloatArray:
+        """The base z ``(x, lam1, lam2)`` (theta dropped)."""
+        return np.delete(np.asarray(z, dtype=float), -2)
+
+    def theta(self, z: FloatArray) -> float:
+        return float(z[-2])
+
+    def hill(self, z: FloatArray) -> ComplexArray:
+        zb = self.embed(z)
+        _, lam1, lam2 = self.base.from_z(zb)
+        X = self.base.coefficients(zb)
+        return self.unit * shifted_hill(self.base.problem.first(lam2), X, lam1,
+                                        self.theta(z), self.K, self.base.N)
+
+    def admissible(self, z: FloatArray) -> bool:
+        return self.base.admissible(self.embed(z)) and 0.0 < self.theta(z) < 0.5
+
+    def g(self, z: FloatArray) -> complex:
+        return _bordered(self.hill(z), self.b, self.c)[1]
+
+    def evaluate(self, z: FloatArray) -> tuple[FloatArray, FloatArray]:
+        z = np.asarray(z, dtype=float)
+        R, J = self.base.evaluate(self.embed(z))
+        g0 = self.g(z)
+        dg = np.empty(z.size, dtype=complex)
+        for i in range(z.size):
+            dz = np.zeros_like(z)
+            dz[i] = self.fd_step
+            dg[i] = (self.g(z + dz) - self.g(z - dz)) / (2 * self.fd_step)
+        Jn = np.zeros((self.n, z.size))
+        Jn[: self.base.n, : self.base.n + 1] = J[:, : self.base.n + 1]
+        Jn[: self.base.n, -1] = J[:, -1]
+        Jn[-2], Jn[-1] = dg.real, dg.imag
+        return np.concatenate([R, [g0.real, g0.imag]]), Jn
+
+    def update_border(self, z: FloatArray) -> None:
+        """b, c <- the unit left and right null vectors of A at z (bordered solves)."""
+        A = self.hill(z)
+        v, _ = _bordered(A, self.b, self.c)
+        w, _ = _bordered(A.T, self.c, self.b)
+        if np.all(np.isfinite(v)) and np.all(np.isfinite(w)):
+            self.c, self.b = v / np.linalg.norm(v), w / np.linalg.norm(w)
+
+
+def continue_neimark_sacker(problem: TwoParameterProblem, X: ComplexArray, lam1: float,
+                            lam2: float, theta: float, lam2_range: tuple[float, float], *,
+                            H: int, N: int, K: int, scales: tuple[float, float],
+                            options: FoldOptions | None = None, limit_max: float = 1.0,
+                            on_point: Callable[[FloatArray, int], None] | None = None,
+                            ) -> tuple[TwoParameterHB, FoldBranch]:
+    """The Neimark-Sacker curve through the secondary Hopf near ``(X, lam1, theta)`` at
+    ``lam2`` (X the period-1 coefficients (H+1, n_dof), theta = arg(mu) / 2 pi of the
+    critical multiplier, in (0, 1/2)), continued from lam2 towards ``lam2_range[1]``
+    (physical units, scaled by ``scales``) with K shifted harmonic pairs. Points
+    ``z = (x, lam1, theta, lam2)`` scaled; ``leg.system.embed(z)`` gives the base z."""
+    template = problem.first(lam2)
+    xs0 = to_real(np.asarray(X))[:, template.nl_dofs]
+    hb = TwoParameterHB(problem, H, N, scales, xs0, (lam1, lam2), limit_max=limit_max)
+    zb = hb.to_z(xs0, lam1, lam2)
+    z0 = np.concatenate([zb[:-1], [theta], zb[-1:]])
+    ns = NeimarkSackerSystem(hb, z0, K)
+    lo, hi = lam2_range[0] / scales[1], lam2_range[1] / scales[1]
+    leg = continue_folds(hb, z0, (lo, hi), options, on_point=on_point,
+                         lam_physical=lambda s: s * scales[1],
+                         augmented=lambda base, z: ns)
+    return hb, leg

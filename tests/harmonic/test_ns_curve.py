@@ -1,0 +1,71 @@
+"""Neimark-Sacker curves in two parameters (harmonic/ns_curve.py) on the rotor on two
+journal bearings (examples/journal_bearing_rotor.toml) with a small unbalance: the oil
+whirl starts at a secondary Hopf of the unbalance response near 1057 rad/s (a multiplier
+pair through the unit circle near -1). The (speed, U) curve started from the one that
+Floquet locates on the branch at 1 g mm passes through the secondary Hopf that Floquet
+locates, independently (monodromy multipliers through |mu| = 1), on the branch at
+1.25 g mm; its theta = sigma / w is the critical multiplier's angle / 2 pi."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rotorsfd.continuation.folds import FoldOptions
+from rotorsfd.harmonic.ns_curve import continue_neimark_sacker
+from rotorsfd.harmonic.periodic import continue_periodic
+from rotorsfd.io.config import config_from_dict, read_toml
+from rotorsfd.model.build import build_system
+from rotorsfd.stability.branch_stability import branch_stability
+
+EXAMPLE = Path(__file__).parents[2] / "examples" / "journal_bearing_rotor.toml"
+H = 3
+
+
+@pytest.fixture(scope="module")
+def family():
+    return build_system(config_from_dict(read_toml(EXAMPLE))).two_parameter_problem(
+        "unbalance.magnitude")
+
+
+def floquet_hopf(family, U: float):
+    """(speed, theta, branch, point) of the secondary Hopf of the branch at ``U``."""
+    p = family.first(U)
+    branch = continue_periodic(p, 950.0, 1150.0, H)
+    st = branch_stability(branch, p)
+    (b,) = [b for b in st.bifurcations if b.kind == "secondary-hopf"]
+    assert abs(abs(b.critical) - 1.0) < 1e-6
+    return b.lam, abs(np.angle(b.critical)) / (2 * np.pi), branch.point_at(b.s)
+
+
+@pytest.fixture(scope="module")
+def curve(family):
+    lam, theta, pt = floquet_hopf(family, 1e-6)
+    hb, leg = continue_neimark_sacker(family, pt.X, pt.lam, 1e-6, theta, (1e-6, 1.3e-6),
+                                      H=H, N=32, K=2 * H, scales=(200.0, 1e-6),
+                                      options=FoldOptions(ds=0.1, ds_max=0.2))
+    return hb, leg, lam, theta
+
+
+def _on_curve(curve, U):
+    hb, leg, *_ = curve
+    (z,) = leg.solve_at(U / 1e-6)
+    return hb.from_z(leg.system.embed(z))[1], float(z[-2])
+
+
+def test_curve_starts_at_the_floquet_secondary_hopf(curve):
+    _, leg, lam, theta = curve
+    assert leg.success, leg.message
+    speed, th = _on_curve(curve, 1e-6)
+    assert speed == pytest.approx(lam, rel=1e-5)       # measured 1.7e-6
+    assert th == pytest.approx(theta, abs=1e-4)
+
+
+def test_curve_passes_through_the_secondary_hopf_at_another_unbalance(curve, family):
+    lam, theta, _ = floquet_hopf(family, 1.25e-6)
+    speed, th = _on_curve(curve, 1.25e-6)
+    assert speed == pytest.approx(lam, rel=1e-4)       # measured 1.7e-6
+    assert th == pytest.approx(theta, abs=1e-4)
+    assert 0.49 < th < 0.5
