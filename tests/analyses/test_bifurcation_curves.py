@@ -107,7 +107,7 @@ def test_command_says_when_the_start_branch_has_no_bifurcation(tmp_path, capsys)
                    "-o", str(tmp_path / "x")])
     err = capsys.readouterr().err
     assert status == 2 and err.count("\n") == 1
-    assert "neither a saddle-node nor a period doubling" in err
+    assert "no saddle-node, period doubling or secondary Hopf" in err
 
 
 def test_command_bad_parameter_value_before_any_work(tmp_path, capsys):
@@ -142,3 +142,21 @@ def test_fold_curves_of_the_pitching_rotor_through_the_folds_of_another_branch()
     folds = sorted(locate_branch_fold(b, int(i)).lam for i in b.folds())
     assert len(folds) == 2
     assert result.speeds_at("saddle-node", 3.0) == pytest.approx(folds, rel=1e-4)
+
+
+@pytest.mark.slow
+def test_neimark_sacker_curve_ends_on_the_period_doubling_curve(curves, tmp_path):
+    """From 1 g mm the whirl onset is a secondary Hopf; its Neimark-Sacker curve runs up in
+    U until theta = sigma / w reaches 1/2 (the pair meets at -1): a 1:2 resonance, which
+    lies on the period-doubling curve traced from 5 g mm by the other test function
+    (measured 2e-7 in speed; located to the step: about 0.01 g mm in U). 15 s CPU."""
+    result = api.run_bifurcation_curves(config(), "unbalance[0].magnitude", "1 g*mm",
+                                        "3 g*mm")
+    assert result.success, result.message
+    assert result.start_period_doublings == [] and len(result.start_secondary_hopfs) == 1
+    assert set(result.table["kind"].tolist()) == {"Neimark-Sacker"}
+    (r2,) = result.turns
+    assert r2.kind == "1:2 resonance" and curves.turns[0].value < r2.value < 3e-6
+    on_pd = curves.speeds_at("period-doubling", r2.value)
+    assert min(abs(on_pd - r2.speed_rad_s)) < 1e-5 * r2.speed_rad_s
+    assert "curves.png" in result.write(tmp_path)

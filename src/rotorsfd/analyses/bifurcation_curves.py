@@ -1,4 +1,4 @@
-"""Fold and period-doubling curves of the speed response together in (speed, lam2).
+"""Fold, period-doubling and Neimark-Sacker curves of the speed response in (speed, lam2).
 
 From the speed branch at ``range2[0]`` (HB-AFT, condensed, H harmonics) with its Floquet
 stability (:func:`~rotorsfd.stability.branch_stability.branch_stability`):
@@ -14,18 +14,26 @@ stability (:func:`~rotorsfd.stability.branch_stability.branch_stability`):
   ``harmonics_factor * N_f`` AFT samples per period 2T. A turn of the curve in lam2 is
   where the two flips of a pair meet (beyond it no period doubling at that lam2).
 
+- every located secondary Hopf (a multiplier pair through the unit circle at
+  ``exp(+-i sigma T)``) is continued as a Neimark-Sacker curve by
+  :func:`rotorsfd.harmonic.ns_curve.continue_neimark_sacker` (the shifted Hill operator,
+  harmonics ``k Omega + sigma``, with K = H2 / 2 pairs: at sigma = Omega/2 the PD test's
+  block); it ends where theta = sigma / Omega reaches 1/2 (the pair meets at -1: a 1:2
+  resonance).
+
 A PD curve that passes ``range2[0]`` again at another located period doubling of the start
 branch covers it (it is not continued twice), as for the fold curves.
 
-Table (``curves.csv`` / ``curves.nc``), one row per point: ``kind`` ("saddle-node" or
-"period-doubling"), ``curve`` (numbered per kind), ``segment`` (turns passed), ``s``,
-the second parameter, ``speed_rad_s``, ``speed_ratio`` = Omega / Omega_ref, ``max_eps``
-(the elements' largest validity measure over the orbit, over 2T for a flip),
+Table (``curves.csv`` / ``curves.nc``), one row per point: ``kind`` ("saddle-node",
+"period-doubling" or "Neimark-Sacker"), ``curve`` (numbered per kind), ``segment`` (turns
+passed), ``s``, the second parameter, ``speed_rad_s``, ``speed_ratio`` = Omega /
+Omega_ref, ``max_eps`` (the elements' largest validity measure over the orbit, over 2T for a flip),
 ``aliasing`` (the change of the scaled residual if N_f doubled) and ``amp_<n>_m``.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import re
 import time
 from dataclasses import dataclass, field
@@ -40,6 +48,7 @@ from rotorsfd.analyses.modal import first_critical
 from rotorsfd.analyses.response_result import PARAMETER_UNITS, column_slug, system_parameter
 from rotorsfd.continuation.folds import FoldBranch, FoldOptions, TwoParameterHB
 from rotorsfd.errors import ConfigError, ConvergenceError
+from rotorsfd.harmonic.ns_curve import continue_neimark_sacker
 from rotorsfd.harmonic.pd_curve import continue_period_doublings
 from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.harmonic.synthesis import max_radius, orbit_samples
@@ -56,14 +65,22 @@ if TYPE_CHECKING:
 
 FloatArray = NDArray[np.float64]
 
-KINDS = ("saddle-node", "period-doubling")
+KINDS = ("saddle-node", "period-doubling", "Neimark-Sacker")
+
+THETA_END = 1e-6
+"""A Neimark-Sacker curve ends at the first point with theta = sigma / w > 1/2 - THETA_END:
+at theta = 1/2 the shifted Hill operator is the period-doubling test's block, so every
+point of the PD curve solves the NS equations too and the continuation would slide
+along it."""
 
 
 @dataclass
 class TurningPoint:
     """A turn of a curve in the second parameter (where the pair of its kind meets)."""
 
-    kind: str               #: "saddle-node" (a cusp) or "period-doubling"
+    #: "saddle-node" (a cusp), "period-doubling", or "1:2 resonance" (a Neimark-Sacker
+    #: curve's end where its multipliers meet at -1, on a period-doubling curve)
+    kind: str
     speed_rad_s: float
     speed_ratio: float
     value: float            #: second parameter (SI)
@@ -86,6 +103,9 @@ class BifurcationCurves:
     fold: FoldCurve | None = field(repr=False)
     pd_hb: TwoParameterHB | None = field(repr=False)
     pd_curves: list[FoldBranch] = field(repr=False)
+    ns_hb: TwoParameterHB | None = field(default=None, repr=False)
+    ns_curves: list[FoldBranch] = field(default_factory=list, repr=False)
+    start_secondary_hopfs: list[float] = field(default_factory=list)
     success: bool = True
     message: str = ""
     timings: dict[str, float] = field(default_factory=dict)
@@ -106,11 +126,13 @@ class BifurcationCurves:
         re-solved by Newton at fixed value, sorted, duplicates merged."""
         if kind == "saddle-node":
             return self.fold.speeds_at(value) if self.fold else np.zeros(0)
-        assert self.pd_hb is not None or not self.pd_curves
+        hb, curves = ((self.pd_hb, self.pd_curves) if kind == "period-doubling"
+                      else (self.ns_hb, self.ns_curves))
         out = []
-        for c in self.pd_curves:
-            for z in c.solve_at(value / self.pd_hb.scales[1]):
-                out.append(self.pd_hb.from_z(c.system.embed(z))[1])
+        for c in curves:
+            assert hb is not None
+            for z in c.solve_at(value / hb.scales[1]):
+                out.append(hb.from_z(c.system.embed(z))[1])
         return np.unique(np.round(np.array(out, dtype=float), 9))
 
     # ---- files -------------------------------------------------------------------------
@@ -123,11 +145,14 @@ class BifurcationCurves:
                  f".. {self.range2[1]:g}{unit}, H = {self.H} (period doubling: H2 = "
                  f"{self.H2} harmonics of Omega/2, N_f = {self.n_samples_pd}): "
                  f"{n['saddle-node']} saddle-node points, {n['period-doubling']} "
-                 f"period-doubling points; {message}",
+                 f"period-doubling points, {n['Neimark-Sacker']} Neimark-Sacker points; "
+                 f"{message}",
                  "at the start: saddle-nodes " + (", ".join(
                      f"{w:.6g}" for w in self.start_folds) or "none") + " rad/s; "
                  "period doublings " + (", ".join(
-                     f"{w:.6g}" for w in self.start_period_doublings) or "none") + " rad/s"]
+                     f"{w:.6g}" for w in self.start_period_doublings) or "none") + " rad/s; "
+                 "secondary Hopf " + (", ".join(
+                     f"{w:.6g}" for w in self.start_secondary_hopfs) or "none") + " rad/s"]
         for t in self.turns:
             lines.append(f"{t.kind} curve turns at {self.parameter} = {t.value:.6g}{unit}, "
                          f"Omega~ = {t.speed_ratio:.5f} ({t.speed_rad_s:.2f} rad/s)")
@@ -142,6 +167,7 @@ class BifurcationCurves:
                 "fold_n_samples": self.fold.n_samples if self.fold else None,
                 "start_saddle_nodes_rad_s": self.start_folds,
                 "start_period_doublings_rad_s": self.start_period_doublings,
+                "start_secondary_hopfs_rad_s": self.start_secondary_hopfs,
                 "turning_points": [vars(t) for t in self.turns],
                 "success": self.success, "message": self.message,
                 "timings_s": self.timings}
@@ -187,12 +213,14 @@ class BifurcationCurves:
             H2=self.H2 if self.pd_curves else None, title=title)
 
 
-def _pd_table(hb: TwoParameterHB | None, curves: list[FoldBranch], system: RotorSystem,
-              ref: float, nodes: tuple[int, ...], value_column: str) -> dict[str, list]:
-    cols: dict[str, list] = {k: [] for k in ("kind", "curve", "segment", "s", value_column,
-                                              "speed_rad_s", "speed_ratio", "max_eps",
-                                              "aliasing")}
-    cols.update({f"amp_{n}_m": [] for n in nodes})
+def _curve_rows(kind: str, hb: TwoParameterHB | None, curves: list[FoldBranch],
+                system: RotorSystem, ref: float, nodes: tuple[int, ...], value_column: str,
+                cols: dict[str, list] | None = None) -> dict[str, list]:
+    """Rows of ``curves`` (points ``leg.system.embed(z)`` of ``hb``) appended to ``cols``."""
+    if cols is None:
+        cols = {k: [] for k in ("kind", "curve", "segment", "s", value_column,
+                                "speed_rad_s", "speed_ratio", "max_eps", "aliasing")}
+        cols.update({f"amp_{n}_m": [] for n in nodes})
     el = system.elements
     for k, c in enumerate(curves):
         assert hb is not None
@@ -200,7 +228,7 @@ def _pd_table(hb: TwoParameterHB | None, curves: list[FoldBranch], system: Rotor
             z = c.system.embed(ze)
             _, speed, value = hb.from_z(z)
             X = hb.coefficients(z)
-            cols["kind"].append("period-doubling")
+            cols["kind"].append(kind)
             cols["curve"].append(k)
             cols["segment"].append(int(seg))
             cols["s"].append(float(s))
@@ -260,12 +288,13 @@ def bifurcation_curves(system: RotorSystem, speed_range: tuple[float, float],
     t1 = time.perf_counter()
     where = (f"the speed branch at {param} = {range2[0]:g} in {speed_range[0]:.6g} .. "
              f"{speed_range[1]:.6g} rad/s")
-    if not n_folds and not flips:
+    has_hopf = any(b.kind == "secondary-hopf" for b in st.bifurcations)
+    if not n_folds and not flips and not has_hopf:
         if not branch.success:
             raise ConvergenceError(f"{where} stopped before any bifurcation: "
                                    f"{branch.message}")
-        raise ConfigError("--from", range2[0], f"{where} has neither a saddle-node nor a "
-                          "period doubling; start where the response has one")
+        raise ConfigError("--from", range2[0], f"{where} has no saddle-node, period "
+                          "doubling or secondary Hopf; start where the response has one")
     fold = None
     messages = []
     if n_folds:
@@ -273,9 +302,13 @@ def bifurcation_curves(system: RotorSystem, speed_range: tuple[float, float],
                           nodes=out_nodes, options=options, branch_options=branch_options)
         messages.append(f"saddle-node: {fold.message}")
     t2 = time.perf_counter()
+    hopfs = [b for b in st.bifurcations if b.kind == "secondary-hopf"
+             and abs(abs(b.critical) - 1.0) < 1e-3
+             and 0.0 < abs(np.angle(b.critical)) < np.pi]
     Nb = branch.info["n_samples"]
-    N_b = int(max((Nb[min(int(b.info.get("point", 0)) + k, len(Nb) - 1)] for b in flips
-                   for k in (0, 1)), default=Nb[0] if len(Nb) else 32))
+    N_b = int(max((Nb[min(int(b.info.get("point", 0)) + k, len(Nb) - 1)]
+                   for b in [*flips, *hopfs] for k in (0, 1)),
+                  default=Nb[0] if len(Nb) else 32))
     H2, N2 = harmonics_factor * H, harmonics_factor * N_b
     scales = (abs(speed_range[1] - speed_range[0]), abs(range2[1] - range2[0]))
     pd_hb, pd_curves = None, []
@@ -301,22 +334,53 @@ def bifurcation_curves(system: RotorSystem, speed_range: tuple[float, float],
         for j, q in enumerate(flips):
             if not covered[j] and any(abs(w - q.lam) <= 1e-4 * q.lam for w in back):
                 covered[j] = True
+    ns_hb, ns_curves = None, []
+    for b in hopfs:
+        p = branch.point_at(b.s)
+        theta = abs(float(np.angle(b.critical))) / (2 * np.pi)
+        try:
+            ns_hb, leg = continue_neimark_sacker(family, p.X, p.lam, range2[0], theta,
+                                                 range2, H=H, N=N_b, K=H2 // 2,
+                                                 scales=scales, options=options)
+        except ConvergenceError as exc:
+            messages.append(f"secondary Hopf at {b.lam:.6g} rad/s not continued: {exc}")
+            continue
+        at_half = np.flatnonzero(leg.z[:, -2] > 0.5 - THETA_END)
+        if at_half.size:    # the pair meets at -1; beyond, A(w/2) = the PD block: stop
+            k = int(at_half[0])
+            leg = dataclasses.replace(
+                leg, z=leg.z[: k + 1], tangents=leg.tangents[: k + 1], s=leg.s[: k + 1],
+                segment=leg.segment[: k + 1], cusps=[c for c in leg.cusps if c.index <= k],
+                success=True, message="ended where the multipliers meet at -1 (theta = "
+                "1/2, a 1:2 resonance, located to the continuation step)")
+        ns_curves.append(leg)
+        messages.append(f"secondary Hopf at {b.lam:.6g} rad/s: {leg.message}")
     t3 = time.perf_counter()
     col = f"{column_slug(param)}_{column_slug(PARAMETER_UNITS[param])}"
-    table = _merge(fold, _pd_table(pd_hb, pd_curves, system, ref, out_nodes, col))
+    rows = _curve_rows("period-doubling", pd_hb, pd_curves, system, ref, out_nodes, col)
+    table = _merge(fold, _curve_rows("Neimark-Sacker", ns_hb, ns_curves, system, ref,
+                                     out_nodes, col, rows))
     turns = [TurningPoint("saddle-node", c.speed_rad_s, c.speed_ratio, c.value)
              for c in (fold.cusps if fold else [])]
     for c in pd_curves:
         for cp in c.cusps:
             _, speed, value = pd_hb.from_z(c.system.embed(cp.z))
             turns.append(TurningPoint("period-doubling", speed, speed / ref, value))
-    success = (fold.success if fold else True) and all(c.success for c in pd_curves)
+    for c in ns_curves:
+        if c.message.startswith("ended where the multipliers meet at -1"):
+            assert ns_hb is not None
+            _, speed, value = ns_hb.from_z(c.system.embed(c.z[-1]))
+            turns.append(TurningPoint("1:2 resonance", speed, speed / ref, value))
+    success = (fold.success if fold else True) and all(c.success for c in
+                                                       pd_curves + ns_curves)
     timings = {"speed_branch_and_stability": t1 - t0, "fold_curves": t2 - t1,
-               "period_doubling_curves": t3 - t2, "total": time.perf_counter() - t0}
+               "period_doubling_and_neimark_sacker_curves": t3 - t2,
+               "total": time.perf_counter() - t0}
     return BifurcationCurves(param, (float(range2[0]), float(range2[1])), ref, H, H2, N2,
                              fold.start_folds if fold else [],
                              [float(b.lam) for b in flips], table, turns, fold, pd_hb,
-                             pd_curves, success, "; ".join(messages), timings)
+                             pd_curves, ns_hb, ns_curves, [float(b.lam) for b in hopfs],
+                             success, "; ".join(messages), timings)
 
 
 def run_bifurcation_curves(config: Config, parameter: str, start: Any, stop: Any, *,

@@ -99,6 +99,7 @@ class NeimarkSackerSystem:
         self.base, self.K, self.fd_step = base, K, fd_step
         self.n = base.n + 2
         self.weights = None
+        self._problems: dict[float, object] = {}
         self.unit = 1.0
         A = self.hill(z0)
         U, sv, Vh = np.linalg.svd(A)
@@ -116,7 +117,11 @@ class NeimarkSackerSystem:
         zb = self.embed(z)
         _, lam1, lam2 = self.base.from_z(zb)
         X = self.base.coefficients(zb)
-        return self.unit * shifted_hill(self.base.problem.first(lam2), X, lam1,
+        if lam2 not in self._problems:
+            if len(self._problems) > 4:
+                self._problems.clear()
+            self._problems[lam2] = self.base.problem.first(lam2)
+        return self.unit * shifted_hill(self._problems[lam2], X, lam1,
                                         self.theta(z), self.K, self.base.N)
 
     def admissible(self, z: FloatArray) -> bool:

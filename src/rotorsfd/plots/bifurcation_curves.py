@@ -1,6 +1,6 @@
-"""The two-parameter bifurcation chart: fold (saddle-node) and period-doubling curves of
-the speed response in the (Omega~, second parameter) plane, their turning points marked,
-the legend in words beside the axes."""
+"""The two-parameter bifurcation chart: fold (saddle-node), period-doubling and
+Neimark-Sacker curves of the speed response in the (Omega~, second parameter) plane,
+their turning points and 1:2 resonances marked, the legend in words beside the axes."""
 
 from __future__ import annotations
 
@@ -14,9 +14,12 @@ from rotorsfd.plots.labels import axis_label, wrap
 
 #: kind -> (legend words, colour, line style)
 STYLE = {"saddle-node": ("saddle-node (fold)", "C0", "-"),
-         "period-doubling": ("period doubling", "C3", "--")}
+         "period-doubling": ("period doubling", "C3", "--"),
+         "Neimark-Sacker": ("Neimark-Sacker (secondary Hopf: quasi-periodic)", "C2", "-.")}
 TURN_WORDS = {"saddle-node": "cusp (fold pair meets)",
-              "period-doubling": "turning point (period-doubling pair meets)"}
+              "period-doubling": "turning point (period-doubling pair meets)",
+              "Neimark-Sacker": "turning point (secondary Hopf pair meets)",
+              "1:2 resonance": "1:2 resonance (secondary Hopf meets period doubling)"}
 #: SI unit -> (unit shown, factor): an unbalance in g mm, not 5e-06 kg m
 DISPLAY_UNITS = {"kg*m": ("g*mm", 1e6)}
 
@@ -38,13 +41,14 @@ def bifurcation_curves_figure(kind: Any, curve: Any, speed_ratio: Any, value: An
             sel = (kind == k) & (curve == c)
             ax.plot(ratio[sel], factor * value[sel], style, lw=1.6, color=colour,
                     label=words if j == 0 else None)
-    for k in STYLE:
+    marks = {"saddle-node": ("v", "k", None), "period-doubling": ("o", "C3", "none"),
+             "Neimark-Sacker": ("o", "C2", "none"), "1:2 resonance": ("s", "k", "none")}
+    for k, (marker, colour, face) in marks.items():
         pts = [(r, v) for kk, r, v in turns if kk == k]
         if pts:
             r, v = np.array(pts).T
-            ax.plot(r, factor * v, "v" if k == "saddle-node" else "o", ms=7,
-                    color="k" if k == "saddle-node" else STYLE[k][1],
-                    mfc="none" if k == "period-doubling" else None, label=TURN_WORDS[k])
+            ax.plot(r, factor * v, marker, ms=7, color=colour, mfc=face,
+                    label=TURN_WORDS[k])
     ax.set_xlabel(r"speed ratio $\tilde\Omega$")
     ax.set_ylabel(axis_label(parameter, shown))
     ax.set_title(wrap((f"{title}\n" if title else "") + "Bifurcation curves in "
