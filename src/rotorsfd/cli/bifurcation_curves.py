@@ -1,5 +1,5 @@
-"""``rotorsfd bifurcation-curves``: the saddle-nodes and period doublings of the speed
-response continued together in a second parameter."""
+"""``rotorsfd bifurcation-curves``: the saddle-nodes, period doublings and secondary Hopf
+points of the speed response continued together in a second parameter."""
 
 from __future__ import annotations
 
@@ -18,10 +18,11 @@ def check_bifurcation_curves(args: argparse.Namespace, config: Any) -> None:
     fold_range(config, args.parameter, args.start, args.stop)
 
 
-@command("bifurcation-curves", "two-parameter continuation of every saddle-node (fold) and "
-         "period doubling of the speed response ([analysis.response] speeds and H) in a "
-         "second parameter, from the speed branch at --from: curves.csv and curves.nc "
-         "(a 'kind' column), summary.json, curves.png (both kinds in the (speed, "
+@command("bifurcation-curves", "two-parameter continuation of every saddle-node (fold), "
+         "period doubling and secondary Hopf (Neimark-Sacker) of the speed response "
+         "([analysis.response] speeds and H) in a second parameter, from the speed "
+         "branch at --from: curves.csv and curves.nc "
+         "(a 'kind' column), summary.json, curves.png (all kinds in the (speed, "
          "parameter) plane, turning points marked); exit 1 if a curve stops early (the "
          "points so far are written)",
          output=True, quiet=True,
@@ -31,7 +32,7 @@ def check_bifurcation_curves(args: argparse.Namespace, config: Any) -> None:
                              "unbalance[0].magnitude, elements.<name>.clearance_ratio, ..."),
                     arg("--from", dest="start", required=True, metavar="VALUE",
                         help="start value, e.g. '5 g*mm' (SI if no unit); the speed branch "
-                             "there must have a saddle-node or a period doubling"),
+                             "there must have a saddle-node, period doubling or secondary Hopf"),
                     arg("--to", dest="stop", required=True, metavar="VALUE",
                         help="end value, e.g. '2 g*mm'"),
                     arg("--harmonics", type=options.integer(1), metavar="H",
