@@ -69,15 +69,16 @@ class TwoParameterSystem(Protocol):
     def admissible(self, z: FloatArray) -> bool: ...
 
 
-def _bordered(A: FloatArray, b: FloatArray, c: FloatArray) -> tuple[FloatArray, float]:
-    """Solve ``[A b; c^T 0] [v; g] = [0; 1]``."""
+def bordered(A: NDArray, b: NDArray, c: NDArray) -> tuple[NDArray, float | complex]:
+    """Solve ``[A b; c^T 0] [v; g] = [0; 1]`` (real, or complex for a complex A)."""
     n = A.shape[0]
-    B = np.zeros((n + 1, n + 1))
+    dtype = np.result_type(A, b, c)
+    B = np.zeros((n + 1, n + 1), dtype=dtype)
     B[:n, :n], B[:n, n], B[n, :n] = A, b, c
-    rhs = np.zeros(n + 1)
+    rhs = np.zeros(n + 1, dtype=dtype)
     rhs[n] = 1.0
     sol = np.linalg.solve(B, rhs)
-    return sol[:n], float(sol[n])
+    return sol[:n], (complex(sol[n]) if np.iscomplexobj(sol) else float(sol[n]))
 
 
 def null_vectors(A: FloatArray) -> tuple[FloatArray, FloatArray]:
@@ -105,8 +106,8 @@ class FoldSystem:
 
     def null_vectors(self, A: FloatArray) -> tuple[FloatArray, FloatArray, float]:
         """(v, w, g) of the bordered systems at A = R_x."""
-        v, g = _bordered(A, self.b, self.c)
-        w, _ = _bordered(A.T, self.c, self.b)
+        v, g = bordered(A, self.b, self.c)
+        w, _ = bordered(A.T, self.c, self.b)
         return v, w, g
 
     def evaluate(self, z: FloatArray) -> tuple[FloatArray, FloatArray]:

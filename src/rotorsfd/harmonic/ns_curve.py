@@ -37,6 +37,7 @@ from rotorsfd.continuation.folds import (
     FoldOptions,
     TwoParameterHB,
     TwoParameterProblem,
+    bordered,
     continue_folds,
 )
 from rotorsfd.harmonic.fourier import to_real
@@ -78,17 +79,6 @@ def shifted_hill(problem, X: ComplexArray, lam: float, theta: float, K: int,
     return A
 
 
-def _bordered(A: ComplexArray, b: ComplexArray, c: ComplexArray
-              ) -> tuple[ComplexArray, complex]:
-    n = A.shape[0]
-    B = np.zeros((n + 1, n + 1), dtype=complex)
-    B[:n, :n], B[:n, n], B[n, :n] = A, b, c
-    rhs = np.zeros(n + 1, dtype=complex)
-    rhs[n] = 1.0
-    sol = np.linalg.solve(B, rhs)
-    return sol[:n], complex(sol[n])
-
-
 class NeimarkSackerSystem:
     """``F = [R; Re g; Im g]`` in ``z = (x, lam1, theta, lam2)`` over a
     :class:`~rotorsfd.continuation.folds.TwoParameterHB`; the interface of
@@ -128,7 +118,7 @@ class NeimarkSackerSystem:
         return self.base.admissible(self.embed(z)) and 0.0 < self.theta(z) < 0.5
 
     def g(self, z: FloatArray) -> complex:
-        return _bordered(self.hill(z), self.b, self.c)[1]
+        return bordered(self.hill(z), self.b, self.c)[1]
 
     def evaluate(self, z: FloatArray) -> tuple[FloatArray, FloatArray]:
         z = np.asarray(z, dtype=float)
@@ -148,8 +138,8 @@ class NeimarkSackerSystem:
     def update_border(self, z: FloatArray) -> None:
         """b, c <- the unit left and right null vectors of A at z (bordered solves)."""
         A = self.hill(z)
-        v, _ = _bordered(A, self.b, self.c)
-        w, _ = _bordered(A.T, self.c, self.b)
+        v, _ = bordered(A, self.b, self.c)
+        w, _ = bordered(A.T, self.c, self.b)
         if np.all(np.isfinite(v)) and np.all(np.isfinite(w)):
             self.c, self.b = v / np.linalg.norm(v), w / np.linalg.norm(w)
 

@@ -36,6 +36,7 @@ from rotorsfd.continuation.folds import (
     FoldOptions,
     TwoParameterHB,
     TwoParameterProblem,
+    bordered,
     continue_folds,
     null_vectors,
 )
@@ -43,17 +44,6 @@ from rotorsfd.harmonic.branch_switching import doubled_coefficients, period_doub
 from rotorsfd.harmonic.fourier import to_real
 
 FloatArray = NDArray[np.float64]
-
-
-def _bordered(A: FloatArray, b: FloatArray, c: FloatArray) -> tuple[FloatArray, float]:
-    """Solve ``[A b; c^T 0] [v; g] = [0; 1]``."""
-    n = A.shape[0]
-    B = np.zeros((n + 1, n + 1))
-    B[:n, :n], B[:n, n], B[n, :n] = A, b, c
-    rhs = np.zeros(n + 1)
-    rhs[n] = 1.0
-    sol = np.linalg.solve(B, rhs)
-    return sol[:n], float(sol[n])
 
 
 def odd_rows(H2: int) -> NDArray[np.int64]:
@@ -97,8 +87,8 @@ class PeriodDoublingSystem:
         return self.base.admissible(self.embed(z))
 
     def null_vectors(self, A: FloatArray) -> tuple[FloatArray, FloatArray, float]:
-        v, g = _bordered(A, self.b, self.c)
-        w, _ = _bordered(A.T, self.c, self.b)
+        v, g = bordered(A, self.b, self.c)
+        w, _ = bordered(A.T, self.c, self.b)
         return v, w, g
 
     def evaluate(self, z: FloatArray) -> tuple[FloatArray, FloatArray]:
