@@ -155,3 +155,26 @@ def test_output_nodes_by_shaft_name(tmp_path: Path) -> None:
                     overrides=('analysis.response.nodes=["hp:1"]',))
     assert cli.main(["response", str(DUAL), "-o", str(tmp_path), "-q", "--set",
                      'analysis.response.nodes=["ip:2"]']) == 2
+
+
+def test_dual_spool_periodic_branch_names_the_shafts(tmp_path: Path) -> None:
+    """One spool's unbalance (dual_spool.toml): the periodic branch.nc gains shaft /
+    shaft_node per DOF; the output node given as "hp:4"."""
+    from rotorsfd.api import run_response
+    from rotorsfd.io.config import load_config
+
+    config = load_config(EXAMPLES / "dual_spool.toml", overrides=(
+        "analysis.response.speed_range.start=150 rad/s",
+        "analysis.response.speed_range.stop=151 rad/s", "analysis.response.harmonics=1",
+        'analysis.response.nodes=["hp:4", 2]', "analysis.stability.enabled=false"))
+    result = run_response(config, progress=False)
+    assert result.nodes == (17, 2)
+    paths = result.write(tmp_path, plots=False)
+    want = expected_mapping()
+    with xr.open_dataset(paths["branch.nc"]) as ds:
+        assert list(ds["shaft"].values) == [want[int(n)][0] for n in ds["node"].values]
+        np.testing.assert_array_equal(ds["shaft_node"].values,
+                                      [want[int(n)][1] for n in ds["node"].values])
+        assert "at hp node 4 /" in ds["defl_17"].attrs["long_name"]
+    assert [r["label"] for r in _rows(paths["nodes.csv"])] == ["hp:4", "lp:2"]
+    assert result.summary().splitlines()[1].startswith("hp node 4: max r~")
