@@ -55,6 +55,7 @@ from rotorsfd.analyses.td_integration import (
 from rotorsfd.analyses.td_start import displaced_state, hb_start
 from rotorsfd.errors import ConfigError, ConvergenceError, ElementDomainError, RotorsfdError
 from rotorsfd.model import dofs
+from rotorsfd.model.node_names import NodeNames, node_words
 from rotorsfd.model.system import RotorSystem
 
 if TYPE_CHECKING:
@@ -103,6 +104,8 @@ class BifurcationDiagramResult:
     elapsed: float = 0.0
     title: str = ""
     notes: list[str] = field(default_factory=list)
+    #: shaft-wise node names of a multi-shaft rotor (None: one shaft)
+    node_names: NodeNames | None = None
 
     FILES = ("diagram.csv", "speeds.csv", "diagram.png", "diagram.json")
 
@@ -131,7 +134,7 @@ class BifurcationDiagramResult:
     def table(self) -> dict[str, np.ndarray]:
         """``diagram.csv``: ``direction, speed_rad_s, speed_ratio, node, period, y, z, vy,
         vz`` (one row per Poincare point and node; SI: m, m/s; ``period`` counts from the
-        start of that speed's run)."""
+        start of that speed's run), and for a multi-shaft rotor ``shaft, shaft_node``."""
         cols: dict[str, list[Any]] = {k: [] for k in (
             "direction", "speed_rad_s", "speed_ratio", "node", "period", "y", "z", "vy",
             "vz")}
@@ -151,7 +154,10 @@ class BifurcationDiagramResult:
                 cols["vz"] += list(p.poincare_v[:, j, 1])
         if not ref:
             cols.pop("speed_ratio")
-        return {k: np.asarray(v) for k, v in cols.items()}
+        out = {k: np.asarray(v) for k, v in cols.items()}
+        if self.node_names is not None:     # a multi-shaft rotor: the node's shaft
+            out["shaft"], out["shaft_node"] = self.node_names.arrays(out["node"])
+        return out
 
     def speeds_table(self) -> dict[str, np.ndarray]:
         """``speeds.csv``: per speed ``direction, speed_rad_s, speed_ratio, motion,
@@ -219,7 +225,9 @@ class BifurcationDiagramResult:
             else r"$\Omega$ [rad/s]"
         return bifurcation_figure(table, nodes=self.nodes, x_name=x_name, x_label=label,
                                   scale=self.clearance or 1.0,
-                                  unit="C" if self.clearance else "m", title=self.title)
+                                  unit="C" if self.clearance else "m", title=self.title,
+                                  node_labels={n: node_words(self.node_names, n)
+                                               for n in self.nodes})
 
     def summary(self) -> str:
         """Speeds, sweeps, motion counts, contacts."""
@@ -426,5 +434,6 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem,
     finally:
         bar.close()
     return BifurcationDiagramResult(points, out_nodes, ref, clearance, settings,
-                                    time.perf_counter() - tic, name, notes)
+                                    time.perf_counter() - tic, name, notes,
+                                    NodeNames.of(system.rotor))
 

@@ -94,12 +94,14 @@ class DualSpoolResponseResult(TorusResponseResult):
         from rotorsfd.io import atomic
         from rotorsfd.io.branch_files import write_table
         from rotorsfd.io.torus_files import write_torus_netcdf
+        from rotorsfd.model.node_names import write_node_table
 
         out = Path(directory)
         ds = self.to_dataset()
         ds.attrs["speed_ratio_hp_lp"] = self.ratio
         paths = {"torus.nc": write_torus_netcdf(ds, out / "torus.nc"),
-                 "torus.csv": write_table(out / "torus.csv", self.table())}
+                 "torus.csv": write_table(out / "torus.csv", self.table()),
+                 **write_node_table(out, self.node_names, self.nodes)}
         if plots and self.branch.n_points:
             from rotorsfd.plots.dual_spool import plot_dual_spool_response
 

@@ -16,6 +16,12 @@ from numpy.typing import NDArray
 from rotorsfd.continuation.branch import Branch, BranchPoint
 from rotorsfd.harmonic.truncation import point_info_columns
 from rotorsfd.model import dofs
+from rotorsfd.model.node_names import (
+    NodeNames,
+    node_words,
+    with_shaft_coords,
+    write_node_table,
+)
 from rotorsfd.model.parameters import PARAMETERS, find_parameter
 from rotorsfd.model.system import RotorSystem
 
@@ -212,6 +218,11 @@ class ResponseResult:
         return f"{column_slug(self.parameter)}_{column_slug(self.parameter_units)}"
 
     @property
+    def node_names(self) -> NodeNames | None:
+        """Shaft-wise node names of a multi-shaft rotor (None: one shaft)."""
+        return NodeNames.of(self.system.rotor)
+
+    @property
     def clearance(self) -> float:
         """The elements' length scale C [m] (the smallest clearance; the scale of r~)."""
         return float(self.system.length_scale or 1.0)
@@ -335,11 +346,11 @@ class ResponseResult:
                  "outcome": self.message}
         if self.speed is not None:
             attrs["fixed_speed_rad_s"] = float(self.speed)
-        ds = branch_dataset(
+        ds = with_shaft_coords(branch_dataset(
             self.branch, parameter=self.parameter, parameter_units=self.parameter_units,
             speeds=self.speeds, reference_speed=self.reference_speed, stable=self.stable,
             max_multiplier=self.max_multiplier, multipliers=self.multipliers,
-            bifurcations=self.bifurcations, attrs=attrs)
+            bifurcations=self.bifurcations, attrs=attrs), self.node_names)
         long = {"floquet_intervals": "Newmark intervals per period of the monodromy",
                 "multiplier_error": "estimated error of the largest Floquet multipliers' "
                                     "moduli (|mu(M) - mu(M/2)| / 3)",
@@ -353,7 +364,8 @@ class ResponseResult:
             ds[key] = ("point", values, {"long_name": long[key], "units": "1"})
         for n in self.nodes:
             ds[f"defl_{n}"] = ("point", self.deflection(n), {
-                "long_name": f"largest radius over the period at node {n} / C (r~)",
+                "long_name": "largest radius over the period at "
+                             f"{node_words(self.node_names, n)} / C (r~)",
                 "units": "1"})
         if "config_toml" in self.info:
             ds.attrs["config_toml"] = self.info["config_toml"]
@@ -380,7 +392,8 @@ class ResponseResult:
 
         out = Path(directory)
         paths = {"branch.nc": write_netcdf(self.to_dataset(), out / "branch.nc"),
-                 "branch.csv": write_table(out / "branch.csv", self.table())}
+                 "branch.csv": write_table(out / "branch.csv", self.table()),
+                 **write_node_table(out, self.node_names, self.nodes)}
         if self.bifurcations is not None:
             cols = {c: [row[c] for row in self.bifurcations]
                     for c in bifurcation_columns(self.bifurcations)}
@@ -469,7 +482,9 @@ class ResponseResult:
         return response_figures(self.table(), x_name=x_name, x_label=x_label,
                                 nodes=self.nodes, directions=self.directions,
                                 H=self.branch.H, clearance=self.clearance,
-                                bifurcations=self.bifurcations, title=self.title)
+                                bifurcations=self.bifurcations, title=self.title,
+                                node_labels={n: node_words(self.node_names, n)
+                                             for n in self.nodes})
 
     def _bifurcation_line(self, row: Mapping[str, Any]) -> str:
         """One summary line: type, where, the critical multiplier at the located point and
@@ -521,10 +536,11 @@ class ResponseResult:
                  f"{self.elapsed:.2f} s"]
         x = self.speeds / self.reference_speed if self.is_speed else b.lam
         x_name = "Omega~" if self.is_speed else self.parameter
+        names = self.node_names
         for n in self.nodes:
             r = self.deflection(n)
             i = int(np.argmax(r))
-            lines.append(f"node {n}: max r~ = {r[i]:.4g} at {x_name} = {x[i]:.5g}")
+            lines.append(f"{node_words(names, n)}: max r~ = {r[i]:.4g} at {x_name} = {x[i]:.5g}")
         if "orbit_difference" in self.info:
             lines.append(f"from the orbit {self.info['from_orbit']} at Omega~ = "
                          f"{self.info['orbit_speed'] / self.reference_speed:.6g}: HB orbit "

@@ -30,6 +30,7 @@ from rotorsfd.analyses.runup_step import controlled_run
 from rotorsfd.analyses.td_integration import DIRECTIONS, FIELD, scheme_options
 from rotorsfd.errors import ConfigError
 from rotorsfd.model import dofs
+from rotorsfd.model.node_names import NodeNames, node_words, with_shaft_coords
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.timedomain.speed_law import RampSpeed, SpeedLaw, TableSpeed
 from rotorsfd.timedomain.waterfall import Waterfall, default_window, waterfall
@@ -58,6 +59,8 @@ class RunUpResult:
     natural: tuple[np.ndarray, np.ndarray] | None = None
     overlay: Path | None = None
     config_toml: str = ""       # the resolved configuration it was run from, if any
+    #: shaft-wise node names of a multi-shaft rotor (None: one shaft)
+    node_names: NodeNames | None = None
 
     def radius(self, node: int) -> np.ndarray:
         return self.run.radius(node)
@@ -148,7 +151,8 @@ class RunUpResult:
                  "t_final_s": float(run.t[-1])}
         if self.config_toml:
             attrs["config_toml"] = self.config_toml
-        return xr.Dataset(data, coords=coords, attrs=attrs)
+        return with_shaft_coords(xr.Dataset(data, coords=coords, attrs=attrs),
+                                 self.node_names)
 
     def _col(self, node: int, direction: str) -> int:
         return int(np.flatnonzero(self.run.dofs == dofs.dof_index(node, direction))[0])
@@ -170,11 +174,13 @@ class RunUpResult:
                          f"{step['node']} per halving ({step['unit']}): {ladder} "
                          f"(tolerance {step['tolerance']:g})")
         for n, p in self.peaks().items():
-            lines.append(f"  node {n}: peak radius {p['radius_max_m']:.4g} m at "
+            lines.append(f"  {node_words(self.node_names, int(n))}: peak radius "
+                         f"{p['radius_max_m']:.4g} m at "
                          f"t = {p['time_s']:.4g} s, {p['speed_rad_s']:.6g} rad/s")
         for ev in self.event_peaks():
             for n, p in ev["nodes"].items():
-                lines.append(f"  unbalance event at t = {ev['time_s']:.4g} s, node {n}: peak "
+                lines.append(f"  unbalance event at t = {ev['time_s']:.4g} s, "
+                             f"{node_words(self.node_names, int(n))}: peak "
                              f"radius {p['radius_max_before_m']:.4g} m before, "
                              f"{p['radius_max_after_m']:.4g} m after (t = "
                              f"{p['time_of_max_after_s']:.4g} s)")
@@ -326,7 +332,7 @@ def run_speed_law_simulation(system: RotorSystem, law: SpeedLaw, *, sim: Any,
     if overlay is not None:
         settings["overlay"] = str(overlay)
     return RunUpResult(run, tuple(int(n) for n in nodes), settings, title, clear, events,
-                       natural, overlay, config_toml)
+                       natural, overlay, config_toml, NodeNames.of(system.rotor))
 
 
 def _natural_frequencies(system: RotorSystem, omega: np.ndarray, n_modes: int

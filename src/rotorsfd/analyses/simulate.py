@@ -82,6 +82,7 @@ from rotorsfd.analyses.td_start import (
 )
 from rotorsfd.errors import ConfigError, ConvergenceError, ElementDomainError
 from rotorsfd.model import dofs
+from rotorsfd.model.node_names import NodeNames
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.timedomain import (
     LyapunovResult,
@@ -417,7 +418,8 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
                             traj.t_final, elapsed, name, notes, control, lyap_full,
                             traj.element_diagnostics, config_toml,
                             "limit" if ended else "range",
-                            " ".join(str(traj.ended).split()) if ended else "")
+                            " ".join(str(traj.ended).split()) if ended else "",
+                            NodeNames.of(system.rotor))
 
 
 def _first_column(nodes: Sequence[int], node: int | None) -> int:

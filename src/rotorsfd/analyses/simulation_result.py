@@ -16,6 +16,7 @@ from rotorsfd.analyses.step_control import StepControl
 from rotorsfd.analyses.td_integration import DIRECTIONS
 from rotorsfd.analyses.td_lyapunov import uncertainty_per_period
 from rotorsfd.io import atomic
+from rotorsfd.model.node_names import NodeNames, node_words, with_shaft_coords
 from rotorsfd.timedomain import LyapunovResult, MotionClass, amplitude_spectrum
 
 if TYPE_CHECKING:
@@ -74,6 +75,8 @@ class SimulationResult:
     config_toml: str = ""       # the resolved configuration it was run from, if any
     ended: str = "range"        #: "range" (every period run) or "limit" (contact)
     end_reason: str = ""        #: the element's contact report when ``ended == "limit"``
+    #: shaft-wise node names of a multi-shaft rotor (None: one shaft)
+    node_names: NodeNames | None = None
 
     FILES = ("timeseries.nc", "poincare.csv", "summary.json", "simulation.png", "orbit.png",
              "phase.png", "poincare.png", "spectrum.png")
@@ -165,7 +168,7 @@ class SimulationResult:
         coords["dof"] = ("dof", np.arange(self.q_final.size, dtype=np.int32),
                          {"description": "global DOF index: 4 (node - 1) + (y, z, ty, tz)",
                           "long_name": "global DOF index", "units": "1"})
-        return xr.Dataset(
+        return with_shaft_coords(xr.Dataset(
             {"displacement": (("time", "node", "direction"), self.q[sl],
                               {"long_name": "displacement of the node", "units": "m"}),
              "velocity": (("time", "node", "direction"), self.v[sl],
@@ -177,20 +180,24 @@ class SimulationResult:
              "final_velocity": ("dof", self.v_final,
                                 {"long_name": "velocity of every DOF at t_final_s",
                                  "units": "m/s or rad/s"})},
-            coords=coords, attrs=attrs)
+            coords=coords, attrs=attrs), self.node_names)
 
     def poincare_table(self) -> dict[str, np.ndarray]:
         """Columns of ``poincare.csv``: ``node, period, y, z, vy, vz`` (one row per node and
-        rotor period; ``period`` = t / T, an integer; SI: m, m/s)."""
+        rotor period; ``period`` = t / T, an integer; SI: m, m/s), and for a multi-shaft
+        rotor ``shaft, shaft_node`` (:mod:`rotorsfd.model.node_names`)."""
         n_p, n_n = self.poincare_t.size, len(self.nodes)
         per = np.rint(self.poincare_t / self.period).astype(np.int64)
-        return {"node": np.repeat(np.asarray(self.nodes, dtype=np.int64)[None, :], n_p,
+        cols = {"node": np.repeat(np.asarray(self.nodes, dtype=np.int64)[None, :], n_p,
                                   axis=0).T.ravel(),
                 "period": np.tile(per, n_n),
                 "y": self.poincare_q[:, :, 0].T.ravel(),
                 "z": self.poincare_q[:, :, 1].T.ravel(),
                 "vy": self.poincare_v[:, :, 0].T.ravel(),
                 "vz": self.poincare_v[:, :, 1].T.ravel()}
+        if self.node_names is not None:     # a multi-shaft rotor: the node's shaft
+            cols["shaft"], cols["shaft_node"] = self.node_names.arrays(cols["node"])
+        return cols
 
     def summary_dict(self) -> dict[str, Any]:
         """Content of ``summary.json``."""
@@ -256,7 +263,7 @@ class SimulationResult:
         j = self.column(node)
         ratio, amp = self.spectrum(node, "y")
         scale = self.clearance if self.clearance else 1.0
-        title = (f"node {node}, Omega = {self.speed:.5g} rad/s"
+        title = (f"{node_words(self.node_names, node)}, Omega = {self.speed:.5g} rad/s"
                  + (f" (Omega~ = {self.speed_ratio:.4g})" if self.speed_ratio else "")
                  + (f": {self.motion_name}" if self.ended == "range" else
                     f": ended at the validity limit (contact) at t = {self.t_final:.4g} s")

@@ -47,6 +47,12 @@ from numpy.typing import NDArray
 
 from rotorsfd.analyses.response_result import column_slug
 from rotorsfd.errors import ConfigError, ConvergenceError
+from rotorsfd.model.node_names import (
+    NodeNames,
+    node_words,
+    with_shaft_coords,
+    write_node_table,
+)
 from rotorsfd.model.system import RotorSystem
 
 if TYPE_CHECKING:
@@ -306,7 +312,8 @@ class TorusResponseResult:
         for n in self.nodes:
             r = self.deflection(n)
             i = int(np.argmax(r))
-            lines.append(f"node {n}: max r~ = {r[i]:.4g} at {self.at(i)}")
+            lines.append(f"{node_words(self.node_names, n)}: max r~ = {r[i]:.4g} at "
+                         f"{self.at(i)}")
         if self.lyapunov:
             bad = [i for i, ly in self.lyapunov.items() if not ly.stable]
             lines.append(f"Lyapunov exponent at {len(self.lyapunov)} points: "
@@ -330,10 +337,18 @@ class TorusResponseResult:
         if "config_toml" in self.info:
             attrs["config_toml"] = self.info["config_toml"]
         defl = {n: self.deflection(n) for n in self.nodes}
-        return torus_dataset(self.branch, reference_speed=self.reference_speed,
-                             deflection=defl, lyapunov=self.lyapunov, attrs=attrs,
-                             parameter=None if self.is_speed else (
-                                 self.parameter, self.parameter_units))
+        ds = torus_dataset(self.branch, reference_speed=self.reference_speed,
+                           deflection=defl, lyapunov=self.lyapunov, attrs=attrs,
+                           parameter=None if self.is_speed else (
+                               self.parameter, self.parameter_units),
+                           node_labels={n: node_words(self.node_names, n)
+                                        for n in self.nodes})
+        return with_shaft_coords(ds, self.node_names)
+
+    @property
+    def node_names(self) -> NodeNames | None:
+        """Shaft-wise node names of a multi-shaft rotor (None: one shaft)."""
+        return NodeNames.of(self.system.rotor)
 
     def spectrum_index(self, speed_ratio: float | None = None) -> int:
         """The point nearest ``speed_ratio`` (a non-speed branch: the parameter's value in
@@ -354,7 +369,8 @@ class TorusResponseResult:
 
         out = Path(directory)
         paths = {"torus.nc": write_torus_netcdf(self.to_dataset(), out / "torus.nc"),
-                 "torus.csv": write_table(out / "torus.csv", self.table())}
+                 "torus.csv": write_table(out / "torus.csv", self.table()),
+                 **write_node_table(out, self.node_names, self.nodes)}
         if plots and self.branch.n_points:
             from rotorsfd.plots.torus import plot_torus_components, plot_torus_spectrum
 

@@ -979,6 +979,17 @@ class Config(Section):
                        "write its table as [elements.sfd] with kind = \"sfd\" (same fields)")
         return data
 
+    @model_validator(mode="before")
+    @classmethod
+    def _shaft_node_names(cls, data: Any) -> Any:
+        """Output nodes given as ``"hp:3"`` (:mod:`rotorsfd.model.node_names`)."""
+        from rotorsfd.model.node_names import BadNodeName, resolve_shaft_nodes
+
+        try:
+            return resolve_shaft_nodes(data)
+        except BadNodeName as exc:
+            raise fail(exc.path, exc.value, exc.allowed) from None
+
     def output_nodes(self, section: str = "response") -> list[int]:
         """Output nodes of ``analysis.<section>``: as given, else the element and disk nodes
         (else every node)."""

@@ -42,12 +42,14 @@ def torus_dataset(branch: Any, *, reference_speed: float,
                   deflection: Mapping[int, NDArray[np.float64]],
                   lyapunov: Mapping[int, Any] | None = None,
                   attrs: Mapping[str, Any] | None = None,
-                  parameter: tuple[str, str] | None = None) -> xr.Dataset:
+                  parameter: tuple[str, str] | None = None,
+                  node_labels: Mapping[int, str] | None = None) -> xr.Dataset:
     """The Dataset of a :class:`~rotorsfd.quasiperiodic.TorusBranch` (module docstring);
     ``deflection`` node -> r~ per point, ``lyapunov`` point index ->
     :class:`~rotorsfd.quasiperiodic.torus_stability.TorusLyapunov`; ``parameter``
     (config path, SI unit) of a branch in another parameter than the speed (None: the
-    speed), whose values ``branch.lam`` become the coordinate ``parameter(point)``."""
+    speed), whose values ``branch.lam`` become the coordinate ``parameter(point)``;
+    ``node_labels`` the nodes' names in the long names (default ``node <n>``)."""
     lat = branch.lattice
     n, nk, n_dof = branch.X.shape
     node, direction = dof_labels(n_dof)
@@ -91,7 +93,8 @@ def torus_dataset(branch: Any, *, reference_speed: float,
     }
     for nd, values in deflection.items():
         data[f"defl_{nd}"] = ("point", np.asarray(values, float), {
-            "long_name": f"largest radius over the torus at node {nd} / C (r~)",
+            "long_name": "largest radius over the torus at "
+                         f"{(node_labels or {}).get(nd, f'node {nd}')} / C (r~)",
             "units": "1"})
     if lyapunov:
         idx = sorted(lyapunov)

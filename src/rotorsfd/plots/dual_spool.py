@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
+from rotorsfd.model.node_names import node_words
 from rotorsfd.plots.labels import mathtext, wrap
 from rotorsfd.plots.torus import radial_amplitude, strongest
 
@@ -39,7 +40,7 @@ def plot_dual_spool_response(result: Any) -> Figure:
             k1, k2 = (int(v) for v in b.lattice.k[i])
             ax.plot(x, amp[:, i], "-", label=spool_label(k1, k2))
         ax.set_yscale("log")
-        ax.set_ylabel(f"node {n}: " + r"$|X_{k_1,k_2}|\,/\,C$")
+        ax.set_ylabel(f"{node_words(result.node_names, n)}: " + r"$|X_{k_1,k_2}|\,/\,C$")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7, ncols=2, loc="best", title="line", title_fontsize=7)
     ratio, ref = result.ratio, result.reference_speed

@@ -117,10 +117,16 @@ def response_figures(table: Mapping[str, Any], *, x_name: str, x_label: str,
                      nodes: Sequence[int], directions: Sequence[str], H: int,
                      clearance: float,
                      bifurcations: Sequence[Mapping[str, Any]] | None = None,
-                     title: str = "") -> dict[str, Figure]:
+                     title: str = "",
+                     node_labels: Mapping[int, str] | None = None) -> dict[str, Figure]:
     """``response_deflection.png`` (r~ of every node; one panel per node when their
     amplitudes differ by more than 4 times) and ``response_node<n>.png`` (one panel per
-    direction: X_0/C and |X_k|/C, k = 1..H); legends right of the panels."""
+    direction: X_0/C and |X_k|/C, k = 1..H); legends right of the panels.
+    ``node_labels``: the nodes' names (default ``node <n>``; a multi-shaft rotor's
+    ``hp node 3``)."""
+    def name(n: int) -> str:
+        return (node_labels or {}).get(n, f"node {n}")
+
     x = np.asarray(table[x_name], float)
     stable = table.get("stable")
     x_key = x_name if x_name in ("speed_ratio", "speed_rad_s") else "parameter"
@@ -136,7 +142,7 @@ def response_figures(table: Mapping[str, Any], *, x_name: str, x_label: str,
     for k, n in enumerate(nodes):
         ax = axes[k if apart else 0]
         y = table[f"defl_{n}"]
-        styled_line(ax, x, y, stable, label=f"node {n}", lw=1.4, color=f"C{k}")
+        styled_line(ax, x, y, stable, label=name(n), lw=1.4, color=f"C{k}")
         if bifurcations:
             mark_bifurcations(ax, x, y, bifurcations, x_key)
     for ax in axes:
@@ -162,7 +168,7 @@ def response_figures(table: Mapping[str, Any], *, x_name: str, x_label: str,
                     mark_bifurcations(ax, x, y, bifurcations, x_key)
             ax.set_ylabel(rf"$X_0/C$, $|X_k|/C$ ({d})")
             ax.grid(alpha=0.3)
-            ax.set_title(f"node {n}, {d} direction", fontsize=9)
+            ax.set_title(f"{name(n)}, {d} direction", fontsize=9)
         axes[-1].set_xlabel(xlabel)
         fig.suptitle(wrap(title or "Harmonic amplitudes", 90), fontsize=9)
         outside_legend(fig, axes, key)

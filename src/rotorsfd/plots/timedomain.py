@@ -133,7 +133,8 @@ def simulation_figures(*, y: Any, z: Any, vy: Any, py: Any, pz: Any, pvy: Any,
 
 def bifurcation_figure(table: Mapping[str, Any], *, nodes: Sequence[int],
                        x_name: str = "speed_ratio", x_label: str = r"$\tilde\Omega$",
-                       scale: float = 1.0, unit: str = "C", title: str = "") -> Figure:
+                       scale: float = 1.0, unit: str = "C", title: str = "",
+                       node_labels: Mapping[int, str] | None = None) -> Figure:
     """Poincare points y (per node, one panel each, each on its own scale) against the
     speed; the down sweep in red crosses under the up sweep's blue dots (so both show
     where they coincide; jumps and hysteresis show as their difference); one legend
@@ -151,7 +152,7 @@ def bifurcation_figure(table: Mapping[str, Any], *, nodes: Sequence[int],
             if np.any(sel):
                 ax.plot(x[sel], y[sel], style, ms=ms, color=color, zorder=z,
                         label=f"speed {d}", gid=f"sweep-{d}")
-        ax.set_ylabel(f"y at node {n} [{unit}]")
+        ax.set_ylabel(f"y at {(node_labels or {}).get(n, f'node {n}')} [{unit}]")
         ax.grid(alpha=0.3)
     axs[-1].set_xlabel(label(x_label))
     handles, labels = axs[0].get_legend_handles_labels()
