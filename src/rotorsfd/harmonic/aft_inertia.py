@@ -23,10 +23,13 @@ from typing import Any
 
 import numpy as np
 from numba import njit
-from numba.core.ccallback import CFunc
-from numba.core.types.function_type import WrapperAddressProtocol
 
-from rotorsfd.harmonic.aft_kernels import KernelRef, as_kernel_cfunc, condensed_assembly
+from rotorsfd.harmonic.aft_kernels import (
+    KernelRef,
+    as_kernel_cfunc,
+    condensed_assembly,
+    project_forces,
+)
 from rotorsfd.harmonic.aft_kernels import condensed_residual as plain_condensed_residual
 from rotorsfd.harmonic.aft_kernels import force_coefficients as plain_force_coefficients
 from rotorsfd.kernels import INERTIAL_SIGNATURE, INERTIAL_TYPE, as_inertial_cfunc
@@ -36,32 +39,18 @@ __all__ = ["InertialKernelRef", "as_inertial_kernel_ref", "condensed_residual",
            "hb_kernel"]
 
 
-class InertialKernelRef(WrapperAddressProtocol):
+class InertialKernelRef(KernelRef):
     """A compiled inertial kernel as a first-class function argument of the loops below
     (its numba type attached, as :class:`rotorsfd.harmonic.aft_kernels.KernelRef`)."""
 
     _numba_type_ = INERTIAL_TYPE
-
-    def __init__(self, compiled: CFunc) -> None:
-        self.compiled = compiled
-        self._address = compiled.address
-
-    def __wrapper_address__(self) -> int:
-        return self._address
-
-    def signature(self) -> Any:
-        return INERTIAL_SIGNATURE
-
-
-_REFS: dict[Any, InertialKernelRef] = {}
+    kernel_signature = INERTIAL_SIGNATURE
+    compile = staticmethod(as_inertial_cfunc)
 
 
 def as_inertial_kernel_ref(kernel: Any) -> InertialKernelRef:
     """First-class compiled version of an inertial kernel; memoised per kernel."""
-    cached = _REFS.get(kernel)
-    if cached is None:
-        cached = _REFS[kernel] = InertialKernelRef(as_inertial_cfunc(kernel))
-    return cached
+    return InertialKernelRef.of(kernel)
 
 
 @njit(cache=True)
@@ -117,20 +106,12 @@ def project_inertial(P: np.ndarray, E: np.ndarray, Ed: np.ndarray, w: float,
                      dG: np.ndarray, dGdw: np.ndarray) -> bool:
     """G, and with jac dG, dG/dw with the acceleration terms (module doc). False if G
     is not finite."""
-    nh, N = P.shape
-    m = f.shape[1]
-    G[:] = 0.0
-    for n in range(N):
-        for a in range(nh):
-            pa = P[a, n]
-            for i in range(m):
-                G[a, i] += pa * f[n, i]
-    for a in range(nh):
-        for i in range(m):
-            if not np.isfinite(G[a, i]):
-                return False
+    if not project_forces(P, f, G):
+        return False
     if not jac:
         return True
+    nh, N = P.shape
+    m = f.shape[1]
     k2 = _harmonic_squares(nh)
     dG[:] = 0.0
     dGdw[:] = 0.0
@@ -162,6 +143,23 @@ def project_inertial(P: np.ndarray, E: np.ndarray, Ed: np.ndarray, w: float,
 
 
 @njit(cache=True)
+def sampled_forces_inertial(kernel: Any, params: np.ndarray, xs: np.ndarray, w: float,
+                            E: np.ndarray, Ed: np.ndarray, q: np.ndarray, dq: np.ndarray,
+                            v: np.ndarray, f: np.ndarray, dfq: np.ndarray,
+                            dfv: np.ndarray) -> tuple[int, np.ndarray, np.ndarray]:
+    """The states at the samples and the inertial kernel at each (into q, dq, v, f, dfq,
+    dfv); returns (like :func:`force_samples_inertial`, ``Edd xs``, ``dF/da``), the last
+    two allocated here."""
+    N, m = q.shape
+    ddq = np.empty((N, m))
+    acc = np.empty((N, m))
+    dfa = np.empty((N, m, m))
+    sample_states_inertial(xs, w, E, Ed, q, dq, v, ddq, acc)
+    bad = force_samples_inertial(kernel, params, q, v, acc, f, dfq, dfv, dfa)
+    return bad, ddq, dfa
+
+
+@njit(cache=True)
 def condensed_residual_inertial(kernel: Any, params: np.ndarray, xs: np.ndarray, w: float,
                                 dw: float, E: np.ndarray, Ed: np.ndarray, P: np.ndarray,
                                 delta: np.ndarray, delta_real: np.ndarray, Ht: np.ndarray,
@@ -172,12 +170,8 @@ def condensed_residual_inertial(kernel: Any, params: np.ndarray, xs: np.ndarray,
                                 J: np.ndarray, dR: np.ndarray) -> int:
     """:func:`rotorsfd.harmonic.aft_kernels.condensed_residual` of an inertial kernel
     (the same arguments and returns; the acceleration work arrays allocated here)."""
-    N, m = q.shape
-    ddq = np.empty((N, m))
-    acc = np.empty((N, m))
-    dfa = np.empty((N, m, m))
-    sample_states_inertial(xs, w, E, Ed, q, dq, v, ddq, acc)
-    bad = force_samples_inertial(kernel, params, q, v, acc, f, dfq, dfv, dfa)
+    bad, ddq, dfa = sampled_forces_inertial(kernel, params, xs, w, E, Ed, q, dq, v, f,
+                                            dfq, dfv)
     if bad:
         return bad
     if not project_inertial(P, E, Ed, w, f, dfq, dfv, dfa, dq, ddq, jac, G, dG, dGdw):
@@ -195,12 +189,8 @@ def force_coefficients_inertial(kernel: Any, params: np.ndarray, xs: np.ndarray,
                                 dfq: np.ndarray, dfv: np.ndarray, G: np.ndarray) -> int:
     """``G = P F(E xs, w Ed xs, w^2 Edd xs)`` alone; returns like
     :func:`condensed_residual_inertial`."""
-    N, m = q.shape
-    ddq = np.empty((N, m))
-    acc = np.empty((N, m))
-    dfa = np.empty((N, m, m))
-    sample_states_inertial(xs, w, E, Ed, q, dq, v, ddq, acc)
-    bad = force_samples_inertial(kernel, params, q, v, acc, f, dfq, dfv, dfa)
+    bad, ddq, dfa = sampled_forces_inertial(kernel, params, xs, w, E, Ed, q, dq, v, f,
+                                            dfq, dfv)
     if bad:
         return bad
     if not project_inertial(P, E, Ed, w, f, dfq, dfv, dfa, dq, ddq, False, G,

@@ -33,9 +33,13 @@ from rotorsfd.kernels import KERNEL_SIGNATURE, KERNEL_TYPE, as_cfunc
 class KernelRef(WrapperAddressProtocol):
     """A compiled kernel as a first-class function argument of the loops below, with its
     numba type attached: passing a bare ``cfunc`` makes every call re-derive the type
-    (about 10 us per call); this costs about 3 us."""
+    (about 10 us per call); this costs about 3 us. A subclass for another kernel
+    signature sets ``_numba_type_``, ``kernel_signature`` and ``compile`` (e.g.
+    :class:`rotorsfd.harmonic.aft_inertia.InertialKernelRef`)."""
 
     _numba_type_ = KERNEL_TYPE
+    kernel_signature = KERNEL_SIGNATURE
+    compile = staticmethod(as_cfunc)
 
     def __init__(self, compiled: CFunc) -> None:
         self.compiled = compiled
@@ -45,21 +49,25 @@ class KernelRef(WrapperAddressProtocol):
         return self._address
 
     def signature(self) -> Any:
-        return KERNEL_SIGNATURE
+        return self.kernel_signature
+
+    @classmethod
+    def of(cls, kernel: Any) -> Any:
+        """The memoised reference of this class to ``kernel`` (compiled on first use)."""
+        refs = _REFS.setdefault(cls, {})
+        cached = refs.get(kernel)
+        if cached is None:
+            cached = refs[kernel] = cls(cls.compile(kernel))
+        return cached
 
 
-_REFS: dict[Any, KernelRef] = {}
+_REFS: dict[type, dict[Any, KernelRef]] = {}
 
 
 def as_kernel_cfunc(kernel: Any) -> KernelRef:
     """First-class compiled version of a force kernel (an ``@njit`` dispatcher, a plain
     function with the kernel signature, or a ``cfunc``); memoised per kernel."""
-    cached = _REFS.get(kernel)
-    if cached is not None:
-        return cached
-    compiled = as_cfunc(kernel)
-    _REFS[kernel] = ref = KernelRef(compiled)
-    return ref
+    return KernelRef.of(kernel)
 
 
 @njit(cache=True)
@@ -91,13 +99,8 @@ def force_samples(kernel: Any, params: np.ndarray, q: np.ndarray, v: np.ndarray,
 
 
 @njit(cache=True)
-def project(P: np.ndarray, E: np.ndarray, Ed: np.ndarray, w: float, f: np.ndarray,
-            dfq: np.ndarray, dfv: np.ndarray, dq: np.ndarray, jac: bool, G: np.ndarray,
-            dG: np.ndarray, dGdw: np.ndarray) -> bool:
-    """G (nh, m), and with jac dG (nh, m, nh, m) and dG/dw (nh, m), from the samples
-    (module docstring; dG from the samples' spectrum,
-    :func:`~rotorsfd.harmonic.aft_jacobian.force_jacobian_coefficients`, for the P, E, Ed
-    of ``aft_matrices``). Returns False if G is not finite."""
+def project_forces(P: np.ndarray, f: np.ndarray, G: np.ndarray) -> bool:
+    """``G = P f`` (nh, m) from the force samples f (N, m); False if G is not finite."""
     nh, N = P.shape
     m = f.shape[1]
     G[:] = 0.0
@@ -110,8 +113,23 @@ def project(P: np.ndarray, E: np.ndarray, Ed: np.ndarray, w: float, f: np.ndarra
         for i in range(m):
             if not np.isfinite(G[a, i]):
                 return False
+    return True
+
+
+@njit(cache=True)
+def project(P: np.ndarray, E: np.ndarray, Ed: np.ndarray, w: float, f: np.ndarray,
+            dfq: np.ndarray, dfv: np.ndarray, dq: np.ndarray, jac: bool, G: np.ndarray,
+            dG: np.ndarray, dGdw: np.ndarray) -> bool:
+    """G (nh, m), and with jac dG (nh, m, nh, m) and dG/dw (nh, m), from the samples
+    (module docstring; dG from the samples' spectrum,
+    :func:`~rotorsfd.harmonic.aft_jacobian.force_jacobian_coefficients`, for the P, E, Ed
+    of ``aft_matrices``). Returns False if G is not finite."""
+    if not project_forces(P, f, G):
+        return False
     if not jac:
         return True
+    nh, N = P.shape
+    m = f.shape[1]
     dGdw[:] = 0.0
     for n in range(N):
         for i in range(m):
