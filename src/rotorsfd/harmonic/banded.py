@@ -289,6 +289,60 @@ def _refine(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray, kl: int, ku: int, kw
 
 
 @njit(cache=True)
+def harmonic_band_lu(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray, kl: int, ku: int,
+                     kw: float, s: np.ndarray, delta_k: np.ndarray, ab: np.ndarray,
+                     ipiv: np.ndarray) -> int:
+    """``Zb_k = K - (kw)^2 M + i kw D + S^T diag(delta_k) S`` into the LU storage ab
+    (n, 2 kl + ku + 1) and factored in place; returns :func:`band_lu`'s info."""
+    n = Kb.shape[0]
+    nb = kl + ku + 1
+    kw2 = kw * kw
+    for j in range(n):
+        for t in range(kl):
+            ab[j, t] = 0.0
+        for o in range(nb):
+            ab[j, kl + o] = complex(Kb[j, o] - kw2 * Mb[j, o], kw * Db[j, o])
+    for a in range(s.shape[0]):
+        ab[s[a], kl + ku] += delta_k[a]
+    return band_lu(ab, kl, ku, ipiv)
+
+
+@njit(cache=True)
+def unit_rhs(s: np.ndarray, F_k: np.ndarray, out: np.ndarray) -> None:
+    """The right-hand sides ``[S^T, F_k]`` (n, m + 1) into out."""
+    n, m1 = out.shape
+    for i in range(n):
+        for c in range(m1):
+            out[i, c] = 0.0
+        out[i, m1 - 1] = F_k[i]
+    for a in range(s.shape[0]):
+        out[s[a], a] = 1.0
+
+
+@njit(cache=True)
+def derivative_rhs(Mb: np.ndarray, Db: np.ndarray, dMb: np.ndarray, dDb: np.ndarray,
+                   dKb: np.ndarray, kl: int, ku: int, k: int, w: float, dw: float,
+                   dF_k: np.ndarray, sol_k: np.ndarray, rhs: np.ndarray) -> None:
+    """``rhs = [0, dF_k] - dZ_k sol_k`` (n, m + 1) with the banded
+    ``dZ_k = dK - (kw)^2 dM - 2 k^2 w w' M + i k (w' D + w dD)``."""
+    n, m1 = rhs.shape
+    kw2 = (k * w) * (k * w)
+    c2 = 2.0 * k * k * w * dw
+    for i in range(n):
+        for c in range(m1 - 1):
+            rhs[i, c] = 0.0
+        rhs[i, m1 - 1] = dF_k[i]
+    for i in range(n):
+        for j in range(max(0, i - kl), min(n, i + ku + 1)):
+            o = ku + i - j
+            dz = complex(dKb[j, o] - kw2 * dMb[j, o] - c2 * Mb[j, o],
+                         k * (dw * Db[j, o] + w * dDb[j, o]))
+            if dz != 0.0:
+                for c in range(m1):
+                    rhs[i, c] -= dz * sol_k[j, c]
+
+
+@njit(cache=True)
 def condense_banded(M: np.ndarray, D: np.ndarray, K: np.ndarray, dM: np.ndarray,
                     dD: np.ndarray, dK: np.ndarray, w: float, dw: float, kl: int, ku: int,
                     s: np.ndarray, delta: np.ndarray, F: np.ndarray, dF: np.ndarray,
@@ -331,8 +385,6 @@ def condense_bands(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray, dMb: np.ndarr
     n = Kb.shape[0]
     m = s.shape[0]
     nh = F.shape[0]
-    nb = kl + ku + 1
-    kv = kl + ku
     ab = np.zeros((n, 2 * kl + ku + 1), dtype=np.complex128)
     ipiv = np.empty(n, dtype=np.int64)
     rhs = np.empty((n, m + 1), dtype=np.complex128)
@@ -345,42 +397,17 @@ def condense_bands(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray, dMb: np.ndarr
     for k in range(k0, nh):
         kw = k * w
         kw2 = kw * kw
-        for j in range(n):
-            for t in range(kl):
-                ab[j, t] = 0.0
-            for o in range(nb):
-                ab[j, kl + o] = complex(Kb[j, o] - kw2 * Mb[j, o], kw * Db[j, o])
-        for a in range(m):
-            ab[s[a], kv] += delta[k, a]
-        info = band_lu(ab, kl, ku, ipiv)
-        if info != 0:
+        if harmonic_band_lu(Mb, Db, Kb, kl, ku, kw, s, delta[k], ab, ipiv) != 0:
             return k + 1
         out = sol[k]
-        for i in range(n):
-            for c in range(m + 1):
-                out[i, c] = 0.0
-            out[i, m] = F[k, i]
-        for a in range(m):
-            out[s[a], a] = 1.0
+        unit_rhs(s, F[k], out)
         band_solve(ab, kl, ku, ipiv, out)
         for _ in range(refine):
             _refine(Mb, Db, Kb, kl, ku, kw, kw2, s, delta[k], F[k], ab, ipiv, out, rhs)
         if not deriv:
             continue
         # right-hand sides [-dZ_k C_k, dF_k - dZ_k u_k] = [0, dF_k] - dZ_k sol_k
-        c2 = 2.0 * k * k * w * dw
-        for i in range(n):
-            for c in range(m):
-                rhs[i, c] = 0.0
-            rhs[i, m] = dF[k, i]
-        for i in range(n):
-            for j in range(max(0, i - kl), min(n, i + ku + 1)):
-                o = ku + i - j
-                dz = complex(dKb[j, o] - kw2 * dMb[j, o] - c2 * Mb[j, o],
-                             k * (dw * Db[j, o] + w * dDb[j, o]))
-                if dz != 0.0:
-                    for c in range(m + 1):
-                        rhs[i, c] -= dz * out[j, c]
+        derivative_rhs(Mb, Db, dMb, dDb, dKb, kl, ku, k, w, dw, dF[k], out, rhs)
         band_solve(ab, kl, ku, ipiv, rhs)
         for a in range(m):
             for c in range(m + 1):

@@ -23,13 +23,30 @@ import numpy as np
 from numba import njit
 
 from rotorsfd.harmonic.banded import (
-    band_lu,
     band_residual,
     band_solve,
+    derivative_rhs,
+    harmonic_band_lu,
     real_harmonic0,
     split_outputs,
     static_harmonic,
+    unit_rhs,
 )
+
+
+@njit(cache=True)
+def _transpose_times(U: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """``U^T x`` (r, nc) for x (n, nc) complex, skipping U's zeros."""
+    n, nc = x.shape
+    r = U.shape[1]
+    p = np.zeros((r, nc), dtype=np.complex128)
+    for i in range(n):
+        for q in range(r):
+            u = U[i, q]
+            if u != 0.0:
+                for c in range(nc):
+                    p[q, c] += u * x[i, c]
+    return p
 
 
 @njit(cache=True)
@@ -42,13 +59,7 @@ def _woodbury(ab: np.ndarray, kl: int, ku: int, ipiv: np.ndarray, U: np.ndarray,
     r = U.shape[1]
     if r == 0:
         return
-    p = np.zeros((r, nc), dtype=np.complex128)
-    for i in range(n):
-        for q in range(r):
-            u = U[i, q]
-            if u != 0.0:
-                for c in range(nc):
-                    p[q, c] += u * b[i, c]
+    p = _transpose_times(U, b)
     z = np.linalg.solve(cap, p)
     for i in range(n):
         for q in range(r):
@@ -63,13 +74,7 @@ def _lowrank_times(U: np.ndarray, coef: np.ndarray, x: np.ndarray, out: np.ndarr
     """``out -= scale U diag(coef) U^T x`` for x (n, nc)."""
     n, nc = x.shape
     r = U.shape[1]
-    p = np.zeros((r, nc), dtype=np.complex128)
-    for i in range(n):
-        for q in range(r):
-            u = U[i, q]
-            if u != 0.0:
-                for c in range(nc):
-                    p[q, c] += u * x[i, c]
+    p = _transpose_times(U, x)
     for q in range(r):
         for c in range(nc):
             p[q, c] *= scale * coef[q]
@@ -95,8 +100,6 @@ def condense_bands_lowrank(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray,
     n = Kb.shape[0]
     m = s.shape[0]
     nh = F.shape[0]
-    nb = kl + ku + 1
-    kv = kl + ku
     r = U.shape[1]
     ab = np.zeros((n, 2 * kl + ku + 1), dtype=np.complex128)
     ipiv = np.empty(n, dtype=np.int64)
@@ -112,14 +115,7 @@ def condense_bands_lowrank(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray,
     for k in range(k0, nh):
         kw = k * w
         kw2 = kw * kw
-        for j in range(n):
-            for t in range(kl):
-                ab[j, t] = 0.0
-            for o in range(nb):
-                ab[j, kl + o] = complex(Kb[j, o] - kw2 * Mb[j, o], kw * Db[j, o])
-        for a in range(m):
-            ab[s[a], kv] += delta[k, a]
-        if band_lu(ab, kl, ku, ipiv) != 0:
+        if harmonic_band_lu(Mb, Db, Kb, kl, ku, kw, s, delta[k], ab, ipiv) != 0:
             return k + 1
         rk = r if k > 0 else 0          # harmonic 0: no damping term
         Yk = Y[:, :rk]
@@ -138,12 +134,7 @@ def condense_bands_lowrank(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray,
                 capk[a, a] += -1j / (kw * coef[a])
         Uk = U[:, :rk]
         out = sol[k]
-        for i in range(n):
-            for c in range(m + 1):
-                out[i, c] = 0.0
-            out[i, m] = F[k, i]
-        for a in range(m):
-            out[s[a], a] = 1.0
+        unit_rhs(s, F[k], out)
         _woodbury(ab, kl, ku, ipiv, Uk, Yk, capk, out)
         for _ in range(refine):
             band_residual(Mb, Db, Kb, kl, ku, kw, kw2, s, delta[k], F[k], out, rhs)
@@ -156,19 +147,7 @@ def condense_bands_lowrank(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray,
         if not deriv:
             continue
         # [-dZ_k C_k, dF_k - dZ_k u_k], dZ_k = banded part + i k w' U diag(coef) U^T
-        c2 = 2.0 * k * k * w * dw
-        for i in range(n):
-            for c in range(m):
-                rhs[i, c] = 0.0
-            rhs[i, m] = dF[k, i]
-        for i in range(n):
-            for j in range(max(0, i - kl), min(n, i + ku + 1)):
-                o = ku + i - j
-                dz = complex(dKb[j, o] - kw2 * dMb[j, o] - c2 * Mb[j, o],
-                             k * (dw * Db[j, o] + w * dDb[j, o]))
-                if dz != 0.0:
-                    for c in range(m + 1):
-                        rhs[i, c] -= dz * out[j, c]
+        derivative_rhs(Mb, Db, dMb, dDb, dKb, kl, ku, k, w, dw, dF[k], out, rhs)
         if rk and dw != 0.0:
             _lowrank_times(Uk, coef, out, rhs, 1j * k * dw)
         _woodbury(ab, kl, ku, ipiv, Uk, Yk, capk, rhs)
