@@ -43,7 +43,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from rotorsfd.analyses.fold_curve import FoldCurve, fold_curve
+from rotorsfd.analyses.fold_curve import FoldCurve, config_two_parameter, fold_curve
 from rotorsfd.analyses.modal import first_critical
 from rotorsfd.analyses.response_result import PARAMETER_UNITS, column_slug, system_parameter
 from rotorsfd.continuation.folds import FoldBranch, FoldOptions, TwoParameterHB
@@ -54,7 +54,6 @@ from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.harmonic.synthesis import max_radius, orbit_samples
 from rotorsfd.io import atomic
 from rotorsfd.model import dofs
-from rotorsfd.model.parameters import find_parameter
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.stability.branch_stability import StabilityOptions, branch_stability
 
@@ -391,27 +390,13 @@ def run_bifurcation_curves(config: Config, parameter: str, start: Any, stop: Any
     (``start_harmonics``), output nodes and reference speed of ``[analysis.response]`` /
     ``[reference]``; ``parameter`` a config path and ``start, stop`` its range (numbers in
     SI or strings with units)."""
-    from rotorsfd.analyses.modal import reference_speed as config_reference_speed
-    from rotorsfd.io.schema import parameter_values
-    from rotorsfd.model.build import build_system
-
-    if not config.elements:
-        raise ConfigError("elements", None, "the bifurcation curves need at least one "
-                          "nonlinear element (an [elements.<name>] table)")
-    param = system_parameter(parameter)
-    if param == "speed":
-        raise ConfigError("--parameter", parameter, "must differ from the speed")
-    system = build_system(config, search_path)
-    ref = config_reference_speed(config, system)
-    r = config.analysis.response
-    lo, hi = r.speed_range.bounds(ref)
-    path = parameter.strip()
-    if path == param:
-        path = find_parameter(param).path
-    v0, v1 = parameter_values(config, path, [start, stop])
-    result = bifurcation_curves(system, (lo, hi), param, (v0, v1),
+    setup = config_two_parameter(config, parameter, start, stop, "the bifurcation curves need",
+                                 search_path)
+    r = setup.response
+    result = bifurcation_curves(setup.system, setup.speed_range, setup.param, setup.range2,
                                 harmonics or r.start_harmonics,
-                                harmonics_factor=harmonics_factor, reference_speed=ref,
+                                harmonics_factor=harmonics_factor,
+                                reference_speed=setup.reference_speed,
                                 nodes=tuple(r.nodes) or None, options=options)
     result.title = config.title
     return result

@@ -401,12 +401,43 @@ def run_fold_curve(config: Config, parameter: str, start: Any, stop: Any, *,
     reference speed of ``[analysis.response]`` / ``[reference]``; ``parameter`` a config
     path (``base.pitching.value``, ``unbalance[0].magnitude``, ...) and ``start, stop``
     its range (numbers in SI or strings with units)."""
+    setup = config_two_parameter(config, parameter, start, stop, "the fold curve needs",
+                                 search_path)
+    r = setup.response
+    H = harmonics or (None if r.adaptive_harmonics else r.start_harmonics)
+    result = fold_curve(setup.system, setup.speed_range, setup.param, setup.range2, H,
+                        reference_speed=setup.reference_speed,
+                        nodes=tuple(r.nodes) or None, options=options)
+    result.title = config.title
+    return result
+
+
+@dataclass
+class TwoParameterSetup:
+    """What a (speed, lam2) analysis takes from a configuration
+    (:func:`config_two_parameter`)."""
+
+    system: RotorSystem
+    param: str                        # the system parameter lam2
+    reference_speed: float            # rad/s
+    speed_range: tuple[float, float]  # rad/s
+    range2: tuple[float, float]       # lam2's range, SI
+    response: Any                     # config.analysis.response
+
+
+def config_two_parameter(config: Config, parameter: str, start: Any, stop: Any,
+                         what: str, search_path: Path | None = None) -> TwoParameterSetup:
+    """The system, second parameter (a config path or parameter name; it must not be the
+    speed), reference speed, speed range of ``[analysis.response]`` and lam2's range
+    (numbers in SI or strings with units) of a two-parameter analysis; ConfigError
+    before any work if the config has no nonlinear element (``what`` its subject, e.g.
+    "the fold curve needs")."""
     from rotorsfd.analyses.modal import reference_speed as config_reference_speed
     from rotorsfd.io.schema import parameter_values
     from rotorsfd.model.build import build_system
 
     if not config.elements:
-        raise ConfigError("elements", None, "the fold curve needs at least one nonlinear "
+        raise ConfigError("elements", None, f"{what} at least one nonlinear "
                           "element (an [elements.<name>] table)")
     param = system_parameter(parameter)
     if param == "speed":
@@ -419,8 +450,4 @@ def run_fold_curve(config: Config, parameter: str, start: Any, stop: Any, *,
     if path == param:           # a parameter name: its config path for the units
         path = find_parameter(param).path
     v0, v1 = parameter_values(config, path, [start, stop])
-    H = harmonics or (None if r.adaptive_harmonics else r.start_harmonics)
-    result = fold_curve(system, (lo, hi), param, (v0, v1), H,
-                        reference_speed=ref, nodes=tuple(r.nodes) or None, options=options)
-    result.title = config.title
-    return result
+    return TwoParameterSetup(system, param, ref, (lo, hi), (v0, v1), r)

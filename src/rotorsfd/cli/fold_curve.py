@@ -4,6 +4,7 @@ response in a second parameter."""
 from __future__ import annotations
 
 import argparse
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -54,34 +55,47 @@ def check_fold_curve(args: argparse.Namespace, config: Any) -> None:
     fold_range(config, args.parameter, args.start, args.stop)
 
 
+def two_parameter_arguments(parameter_help: str, from_help: str, to_help: str,
+                            harmonics_help: str) -> list[Any]:
+    """``--parameter``, ``--from``, ``--to`` and ``--harmonics`` of a (speed, lam2)
+    command, with its help texts."""
+    return [arg("--parameter", default="base.pitching.value", metavar="PATH",
+                help=parameter_help),
+            arg("--from", dest="start", required=True, metavar="VALUE", help=from_help),
+            arg("--to", dest="stop", required=True, metavar="VALUE", help=to_help),
+            arg("--harmonics", type=options.integer(1), metavar="H", help=harmonics_help)]
+
+
+def run_two_parameter(args: argparse.Namespace, config: Any, run: Callable[..., Any],
+                      what: str) -> int:
+    """Run ``run(config, parameter, start, stop, search_path=, harmonics=)``, write its
+    result; exit 1 (after writing) with "<what> stopped early" if it did."""
+    start, stop = fold_range(config, args.parameter, args.start, args.stop)
+    result = run(config, args.parameter, start, stop, search_path=Path(args.config).parent,
+                 harmonics=args.harmonics)
+    paths = result.write(args.output)
+    if not result.success:
+        print_error(f"{what} stopped early: {result.message}", args.verbose)
+        return 1
+    print_written(result, paths, args.quiet, args.verbose)
+    return 0
+
+
 @command("fold-curve", "two-parameter continuation of the saddle-nodes of the speed "
          "response ([analysis.response] speeds and H) in a second parameter: "
          "fold_curve.csv, fold_curve.json, fold_curve.png (Omega~ of the folds and the "
          "unstable width against the parameter; the cusp where the bistability vanishes); "
          "exit 1 if the curve stops early (the points so far are written)",
          output=True, quiet=True,
-         arguments=[arg("--parameter", default="base.pitching.value", metavar="PATH",
-                        help="second parameter: base.pitching.value (default), "
-                             "base.rolling.value, base.yawing.value, unbalance[0].magnitude"),
-                    arg("--from", dest="start", required=True, metavar="VALUE",
-                        help="start value, e.g. '0 rad/s' (SI if no unit); the speed branch "
-                             "there must have a saddle-node"),
-                    arg("--to", dest="stop", required=True, metavar="VALUE",
-                        help="end value, e.g. '10 rad/s'"),
-                    arg("--harmonics", type=options.integer(1), metavar="H",
-                        help="override H")],
+         arguments=two_parameter_arguments(
+             "second parameter: base.pitching.value (default), base.rolling.value, "
+             "base.yawing.value, unbalance[0].magnitude",
+             "start value, e.g. '0 rad/s' (SI if no unit); the speed branch there must "
+             "have a saddle-node",
+             "end value, e.g. '10 rad/s'", "override H"),
          check=check_fold_curve)
 def fold_curve(args: argparse.Namespace, config: Any) -> int:
     """Continue the fold curve; exit 1 (after writing) if it stopped early."""
     from rotorsfd import api  # deferred: numpy, scipy, numba (keeps --help fast)
 
-    start, stop = fold_range(config, args.parameter, args.start, args.stop)
-    result = api.run_fold_curve(config, args.parameter, start, stop,
-                                search_path=Path(args.config).parent,
-                                harmonics=args.harmonics)
-    paths = result.write(args.output)
-    if not result.success:
-        print_error(f"fold curve stopped early: {result.message}", args.verbose)
-        return 1
-    print_written(result, paths, args.quiet, args.verbose)
-    return 0
+    return run_two_parameter(args, config, api.run_fold_curve, "fold curve")
