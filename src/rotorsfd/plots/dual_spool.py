@@ -8,12 +8,10 @@ from __future__ import annotations
 
 from typing import Any
 
-import numpy as np
 from matplotlib.figure import Figure
 
-from rotorsfd.model.node_names import node_words
-from rotorsfd.plots.labels import mathtext, wrap
-from rotorsfd.plots.torus import radial_amplitude, strongest
+from rotorsfd.plots.labels import wrap
+from rotorsfd.plots.torus import plot_lines, plot_lyapunov
 
 
 def spool_label(k1: int, k2: int) -> str:
@@ -34,33 +32,13 @@ def plot_dual_spool_response(result: Any) -> Figure:
     rows = len(result.nodes) + (1 if result.lyapunov else 0)
     fig = Figure(figsize=(8, 2.8 * rows + 1.0), layout="constrained")
     axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
-    for ax, n in zip(axes, result.nodes, strict=False):
-        amp = radial_amplitude(result, n)
-        for i in strongest(result, n):
-            k1, k2 = (int(v) for v in b.lattice.k[i])
-            ax.plot(x, amp[:, i], "-", label=spool_label(k1, k2))
-        ax.set_yscale("log")
-        ax.set_ylabel(f"{node_words(result.node_names, n)}: " + r"$|X_{k_1,k_2}|\,/\,C$")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7, ncols=2, loc="best", title="line", title_fontsize=7)
+    plot_lines(axes, result, x, spool_label)
     ratio, ref = result.ratio, result.reference_speed
     top = axes[0].secondary_xaxis("top", functions=(lambda v: v * ratio * ref,
                                                     lambda v: v / (ratio * ref)))
     top.set_xlabel(r"$\Omega_{HP}$ [rad/s]", fontsize=8)
     if result.lyapunov:
-        ax = axes[-1]
-        idx = sorted(result.lyapunov)
-        lam = np.array([result.lyapunov[i].per_period for i in idx])
-        err = np.array([result.lyapunov[i].uncertainty for i in idx])
-        ok = np.array([result.lyapunov[i].stable for i in idx], dtype=bool)
-        xi = x[idx]
-        ax.errorbar(xi, lam, yerr=err, fmt="none", ecolor="0.5", capsize=2)
-        ax.plot(xi[ok], lam[ok], "o", color="C0", label="stable")
-        ax.plot(xi[~ok], lam[~ok], "o", mfc="none", color="C3", label="unstable")
-        ax.axhline(0.0, color="k", lw=0.8)
-        ax.set_ylabel(mathtext("largest Lyapunov exponent x T_LP"))
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7, loc="best")
+        plot_lyapunov(axes[-1], result, x, "", "T_LP")
     axes[-1].set_xlabel(r"$\tilde\Omega_{LP} = \Omega_{LP} / \Omega_{ref}$, "
                         rf"$\Omega_{{ref}}$ = {ref:.4g} rad/s")
     fig.suptitle(wrap(f"{result.title or 'Dual-spool response'}: lines k1 Omega_LP + "

@@ -14,11 +14,13 @@ each cell labelled with its value. The cells (0, k2 < 0) are the conjugates of (
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 from matplotlib.figure import Figure
 
+from rotorsfd.model.node_names import node_words
 from rotorsfd.plots.labels import mathtext, wrap
 
 
@@ -58,29 +60,9 @@ def plot_torus_components(result: Any) -> Figure:
     rows = len(result.nodes) + (1 if result.lyapunov else 0)
     fig = Figure(figsize=(8, 2.8 * rows + 0.8), layout="constrained")
     axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
-    for ax, n in zip(axes, result.nodes, strict=False):
-        amp = radial_amplitude(result, n)
-        for i in strongest(result, n):
-            k1, k2 = (int(v) for v in b.lattice.k[i])
-            ax.plot(x, amp[:, i], "-", label=mathtext(component_label(k1, k2)))
-        ax.set_yscale("log")
-        ax.set_ylabel(f"node {n}: " + r"$|X_{k_1,k_2}|\,/\,C$")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7, ncols=2, loc="best", title="line", title_fontsize=7)
+    plot_lines(axes, result, x, lambda k1, k2: mathtext(component_label(k1, k2)))
     if result.lyapunov:
-        ax = axes[-1]
-        idx = sorted(result.lyapunov)
-        lam = np.array([result.lyapunov[i].per_period for i in idx])
-        err = np.array([result.lyapunov[i].uncertainty for i in idx])
-        ok = np.array([result.lyapunov[i].stable for i in idx], dtype=bool)
-        xi = x[idx]
-        ax.errorbar(xi, lam, yerr=err, fmt="none", ecolor="0.5", capsize=2)
-        ax.plot(xi[ok], lam[ok], "o", color="C0", label="stable torus")
-        ax.plot(xi[~ok], lam[~ok], "o", mfc="none", color="C3", label="unstable torus")
-        ax.axhline(0.0, color="k", lw=0.8)
-        ax.set_ylabel(mathtext("largest Lyapunov exponent x T"))
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7, loc="best")
+        plot_lyapunov(axes[-1], result, x, " torus", "T")
     axes[-1].set_xlabel(xlabel)
     if result.is_speed:
         at = f"w_b = {float(b.wb[0]):.4g} rad/s"
@@ -91,6 +73,39 @@ def plot_torus_components(result: Any) -> Figure:
     fig.suptitle(mathtext(wrap(f"{result.title or 'Quasi-periodic response'}: lines at "
                                f"k1 Omega + k2 w_b, {at}", 90)), fontsize=9)
     return fig
+
+
+def plot_lines(axes: Any, result: Any, x: np.ndarray,
+               label: Callable[[int, int], str]) -> None:
+    """Per output node (one axis each, named "node 12" or "hp node 3") the radial
+    amplitudes / C of its strongest lines against x on a log scale, each named
+    ``label(k1, k2)``."""
+    for ax, n in zip(axes, result.nodes, strict=False):
+        amp = radial_amplitude(result, n)
+        for i in strongest(result, n):
+            k1, k2 = (int(v) for v in result.branch.lattice.k[i])
+            ax.plot(x, amp[:, i], "-", label=label(k1, k2))
+        ax.set_yscale("log")
+        ax.set_ylabel(f"{node_words(result.node_names, n)}: " + r"$|X_{k_1,k_2}|\,/\,C$")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7, ncols=2, loc="best", title="line", title_fontsize=7)
+
+
+def plot_lyapunov(ax: Any, result: Any, x: np.ndarray, what: str, period: str) -> None:
+    """The largest Lyapunov exponents per period ``period`` at the points where computed
+    (filled: stable, open: unstable; "stable<what>" in the legend) with their error bars."""
+    idx = sorted(result.lyapunov)
+    lam = np.array([result.lyapunov[i].per_period for i in idx])
+    err = np.array([result.lyapunov[i].uncertainty for i in idx])
+    ok = np.array([result.lyapunov[i].stable for i in idx], dtype=bool)
+    xi = x[idx]
+    ax.errorbar(xi, lam, yerr=err, fmt="none", ecolor="0.5", capsize=2)
+    ax.plot(xi[ok], lam[ok], "o", color="C0", label=f"stable{what}")
+    ax.plot(xi[~ok], lam[~ok], "o", mfc="none", color="C3", label=f"unstable{what}")
+    ax.axhline(0.0, color="k", lw=0.8)
+    ax.set_ylabel(mathtext(f"largest Lyapunov exponent x {period}"))
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7, loc="best")
 
 
 def branch_axis(result: Any) -> tuple[np.ndarray, str]:
