@@ -188,6 +188,27 @@ def dense_column(Dv, Kv, Mv, w, dDv, dKv, dw, dF, I, J, p, b, kl, srow, scol, sv
 
 
 @njit(cache=True)
+def _subtract_dz(y, x, Dv, Mv, w, dDv, dKv, dw, I, J, p, b):
+    """``y -= dZ x`` (y, x (N, c)) with dZ's entries formed on the fly."""
+    nc = x.shape[1]
+    bb = min(b, p - 1)
+    for j in range(-bb, bb + 1):
+        jj = j + b
+        for c in range(max(0, -j), min(p, p - j)):
+            wc = w[c]
+            dwc = dw[c]
+            for e in range(I.size):
+                dv = dKv[jj, e] + 1j * (dwc * Dv[jj, e] + wc * dDv[jj, e])
+                if j == 0:
+                    dv -= 2.0 * wc * dwc * Mv[e]
+                if dv != 0.0:
+                    row = I[e] * p + c + j
+                    col = J[e] * p + c
+                    for k in range(nc):
+                        y[row, k] -= dv * x[col, k]
+
+
+@njit(cache=True)
 def fill_column(A, dA, Dv, Kv, Mv, w, dDv, dKv, dw, I, J, p, b, deriv):
     """Write the entries of Z (and dZ) into dense DOF-major arrays A (dA)."""
     bb = min(b, p - 1)
@@ -245,20 +266,7 @@ def condense_band_column(Dv, Kv, Mv, w, dDv, dKv, dw, dF, I, J, p, b, kl, srow, 
     if not deriv:
         return sol, sol, 0, ab, ipiv
     y = np.zeros_like(sol)
-    for j in range(-bb, bb + 1):
-        jj = j + b
-        for c in range(max(0, -j), min(p, p - j)):
-            wc = w[c]
-            dwc = dw[c]
-            for e in range(I.size):
-                row = I[e] * p + c + j
-                col = J[e] * p + c
-                dv = dKv[jj, e] + 1j * (dwc * Dv[jj, e] + wc * dDv[jj, e])
-                if j == 0:
-                    dv -= 2.0 * wc * dwc * Mv[e]
-                if dv != 0.0:
-                    for k in range(nc):
-                        y[row, k] -= dv * sol[col, k]
+    _subtract_dz(y, sol, Dv, Mv, w, dDv, dKv, dw, I, J, p, b)
     for i in range(N):
         y[i, nc - 1] += dF[i]
     band_solve(ab, kl, kl, ipiv, y)
@@ -270,22 +278,7 @@ def band_direction(ab, ipiv, kl, Dv, Mv, w, dDv, dKv, dw, I, J, p, b, x, dF):
     """``Zt^-1 (dF - dZ x)`` (x, dF (N, c)) with the band factors of
     :func:`condense_band_column`, dZ's entries formed on the fly."""
     y = dF.copy()
-    nc = x.shape[1]
-    bb = min(b, p - 1)
-    for j in range(-bb, bb + 1):
-        jj = j + b
-        for c in range(max(0, -j), min(p, p - j)):
-            wc = w[c]
-            dwc = dw[c]
-            for e in range(I.size):
-                dv = dKv[jj, e] + 1j * (dwc * Dv[jj, e] + wc * dDv[jj, e])
-                if j == 0:
-                    dv -= 2.0 * wc * dwc * Mv[e]
-                if dv != 0.0:
-                    row = I[e] * p + c + j
-                    col = J[e] * p + c
-                    for k in range(nc):
-                        y[row, k] -= dv * x[col, k]
+    _subtract_dz(y, x, Dv, Mv, w, dDv, dKv, dw, I, J, p, b)
     band_solve(ab, kl, kl, ipiv, y)
     return y
 
