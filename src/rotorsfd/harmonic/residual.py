@@ -71,10 +71,7 @@ def nonlinear_coefficients(problem: PeriodicProblem, aft: AFTMatrices, xs: Float
         f, dfq, dfv = law.force_jacobian(q, v)
     else:
         f = law.force(q, v)
-    f = np.asarray(f, dtype=float)
-    if not np.all(np.isfinite(f)):
-        raise FloatingPointError("non-finite nonlinear force in AFT")
-    G = aft.P @ f
+    G = _project_force(aft, f)
     if not jac:
         return NonlinearCoefficients(G, None, None, q)
     if law.force_jacobian is None:
@@ -88,6 +85,14 @@ def nonlinear_coefficients(problem: PeriodicProblem, aft: AFTMatrices, xs: Float
     return NonlinearCoefficients(G, dG, dGdw, q)
 
 
+def _project_force(aft: AFTMatrices, f: object) -> FloatArray:
+    """``G = P f`` of the force samples f (N, m); FloatingPointError if f is not finite."""
+    f = np.asarray(f, dtype=float)
+    if not np.all(np.isfinite(f)):
+        raise FloatingPointError("non-finite nonlinear force in AFT")
+    return aft.P @ f
+
+
 def _inertial_coefficients(law: NonlinearLaw, aft: AFTMatrices, xs: FloatArray, w: float,
                            jac: bool, q: FloatArray, dq_tau: FloatArray
                            ) -> NonlinearCoefficients:
@@ -98,10 +103,7 @@ def _inertial_coefficients(law: NonlinearLaw, aft: AFTMatrices, xs: FloatArray, 
     Edd = -aft.E * k2
     ddq_tau = Edd @ xs
     f, dfq, dfv, dfa = law.force_jacobians(q, w * dq_tau, w * w * ddq_tau)
-    f = np.asarray(f, dtype=float)
-    if not np.all(np.isfinite(f)):
-        raise FloatingPointError("non-finite nonlinear force in AFT")
-    G = aft.P @ f
+    G = _project_force(aft, f)
     if not jac:
         return NonlinearCoefficients(G, None, None, q)
     N, m = q.shape
