@@ -511,8 +511,9 @@ def select(figures: list[str] | None = None, quick: bool = False,
 
 @dataclass
 class Outcome:
-    """What a case gave: status (``ok``; ``partial``: the branch stopped early, e.g. at
-    journal contact, its points kept; ``failed``: no result; ``error``: a bug), numbers,
+    """What a case gave: status (``ok``; ``limit``: the branch ended where the journal
+    reached the film's validity limit, a result; ``partial``: the branch stopped early for
+    a numerical reason, its points kept; ``failed``: no result; ``error``: a bug), numbers,
     plot data, time."""
 
     name: str

@@ -89,8 +89,11 @@ def response_numbers(result: Any, orbits: Sequence[float] = ()) -> tuple[dict, d
     if len(sn) >= 2:
         n["width"] = sn[-1]["speed_ratio"] - sn[0]["speed_ratio"]
     ecc = np.asarray(table[f"defl_{result.system.primary_node}"], float)
+    n["ended"] = getattr(result, "ended", "range" if result.success else "failed")
     n["end"] = (f"reached Omega~ = {s[-1]:.4f}" if result.success else
-                f"stopped at Omega~ = {s[-1]:.4f}, eps = {ecc[-1]:.3f}")
+                f"ended at Omega~ = {s[-1]:.4f} where the journal reached eps = "
+                f"{ecc[-1]:.3f} (the film's limit, max_eccentricity)" if n["ended"] == "limit"
+                else f"stopped at Omega~ = {s[-1]:.4f}, eps = {ecc[-1]:.3f}")
     n["message"] = result.message
     sfd = result.system.primary_node
     d1 = np.asarray(table[f"defl_{sfd}"])
@@ -424,7 +427,9 @@ def run_case(case: Case, examples: Path | None = None, quick: bool = False,
     except Exception as exc:  # a bug: the other cases still run
         return Outcome(case.name, "error", f"{type(exc).__name__}: {exc} "
                        f"{traceback.format_exc(limit=-2)}", time.perf_counter() - t0)
-    status = "ok" if numbers.get("success", True) else "partial"
+    # a branch that ends at an element's validity limit is a result (issue 22 item 3)
+    status = ("ok" if numbers.get("success", True) else
+              "limit" if numbers.get("ended") == "limit" else "partial")
     return Outcome(case.name, status, str(numbers.get("end") or numbers.get("message", "")),
                    time.perf_counter() - t0, numbers, data)
 
@@ -492,11 +497,14 @@ class PaperResult:
     elapsed: float
 
     def summary(self) -> str:
-        bad = [o for o in self.outcomes.values() if o.status != "ok"]
+        bad = [o for o in self.outcomes.values() if o.status not in ("ok", "limit")]
+        limit = [o for o in self.outcomes.values() if o.status == "limit"]
         part = sum(o.status == "partial" for o in bad)
         lines = [f"{len(self.outcomes)} cases in {self.elapsed:.0f} s: "
-                 f"{len(self.outcomes) - len(bad)} ok, {part} partial (branch ended early, "
-                 f"see the report), {len(bad) - part} failed"]
+                 f"{len(self.outcomes) - len(bad) - len(limit)} ok, {len(limit)} ended at "
+                 f"the film's limit (a result, see the report), {part} partial (branch "
+                 f"stopped early), {len(bad) - part} failed"]
+        lines += [f"  {o.name}: {o.message[:150]}" for o in limit]
         lines += [f"  {o.name}: {o.status}: {o.message[:150]}" for o in bad]
         return "\n".join(lines)
 
