@@ -11,7 +11,7 @@ import pytest
 
 from rotors import tiny_rotor_text
 from rotorsfd import cli
-from rotorsfd.analyses.response_result import start_failure
+from rotorsfd.analyses.response_words import start_failure
 from rotorsfd.cli import registry
 from rotorsfd.cli.output import user_text
 from rotorsfd.errors import ConvergenceError

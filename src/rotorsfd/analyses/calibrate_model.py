@@ -35,7 +35,7 @@ FINITE = "central finite differences"
 
 def continuation_parameter(path: str) -> str | None:
     """The registered continuation parameter of a config path, or None."""
-    from rotorsfd.analyses.response_result import system_parameter
+    from rotorsfd.analyses.response_words import system_parameter
 
     try:
         name = system_parameter(path)

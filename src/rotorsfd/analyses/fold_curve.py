@@ -37,7 +37,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rotorsfd.analyses.context import RunContext
-from rotorsfd.analyses.response_result import PARAMETER_UNITS, column_slug, system_parameter
+from rotorsfd.analyses.response_words import PARAMETER_UNITS, column_slug, system_parameter
 from rotorsfd.continuation.folds import (
     FoldBranch,
     FoldOptions,

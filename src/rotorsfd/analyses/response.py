@@ -48,12 +48,10 @@ if TYPE_CHECKING:
     from rotorsfd.io.schema import Config, ResponseAnalysis
     from rotorsfd.stability.branch_stability import StabilityOptions
 
-from rotorsfd.analyses.response_result import (
+from rotorsfd.analyses.response_result import PointStability, ResponseResult, StabilityHook
+from rotorsfd.analyses.response_words import (
     FIELD,
     PARAMETER_UNITS,
-    PointStability,
-    ResponseResult,
-    StabilityHook,
     column_slug,
     start_failure,
     system_parameter,

@@ -45,7 +45,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 from numpy.typing import NDArray
 
-from rotorsfd.analyses.response_result import column_slug
+from rotorsfd.analyses.response_words import column_slug
 from rotorsfd.errors import ConfigError, ConvergenceError
 from rotorsfd.model.node_names import (
     NodeNames,

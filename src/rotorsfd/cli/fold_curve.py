@@ -17,7 +17,7 @@ from rotorsfd.errors import ConfigError
 def fold_range(config: Any, parameter: str, start: str, stop: str) -> tuple[float, float]:
     """``--from`` and ``--to`` in SI, checked against the kind of ``--parameter``."""
     # deferred: the parameter registry and the schema pull numpy and pydantic
-    from rotorsfd.analyses.response import system_parameter
+    from rotorsfd.analyses.response_words import system_parameter
     from rotorsfd.io.schema import resolve_kind
     from rotorsfd.io.units import UnitError, describe, to_si
     from rotorsfd.model.parameters import find_parameter
