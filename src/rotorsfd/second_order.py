@@ -19,7 +19,7 @@ solvers take it with an options record:
 
 - time stepping: :func:`rotorsfd.timedomain.integrate.prepare_system` (the compiled
   loop's arrays packed once) and :func:`~rotorsfd.timedomain.integrate.integrate_system`
-  with :class:`~rotorsfd.timedomain.integrate.StepOptions`;
+  with :class:`~rotorsfd.timedomain.step_records.StepOptions`;
 - the reduced step: :func:`rotorsfd.timedomain.reduced.reduce_system` (its
   :meth:`~rotorsfd.timedomain.reduced.ReducedStep.stepped` is again a SecondOrderSystem);
 - Lyapunov exponents: :func:`rotorsfd.timedomain.lyapunov.system_lyapunov`;

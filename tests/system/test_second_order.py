@@ -19,7 +19,8 @@ from rotorsfd import api
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.second_order import ForceLaw, SecondOrderSystem
 from rotorsfd.stability.monodromy import MonodromyOptions, system_multipliers
-from rotorsfd.timedomain.integrate import StepOptions, integrate_system, prepare_system
+from rotorsfd.timedomain.integrate import integrate_system, prepare_system
+from rotorsfd.timedomain.step_records import StepOptions
 
 SPEED = 700.0
 

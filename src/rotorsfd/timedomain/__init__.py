@@ -4,7 +4,7 @@ spectra, Lyapunov exponents and motion classification. Generic: the system is
 
 from rotorsfd.timedomain.classify import MotionClass, classify_motion, classify_result
 from rotorsfd.timedomain.forcing import Forcing, HarmonicLoad, TimeVaryingMatrices
-from rotorsfd.timedomain.integrate import TimeResult, integrate
+from rotorsfd.timedomain.integrate import integrate
 from rotorsfd.timedomain.kernels import as_cfunc, cubic_spring_kernel, null_kernel
 from rotorsfd.timedomain.lyapunov import LyapunovResult, largest_lyapunov
 from rotorsfd.timedomain.poincare import (
@@ -21,6 +21,7 @@ from rotorsfd.timedomain.spectrum import (
     spectral_lines,
     two_frequency_fraction,
 )
+from rotorsfd.timedomain.step_records import TimeResult
 
 __all__ = [
     "Forcing",

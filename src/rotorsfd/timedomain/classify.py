@@ -170,7 +170,7 @@ def classify_motion(poincare: np.ndarray, signal: np.ndarray | None = None,
 
 def classify_result(result: Any, lyapunov: LyapunovResult | float | None = None, *,
                     columns: Any = None, **kwargs: Any) -> MotionClass:
-    """:func:`classify_motion` on a :class:`~rotorsfd.timedomain.integrate.TimeResult`:
+    """:func:`classify_motion` on a :class:`~rotorsfd.timedomain.step_records.TimeResult`:
     Poincare points ``[q, v]`` of the recorded DOFs (``columns``: indices into
     ``result.dofs``, default all), scaled by the spread of the recorded signal; the
     spectrum of the first selected DOF. Record only the steady part (``record_start``)."""

@@ -22,12 +22,12 @@ from rotorsfd.timedomain import newmark as nm
 from rotorsfd.timedomain.forcing import Forcing, TimeVaryingMatrices
 from rotorsfd.timedomain.integrate import (
     MESSAGES,
-    StepOptions,
     contact_error,
     initial_state,
     prepare,
     run,
 )
+from rotorsfd.timedomain.step_records import StepOptions
 
 if TYPE_CHECKING:
     from rotorsfd.second_order import SecondOrderSystem
