@@ -130,3 +130,47 @@ def linear_rotor_toml(path: Path, unbalance: str = "0 g*mm", base: str = "",
     path.write_text(text[:start] + '[[rotor.supports]]\nnode = 1\nstiffness = "1e7 N/m"\n\n'
                     + text[end:] + extra)
     return path
+
+
+#: a four-element shaft with one disk on two linear supports (no nonlinear element): the
+#: calibration and fit-supports tests fit the supports' stiffness to its critical speeds
+TWO_SUPPORT_ROTOR = """
+[materials.steel]
+density = "7800 kg/m^3"
+young_modulus = "210 GPa"
+poisson_ratio = 0.3
+
+[[rotor.shaft]]
+length = "0.6 m"
+n_elements = 4
+outer_radius = "20 mm"
+material = "steel"
+
+[[rotor.disks]]
+node = {disk_node}
+material = "steel"
+outer_radius = "100 mm"
+thickness = "30 mm"
+
+[[rotor.supports]]
+node = 1
+stiffness = "1e7 N/m"
+
+[[rotor.supports]]
+node = 5
+stiffness = "1e7 N/m"
+
+[reference]
+speed = "500 rad/s"
+
+[analysis.modal]
+critical_speed_max = "{critical_speed_max}"
+n_critical = {n_critical}
+"""
+
+
+def two_support_rotor_text(disk_node: int = 3, critical_speed_max: str = "2000 rad/s",
+                           n_critical: int = 1) -> str:
+    """The TOML text of the two-support rotor (its disk at ``disk_node``)."""
+    return TWO_SUPPORT_ROTOR.format(disk_node=disk_node, critical_speed_max=critical_speed_max,
+                                    n_critical=n_critical)

@@ -6,6 +6,7 @@ import tomllib
 import numpy as np
 import pytest
 
+from rotors import two_support_rotor_text
 from rotorsfd import api
 from rotorsfd.analyses.calibrate import (
     check_problem,
@@ -20,39 +21,7 @@ from rotorsfd.errors import ConfigError
 from rotorsfd.io.config import config_from_dict
 from rotorsfd.linear import critical_speeds
 
-SMALL = """
-[materials.steel]
-density = "7800 kg/m^3"
-young_modulus = "210 GPa"
-poisson_ratio = 0.3
-
-[[rotor.shaft]]
-length = "0.6 m"
-n_elements = 4
-outer_radius = "20 mm"
-material = "steel"
-
-[[rotor.disks]]
-node = 2
-material = "steel"
-outer_radius = "100 mm"
-thickness = "30 mm"
-
-[[rotor.supports]]
-node = 1
-stiffness = "1e7 N/m"
-
-[[rotor.supports]]
-node = 5
-stiffness = "1e7 N/m"
-
-[reference]
-speed = "500 rad/s"
-
-[analysis.modal]
-critical_speed_max = "6000 rad/s"
-n_critical = 2
-"""
+SMALL = two_support_rotor_text(disk_node=2, critical_speed_max="6000 rad/s", n_critical=2)
 FIELDS = ("rotor.supports[0].stiffness", "rotor.supports[1].stiffness")
 TRUTH = (3.0e7, 2.0e7)
 

@@ -4,41 +4,10 @@ import json
 
 import pytest
 
+from rotors import two_support_rotor_text
 from rotorsfd import api, cli
 
-SMALL = """
-[materials.steel]
-density = "7800 kg/m^3"
-young_modulus = "210 GPa"
-poisson_ratio = 0.3
-
-[[rotor.shaft]]
-length = "0.6 m"
-n_elements = 4
-outer_radius = "20 mm"
-material = "steel"
-
-[[rotor.disks]]
-node = 3
-material = "steel"
-outer_radius = "100 mm"
-thickness = "30 mm"
-
-[[rotor.supports]]
-node = 1
-stiffness = "1e7 N/m"
-
-[[rotor.supports]]
-node = 5
-stiffness = "1e7 N/m"
-
-[reference]
-speed = "500 rad/s"
-
-[analysis.modal]
-critical_speed_max = "2000 rad/s"
-n_critical = 1
-"""
+SMALL = two_support_rotor_text()
 
 
 def test_fit_recovers_known_stiffness(tmp_path, capsys):
