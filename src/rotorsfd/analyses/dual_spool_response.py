@@ -20,7 +20,6 @@ spools' words, "1X LP", "1X HP", "2X LP - 1X HP", and the Lyapunov exponents).
 from __future__ import annotations
 
 import dataclasses
-import math
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -32,6 +31,7 @@ from rotorsfd.analyses.torus_response import (
     LYAPUNOV_POINTS,
     TorusPoint,
     TorusResponseResult,
+    continue_torus_section,
     lyapunov_indices,
 )
 from rotorsfd.errors import ConfigError, ConvergenceError
@@ -123,7 +123,7 @@ def run_dual_spool_response(config: Config, *, search_path: Path | None = None,
     from rotorsfd.analyses.modal import reference_speed
     from rotorsfd.io.config import show_config
     from rotorsfd.model.build import build_system
-    from rotorsfd.quasiperiodic import TorusLattice, continue_torus
+    from rotorsfd.quasiperiodic import TorusLattice
     from rotorsfd.quasiperiodic.dual_frequency import dual_spool_problem
     from rotorsfd.quasiperiodic.torus_stability import torus_lyapunov
 
@@ -163,11 +163,7 @@ def run_dual_spool_response(config: Config, *, search_path: Path | None = None,
 
     t0 = time.perf_counter()
     try:
-        branch = continue_torus(problem, float(lo), float(hi), lattice, tol=r.tolerance,
-                                ds=r.step_initial, ds_min=r.step_min, ds_max=r.step_max,
-                                max_iter=r.max_iterations, max_points=r.max_points,
-                                max_angle_deg=math.degrees(r.max_tangent_angle),
-                                limit_max=r.max_eccentricity, callback=hook)
+        branch = continue_torus_section(problem, lo, hi, lattice, r, hook)
     except ConvergenceError as exc:
         raise ConvergenceError(f"no torus at the start of the speed range (Omega~ = "
                                f"{lo / ref:.4g}): {exc}") from None

@@ -80,6 +80,19 @@ class TorusPoint(NamedTuple):
     X: Any
 
 
+def continue_torus_section(problem: Any, lo: float, hi: float, lattice: Any, r: Any,
+                           hook: Any) -> Any:
+    """:func:`~rotorsfd.quasiperiodic.torus_continuation.continue_torus` over [lo, hi]
+    with the continuation settings of the ``[analysis.response]`` section ``r``."""
+    from rotorsfd.quasiperiodic import continue_torus  # deferred: numba
+
+    return continue_torus(problem, float(lo), float(hi), lattice, tol=r.tolerance,
+                          ds=r.step_initial, ds_min=r.step_min, ds_max=r.step_max,
+                          max_iter=r.max_iterations, max_points=r.max_points,
+                          max_angle_deg=math.degrees(r.max_tangent_angle),
+                          limit_max=r.max_eccentricity, callback=hook)
+
+
 def harmonic_base(config: Config) -> bool:
     """True when a base law of the config is harmonic (the response is then a torus)."""
     return any(getattr(config.base, name).law == "harmonic" for name in LAWS)
@@ -402,7 +415,7 @@ def run_torus_response(config: Config, *, search_path: Path | None = None,
     from rotorsfd.io.config import show_config
     from rotorsfd.io.schema import parameter_values
     from rotorsfd.model.build import build_system
-    from rotorsfd.quasiperiodic import TorusLattice, continue_torus
+    from rotorsfd.quasiperiodic import TorusLattice
     from rotorsfd.quasiperiodic.torus_stability import torus_lyapunov
 
     r = config.analysis.response
@@ -453,11 +466,7 @@ def run_torus_response(config: Config, *, search_path: Path | None = None,
 
     t0 = time.perf_counter()
     try:
-        branch = continue_torus(problem, float(lo), float(hi), lattice, tol=r.tolerance,
-                                ds=r.step_initial, ds_min=r.step_min, ds_max=r.step_max,
-                                max_iter=r.max_iterations, max_points=r.max_points,
-                                max_angle_deg=math.degrees(r.max_tangent_angle),
-                                limit_max=r.max_eccentricity, callback=hook)
+        branch = continue_torus_section(problem, lo, hi, lattice, r, hook)
     except ConvergenceError as exc:
         start = (f"the speed range ({where(lo)})" if speed is None else
                  f"{FIELD}.parameter_range ({where(lo)}, Omega~ = {speed / ref:.4g})")
