@@ -42,7 +42,7 @@ from rotorsfd.errors import ConfigError
 from rotorsfd.model import dofs, sparse
 from rotorsfd.model.damping import ModalDamping, RayleighDamping
 from rotorsfd.model.disk import Disk, PointMass
-from rotorsfd.model.rotor import Rotor
+from rotorsfd.model.rotor import Rotor, lumped_blocks
 from rotorsfd.model.shaft import ShaftElement
 from rotorsfd.model.supports import LinearSupport
 
@@ -219,18 +219,9 @@ class MultiShaftRotor(Rotor):
         owner = self.shaft_of_node[self.element_left_node - 1]
         gyro: list[list] = [[(idx[owner == k], ge[owner == k])] for k in range(len(self.shafts))]
         damp: list = []
-        for d in self.disks:
-            i4 = dofs.node_dofs(d.node)
-            mass.append((i4, np.diag([d.mass, d.mass, d.diametral_inertia,
-                                      d.diametral_inertia])))
-            gyro[self.shaft_of_node[d.node - 1]].append(
-                (i4[2:], np.array([[0.0, d.polar_inertia], [-d.polar_inertia, 0.0]])))
-        for p in self.point_masses:
-            mass.append((dofs.node_dofs(p.node)[:2], p.mass * np.eye(2)))
-        for s in self.supports:
-            yz = dofs.node_dofs(s.node)[:2]
-            stiff.append((yz, s.stiffness))
-            damp.append((yz, s.damping))
+        for node, block in lumped_blocks(self.disks, self.point_masses, self.supports, mass,
+                                         stiff, damp):
+            gyro[self.shaft_of_node[node - 1]].append(block)
         for b in self.intershaft:
             stiff.append((b.dofs(), b.relative_block(b.stiffness)))
             damp.append((b.dofs(), b.relative_block(b.damping)))

@@ -20,6 +20,29 @@ from rotorsfd.model.shaft import ShaftElement
 from rotorsfd.model.supports import LinearSupport
 
 
+def lumped_blocks(disks: Sequence[Disk], point_masses: Sequence[PointMass],
+                  supports: Sequence[LinearSupport], mass: list, stiff: list, damp: list
+                  ) -> list[tuple[int, tuple[np.ndarray, np.ndarray]]]:
+    """Append the lumped parts' assembly blocks (:func:`rotorsfd.model.sparse.assemble`)
+    to ``mass``, ``stiff``, ``damp``: a disk's ``diag(m, m, Id, Id)``, a point mass's ``m``
+    on (y, z), a support's K_b and C_b on (y, z); return each disk's gyroscopic block
+    ``[[0, Ip], [-Ip, 0]]`` on its (ty, tz) with its node, for the caller to place."""
+    gyro = []
+    for d in disks:
+        idx = dofs.node_dofs(d.node)
+        mass.append((idx, np.diag([d.mass, d.mass, d.diametral_inertia,
+                                   d.diametral_inertia])))
+        gyro.append((d.node, (idx[2:], np.array([[0.0, d.polar_inertia],
+                                                  [-d.polar_inertia, 0.0]]))))
+    for p in point_masses:
+        mass.append((dofs.node_dofs(p.node)[:2], p.mass * np.eye(2)))
+    for s in supports:
+        yz = dofs.node_dofs(s.node)[:2]
+        stiff.append((yz, s.stiffness))
+        damp.append((yz, s.damping))
+    return gyro
+
+
 class LinearRotor:
     """What every linear rotor gives over its ``n_nodes`` and matrices ``M, C, G, K``: the
     DOF of a node and direction, and the ``LinearDynamics`` protocol."""
@@ -92,18 +115,9 @@ class Rotor(LinearRotor):
         stiff = [(idx, np.array([el.stiffness_matrix() for el in els]))]
         gyro = [(idx, np.array([el.gyroscopic_matrix() for el in els]))]
         damp: list = []
-        for d in self.disks:
-            idx = dofs.node_dofs(d.node)
-            mass.append((idx, np.diag([d.mass, d.mass, d.diametral_inertia,
-                                       d.diametral_inertia])))
-            gyro.append((idx[2:], np.array([[0.0, d.polar_inertia],
-                                            [-d.polar_inertia, 0.0]])))
-        for p in self.point_masses:
-            mass.append((dofs.node_dofs(p.node)[:2], p.mass * np.eye(2)))
-        for s in self.supports:
-            yz = dofs.node_dofs(s.node)[:2]
-            stiff.append((yz, s.stiffness))
-            damp.append((yz, s.damping))
+        disk_gyro = lumped_blocks(self.disks, self.point_masses, self.supports, mass, stiff,
+                                  damp)
+        gyro += [block for _, block in disk_gyro]
         self.M_csr = sparse.assemble(n, mass)
         self.K_csr = sparse.assemble(n, stiff)
         self.G_csr = sparse.assemble(n, gyro)
