@@ -11,10 +11,10 @@ from scipy.integrate import solve_ivp
 
 from rotors import small_rotor_toml
 from rotorsfd import api
-from rotorsfd.analyses.runup import run_speed_law, speed_law_inputs, unbalance_series_law
+from rotorsfd.analyses.runup import run_speed_law, speed_law_inputs
 from rotorsfd.analyses.td_integration import TimeDomainInputs, time_domain_inputs
 from rotorsfd.model.base_terms import base_basis
-from rotorsfd.model.unbalance import Unbalance
+from rotorsfd.model.unbalance import Unbalance, unbalance_series_law
 from rotorsfd.timedomain import Forcing, TimeVaryingMatrices
 from rotorsfd.timedomain.speed_law import ConstantSpeed, RampSpeed
 

@@ -8,9 +8,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from rotorsfd.analyses.runup import unbalance_series_law
 from rotorsfd.errors import ConfigError
-from rotorsfd.model.unbalance import Unbalance
+from rotorsfd.model.unbalance import Unbalance, unbalance_series_law
 from rotorsfd.timedomain.speed_law import (
     CallableSpeed,
     ConstantSpeed,

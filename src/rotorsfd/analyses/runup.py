@@ -30,45 +30,10 @@ import numpy as np
 from rotorsfd.analyses.td_integration import TimeDomainInputs, integrate_periods
 from rotorsfd.errors import ConfigError
 from rotorsfd.model import dofs
-from rotorsfd.model.base_motion import BaseState
 from rotorsfd.model.system import RotorSystem
-from rotorsfd.model.unbalance import Unbalance
+from rotorsfd.model.unbalance import unbalance_series_law
 from rotorsfd.timedomain import Forcing, TimeVaryingMatrices
 from rotorsfd.timedomain.speed_law import FIELD, SpeedLaw, speed_range
-
-
-def unbalance_series_law(unbalances: Sequence[Unbalance], n_dof: int, law: SpeedLaw,
-                         motion: Any = None) -> list[tuple]:
-    """``(coefficient(t), vector)`` pairs of F_mu under the law (module docstring), with
-    the rates of ``motion`` (a BaseMotion; None: a fixed base)."""
-    n = n_dof
-    out: list[tuple] = []
-
-    def factors(t: np.ndarray) -> tuple[np.ndarray, ...]:
-        t = np.asarray(t, dtype=float)
-        st = BaseState.fixed() if motion is None else motion.state(t)
-        wx, wy, wz = (np.broadcast_to(v, t.shape) for v in np.asarray(st.w, dtype=float))
-        dwx = np.broadcast_to(np.asarray(st.dw, dtype=float)[0], t.shape)
-        om, dom = law.omega(t), law.domega(t)
-        common = om**2 + 2.0 * om * wx + wx**2
-        return (common + wz**2, dwx + dom - wy * wz, common + wy**2, dwx + dom + wy * wz,
-                law.angle(t))
-
-    for u in unbalances:
-        ey, ez = np.zeros(n), np.zeros(n)
-        ey[dofs.dof_index(u.node, "y")] = u.magnitude
-        ez[dofs.dof_index(u.node, "z")] = u.magnitude
-
-        def cy(t, u=u):
-            ay, by, _, _, th = factors(t)
-            return (ay * np.cos(th + u.phase) + by * np.sin(th + u.phase)) * u.on(t)
-
-        def cz(t, u=u):
-            _, _, az, bz, th = factors(t)
-            return (az * np.sin(th + u.phase) - bz * np.cos(th + u.phase)) * u.on(t)
-
-        out += [(cy, ey), (cz, ez)]
-    return out
 
 
 def _fixed(system: RotorSystem) -> bool:

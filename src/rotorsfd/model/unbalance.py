@@ -23,6 +23,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -145,32 +146,62 @@ def unbalance_harmonics_derivatives(
     return {k: _harmonic_vectors(unbalances, rotor.n_dof, *v) for k, v in partials.items()}
 
 
+@dataclass(frozen=True)
+class _SteadySpeed:
+    """Omega(t) = speed (the speed-law protocol of :mod:`rotorsfd.timedomain.speed_law`)."""
+
+    speed: float
+
+    def omega(self, t: np.ndarray) -> np.ndarray:
+        return np.full(np.shape(t), float(self.speed))
+
+    def domega(self, t: np.ndarray) -> np.ndarray:
+        return np.zeros(np.shape(t))
+
+    def angle(self, t: np.ndarray) -> np.ndarray:
+        return float(self.speed) * np.asarray(t, dtype=float)
+
+
 def unbalance_series(unbalances: Sequence[Unbalance], rotor, speed: float,
                      motion=None) -> list[tuple]:
     """F_mu(t) as ``(coefficient(t), vector)`` pairs (``timedomain.forcing.Forcing.series``):
     per unbalance, ``U (A_y cos + B_y sin)`` on y and ``U (A_z sin - B_z cos)`` on z, with the
-    rates of ``motion`` (a BaseMotion; None: fixed base) evaluated at t."""
+    rates of ``motion`` (a BaseMotion; None: fixed base) evaluated at t: the speed law
+    form below at a constant speed."""
+    return unbalance_series_law(unbalances, rotor.n_dof, _SteadySpeed(speed), motion)
+
+
+def unbalance_series_law(unbalances: Sequence[Unbalance], n_dof: int, law: Any,
+                         motion: Any = None) -> list[tuple]:
+    """``(coefficient(t), vector)`` pairs of F_mu under a speed law Omega(t) (``law``:
+    ``omega``, ``domega``, ``angle`` of :mod:`rotorsfd.timedomain.speed_law`), the rotor
+    angle ``theta = int Omega`` and ``Omega'`` in place of ``Omega t`` and 0 (the
+    tangential term, derived there), with the rates of ``motion`` (a BaseMotion; None: a
+    fixed base)."""
     out: list[tuple] = []
 
     def factors(t: np.ndarray) -> tuple[np.ndarray, ...]:
         t = np.asarray(t, dtype=float)
         st = BaseState.fixed() if motion is None else motion.state(t)
-        return tuple(np.broadcast_to(f, t.shape) for f in _factors(speed, st))
+        wx, wy, wz = (np.broadcast_to(v, t.shape) for v in np.asarray(st.w, dtype=float))
+        dwx = np.broadcast_to(np.asarray(st.dw, dtype=float)[0], t.shape)
+        om, dom = law.omega(t), law.domega(t)
+        common = om**2 + 2.0 * om * wx + wx**2
+        return (common + wz**2, dwx + dom - wy * wz, common + wy**2, dwx + dom + wy * wz,
+                law.angle(t))
 
     for u in unbalances:
-        ey, ez = np.zeros(rotor.n_dof), np.zeros(rotor.n_dof)
+        ey, ez = np.zeros(n_dof), np.zeros(n_dof)
         ey[dofs.dof_index(u.node, "y")] = u.magnitude
         ez[dofs.dof_index(u.node, "z")] = u.magnitude
 
         def cy(t, u=u):
-            ay, by, _, _ = factors(t)
-            th = speed * np.asarray(t, dtype=float) + u.phase
-            return (ay * np.cos(th) + by * np.sin(th)) * u.on(t)
+            ay, by, _, _, th = factors(t)
+            return (ay * np.cos(th + u.phase) + by * np.sin(th + u.phase)) * u.on(t)
 
         def cz(t, u=u):
-            _, _, az, bz = factors(t)
-            th = speed * np.asarray(t, dtype=float) + u.phase
-            return (az * np.sin(th) - bz * np.cos(th)) * u.on(t)
+            _, _, az, bz, th = factors(t)
+            return (az * np.sin(th + u.phase) - bz * np.cos(th + u.phase)) * u.on(t)
 
         out += [(cy, ey), (cz, ez)]
     return out
