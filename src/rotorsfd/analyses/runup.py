@@ -36,17 +36,6 @@ from rotorsfd.timedomain import Forcing, TimeVaryingMatrices
 from rotorsfd.timedomain.speed_law import FIELD, SpeedLaw, speed_range
 
 
-def _fixed(system: RotorSystem) -> bool:
-    """True when the base does not move (zero rates and accelerations, no gravity): by
-    the laws where the base says (a shock pulse is zero at most sampled times)."""
-    fixed = getattr(system.base, "is_fixed", None)
-    if isinstance(fixed, bool):
-        return fixed
-    st = system.base.state(np.array([0.0, 1.0]))
-    arrays = [st.w, st.dw, st.a0] + ([st.g] if st.g is not None else [])
-    return all(not np.any(np.asarray(a)) for a in arrays)
-
-
 def speed_law_inputs(system: RotorSystem, law: SpeedLaw, t_end: float) -> TimeDomainInputs:
     """Integrator inputs of ``system`` under ``law`` on [0, t_end] (module docstring);
     ``speed`` of the result is the highest speed of the run (it sets the step)."""
@@ -69,7 +58,7 @@ def speed_law_inputs(system: RotorSystem, law: SpeedLaw, t_end: float) -> TimeDo
     if np.any(P21):
         stiffness.append((lambda t: -law.domega(t), P21))
     series: list[tuple[Any, np.ndarray]] = []
-    if not _fixed(system):
+    if not system.base.is_fixed:
         motion = system.base
         c_b, k_b, f_b = time_varying_terms(basis, motion, 0.0)
         damping += c_b
@@ -83,7 +72,7 @@ def speed_law_inputs(system: RotorSystem, law: SpeedLaw, t_end: float) -> TimeDo
         series += [*f_b, (lambda t: -w(t, 2), basis.vector("pty")),
                    (lambda t: w(t, 1), basis.vector("ptz"))]
     series += unbalance_series_law(system.unbalances, r.n_dof, law,
-                                   None if _fixed(system) else system.base)
+                                   None if system.base.is_fixed else system.base)
     forcing = Forcing(omega=w_max, series=series)
     tv = TimeVaryingMatrices(damping=damping, stiffness=stiffness)
     return TimeDomainInputs(np.asarray(r.M, float), np.asarray(r.C, float).copy(),

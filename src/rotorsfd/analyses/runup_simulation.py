@@ -57,7 +57,8 @@ class RunUpResult:
     clearances: dict[int, float] = field(default_factory=dict)
     events: tuple[float, ...] = ()
     natural: tuple[np.ndarray, np.ndarray] | None = None
-    overlay: Path | None = None
+    #: the steady branch drawn over the envelope: node -> (speed, radius, stable)
+    branch: dict[int, tuple[np.ndarray, ...]] | None = None
     config_toml: str = ""       # the resolved configuration it was run from, if any
     #: shaft-wise node names of a multi-shaft rotor (None: one shaft)
     node_names: NodeNames | None = None
@@ -193,7 +194,7 @@ class RunUpResult:
         from rotorsfd.plots.transient import envelope_figure, waterfall_figure
 
         run = self.run
-        branch = None if self.overlay is None else branch_envelope(self.overlay, self.nodes)
+        branch = self.branch
         figs = {"envelope": envelope_figure(
             t=run.t, speed=run.omega, radius={n: self.radius(n) for n in self.nodes},
             clearances=self.clearances, events=self.events, branch=branch,
@@ -289,12 +290,13 @@ def run_speed_law_simulation(system: RotorSystem, law: SpeedLaw, *, sim: Any,
         if not 1 <= n <= system.rotor.n_nodes:
             raise ConfigError(f"{FIELD}.nodes", n, f"must be 1..{system.rotor.n_nodes}")
     overlay = overlay if overlay is not None else getattr(sim, "overlay", None)
-    if overlay is not None:                  # checked before the run
+    branch = None
+    if overlay is not None:                  # read (and so checked) before the run
         overlay = Path(overlay)
         if not overlay.is_file():
             raise ConfigError(f"{FIELD}.overlay", str(overlay), "an existing branch.nc "
                               "of rotorsfd response")
-        branch_envelope(overlay, nodes)
+        branch = branch_envelope(overlay, nodes)
     opts = scheme_options(scheme or sim.scheme, sim.alpha if alpha is None else alpha)
     t_end = law_end(law, periods or sim.periods)
     disp = sim.initial_displacement if initial_displacement is None \
@@ -332,7 +334,7 @@ def run_speed_law_simulation(system: RotorSystem, law: SpeedLaw, *, sim: Any,
     if overlay is not None:
         settings["overlay"] = str(overlay)
     return RunUpResult(run, tuple(int(n) for n in nodes), settings, title, clear, events,
-                       natural, overlay, config_toml, NodeNames.of(system.rotor))
+                       natural, branch, config_toml, NodeNames.of(system.rotor))
 
 
 def _natural_frequencies(system: RotorSystem, omega: np.ndarray, n_modes: int

@@ -342,9 +342,7 @@ def time_varying_terms(basis: BaseBasis, motion, speed: float, probe_times: int 
         return cache[key]
 
     probe = np.sqrt(2.0) * (1.0 + np.arange(probe_times)) * 10.0 / (probe_times * np.sqrt(2.0) + 1)
-    local = getattr(motion, "support_times", None)      # pulses, records: where they act
-    if local is not None:
-        probe = np.concatenate([probe, local()])
+    probe = np.concatenate([probe, motion.support_times()])   # where pulses, records act
     probe_co = base_coefficients(motion.state(probe), speed)
 
     def make(attr: str, i: int):
