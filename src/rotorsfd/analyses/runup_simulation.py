@@ -62,17 +62,20 @@ class RunUpResult:
     config_toml: str = ""       # the resolved configuration it was run from, if any
     #: shaft-wise node names of a multi-shaft rotor (None: one shaft)
     node_names: NodeNames | None = None
+    _waterfalls: dict[int, Waterfall] = field(default_factory=dict, repr=False)
 
     def radius(self, node: int) -> np.ndarray:
         return self.run.radius(node)
 
     def waterfall(self, node: int) -> Waterfall:
         """The waterfall of ``node`` on windows of 16 periods of the slowest speed (at most a
-        quarter of the run)."""
-        run = self.run
-        window = min(default_window(float(np.min(run.omega))), 0.25 * float(run.t[-1]))
-        return waterfall(run.t, run.q[:, self._col(node, "y")], run.q[:, self._col(node, "z")],
-                         window)
+        quarter of the run); computed once (the files and the figures both use it)."""
+        if node not in self._waterfalls:
+            run = self.run
+            window = min(default_window(float(np.min(run.omega))), 0.25 * float(run.t[-1]))
+            self._waterfalls[node] = waterfall(run.t, run.q[:, self._col(node, "y")],
+                                               run.q[:, self._col(node, "z")], window)
+        return self._waterfalls[node]
 
     def event_peaks(self) -> list[dict[str, Any]]:
         """Around each unbalance event: per node the peak radius before and after it."""
