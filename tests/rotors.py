@@ -174,3 +174,19 @@ def two_support_rotor_text(disk_node: int = 3, critical_speed_max: str = "2000 r
     """The TOML text of the two-support rotor (its disk at ``disk_node``)."""
     return TWO_SUPPORT_ROTOR.format(disk_node=disk_node, critical_speed_max=critical_speed_max,
                                     n_critical=n_critical)
+
+
+def chart_rotor_raw() -> dict:
+    """A stiffly supported four-element rotor under harmonic pitching, as a raw config
+    table: the linear time-periodic stability chart of the file tests."""
+    return {"materials": {"steel": {"density": 7800.0, "young_modulus": 2e11,
+                                    "poisson_ratio": 0.3}},
+            "rotor": {"shaft": [{"length": 0.4, "n_elements": 4, "outer_radius": 0.01,
+                                 "material": "steel"}],
+                      "disks": [{"node": 2, "mass": 5.0, "polar_inertia": 0.02,
+                                 "diametral_inertia": 0.01}],
+                      "supports": [{"node": 1, "stiffness": 1e9},
+                                   {"node": 5, "stiffness": 1e9}]},
+            "base": {"pitching": {"law": "harmonic", "frequency": 300.0,
+                                  "angle_amplitude": 0.1}},
+            "analysis": {"stability_chart": {"speed": 250.0}}}

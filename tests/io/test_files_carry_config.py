@@ -10,7 +10,7 @@ import tomllib
 import numpy as np
 import xarray as xr
 
-from rotors import small_rotor_toml
+from rotors import chart_rotor_raw, small_rotor_toml
 from rotorsfd import __version__, api
 from rotorsfd.io.config import config_from_dict
 
@@ -45,17 +45,7 @@ def test_timeseries_nc_carries_config_and_version(tmp_path):
 
 
 def test_chart_nc_carries_config_and_version(tmp_path):
-    raw = {"materials": {"steel": {"density": 7800.0, "young_modulus": 2e11,
-                                   "poisson_ratio": 0.3}},
-           "rotor": {"shaft": [{"length": 0.4, "n_elements": 4, "outer_radius": 0.01,
-                                "material": "steel"}],
-                     "disks": [{"node": 2, "mass": 5.0, "polar_inertia": 0.02,
-                                "diametral_inertia": 0.01}],
-                     "supports": [{"node": 1, "stiffness": 1e9},
-                                  {"node": 5, "stiffness": 1e9}]},
-           "base": {"pitching": {"law": "harmonic", "frequency": 300.0,
-                                 "angle_amplitude": 0.1}},
-           "analysis": {"stability_chart": {"speed": 250.0}}}
+    raw = chart_rotor_raw()
     config = config_from_dict(raw)
     result = api.run_stability_chart(config, x=("base.pitching.angle_amplitude", [0.0, 0.1]),
                                      y=("base.pitching.frequency", [280.0, 300.0]),
