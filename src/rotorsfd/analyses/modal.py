@@ -21,29 +21,32 @@ from rotorsfd.io import atomic
 from rotorsfd.io.schema import Config
 from rotorsfd.linear import CampbellResult, CriticalSpeed, campbell, critical_speeds
 from rotorsfd.model.build import Model, build_model
+from rotorsfd.model.system import RotorSystem
+from rotorsfd.model.time_terms import linear_part
 
 __all__ = ["ModalRunResult", "first_critical", "linear_system", "modal_speeds",
            "reference_speed", "run_modal"]
 
 
-def linear_system(config: Config, model: Model | None = None) -> Any:
-    """The linear rotor for modal analysis (``LinearDynamics``): the rotor with its supports
-    and the elements' linear parts (an SFD's centring spring; no film), plus the base terms
-    of constant base rotation rates. ConfigError if a base rate varies in time (no
-    eigenvalues then)."""
-    model = build_model(config) if model is None else model
-    base = model.base_motion
-    if base is None or not base.rates_constant:
+def linear_system(config: Config, model: Model | RotorSystem | None = None) -> RotorSystem:
+    """The linear rotor for modal analysis (``LinearDynamics``): the linear part of the
+    configuration's system (:func:`~rotorsfd.model.time_terms.linear_part`: the rotor with
+    its supports and the elements' linear parts, an SFD's centring spring, no film, on
+    the constant base rates), whose ``matrices(speed)`` are the ``(M, D, K)`` of the
+    model's record ``second_order(speed)``. ``model``: the configuration's system or
+    :class:`~rotorsfd.model.build.Model` when already built. ConfigError if a base rate
+    varies in time (no eigenvalues then)."""
+    if model is None:
+        model = build_model(config)
+    if isinstance(model, Model):
+        model = RotorSystem(model.rotor, base=model.base_motion)
+    if not model.base.rates_constant:
         for name in ("rolling", "pitching", "yawing"):
             if getattr(config.base, name).law not in ("off", "constant"):
                 raise ConfigError(f"base.{name}.law", getattr(config.base, name).law,
                                   "modal analysis needs constant base rates ('off' or "
                                   "'constant'); time-varying rates: use a stability chart")
-    if base is None or not np.any(base.rates(0.0) != 0.0):
-        return model.rotor
-    from rotorsfd.model.base_polynomial import MovingBaseRotor
-
-    return MovingBaseRotor(model.rotor, base.state(0.0))
+    return linear_part(model)
 
 
 def first_critical(system: Any, speed_max: float = 2e4) -> float:

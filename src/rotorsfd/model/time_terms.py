@@ -10,6 +10,12 @@ gives the base terms as time-varying matrices and series loads
 (:func:`~rotorsfd.model.base_terms.time_varying_terms`,
 :func:`~rotorsfd.model.unbalance.unbalance_series`), a coefficient that stays constant
 over the run folded into the constant matrices.
+
+:func:`linear_part` is the system's linear variant: the same rotor and base rotation
+without the nonlinear elements and the loads, whose ``second_order(speed)`` is the record
+without the nonlinear elements (what the linear time-periodic stability chart takes) and
+whose ``matrices(speed)`` are that record's ``(M, D, K)`` at every speed for constant
+rates (the ``LinearDynamics`` of the modal analyses).
 """
 
 from __future__ import annotations
@@ -21,12 +27,13 @@ from typing import Any
 import numpy as np
 
 from rotorsfd.errors import ConfigError
+from rotorsfd.model.base_motion import BaseMotion, Constant
 from rotorsfd.model.multishaft_loads import other_spool_harmonics, split_unbalances
 from rotorsfd.model.unbalance import unbalance_harmonics
 from rotorsfd.second_order import SecondOrderSystem
 from rotorsfd.timedomain.forcing import Forcing, HarmonicLoad, TimeVaryingMatrices
 
-__all__ = ["second_order_system"]
+__all__ = ["fold_constant", "linear_part", "second_order_system"]
 
 
 def fold_constant(pairs: Sequence[tuple[Any, np.ndarray]], probe: np.ndarray
@@ -91,3 +98,17 @@ def second_order_system(system: Any, speed: float, *,
         if damping or stiffness else None
     return SecondOrderSystem(r.M, np.asarray(D, float), np.asarray(K, float), nl, kernel,
                              params, forcing, tv, float(speed), el)
+
+
+def linear_part(system: Any, rates: Sequence[float] | None = None) -> Any:
+    """The linear variant of ``system`` (a :class:`~rotorsfd.model.system.RotorSystem`):
+    its rotor (with the elements' linear parts, such as an SFD's centring spring) on its
+    base rotation, without the nonlinear elements and the loads (unbalance, base
+    translation, gravity: they load the rotor, the matrices are free of them). Its
+    ``second_order(speed)`` is the record of ``system`` without the nonlinear elements
+    and the forcing; with constant rates its ``matrices(speed)`` (and
+    ``sparse_matrices``) are that record's ``(M, D, K)`` at every speed. ``rates`` [rad/s]:
+    constant rotation rates instead of the base's laws."""
+    laws = system.base.rotation if rates is None else tuple(Constant(float(w))
+                                                            for w in rates)
+    return type(system)(system.rotor, base=BaseMotion(wx=laws[0], wy=laws[1], wz=laws[2]))
