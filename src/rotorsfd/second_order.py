@@ -36,7 +36,7 @@ the added mass ``M - P (dF/dq'') P^T``.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
 import numpy as np
@@ -81,7 +81,8 @@ class SecondOrderSystem:
     nonlinear force); ``elements``: the law's numpy form (:class:`ForceLaw`), for
     validity, contact reports and diagnostics; ``reduction``: the Craig-Bampton model the
     time step runs on (:class:`~rotorsfd.timedomain.reduced.ReducedStep`), None: the full
-    step."""
+    step; ``gyroscopic``: ``G = dD/dOmega`` (None: not given), so that the record at
+    another speed has ``D + (Omega' - Omega) G`` (the base terms held)."""
 
     M: np.ndarray
     D: np.ndarray
@@ -94,6 +95,13 @@ class SecondOrderSystem:
     speed: float
     elements: ForceLaw | None = None
     reduction: Any = None
+    gyroscopic: np.ndarray | None = None
+
+    def linear(self) -> SecondOrderSystem:
+        """The same record without the nonlinear elements (``M q'' + D(t) q' + K(t) q =
+        f(t)``)."""
+        return replace(self, nl_dofs=np.zeros(0, dtype=np.int64), kernel=None, params=None,
+                       elements=None)
 
     @property
     def period(self) -> float:

@@ -32,21 +32,24 @@ basis), :mod:`.stability_chart_result` (the result, its files and plot); this mo
 checks the axes and runs the grid.
 """
 
+
 from __future__ import annotations
 
 import sys
 from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsfd.analyses.context import RunContext, build
 from rotorsfd.analyses.stability_chart_ltp import MODE_CUTOFF, modal_basis, rotor_ltp_system
 from rotorsfd.analyses.stability_chart_rates import (
     RATE_FIELDS,
-    RATE_UNITS,
+    RATE_KINDS,
     ROTATIONS,
     ChartParams,
     RateSpec,
@@ -56,29 +59,104 @@ from rotorsfd.analyses.stability_chart_rates import (
 )
 from rotorsfd.analyses.stability_chart_result import ChartAxis, ChartResult
 from rotorsfd.errors import ConfigError
-from rotorsfd.model.base_motion import BaseState
+from rotorsfd.model.system import RotorSystem
+from rotorsfd.model.time_terms import linear_part
 from rotorsfd.stability.chart import StabilityChart, stability_chart
 from rotorsfd.stability.floquet import STABILITY_TOL
 
 if TYPE_CHECKING:
-    from rotorsfd.io.schema import Config
-    from rotorsfd.model.rotor import Rotor
-    from rotorsfd.model.system import RotorSystem
+    from rotorsfd.io.schema import Config, ParameterAxis, StabilityChartAnalysis
+
+
+@dataclass(frozen=True)
+class ConfigSource:
+    """What a configuration adds to the system of a chart: the base rates as written (an
+    angle amplitude stays one when an axis varies the frequency), the physical kind of an
+    axis' field, every axis value checked as a configuration, and the system rebuilt at
+    the values of a structural axis (``build(with_values(config, values))``)."""
+
+    config: Config
+    search_path: Path | None = None
+
+    def rate_specs(self) -> tuple[RateSpec, RateSpec, RateSpec]:
+        return rate_specs_from_config(self.config)
+
+    def kind(self, path: str, where: str) -> str:
+        """The ``KINDS`` key of the field at ``path``; ConfigError at ``where``."""
+        from rotorsfd.io.schema import resolve_kind
+
+        try:
+            return "angular_velocity" if path == "speed" else resolve_kind(self.config, path)
+        except KeyError as exc:
+            raise ConfigError(where, path, exc.args[0]) from None
+
+    def values(self, axis: ParameterAxis) -> list[float]:
+        from rotorsfd.io.schema import axis_values
+
+        return axis_values(self.config, axis)
+
+    def check(self, axes: Sequence[ChartAxis]) -> None:
+        """ConfigError unless the first and the last value pair of the axes make a valid
+        configuration (ranges, the fields a law uses)."""
+        from rotorsfd.io.config import with_values
+
+        for i in (0, -1):
+            with_values(self.config, {a.path: float(a.values[i]) for a in axes
+                                      if a.path != "speed"})
+
+    def system_at(self, values: dict[str, float]) -> RotorSystem:
+        from rotorsfd.io.config import with_values
+
+        return build(with_values(self.config, values), self.search_path)
+
+
+def chart_context(config: Config, search_path: Path | None = None) -> RunContext:
+    """The context of a chart run from ``config``: its title, the resolved configuration
+    and the folder of its files (the chart needs no reference speed and no nodes)."""
+    from rotorsfd.io.config import show_config
+
+    return RunContext(title=config.title, config_toml=show_config(config),
+                      search_path=search_path)
 
 
 def axis_from_config(config: Config, name: str) -> ChartAxis:
-    from rotorsfd.io.schema import axis_values, resolve_kind
-    from rotorsfd.io.units import KINDS
+    """Axis ``name`` (x or y) of ``[analysis.stability_chart]`` in SI with its units."""
+    return chart_axis(getattr(config.analysis.stability_chart, name), name,
+                      ConfigSource(config))
 
-    axis = getattr(config.analysis.stability_chart, name)
+
+def chart_axis(axis: ParameterAxis | tuple[str, Sequence[float]] | None, name: str,
+               source: ConfigSource | None = None) -> ChartAxis:
+    """A ChartAxis from a settings axis (values with units) or ``(path, SI values)``.
+    Without a configuration only ``speed`` and the base-rate fields are axes (their units
+    are known); ``source`` gives the kind of any other field."""
+    from rotorsfd.io.units import KINDS, to_si
+
     where = f"analysis.stability_chart.{name}"
     if axis is None:
         raise ConfigError(where, None, "a stability chart needs two axes x and y, e.g. "
                           "x = { parameter = 'base.pitching.frequency', start = '100 rad/s',"
                           " stop = '400 rad/s', n = 100 }")
-    path = axis.parameter.strip()
-    kind = "angular_velocity" if path == "speed" else resolve_kind(config, path)
-    return ChartAxis(path, np.asarray(axis_values(config, axis), float), KINDS[kind].unit)
+    path = (axis[0] if isinstance(axis, tuple) else axis.parameter).strip()
+    target = coefficient_target(path)
+    if source is not None:
+        kind = source.kind(path, f"{where}.parameter")
+    elif target is None:
+        raise ValueError(f"axis {path!r}: from a RotorSystem only 'speed' and "
+                         f"base.<rotation>.<{'|'.join(RATE_FIELDS)}> are possible")
+    else:
+        kind = "angular_velocity" if target[0] < 0 else RATE_KINDS[target[1]]
+    if isinstance(axis, tuple):
+        values = axis[1]
+    elif source is not None:
+        values = source.values(axis)
+    elif axis.values is not None:           # as io.schema.axis_values, the kind known
+        values = [to_si(v, kind) for v in axis.values]
+    else:
+        a, b = to_si(axis.start, kind), to_si(axis.stop, kind)
+        values = [a] if axis.n == 1 else [a + (b - a) * i / (axis.n - 1)
+                                          for i in range(axis.n)]
+    return ChartAxis(path, np.asarray(values, float).ravel(), KINDS[kind].unit)
 
 
 def _check_axes(x: ChartAxis, y: ChartAxis, specs: Sequence[RateSpec], where: str) -> None:
@@ -114,78 +192,72 @@ def _check_axes(x: ChartAxis, y: ChartAxis, specs: Sequence[RateSpec], where: st
         raise ConfigError(f"base.{ROTATIONS[harmonic[0]]}.frequency", 0.0, "must be > 0")
 
 
-def _natural_frequencies(rotor: Rotor, specs: Sequence[RateSpec], speed: float | None,
-                         n: int = 8) -> NDArray:
-    """Damped natural frequencies [rad/s] of the rotor with the base rates at their mean."""
+
+
+def _natural_frequencies(system: RotorSystem, specs: Sequence[RateSpec],
+                         speed: float | None, n: int = 8) -> NDArray:
+    """Damped natural frequencies [rad/s] of the linear part with the base rates at their
+    mean."""
     if speed is None:
         return np.zeros(0)
     from rotorsfd.linear.modal import eigen
-    from rotorsfd.model.base_polynomial import MovingBaseRotor
 
     mean = [s.value if s.law in ("constant", "harmonic") else 0.0 for s in specs]
     try:
-        return np.asarray(eigen(MovingBaseRotor(rotor, BaseState.constant(w=mean)), speed,
-                                n).frequencies, float)
+        return np.asarray(eigen(linear_part(system, rates=mean), speed, n).frequencies,
+                          float)
     except Exception:
         return np.zeros(0)
 
 
-def run_stability_chart(config_or_system: Config | RotorSystem, *,
+def run_stability_chart(config_or_system: Config | RotorSystem,
+                        settings: StabilityChartAnalysis | None = None,
+                        context: RunContext | None = None, *,
                         x: tuple[str, Sequence[float]] | None = None,
                         y: tuple[str, Sequence[float]] | None = None,
                         speed: float | None = None, n_intervals: int | None = None,
                         n_modes: int | None = None, workers: int = 1,
                         tol: float = STABILITY_TOL, progress: bool = False,
-                        search_path: Path | None = None) -> ChartResult:
+                        search_path: Path | None = None,
+                        source: ConfigSource | None = None) -> ChartResult:
     """Max Floquet multiplier of the linear rotor over the grid x times y.
 
-    From a Config: axes, speed and Newmark intervals of ``[analysis.stability_chart]``
-    (``x``, ``y``, ``speed``, ``n_intervals`` override them; axis values in SI). From a
-    RotorSystem (its rotor and base-rate laws; film and forcing ignored): give ``x``,
-    ``y`` as ``(path, values)`` with coefficient paths only, and ``speed`` unless it is an
-    axis. ``n_modes``: size of the modal basis (default: see the module docstring).
+    ``run_stability_chart(system, settings, context=...)``: the linear part of ``system``
+    (its rotor and base-rate laws; film and forcing ignored) with ``settings`` the
+    ``[analysis.stability_chart]`` section (axes, speed, Newmark intervals; default: its
+    defaults) and ``context`` the title and resolved configuration (:class:`RunContext`).
+    ``run_stability_chart(config)`` is that call with ``build(config)``,
+    ``config.analysis.stability_chart``, :func:`chart_context` and the
+    :class:`ConfigSource` of the config (the rates as written, the units of the axes, any
+    config field as a "structural" axis: the system rebuilt per value), so the two paths
+    cannot disagree; without a source the axes are ``speed`` and the base-rate fields.
+    ``x``, ``y`` (``(path, SI values)``), ``speed`` and ``n_intervals`` override the
+    settings. ``n_modes``: size of the modal basis (default: see the module docstring).
     ``workers``: threads over grid rows. ``progress``: a tqdm bar on stderr.
     """
-    from rotorsfd.model.system import RotorSystem
+    from rotorsfd.io.schema import StabilityChartAnalysis
 
-    config: Config | None = None
-    where = "analysis.stability_chart"
-    if isinstance(config_or_system, RotorSystem):
-        system = config_or_system
-        specs = rate_specs_from_motion(system.base)
-        rotor0 = system.rotor
-        title = ""
-        if x is None or y is None:
-            raise ValueError("give the axes x and y as (path, values)")
-        axes = []
-        for ax in (x, y):
-            if coefficient_target(ax[0]) is None:
-                raise ValueError(f"axis {ax[0]!r}: from a RotorSystem only 'speed' and "
-                                 f"base.<rotation>.<{'|'.join(RATE_FIELDS)}> are possible")
-            t = coefficient_target(ax[0])
-            units = "rad/s" if t is None or t[0] < 0 else RATE_UNITS[t[1]]
-            axes.append(ChartAxis(ax[0].strip(), np.asarray(ax[1], float).ravel(), units))
-        xa, ya = axes
-        intervals = n_intervals or 400
-    else:
-        from rotorsfd.io.config import with_values
-        from rotorsfd.model.build import build_rotor
-
+    if not isinstance(config_or_system, RotorSystem):
         config = config_or_system
-        sc = config.analysis.stability_chart
-        specs = rate_specs_from_config(config)
-        xa = (_with_units(config, x, "x") if x is not None
-              else axis_from_config(config, "x"))
-        ya = (_with_units(config, y, "y") if y is not None
-              else axis_from_config(config, "y"))
-        speed = sc.speed if speed is None else speed
-        intervals = n_intervals or sc.intervals
-        title = config.title
-        # every axis value pair must make a valid configuration (ranges, law fields)
-        for i in (0, -1):
-            with_values(config, {a.path: float(a.values[i]) for a in (xa, ya)
-                                 if a.path != "speed"})
-        rotor0 = build_rotor(config, search_path)
+        source = ConfigSource(config, search_path)
+        source.rate_specs()          # a callable law: its error before any work
+        return run_stability_chart(
+            build(config, search_path),
+            config.analysis.stability_chart if settings is None else settings,
+            context or chart_context(config, search_path), x=x, y=y, speed=speed,
+            n_intervals=n_intervals, n_modes=n_modes, workers=workers, tol=tol,
+            progress=progress, source=source)
+    system = config_or_system
+    sc = StabilityChartAnalysis() if settings is None else settings
+    ctx = RunContext(search_path=search_path) if context is None else context
+    where = "analysis.stability_chart"
+    specs = source.rate_specs() if source is not None else rate_specs_from_motion(system.base)
+    xa = chart_axis(sc.x if x is None else x, "x", source)
+    ya = chart_axis(sc.y if y is None else y, "y", source)
+    speed = sc.speed if speed is None else speed
+    intervals = n_intervals or sc.intervals
+    if source is not None:
+        source.check((xa, ya))
     _check_axes(xa, ya, specs, where)
     tx, ty = coefficient_target(xa.path), coefficient_target(ya.path)
     if speed is None and (tx is None or tx[0] >= 0) and (ty is None or ty[0] >= 0):
@@ -202,14 +274,11 @@ def run_stability_chart(config_or_system: Config | RotorSystem, *,
             if s.law == "harmonic" and (i, "frequency") not in (tx, ty)]
     cutoff = MODE_CUTOFF * max(top)
 
-    def rotor_at(values: dict[str, float]) -> Rotor:
+    def system_at(values: dict[str, float]) -> RotorSystem:
         if not values:
-            return rotor0
-        from rotorsfd.io.config import with_values
-        from rotorsfd.model.build import build_rotor
-
-        assert config is not None
-        return build_rotor(with_values(config, values), search_path)
+            return system
+        assert source is not None   # a structural axis needs a configuration (chart_axis)
+        return source.system_at(values)
 
     # tasks: (index into the grid: a row, a column or a point, callable -> its chart)
     tasks: list[tuple[tuple[Any, Any], Callable[[], StabilityChart]]] = []
@@ -218,7 +287,7 @@ def run_stability_chart(config_or_system: Config | RotorSystem, *,
             p1: NDArray, p2: NDArray) -> None:
         def run() -> StabilityChart:
             params = ChartParams(specs, speed, p1_t, p2_t)
-            ltp = rotor_ltp_system(rotor_at(structural), params, p1, p2)
+            ltp = rotor_ltp_system(system_at(structural), params, p1, p2)
             basis = modal_basis(ltp, cutoff, n_modes)
             return stability_chart(ltp, p1, p2, n_intervals=intervals, basis=basis, tol=tol)
 
@@ -226,7 +295,7 @@ def run_stability_chart(config_or_system: Config | RotorSystem, *,
 
     if tx is not None and ty is not None:
         params = ChartParams(specs, speed, tx, ty)
-        ltp = rotor_ltp_system(rotor0, params, xa.values, ya.values)
+        ltp = rotor_ltp_system(system, params, xa.values, ya.values)
         basis = modal_basis(ltp, cutoff, n_modes)
         for i, v in enumerate(xa.values):
             tasks.append(((i, slice(None)), lambda v=v: stability_chart(
@@ -268,32 +337,16 @@ def run_stability_chart(config_or_system: Config | RotorSystem, *,
     info = {**info, "speed_rad_s": speed, "mode_cutoff_rad_s": cutoff}
     chart = StabilityChart(xa.values, ya.values, max_abs, crit, tol,
                            (xa.name, ya.name), info)
-    config_toml = ""
-    if not isinstance(config_or_system, RotorSystem):
-        from rotorsfd.io.config import show_config
-
-        config_toml = show_config(config_or_system)
-    return ChartResult(chart, xa, ya, speed,
-                       _natural_frequencies(rotor0, specs, speed), title, config_toml)
-
-
-def _with_units(config: Config, axis: tuple[str, Sequence[float]], name: str) -> ChartAxis:
-    """A ChartAxis from ``(path, SI values)`` with the units of the field at path."""
-    from rotorsfd.io.schema import resolve_kind
-    from rotorsfd.io.units import KINDS
-
-    path = axis[0].strip()
-    try:
-        kind = "angular_velocity" if path == "speed" else resolve_kind(config, path)
-    except KeyError as exc:
-        raise ConfigError(f"analysis.stability_chart.{name}.parameter", path,
-                          exc.args[0]) from None
-    return ChartAxis(path, np.asarray(axis[1], float).ravel(), KINDS[kind].unit)
+    return ChartResult(chart, xa, ya, speed, _natural_frequencies(system, specs, speed),
+                       ctx.title, ctx.config_toml)
 
 
 __all__ = [
     "ChartAxis",
     "ChartResult",
+    "ConfigSource",
     "axis_from_config",
+    "chart_axis",
+    "chart_context",
     "run_stability_chart",
 ]

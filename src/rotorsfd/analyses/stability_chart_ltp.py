@@ -1,7 +1,8 @@
 """The linear time-periodic (LTP) system of a rotor under base rotation, and the modal
 basis of its monodromy, for the stability chart.
 
-The linear rotor (film off, supports and centring spring on) in the base frame::
+The linear rotor (film off, supports and centring spring on: the model's linear part,
+:func:`rotorsfd.model.time_terms.linear_part`) in the base frame::
 
     M q'' + (C + Omega G + sum_i c_i(t) B_i) q' + (K + sum_i k_i(t) B_i) q = f(t)
 
@@ -23,11 +24,12 @@ import scipy.linalg as sla
 from numpy.typing import NDArray
 
 from rotorsfd.analyses.stability_chart_rates import ChartParams, CoefficientCache
-from rotorsfd.model.base_terms import MATRIX_NAMES, base_basis
+from rotorsfd.model.base_terms import MATRIX_NAMES
+from rotorsfd.model.time_terms import linear_part
 from rotorsfd.stability.chart import LTPSystem
 
 if TYPE_CHECKING:
-    from rotorsfd.model.rotor import Rotor
+    from rotorsfd.model.system import RotorSystem
 
 __all__ = ["MIN_MODES", "MODE_CUTOFF", "modal_basis", "rotor_ltp_system"]
 
@@ -36,30 +38,34 @@ MIN_MODES: int = 4
 _PROBE_T = np.sqrt(2.0) * np.arange(1, 8)[:, None] / 3.7  # irrational sample times [s]
 
 
-def rotor_ltp_system(rotor: Rotor, params: ChartParams, p1_probe: NDArray, p2_probe: NDArray
-                     ) -> LTPSystem:
-    """The LTPSystem of ``rotor`` under the base rates of ``params``.
+def rotor_ltp_system(system: RotorSystem, params: ChartParams, p1_probe: NDArray,
+                     p2_probe: NDArray) -> LTPSystem:
+    """The LTPSystem of the linear part of ``system`` under the base rates of ``params``.
 
-    Base terms whose coefficient is zero at every probe point (``p1_probe`` x
-    ``p2_probe`` x a few times) are dropped; those constant there are folded into the
-    constant matrices.
+    ``M``, ``D = C + Omega G`` and ``K`` (and ``G`` for a speed axis) are the model's
+    record of the linear part with the rates off
+    (``linear_part(system, rates=0).second_order(Omega)``); the base terms are the 12
+    matrices of the system's basis (those the record's time-varying terms are made of)
+    with the chart coefficients. Base terms whose coefficient is zero at every probe
+    point (``p1_probe`` x ``p2_probe`` x a few times) are dropped; those constant there
+    are folded into the constant matrices.
     """
-    basis = base_basis(rotor)
-    cache = CoefficientCache(params)
-    M = np.asarray(rotor.M, float)
-    D0 = np.asarray(rotor.C, float).copy()
-    K0 = np.asarray(rotor.K, float).copy()
-    d_terms: list[tuple[NDArray, Any]] = []
-    k_terms: list[tuple[NDArray, Any]] = []
     speed_is_axis = (params.p1 is not None and params.p1[0] < 0) or \
         (params.p2 is not None and params.p2[0] < 0)
-    if speed_is_axis:
+    at = 1.0 if speed_is_axis else float(params.speed)
+    record = linear_part(system, rates=(0.0, 0.0, 0.0)).second_order(at)
+    basis = system.basis
+    cache = CoefficientCache(params)
+    M = np.asarray(record.M, float)
+    D0 = np.array(record.D, float)
+    K0 = np.array(record.K, float)
+    d_terms: list[tuple[NDArray, Any]] = []
+    k_terms: list[tuple[NDArray, Any]] = []
+    if speed_is_axis:   # D(Omega) = D(1) + (Omega - 1) G
         which = 1 if params.p1 is not None and params.p1[0] < 0 else 2
-        d_terms.append((np.asarray(rotor.G, float),
-                        (lambda t, a, b: a + 0.0 * t) if which == 1 else
-                        (lambda t, a, b: b + 0.0 * t)))
-    else:
-        D0 += float(params.speed) * np.asarray(rotor.G, float)
+        d_terms.append((np.asarray(record.gyroscopic, float),
+                        (lambda t, a, b: a - at + 0.0 * t) if which == 1 else
+                        (lambda t, a, b: b - at + 0.0 * t)))
     probes = [params.coefficients(_PROBE_T, float(a), np.asarray(p2_probe)[None, :])
               for a in np.atleast_1d(p1_probe)]
     for which, (const, terms) in enumerate(((D0, d_terms), (K0, k_terms))):

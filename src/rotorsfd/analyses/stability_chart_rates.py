@@ -32,8 +32,8 @@ from rotorsfd.model.base_terms import base_coefficients
 if TYPE_CHECKING:
     from rotorsfd.io.schema import Config
 
-__all__ = ["RATE_FIELDS", "RATE_UNITS", "ROTATIONS", "ChartParams", "CoefficientCache",
-           "RateSpec", "coefficient_target", "rate_specs_from_config",
+__all__ = ["RATE_FIELDS", "RATE_KINDS", "RATE_UNITS", "ROTATIONS", "ChartParams",
+           "CoefficientCache", "RateSpec", "coefficient_target", "rate_specs_from_config",
            "rate_specs_from_motion"]
 
 ROTATIONS: tuple[str, ...] = ("rolling", "pitching", "yawing")
@@ -41,6 +41,9 @@ RATE_FIELDS: tuple[str, ...] = ("value", "amplitude", "angle_amplitude", "freque
 #: SI unit of each rate field
 RATE_UNITS = {"value": "rad/s", "amplitude": "rad/s", "angle_amplitude": "rad",
               "frequency": "rad/s", "phase": "rad"}
+#: the physical kind (``rotorsfd.io.units.KINDS``) of each rate field
+RATE_KINDS = {"value": "angular_velocity", "amplitude": "angular_velocity",
+              "angle_amplitude": "angle", "frequency": "angular_velocity", "phase": "angle"}
 
 
 @dataclass(frozen=True)

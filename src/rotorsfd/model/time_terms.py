@@ -75,7 +75,7 @@ def second_order_system(system: Any, speed: float, *,
                 r, system.unbalances, speed)]
         forcing = Forcing(omega=speed, constant=system.static_force(speed), harmonics=harm)
         return SecondOrderSystem(M, D.copy(), K.copy(), nl, kernel, params, forcing, None,
-                                 float(speed), el)
+                                 float(speed), el, gyroscopic=r.G)
     from rotorsfd.model.base_terms import time_varying_terms
     from rotorsfd.model.unbalance import unbalance_series
 
@@ -97,7 +97,7 @@ def second_order_system(system: Any, speed: float, *,
     tv = TimeVaryingMatrices(damping=damping, stiffness=stiffness) \
         if damping or stiffness else None
     return SecondOrderSystem(r.M, np.asarray(D, float), np.asarray(K, float), nl, kernel,
-                             params, forcing, tv, float(speed), el)
+                             params, forcing, tv, float(speed), el, gyroscopic=r.G)
 
 
 def linear_part(system: Any, rates: Sequence[float] | None = None) -> Any:
