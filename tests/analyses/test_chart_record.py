@@ -173,3 +173,85 @@ def test_linear_system_of_a_harmonic_translation_keeps_the_constant_rates():
         got = linear_system(shaken).matrices(speed)
         for a, b in zip(got, _linear_reference(steady, speed), strict=True):
             assert np.abs(np.asarray(a) - b).max() <= 1e-12 * max(np.abs(b).max(), 1e-300)
+
+
+def test_the_chart_is_the_floquet_problem_of_the_record():
+    """At a grid point, the chart's LTP system has the D(t), K(t) of the linear part's
+    record at that point's base motion, ``linear_part(system).second_order(Omega)``."""
+    from rotorsfd.analyses.stability_chart_ltp import rotor_ltp_system
+    from rotorsfd.model.time_terms import linear_part
+
+    config = _chart_config(rolling={"law": "harmonic", "frequency": 280.0,
+                                    "angle_amplitude": 0.2},
+                           yawing={"law": "constant", "value": 3.0})
+    a0, w_b, speed = 0.3, 260.0, 250.0     # a point off the probes; the speed an axis
+    point = with_values(config, {"base.rolling.angle_amplitude": a0,
+                                 "base.rolling.frequency": w_b})
+    params = ChartParams(rate_specs_from_config(point), None,
+                         coefficient_target("base.rolling.angle_amplitude"),
+                         coefficient_target("speed"))
+    ltp = rotor_ltp_system(build_system(point), params, np.array([0.2, 0.4]),
+                           np.array([150.0, 250.0]))
+    record = linear_part(build_system(point)).second_order(speed)
+    assert record.time_varying is not None and record.n_nl == 0
+    for t in (0.0, 0.0031, 0.017):
+        _, D, K = record.matrices_at(t)
+        tt = np.array([[t]])
+        D_ltp = sum(X * (1.0 if c is None else float(np.asarray(c(tt, a0, speed)).ravel()[0]))
+                    for X, c in ltp.D_terms)
+        K_ltp = sum(X * (1.0 if c is None else float(np.asarray(c(tt, a0, speed)).ravel()[0]))
+                    for X, c in ltp.K_terms)
+        assert np.abs(D_ltp - D).max() <= 1e-12 * np.abs(D).max()
+        assert np.abs(K_ltp - K).max() <= 1e-12 * np.abs(K).max()
+    np.testing.assert_allclose(ltp.period(a0, speed), 2 * np.pi / w_b, rtol=1e-15)
+
+
+def test_linear_part_is_the_record_without_the_elements():
+    """The linear part's record at a speed: the system's record without its nonlinear
+    elements (and without its loads): the same M, D, K and time-varying terms."""
+    from rotorsfd.model.time_terms import linear_part
+
+    config = load_config(EXAMPLES / "paper_harmonic_pitching.toml")
+    system = build_system(config)
+    full = system.second_order(800.0).linear()
+    lin = linear_part(system).second_order(800.0)
+    assert full.n_nl == 0 and full.kernel is None and len(system.elements) > 0
+    for t in (0.0, 0.002, 0.01):
+        for a, b in zip(full.matrices_at(t), lin.matrices_at(t), strict=True):
+            assert np.abs(a - b).max() <= 1e-12 * np.abs(b).max()
+    np.testing.assert_array_equal(lin.gyroscopic, system.rotor.G)
+
+
+def test_config_path_equals_the_system_path_with_its_settings():
+    """run_stability_chart(config) = run_stability_chart(build(config), section, context,
+    source=...) (structural axis included), and a system with the section alone gives the
+    coefficient chart of the config (the rates as a BaseMotion keeps them)."""
+    from rotorsfd.analyses.stability_chart import ConfigSource, chart_context
+
+    config = with_values(load_config(FIG6), {
+        "analysis.stability_chart.intervals": 100,
+        "analysis.stability_chart.x": {"parameter": A0, "values": ["0.3 rad", "0.5 rad"]},
+        "analysis.stability_chart.y": {"parameter": FREQ, "start": "240 rad/s",
+                                       "stop": "310 rad/s", "n": 15}})
+    by_config = run_stability_chart(config, n_modes=4)
+    system = build_system(config)
+    section = config.analysis.stability_chart
+    by_system = run_stability_chart(system, section, chart_context(config), n_modes=4,
+                                    source=ConfigSource(config))
+    np.testing.assert_array_equal(by_config.chart.max_abs, by_system.chart.max_abs)
+    assert by_config.config_toml == by_system.config_toml and by_config.title == \
+        by_system.title
+    # the system alone: its BaseMotion holds the rate amplitude A0 w_b, the angle-amplitude
+    # axis sets it again, so the chart is the config's
+    alone = run_stability_chart(system, section, n_modes=4)
+    np.testing.assert_array_equal(alone.chart.max_abs, by_config.chart.max_abs)
+    assert (~alone.stable).sum() >= 1 and alone.x.units == "rad"
+    np.testing.assert_array_equal(alone.y.values, by_config.y.values)
+    # a structural axis: each config value rebuilt by the source
+    k = "rotor.supports[1].stiffness"
+    both = run_stability_chart(config, x=(FREQ, by_config.y.values), y=(k, [5e6, 1e9]),
+                               n_modes=4)
+    via = run_stability_chart(system, section, x=(FREQ, by_config.y.values),
+                              y=(k, [5e6, 1e9]), n_modes=4, source=ConfigSource(config))
+    np.testing.assert_array_equal(both.chart.max_abs, via.chart.max_abs)
+    assert both.y.units == "N/m"
