@@ -12,7 +12,7 @@ from numpy.typing import NDArray
 
 from rotorsfd.stability.chart import StabilityChart
 
-__all__ = ["ChartAxis", "ChartResult", "plot_chart"]
+__all__ = ["ChartAxis", "ChartResult"]
 
 
 @dataclass(frozen=True)
@@ -76,9 +76,23 @@ class ChartResult:
         return ds
 
     def plot(self, ax: Any = None) -> Any:
-        """Unstable points shaded by max |mu|, stable white, the boundary max |mu| =
-        1 + tol as a line (:func:`plot_chart`); returns the Axes."""
-        return plot_chart(self, ax)
+        """Figure 6 style (:func:`rotorsfd.plots.chart.chart_axes`): unstable points shaded
+        by max |mu| (white: stable), the boundary max |mu| = 1 + tol in black, islands
+        ringed, the axes in words with their units, the title (wrapped, never cut) saying
+        what the grid shows; on ``ax`` or a new figure (``chart.png``'s); returns the
+        Axes."""
+        from rotorsfd.plots.chart import chart_axes, chart_figure  # deferred: matplotlib
+
+        x, y = self.x, self.y
+        kw = {"tol": self.chart.tol, "speed": self.speed,
+              "title": self.title or "Stability chart"}
+        if ax is None:
+            return chart_figure(x.values, y.values, self.chart.max_abs, x_path=x.path,
+                                y_path=y.path, x_units=x.units, y_units=y.units,
+                                **kw).axes[0]
+        return chart_axes(ax, x.values, y.values, self.chart.max_abs,
+                          x_label=f"{x.path} [{x.units}]", y_label=f"{y.path} [{y.units}]",
+                          **kw)
 
     def write(self, directory: str | Path, plot: bool = True) -> dict[str, Path]:
         """``chart.nc`` and (if ``plot``) ``chart.png`` written atomically into
@@ -90,11 +104,7 @@ class ChartResult:
         atomic.write_netcdf(self.to_dataset(), paths["chart.nc"])
         if not plot:
             return {"chart.nc": paths["chart.nc"]}
-        from matplotlib.figure import Figure  # deferred: matplotlib
-
-        fig = Figure(figsize=(7.4, 5.6), layout="constrained")
-        self.plot(fig.add_subplot())
-        atomic.save_figure(fig, paths["chart.png"], dpi=130)
+        atomic.save_figure(self.plot().figure, paths["chart.png"], dpi=130)
         return paths
 
     def summary(self) -> str:
@@ -106,20 +116,3 @@ class ChartResult:
                 f"{n_bad} unstable; max |mu| = {ch.max_abs[i, j]:.6g} at "
                 f"{self.x.path} = {self.x.values[i]:.6g} {self.x.units}, "
                 f"{self.y.path} = {self.y.values[j]:.6g} {self.y.units}")
-
-
-def plot_chart(result: ChartResult, ax: Any = None) -> Any:
-    """Figure 6 style (:func:`rotorsfd.plots.chart.chart_axes`): unstable points shaded by
-    max |mu| (white: stable), the boundary max |mu| = 1 + tol in black, islands ringed, the
-    axes in words with their units, the title (wrapped, never cut) saying what the grid
-    shows; returns the Axes."""
-    from rotorsfd.plots.chart import chart_axes
-
-    if ax is None:
-        from matplotlib.figure import Figure
-
-        ax = Figure(figsize=(7.4, 5.6), layout="constrained").add_subplot()
-    return chart_axes(ax, result.x.values, result.y.values, result.chart.max_abs,
-                      x_label=f"{result.x.path} [{result.x.units}]",
-                      y_label=f"{result.y.path} [{result.y.units}]", tol=result.chart.tol,
-                      speed=result.speed, title=result.title or "Stability chart")
