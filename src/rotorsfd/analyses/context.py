@@ -18,8 +18,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from rotorsfd.analyses.modal import first_critical
-from rotorsfd.analyses.modal import reference_speed as config_reference_speed
+from rotorsfd.analyses.linear_model import first_critical
+from rotorsfd.analyses.linear_model import reference_speed as config_reference_speed
 from rotorsfd.errors import ConfigError
 from rotorsfd.io.config import show_config
 from rotorsfd.io.schema import ModalAnalysis, ResponseAnalysis
@@ -76,13 +76,21 @@ def build(config: Config, search_path: Path | None = None) -> RotorSystem:
 
 def config_context(config: Config, system: RotorSystem, section: str, *,
                    search_path: Path | None = None,
-                   reference_speed: float | None = None) -> RunContext:
+                   reference_speed: float | None = None,
+                   resolve_reference: bool = True) -> RunContext:
     """The context of ``config`` for the analysis ``analysis.<section>``: Omega_ref of
-    ``[reference]`` (``reference_speed`` overrides it), ``[analysis.response]``,
-    ``[analysis.modal]``, the section's output nodes (default: element and disk nodes),
-    the title and the resolved configuration."""
-    ref = reference_speed if reference_speed is not None \
-        else config_reference_speed(config, system)
-    return RunContext(float(ref), config.analysis.response, config.analysis.modal,
-                      tuple(config.output_nodes(section)), config.title,
-                      show_config(config), search_path)
+    ``[reference]`` (``reference_speed`` overrides it; with ``resolve_reference`` False a
+    'first_critical' is left None, for an analysis that locates the critical speeds
+    itself: ``modal``), ``[analysis.response]``, ``[analysis.modal]``, the section's output
+    nodes (sections without nodes: None, the system's), the title and the resolved
+    configuration."""
+    if reference_speed is not None:
+        ref: float | None = float(reference_speed)
+    elif resolve_reference or isinstance(config.reference.speed, float):
+        ref = float(config_reference_speed(config, system))
+    else:
+        ref = None
+    has_nodes = hasattr(getattr(config.analysis, section, None), "nodes")
+    return RunContext(ref, config.analysis.response, config.analysis.modal,
+                      tuple(config.output_nodes(section)) if has_nodes else None,
+                      config.title, show_config(config), search_path)
