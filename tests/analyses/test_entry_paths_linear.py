@@ -147,3 +147,58 @@ def test_modal_of_a_time_varying_rate_names_the_law():
     cfg = api.load_config(EXAMPLES / "paper_harmonic_pitching.toml")
     with pytest.raises(ConfigError, match=r"base\.pitching\.law: got 'harmonic'"):
         run_modal(cfg, ModalAnalysis(speeds=[0.0]))
+
+
+def _same_torus(a, b) -> None:
+    assert a.branch.n_points == b.branch.n_points >= 2
+    np.testing.assert_allclose(a.branch.lam, b.branch.lam, rtol=1e-12)
+    np.testing.assert_allclose(a.branch.X, b.branch.X, rtol=1e-12,
+                               atol=1e-12 * np.abs(a.branch.X).max())
+    assert (a.reference_speed, a.nodes, a.directions, a.title) == \
+        (b.reference_speed, b.nodes, b.directions, b.title)
+    assert a.info == b.info
+
+
+@pytest.mark.parametrize("over", [
+    ["analysis.response.speed_range.stop_ratio=0.805"],
+    ['analysis.response.parameter="base.pitching.frequency"',
+     "analysis.response.speed_ratio=0.8",
+     'analysis.response.parameter_range=["60 rad/s", "61 rad/s"]']],
+    ids=["speed", "base frequency"])
+def test_torus_config_path_is_the_system_path(over):
+    from rotorsfd.analyses.torus_parameters import torus_parameter
+    from rotorsfd.analyses.torus_response import run_torus_response
+
+    cfg = api.load_config(EXAMPLES / "paper_harmonic_pitching.toml",
+                          ["analysis.stability.enabled=false",
+                           "analysis.response.step_initial=0.05",
+                           "analysis.response.step_max=0.1", *over])
+    a = run_torus_response(cfg, progress=False)
+    system = build(cfg)
+    r = cfg.analysis.response
+    par = torus_parameter(cfg, r.parameter)
+    span = {} if par.name == "speed" else {"start": 60.0, "stop": 61.0}
+    b = run_torus_response(system, r, context=config_context(cfg, system, "response"),
+                           parameter=par, progress=False, **span)
+    _same_torus(a, b)
+    assert a.parameter == b.parameter == r.parameter and a.speed == b.speed
+
+
+def test_dual_spool_config_path_is_the_system_path():
+    from rotorsfd.analyses.dual_spool_response import run_dual_spool_response
+
+    cfg = api.load_config(EXAMPLES / "dual_spool_unbalance.toml",
+                          ["analysis.response.speed_range.start=150 rad/s",
+                           "analysis.response.speed_range.stop=152 rad/s",
+                           "analysis.response.step_initial=0.3",
+                           "analysis.response.step_max=0.5",
+                           "analysis.stability.enabled=false"])
+    a = run_dual_spool_response(cfg, progress=False)
+    system = build(cfg)
+    b = run_dual_spool_response(system, cfg.analysis.response,
+                                context=config_context(cfg, system, "response"),
+                                progress=False)
+    _same_torus(a, b)
+    assert a.ratio == b.ratio == 1.8 and not a.lyapunov and not b.lyapunov
+    # a system alone: an empty configuration's [analysis.stability] (on)
+    assert RunContext().stability.enabled

@@ -22,7 +22,7 @@ from rotorsfd.analyses.linear_model import first_critical
 from rotorsfd.analyses.linear_model import reference_speed as config_reference_speed
 from rotorsfd.errors import ConfigError
 from rotorsfd.io.config import show_config
-from rotorsfd.io.schema import ModalAnalysis, ResponseAnalysis
+from rotorsfd.io.schema import ModalAnalysis, ResponseAnalysis, StabilityAnalysis
 from rotorsfd.model.build import build_system
 
 if TYPE_CHECKING:
@@ -37,8 +37,9 @@ class RunContext:
     """What an analysis takes besides the system and its settings: ``reference_speed``
     [rad/s] (None: the first forward critical speed when needed), ``response`` (H and N_f
     of an HB start), ``modal`` (the critical-speed search bound), output ``nodes`` (None:
-    the system's), ``title``, the resolved configuration text and the folder relative
-    paths of the config are read from."""
+    the system's), ``title``, the resolved configuration text, the folder relative
+    paths of the config are read from, and ``stability`` (``[analysis.stability]``: whether
+    an analysis that computes it by default does)."""
 
     reference_speed: float | None = None
     response: ResponseAnalysis = field(default_factory=ResponseAnalysis)
@@ -47,6 +48,7 @@ class RunContext:
     title: str = ""
     config_toml: str = ""
     search_path: Path | None = None
+    stability: StabilityAnalysis = field(default_factory=StabilityAnalysis)
 
     @property
     def harmonics(self) -> int:
@@ -81,9 +83,9 @@ def config_context(config: Config, system: RotorSystem, section: str, *,
     """The context of ``config`` for the analysis ``analysis.<section>``: Omega_ref of
     ``[reference]`` (``reference_speed`` overrides it; with ``resolve_reference`` False a
     'first_critical' is left None, for an analysis that locates the critical speeds
-    itself: ``modal``), ``[analysis.response]``, ``[analysis.modal]``, the section's output
-    nodes (sections without nodes: None, the system's), the title and the resolved
-    configuration."""
+    itself: ``modal``), ``[analysis.response]``, ``[analysis.modal]``,
+    ``[analysis.stability]``, the section's output nodes (sections without nodes: None,
+    the system's), the title and the resolved configuration."""
     if reference_speed is not None:
         ref: float | None = float(reference_speed)
     elif resolve_reference or isinstance(config.reference.speed, float):
@@ -93,4 +95,5 @@ def config_context(config: Config, system: RotorSystem, section: str, *,
     has_nodes = hasattr(getattr(config.analysis, section, None), "nodes")
     return RunContext(ref, config.analysis.response, config.analysis.modal,
                       tuple(config.output_nodes(section)) if has_nodes else None,
-                      config.title, show_config(config), search_path)
+                      config.title, show_config(config), search_path,
+                      config.analysis.stability)
