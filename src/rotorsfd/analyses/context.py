@@ -4,8 +4,8 @@ and ``run_x(config)``.
 An analysis takes the :class:`~rotorsfd.model.system.RotorSystem`, its own settings
 section (the pydantic model, e.g. ``SimulateAnalysis``) and a :class:`RunContext`: what it
 needs from outside its section (the reference speed Omega_ref, the HB settings of an HB
-start, ``[analysis.stability]``, the output nodes, the title). :func:`config_context` builds the context of a
-configuration and :func:`build` its system, so the config path is
+start, ``[analysis.stability]``, the output nodes, the title). :func:`config_context`
+builds the context of a configuration and :func:`build` its system, so the config path is
 ``run_x(build(config), config.analysis.x, config_context(config, system, "x"))``; given a
 system only, the context's defaults are those of an empty configuration (the sections'
 defaults: ``ResponseAnalysis()``, ``StabilityAnalysis()``, the critical-speed search up to
