@@ -1,13 +1,15 @@
 """An attractor census from a configuration or a rotor system: the
 :class:`~rotorsfd.analyses.attractors.CensusModel` of a
 :class:`~rotorsfd.model.system.RotorSystem` at a speed, and :func:`run_census` of a Config
-at one speed or several (the map of coexisting solutions)."""
+at one speed or several (the map of coexisting solutions): ``run_census(system,
+settings=<[analysis.simulate]>, context=RunContext)``, and ``run_census(config)`` the same
+call with the config's section and context."""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -18,7 +20,12 @@ from rotorsfd.analyses.attractors import (
     CensusOptions,
     census_map,
 )
+from rotorsfd.analyses.context import RunContext, build, config_context
 from rotorsfd.errors import ConfigError
+from rotorsfd.io.schema import Config
+
+if TYPE_CHECKING:
+    from rotorsfd.io.schema import SimulateAnalysis
 
 
 def census_model(system: Any, speed: float, *, reduction: str = "auto",
@@ -36,27 +43,49 @@ def census_model(system: Any, speed: float, *, reduction: str = "auto",
     return CensusModel(inputs, scale, problem, reference_speed)
 
 
-def run_census(config: Any, speeds: Sequence[float] | None = None, *,
-               speed_ratios: Sequence[float] | None = None, search_path: Any = None,
-               options: CensusOptions | None = None, executor: Any = None,
-               progress: Any = None) -> list[Any]:
-    """Censuses of a Config at ``speeds`` [rad/s] or ``speed_ratios`` (of the
-    reference speed); the step: ``options.steps_per_period``, default the integer
-    ``[analysis.simulate] steps_per_period`` (400 with ``"auto"``: each attractor's
-    ``step_check`` then says what halving it moves); H: ``[analysis.response]``."""
-    from rotorsfd.analyses.modal import reference_speed
-    from rotorsfd.analyses.simulate import system_from_config
+def run_census(config_or_system: Any, speeds: Sequence[float] | None = None, *,
+               speed_ratios: Sequence[float] | None = None,
+               options: CensusOptions | None = None, settings: SimulateAnalysis | None = None,
+               context: RunContext | None = None, search_path: Any = None,
+               executor: Any = None, progress: Any = None) -> list[Any]:
+    """Censuses at ``speeds`` [rad/s] or ``speed_ratios`` (of the reference speed; neither:
+    the ``[analysis.simulate]`` speed) with ``options`` (:class:`CensusOptions`).
 
-    system = system_from_config(config, search_path)
-    ref = reference_speed(config, system)
-    sim = config.analysis.simulate
+    ``run_census(system, settings=..., context=...)``: ``settings`` the
+    ``[analysis.simulate]`` section (the speed, the step: ``options.steps_per_period``,
+    default its integer ``steps_per_period`` (400 with ``"auto"``: each attractor's
+    ``step_check`` then says what halving it moves), the reduction), ``context`` the
+    reference speed and ``[analysis.response]`` (H of the HB correction: its integer
+    ``harmonics``, else 8); defaults: an empty configuration's. ``run_census(config)`` is
+    that call with ``build(config)``, ``config.analysis.simulate`` and
+    :func:`~rotorsfd.analyses.context.config_context`: the two paths cannot disagree."""
+    from rotorsfd.io.schema import SimulateAnalysis
+
+    if isinstance(config_or_system, Config):
+        config = config_or_system
+        system = build(config, search_path)
+        return run_census(system, speeds, speed_ratios=speed_ratios, options=options,
+                          settings=config.analysis.simulate if settings is None
+                          else settings,
+                          context=config_context(config, system, "simulate",
+                                                 search_path=search_path),
+                          executor=executor, progress=progress)
+    system = config_or_system
+    sim = settings if settings is not None else SimulateAnalysis()
+    ctx = context if context is not None else RunContext(search_path=search_path)
+    ref = ctx.reference(system)
     if speeds is None:
         if speed_ratios is None:
-            speeds = [sim.fixed_speed(ref)]
+            speed = sim.fixed_speed(ref)
+            if speed is None:
+                raise ConfigError("analysis.simulate.speed", None, "give the census "
+                                  "speed: --speed, --speed-ratio or speed/speed_ratio in "
+                                  "[analysis.simulate]")
+            speeds = [speed]
         else:
             speeds = [r * ref for r in speed_ratios]
     o = options or CensusOptions()
-    spp, H = sim.steps_per_period, config.analysis.response.harmonics
+    spp, H = sim.steps_per_period, ctx.response.harmonics
     o = replace(o, steps_per_period=o.steps_per_period or (
         spp if isinstance(spp, int) else DEFAULT_STEPS),
         harmonics=o.harmonics or (H if isinstance(H, int) else DEFAULT_HARMONICS))

@@ -22,6 +22,12 @@ Uncertainty: with ``J = dr/dp`` at the optimum, ``cov = (J^T J)^-1 sigma^2`` whe
 deviation), else ``sum r^2 / (m - n)`` (m targets, n fields; not estimated when m = n).
 More fields than targets: the problem is underdetermined and refused (ConfigError, one
 line) -- no regularisation is applied.
+
+Entry path: a calibration is of a configuration (its unknowns are config fields), so
+``run_calibration(config, ...)`` is its only one; every evaluation builds the system of
+the config at ``p`` with the one builder (``linear_system(config_at(p))``, the modal
+view) and runs the response targets on ``run_response(config_at(p))``, the same code as
+``rotorsfd modal`` and ``rotorsfd response``.
 """
 
 from __future__ import annotations

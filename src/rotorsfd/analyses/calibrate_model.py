@@ -26,6 +26,7 @@ from rotorsfd.analyses.calibrate_targets import (
     fold_speed_derivative,
     peak_amplitude,
 )
+from rotorsfd.analyses.linear_model import linear_system
 from rotorsfd.errors import ConfigError, ConvergenceError
 
 EXACT = "exact (eigen-derivative)"
@@ -72,11 +73,9 @@ class TargetModel:
                                          for f, v in zip(self.fields, p, strict=True)})
 
     def system_at(self, p: Sequence[float]) -> Any:
-        from rotorsfd.analyses.modal import linear_system
-        from rotorsfd.model.build import build_model
-
-        return linear_system(self.config_at(p), build_model(self.config_at(p),
-                                                            self.search_path))
+        """The linear system (``rotorsfd modal``'s) of the config at ``p``, built by the
+        one builder."""
+        return linear_system(self.config_at(p), self.search_path)
 
     def derivative_kinds(self) -> list[str]:
         out = []

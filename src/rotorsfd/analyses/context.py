@@ -4,12 +4,15 @@ and ``run_x(config)``.
 An analysis takes the :class:`~rotorsfd.model.system.RotorSystem`, its own settings
 section (the pydantic model, e.g. ``SimulateAnalysis``) and a :class:`RunContext`: what it
 needs from outside its section (the reference speed Omega_ref, the HB settings of an HB
-start, the output nodes, the title). :func:`config_context` builds the context of a
-configuration and :func:`build` its system, so the config path is
+start, ``[analysis.stability]``, the output nodes, the title). :func:`config_context`
+builds the context of a configuration and :func:`build` its system, so the config path is
 ``run_x(build(config), config.analysis.x, config_context(config, system, "x"))``; given a
 system only, the context's defaults are those of an empty configuration (the sections'
-defaults: ``ResponseAnalysis().start_harmonics``, the critical-speed search up to
-``ModalAnalysis().critical_speed_max``), so the two paths cannot disagree.
+defaults: ``ResponseAnalysis()``, ``StabilityAnalysis()``, the critical-speed search up to
+``ModalAnalysis().critical_speed_max``), so the two paths cannot disagree. Written so:
+simulate, bifurcation_diagram, response (its system path), modal, static,
+attractors_config (the census), torus_response, dual_spool_response (docs/INTERFACES.md
+lists their sections).
 """
 
 from __future__ import annotations
@@ -18,11 +21,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from rotorsfd.analyses.modal import first_critical
-from rotorsfd.analyses.modal import reference_speed as config_reference_speed
+from rotorsfd.analyses.linear_model import first_critical
+from rotorsfd.analyses.linear_model import reference_speed as config_reference_speed
 from rotorsfd.errors import ConfigError
 from rotorsfd.io.config import show_config
-from rotorsfd.io.schema import ModalAnalysis, ResponseAnalysis
+from rotorsfd.io.schema import ModalAnalysis, ResponseAnalysis, StabilityAnalysis
 from rotorsfd.model.build import build_system
 
 if TYPE_CHECKING:
@@ -37,8 +40,9 @@ class RunContext:
     """What an analysis takes besides the system and its settings: ``reference_speed``
     [rad/s] (None: the first forward critical speed when needed), ``response`` (H and N_f
     of an HB start), ``modal`` (the critical-speed search bound), output ``nodes`` (None:
-    the system's), ``title``, the resolved configuration text and the folder relative
-    paths of the config are read from."""
+    the system's), ``title``, the resolved configuration text, the folder relative
+    paths of the config are read from, and ``stability`` (``[analysis.stability]``: whether
+    an analysis that computes it by default does)."""
 
     reference_speed: float | None = None
     response: ResponseAnalysis = field(default_factory=ResponseAnalysis)
@@ -47,6 +51,7 @@ class RunContext:
     title: str = ""
     config_toml: str = ""
     search_path: Path | None = None
+    stability: StabilityAnalysis = field(default_factory=StabilityAnalysis)
 
     @property
     def harmonics(self) -> int:
@@ -76,13 +81,22 @@ def build(config: Config, search_path: Path | None = None) -> RotorSystem:
 
 def config_context(config: Config, system: RotorSystem, section: str, *,
                    search_path: Path | None = None,
-                   reference_speed: float | None = None) -> RunContext:
+                   reference_speed: float | None = None,
+                   resolve_reference: bool = True) -> RunContext:
     """The context of ``config`` for the analysis ``analysis.<section>``: Omega_ref of
-    ``[reference]`` (``reference_speed`` overrides it), ``[analysis.response]``,
-    ``[analysis.modal]``, the section's output nodes (default: element and disk nodes),
-    the title and the resolved configuration."""
-    ref = reference_speed if reference_speed is not None \
-        else config_reference_speed(config, system)
-    return RunContext(float(ref), config.analysis.response, config.analysis.modal,
-                      tuple(config.output_nodes(section)), config.title,
-                      show_config(config), search_path)
+    ``[reference]`` (``reference_speed`` overrides it; with ``resolve_reference`` False a
+    'first_critical' is left None, for an analysis that locates the critical speeds
+    itself: ``modal``), ``[analysis.response]``, ``[analysis.modal]``,
+    ``[analysis.stability]``, the section's output nodes (sections without nodes: None,
+    the system's), the title and the resolved configuration."""
+    if reference_speed is not None:
+        ref: float | None = float(reference_speed)
+    elif resolve_reference or isinstance(config.reference.speed, float):
+        ref = float(config_reference_speed(config, system))
+    else:
+        ref = None
+    has_nodes = hasattr(getattr(config.analysis, section, None), "nodes")
+    return RunContext(ref, config.analysis.response, config.analysis.modal,
+                      tuple(config.output_nodes(section)) if has_nodes else None,
+                      config.title, show_config(config), search_path,
+                      config.analysis.stability)

@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from rotorsfd.analyses.context import RunContext, build, config_context
 from rotorsfd.analyses.torus_response import (
     LYAPUNOV_POINTS,
     TorusPoint,
@@ -35,9 +36,11 @@ from rotorsfd.analyses.torus_response import (
     lyapunov_indices,
 )
 from rotorsfd.errors import ConfigError, ConvergenceError
+from rotorsfd.io.schema import Config
 
 if TYPE_CHECKING:
-    from rotorsfd.io.schema import Config
+    from rotorsfd.io.schema import ResponseAnalysis
+    from rotorsfd.model.system import RotorSystem
     from rotorsfd.quasiperiodic import TorusLattice
 
 FIELD = "analysis.response"
@@ -111,38 +114,54 @@ class DualSpoolResponseResult(TorusResponseResult):
         return paths
 
 
-def run_dual_spool_response(config: Config, *, search_path: Path | None = None,
+def run_dual_spool_response(config_or_system: Config | RotorSystem,
+                            settings: ResponseAnalysis | None = None, *,
+                            context: RunContext | None = None,
+                            search_path: Path | None = None,
                             lattice: TorusLattice | None = None, progress: bool = True,
                             stability: bool | None = None, from_orbit: Any = None,
                             callback: Callable[[Any], bool | None] | None = None,
                             lyapunov_points: int = LYAPUNOV_POINTS
                             ) -> DualSpoolResponseResult:
-    """The two-frequency branch of a dual-spool config over its speed range (module doc);
-    ``stability`` None: ``[analysis.stability].enabled``; ``callback(point)`` returning True
-    stops the branch."""
-    from rotorsfd.analyses.modal import reference_speed
-    from rotorsfd.io.config import show_config
-    from rotorsfd.model.build import build_system
-    from rotorsfd.quasiperiodic import TorusLattice
+    """The two-frequency branch of a dual-spool system over its speed range (module doc).
+
+    ``run_dual_spool_response(system, settings, context=...)``: ``settings`` the
+    ``[analysis.response]`` section (default: the context's, an empty section's; a fixed
+    H, the speed range in Omega~ on the context's reference speed), ``context`` the
+    reference speed, ``[analysis.stability]`` and title. ``run_dual_spool_response(config)``
+    is that call with ``build(config)``, ``config.analysis.response`` and
+    :func:`~rotorsfd.analyses.context.config_context`: the two paths cannot disagree.
+    ``stability`` None: the context's ``[analysis.stability].enabled``;
+    ``callback(point)`` returning True stops the branch."""
+    from rotorsfd.quasiperiodic import TorusLattice  # deferred: numba
     from rotorsfd.quasiperiodic.dual_frequency import dual_spool_problem
     from rotorsfd.quasiperiodic.torus_stability import torus_lyapunov
 
-    r = config.analysis.response
     if from_orbit is not None:
         raise ConfigError("--from-orbit", str(from_orbit), "a dual-spool branch (unbalances "
                           "on two spools) starts from the linear response, not an orbit")
-    if r.parameter.strip() != "speed":
-        raise ConfigError(f"{FIELD}.parameter", r.parameter, "with unbalances on two spools "
-                          "the branch is continued in 'speed' (Omega_LP) only")
-    if r.adaptive_harmonics:
-        raise ConfigError(f"{FIELD}.harmonics", "auto", "the dual-spool torus takes a fixed "
-                          "number of harmonics (start_harmonics)")
-    if not config.elements:
+    if isinstance(config_or_system, Config):
+        config = config_or_system
+        r = config.analysis.response if settings is None else settings
+        _check_settings(r)
+        if not config.elements:
+            raise ConfigError("elements", None, "the nonlinear response needs at least one "
+                              "nonlinear element (an [elements.<name>] table)")
+        system = build(config, search_path)
+        return run_dual_spool_response(
+            system, r, context=config_context(config, system, "response",
+                                              search_path=search_path),
+            lattice=lattice, progress=progress, stability=stability, callback=callback,
+            lyapunov_points=lyapunov_points)
+    system = config_or_system
+    ctx = context if context is not None else RunContext(search_path=search_path)
+    r = settings if settings is not None else ctx.response
+    _check_settings(r)
+    if not len(system.elements):
         raise ConfigError("elements", None, "the nonlinear response needs at least one "
-                          "nonlinear element (an [elements.<name>] table)")
-    system = build_system(config, search_path)
+                          "nonlinear element")
     problem = dual_spool_problem(system)      # ConfigError: base law, ratios
-    ref = float(reference_speed(config, system))
+    ref = float(ctx.reference(system))
     lo, hi = r.speed_range.bounds(ref)
     if not (lo > 0 and hi > 0) or lo == hi:
         raise ConfigError(f"{FIELD}.speed_range", r.speed_range.model_dump(
@@ -172,14 +191,24 @@ def run_dual_spool_response(config: Config, *, search_path: Path | None = None,
             import sys
 
             print("\r\033[K", end="", file=sys.stderr, flush=True)
-    enabled = config.analysis.stability.enabled if stability is None else stability
+    enabled = ctx.stability.enabled if stability is None else stability
     lyap = {}
     if enabled:
         for i in lyapunov_indices(branch.n_points, lyapunov_points):
             lyap[i] = torus_lyapunov(system, lattice, branch.X[i], float(branch.omega[i]),
                                      float(branch.wb[i]))
     return DualSpoolResponseResult(
-        branch, system, ref, tuple(nodes), tuple(r.directions), config.title,
+        branch, system, ref, tuple(nodes), tuple(r.directions), ctx.title,
         time.perf_counter() - t0, lyap,
-        {"config_toml": show_config(config), "limit_max": float(r.max_eccentricity),
+        {"config_toml": ctx.config_toml, "limit_max": float(r.max_eccentricity),
          "speed_ratio": float(problem.info["speed_ratio"])})
+
+
+def _check_settings(r: ResponseAnalysis) -> None:
+    """ConfigError unless ``[analysis.response]`` continues in the speed with a fixed H."""
+    if r.parameter.strip() != "speed":
+        raise ConfigError(f"{FIELD}.parameter", r.parameter, "with unbalances on two spools "
+                          "the branch is continued in 'speed' (Omega_LP) only")
+    if r.adaptive_harmonics:
+        raise ConfigError(f"{FIELD}.harmonics", "auto", "the dual-spool torus takes a fixed "
+                          "number of harmonics (start_harmonics)")

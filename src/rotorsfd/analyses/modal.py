@@ -1,92 +1,51 @@
-"""The linear analyses of a configuration: its linear system, the reference speed
-Omega_ref, the Campbell diagram and the critical speeds (``rotorsfd modal``).
+"""The Campbell diagram and the critical speeds of the linear rotor (``rotorsfd modal``).
 
-``linear_system(config)`` is the rotor with its supports and the elements' linear parts
-(the film excluded) plus the base terms of constant base rates; ``reference_speed(config)``
-is ``reference.speed`` or the first forward critical speed, the Omega~ = Omega / Omega_ref
-of every analysis.
+``run_modal(system, settings, context=...)``: ``settings`` the ``[analysis.modal]`` section
+(speeds, modes, whirl, the critical-speed search bound), ``context`` the reference speed
+and title (:class:`~rotorsfd.analyses.context.RunContext`; its reference speed None: the
+first forward critical speed, reused from the located ones). ``run_modal(config)`` is that
+call with ``build(config)``, ``config.analysis.modal`` and ``config_context``. The linear
+system (film excluded, centring spring and constant base rates included) and the reference
+speed Omega_ref are :mod:`~rotorsfd.analyses.linear_model`'s (``linear_system``,
+``reference_speed``, ``first_critical``, re-exported here).
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from rotorsfd.errors import ConfigError
+from rotorsfd.analyses.context import RunContext, build, config_context
+from rotorsfd.analyses.linear_model import (
+    first_critical,
+    forward_reference,
+    linear_system,
+    reference_speed,
+)
 from rotorsfd.io import atomic
-from rotorsfd.io.schema import Config
+from rotorsfd.io.schema import Config, ModalAnalysis
 from rotorsfd.linear import CampbellResult, CriticalSpeed, campbell, critical_speeds
-from rotorsfd.model.build import Model, build_model
-from rotorsfd.model.system import RotorSystem
-from rotorsfd.model.time_terms import linear_part
+
+if TYPE_CHECKING:
+    from rotorsfd.analyses.spool_modal import SpoolModalResult
+    from rotorsfd.model.system import RotorSystem
 
 __all__ = ["ModalRunResult", "first_critical", "linear_system", "modal_speeds",
            "reference_speed", "run_modal"]
 
 
-def linear_system(config: Config, model: Model | RotorSystem | None = None) -> RotorSystem:
-    """The linear rotor for modal analysis (``LinearDynamics``): the linear part of the
-    configuration's system (:func:`~rotorsfd.model.time_terms.linear_part`: the rotor with
-    its supports and the elements' linear parts, an SFD's centring spring, no film, on
-    the constant base rates), whose ``matrices(speed)`` are the ``(M, D, K)`` of the
-    model's record ``second_order(speed)``. ``model``: the configuration's system or
-    :class:`~rotorsfd.model.build.Model` when already built. ConfigError if a base rate
-    varies in time (no eigenvalues then)."""
-    if model is None:
-        model = build_model(config)
-    if isinstance(model, Model):
-        model = RotorSystem(model.rotor, base=model.base_motion)
-    if not model.base.rates_constant:
-        for name in ("rolling", "pitching", "yawing"):
-            if getattr(config.base, name).law not in ("off", "constant"):
-                raise ConfigError(f"base.{name}.law", getattr(config.base, name).law,
-                                  "modal analysis needs constant base rates ('off' or "
-                                  "'constant'); time-varying rates: use a stability chart")
-    return linear_part(model)
-
-
-def first_critical(system: Any, speed_max: float = 2e4) -> float:
-    """The first forward critical speed of a linear ``system`` below ``speed_max`` [rad/s]
-    (the reference speed of an analysis given a system, not a config)."""
-    found = critical_speeds(system, n=1, whirl="forward", speed_range=(0.0, speed_max))
-    if not found:
-        raise ConfigError("reference_speed", None, f"no forward critical speed below "
-                          f"{speed_max:g} rad/s: give the reference speed")
-    return float(found[0].speed_rad_s)
-
-
-def reference_speed(config: Config, system: Any | None = None,
-                    forward_critical: Sequence[CriticalSpeed] | None = None) -> float:
-    """Omega_ref [rad/s]: ``reference.speed``, or the first forward critical speed
-    (``forward_critical``: the forward critical speeds of ``system`` below
-    ``analysis.modal.critical_speed_max`` when already computed; the first is reused)."""
-    if isinstance(config.reference.speed, float):
-        return config.reference.speed
-    top = config.analysis.modal.critical_speed_max
-    if forward_critical is not None:
-        found = list(forward_critical)
-    else:
-        system = linear_system(config) if system is None else system
-        found = critical_speeds(system, n=1, whirl="forward", speed_range=(0.0, top))
-    if not found:
-        raise ConfigError("reference.speed", "first_critical",
-                          f"no forward critical speed below analysis.modal.critical_speed_max"
-                          f" = {top:g} rad/s; give reference.speed in rad/s")
-    return found[0].speed_rad_s
-
-
 @dataclass(frozen=True)
 class ModalRunResult:
-    """Campbell diagram and critical speeds of a configuration."""
+    """Campbell diagram and critical speeds of the linear rotor, with the reference speed
+    and the title of the run."""
 
-    config: Config
     campbell: CampbellResult
     critical_speeds: list[CriticalSpeed]
     reference_speed: float
+    title: str = ""
 
     FILES = ("critical_speeds.csv", "campbell.csv", "campbell.png")
 
@@ -118,7 +77,7 @@ class ModalRunResult:
 
         c = self.campbell
         crit = [s.speed_rad_s for s in self.critical_speeds]
-        title = self.config.title or "Campbell diagram"
+        title = self.title or "Campbell diagram"
         if ax is None:
             return campbell_figure(c.speeds, c.frequencies, c.whirl, critical=crit,
                                    title=title).axes[0]
@@ -155,42 +114,74 @@ class ModalRunResult:
         return "\n".join(lines)
 
 
-def modal_speeds(config: Config, ref: float) -> np.ndarray:
-    """The speeds of the Campbell diagram [rad/s]."""
-    m = config.analysis.modal
+def modal_speeds(settings: ModalAnalysis | Config, ref: float) -> np.ndarray:
+    """The speeds of the Campbell diagram [rad/s]: ``settings.speeds`` or its speed range
+    on Omega_ref = ``ref`` (``settings``: the ``[analysis.modal]`` section or a Config)."""
+    m = settings.analysis.modal if isinstance(settings, Config) else settings
     if m.speeds is not None:
         return np.asarray(m.speeds, dtype=float)
     start, stop = m.speed_range.bounds(ref)
     return np.linspace(start, stop, m.speed_range.n)
 
 
-def run_modal(config: Config, search_path: Path | None = None,
-              progress: bool = False) -> ModalRunResult:
-    """Campbell diagram over ``analysis.modal`` speeds and the first ``n_critical``
+def run_modal(config_or_system: Config | RotorSystem, settings: ModalAnalysis | None = None,
+              *, context: RunContext | None = None, search_path: Path | None = None,
+              reference_speed: float | None = None, progress: bool = False
+              ) -> ModalRunResult | SpoolModalResult:
+    """Campbell diagram over the ``[analysis.modal]`` speeds and the first ``n_critical``
     critical speeds (film excluded, centring spring included, constant base rates).
+
+    ``run_modal(system, settings, context=...)``: ``settings`` the section (default: its
+    defaults), ``context`` the reference speed and title (default: an empty
+    configuration's; its reference speed None: the first forward critical speed below
+    ``settings.critical_speed_max``, the one located when ``whirl = 'forward'``).
+    ``run_modal(config)`` is that call with ``build(config)``, ``config.analysis.modal``
+    and :func:`~rotorsfd.analyses.context.config_context` (``reference.speed`` of the
+    config, 'first_critical' left to this run): the two paths cannot disagree.
+    ``reference_speed`` [rad/s] overrides the context's. Shafts at several speeds: the
+    diagram against one spool (:func:`~rotorsfd.analyses.spool_modal.run_spool_modal`).
     ``progress``: a tqdm bar on stderr over the stages."""
     import sys
 
     from tqdm import tqdm
 
-    m = config.analysis.modal
-    if len({s.speed_ratio for s in config.rotor.shafts}) > 1:   # shafts at several speeds
+    if isinstance(config_or_system, Config):
+        config = config_or_system
+        system = build(config, search_path)
+        return run_modal(system, config.analysis.modal if settings is None else settings,
+                         context=config_context(config, system, "modal",
+                                                search_path=search_path,
+                                                resolve_reference=False),
+                         reference_speed=reference_speed, progress=progress)
+    system = config_or_system
+    m = settings if settings is not None else ModalAnalysis()
+    ctx = context if context is not None else RunContext(search_path=search_path)
+    given = ctx.reference_speed if reference_speed is None else float(reference_speed)
+    shafts = getattr(system.rotor, "shafts", ())
+    if len({s.speed_ratio for s in shafts}) > 1:      # shafts at several speeds
         from rotorsfd.analyses.spool_modal import run_spool_modal
 
-        system = linear_system(config, build_model(config, search_path))
-        ref = reference_speed(config, system)
-        return run_spool_modal(config, system, ref, modal_speeds(config, ref))
+        lin = linear_system(system)
+        ref = given if given is not None else forward_reference(critical_speeds(
+            lin, n=1, whirl="forward", speed_range=(0.0, m.critical_speed_max)),
+            m.critical_speed_max)
+        return run_spool_modal(lin, shafts, m, ref, modal_speeds(m, ref), ctx.title)
     with tqdm(total=3, desc="modal", disable=not progress, file=sys.stderr,
               leave=False) as bar:
-        system = linear_system(config, build_model(config, search_path))
+        lin = linear_system(system)
         bar.set_postfix_str("critical speeds")
-        crit = critical_speeds(system, n=m.n_critical, whirl=m.whirl,
+        crit = critical_speeds(lin, n=m.n_critical, whirl=m.whirl,
                                speed_range=(0.0, m.critical_speed_max))
         bar.update()
         bar.set_postfix_str("reference speed")   # the first forward one, not searched again
-        ref = reference_speed(config, system, crit if m.whirl == "forward" else None)
+        if given is not None:
+            ref = float(given)
+        else:
+            ref = forward_reference(crit if m.whirl == "forward" else critical_speeds(
+                lin, n=1, whirl="forward", speed_range=(0.0, m.critical_speed_max)),
+                m.critical_speed_max)
         bar.update()
         bar.set_postfix_str("Campbell diagram")
-        camp = campbell(system, modal_speeds(config, ref), m.n_modes)
+        camp = campbell(lin, modal_speeds(m, ref), m.n_modes)
         bar.update()
-    return ModalRunResult(config, camp, crit, ref)
+    return ModalRunResult(camp, crit, ref, ctx.title)

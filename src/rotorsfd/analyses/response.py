@@ -123,11 +123,12 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
     ``[analysis.response]`` section) and ``context`` (:class:`RunContext`: the reference
     speed, nodes, title): the same run as from a config with that section (its speed
     range in Omega~, its continuation options, H, nodes, directions; ``start, stop`` in
-    SI for a parameter other than the speed). From a RotorSystem without settings:
-    ``start, stop`` (SI: rad/s for the speed and base rates, kg m for the unbalance) are
-    required, ``speed`` too for parameters other than the speed, and the continuation
-    runs on :func:`~rotorsfd.harmonic.periodic.continue_periodic`'s own defaults, H = 3;
-    ``reference_speed`` defaults to the first forward critical speed. ``options`` go to
+    SI for a parameter other than the speed, ``speed`` [rad/s] there unless the section
+    gives one). Without settings: the context's ``[analysis.response]``, by default
+    ``ResponseAnalysis()`` (the defaults of an empty section: speeds 0.5 to 1.6 x
+    Omega_ref, H 'auto' from 3, its continuation options), so a system given alone runs
+    what an empty configuration runs; ``reference_speed`` defaults to the first forward
+    critical speed. ``options`` go to
     :func:`~rotorsfd.harmonic.periodic.continue_periodic`.
     ``stability(point)`` may return a :class:`PointStability` per point; otherwise
     ``stability_options`` (None: from ``[analysis.stability]`` of a Config, off for a
@@ -166,26 +167,22 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
         if reference_speed is not None:
             ctx = dataclasses.replace(ctx, reference_speed=float(reference_speed))
         ref = ctx.reference(system)
-        r = settings
-        path = (parameter or (r.parameter if r is not None else "speed")).strip()
-        opts: dict[str, Any] = {} if r is None else _options(r)
-        if r is None:
-            H = harmonics or ctx.harmonics
-        else:
-            H = harmonics or r.start_harmonics
-            if harmonics:       # a given H is fixed
-                opts["adaptive_harmonics"] = False
-            if system_parameter(path) == "speed":
-                lo, hi = r.speed_range.bounds(ref)
-                start = lo if start is None else start
-                stop = hi if stop is None else stop
-            elif speed is None:
-                speed = r.fixed_speed(ref)
-            directions = directions or tuple(r.directions)
+        r = settings if settings is not None else ctx.response   # default: an empty section
+        path = (parameter or r.parameter).strip()
+        opts: dict[str, Any] = _options(r)
+        H = harmonics or r.start_harmonics
+        if harmonics:       # a given H is fixed
+            opts["adaptive_harmonics"] = False
+        if system_parameter(path) == "speed":
+            lo, hi = r.speed_range.bounds(ref)
+            start = lo if start is None else start
+            stop = hi if stop is None else stop
+        elif speed is None and (r.speed is not None or r.speed_ratio is not None):
+            speed = r.fixed_speed(ref)
+        directions = directions or tuple(r.directions)
         if start is None or stop is None:
             raise ConfigError("start/stop", (start, stop), "give the parameter range in SI")
-        out_nodes = tuple(nodes or (r.nodes if r is not None else ())) \
-            or ctx.output_nodes(system)
+        out_nodes = tuple(nodes or r.nodes) or ctx.output_nodes(system)
         name = ctx.title if title is None else title
         floquet = _stability_options(None, stability_options)
     else:

@@ -17,6 +17,7 @@ first shaft's speed (Omega_LP, the speed of every other analysis).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -25,7 +26,7 @@ import numpy as np
 
 from rotorsfd.errors import ConfigError
 from rotorsfd.io import atomic
-from rotorsfd.io.schema import Config
+from rotorsfd.io.schema import ModalAnalysis
 from rotorsfd.linear import CampbellResult, campbell
 from rotorsfd.linear.critical import CriticalSpeed, line_critical_speeds
 
@@ -50,10 +51,10 @@ class SpoolModalResult:
     r_s), ``lines`` (shaft name -> slope r_k / r_s) and ``line_critical`` ((shaft,
     CriticalSpeed) against the spool's speed; ``critical_speeds`` the same without names)."""
 
-    config: Config
     campbell: CampbellResult
     critical_speeds: list[CriticalSpeed]
     reference_speed: float
+    title: str = ""
     spool: str = ""
     ratio: float = 1.0
     lines: dict[str, float] = field(default_factory=dict)
@@ -85,7 +86,7 @@ class SpoolModalResult:
                       marks=[(cs.speed_rad_s, self.lines[name] * cs.speed_rad_s)
                              for name, cs in self.line_critical],
                       xlabel=rf"speed of spool {self.spool} $\Omega_{{{self.spool}}}$ [rad/s]")
-        title = (self.config.title or "Campbell diagram") + f" (against spool {self.spool})"
+        title = (self.title or "Campbell diagram") + f" (against spool {self.spool})"
         if ax is None:
             return campbell_figure(c.speeds, c.frequencies, c.whirl, title=title,
                                    **spools).axes[0]
@@ -117,19 +118,20 @@ class SpoolModalResult:
         return "\n".join(lines)
 
 
-def run_spool_modal(config: Config, system: Any, ref: float, speeds: np.ndarray
-                    ) -> SpoolModalResult:
+def run_spool_modal(system: Any, shafts: Sequence[Any], settings: ModalAnalysis, ref: float,
+                    speeds: np.ndarray, title: str = "") -> SpoolModalResult:
     """Campbell diagram and critical speeds of each shaft's unbalance against the speed of
-    ``analysis.modal.spool`` (module docstring), for the linear ``system`` of ``config``
-    (:func:`~rotorsfd.analyses.modal.linear_system`), its reference speed ``ref`` and the
+    ``settings.spool`` (module docstring), for the linear ``system``
+    (:func:`~rotorsfd.analyses.modal.linear_system`) of a rotor with these ``shafts``
+    (``MultiShaftRotor.shafts``: name, speed ratio), its reference speed ``ref`` and the
     diagram's speeds of the first shaft (``modal_speeds``)."""
-    m = config.analysis.modal
-    names = [s.name for s in config.rotor.shafts]
+    m = settings
+    names = [s.name for s in shafts]
     spool = m.spool or names[0]
     if spool not in names:
         raise ConfigError("analysis.modal.spool", spool, "must name a shaft: " +
                           ", ".join(names))
-    ratios = {s.name: float(s.speed_ratio) for s in config.rotor.shafts}
+    ratios = {s.name: float(s.speed_ratio) for s in shafts}
     r_s = ratios[spool]
     view = _SpoolView(system, r_s)
     lines: dict[str, float] = {}
@@ -143,4 +145,4 @@ def run_spool_modal(config: Config, system: Any, ref: float, speeds: np.ndarray
                                 speed_range=(0.0, m.critical_speed_max * r_s))
     speeds = np.asarray(speeds, dtype=float) * (1.0 if m.speeds is not None else r_s)
     camp = campbell(view, speeds, m.n_modes)
-    return SpoolModalResult(config, camp, [c for _, c in crit], ref, spool, r_s, lines, crit)
+    return SpoolModalResult(camp, [c for _, c in crit], ref, title, spool, r_s, lines, crit)

@@ -9,6 +9,10 @@ so the centring spring does. This is the static offset the paper describes: pitc
 w_by gives a moment about z, an offset along y; yawing w_bz a moment about y, an offset
 along z. It grows with the speed (gyroscopic moment), so it is given over a list of
 speeds.
+
+``run_static(system, settings, context=...)`` with the ``[analysis.modal]`` section (the
+speeds) and a :class:`~rotorsfd.analyses.context.RunContext` (reference speed, title);
+``run_static(config)`` is that call with the config's section and context.
 """
 
 from __future__ import annotations
@@ -21,12 +25,14 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsfd.analyses.context import RunContext, build, config_context
+from rotorsfd.analyses.modal import modal_speeds
 from rotorsfd.errors import ConfigError
+from rotorsfd.io.schema import Config, ModalAnalysis
 from rotorsfd.linear.static import static_deflection
-from rotorsfd.model.system import RotorSystem
 
 if TYPE_CHECKING:
-    from rotorsfd.io.schema import Config
+    from rotorsfd.model.system import RotorSystem
 
 COLUMNS = ("speed_rad_s", "speed_ratio", "node", "x_m", "y_m", "z_m", "ty_rad", "tz_rad")
 
@@ -73,34 +79,45 @@ class StaticResult:
                 f"z = {self.q[i, 4 * j + 1]:.4g} m)")
 
 
-def run_static(config_or_system: Config | RotorSystem, *, speeds: Sequence[float] | None = None,
+def check_supports(system: RotorSystem) -> None:
+    """ConfigError unless the linear rotor has a support (or there is no nonlinear element
+    to carry it)."""
+    if not system.rotor.supports and len(system.elements):
+        raise ConfigError("rotor.supports", [], "the static offset is that of the linear "
+                          "rotor, which has no support here: its nonlinear elements "
+                          "(" + ", ".join(e.describe() for e in system.elements) + ") "
+                          "are excluded; a journal bearing carries its load only at "
+                          "speed: its equilibrium is the static part (0X, static_* "
+                          "columns) of `rotorsfd response`")
+
+
+def run_static(config_or_system: Config | RotorSystem, settings: ModalAnalysis | None = None,
+               *, context: RunContext | None = None, speeds: Sequence[float] | None = None,
                reference_speed: float | None = None, search_path: Path | None = None
                ) -> StaticResult:
-    """Static deflection over ``speeds`` [rad/s] (default from a Config: the
-    ``[analysis.modal]`` speeds; from a RotorSystem: speeds are required)."""
-    if isinstance(config_or_system, RotorSystem):
-        system = config_or_system
-        if speeds is None:
-            raise ValueError("give the speeds [rad/s]")
-        ref = reference_speed or 1.0
-        title = ""
-    else:
-        from rotorsfd.analyses.modal import modal_speeds
-        from rotorsfd.analyses.modal import reference_speed as config_reference_speed
-        from rotorsfd.model.build import build_system
+    """Static deflection over ``speeds`` [rad/s], default the ``[analysis.modal]`` speeds.
 
+    ``run_static(system, settings, context=...)``: ``settings`` the ``[analysis.modal]``
+    section (its speeds or speed range on Omega_ref; default: its defaults), ``context``
+    the reference speed (the ``speed_ratio`` column) and the title (default: an empty
+    configuration's, Omega_ref the first forward critical speed). ``run_static(config)``
+    is that call with ``build(config)``, ``config.analysis.modal`` and
+    :func:`~rotorsfd.analyses.context.config_context`: the two paths cannot disagree.
+    ``reference_speed`` [rad/s] overrides the context's."""
+    if isinstance(config_or_system, Config):
         config = config_or_system
-        system = build_system(config, search_path)
-        if not system.rotor.supports and len(system.elements):
-            raise ConfigError("rotor.supports", [], "the static offset is that of the linear "
-                              "rotor, which has no support here: its nonlinear elements "
-                              "(" + ", ".join(e.describe() for e in system.elements) + ") "
-                              "are excluded; a journal bearing carries its load only at "
-                              "speed: its equilibrium is the static part (0X, static_* "
-                              "columns) of `rotorsfd response`")
-        ref = reference_speed or config_reference_speed(config, system)
-        speeds = modal_speeds(config, ref) if speeds is None else speeds
-        title = config.title
-    s = np.asarray(speeds, dtype=float)
+        system = build(config, search_path)
+        check_supports(system)          # before Omega_ref: a free rotor has none
+        return run_static(system, config.analysis.modal if settings is None else settings,
+                          context=config_context(config, system, "modal",
+                                                 search_path=search_path,
+                                                 reference_speed=reference_speed),
+                          speeds=speeds)
+    system = config_or_system
+    m = settings if settings is not None else ModalAnalysis()
+    ctx = context if context is not None else RunContext(search_path=search_path)
+    check_supports(system)
+    ref = float(reference_speed) if reference_speed is not None else ctx.reference(system)
+    s = np.asarray(modal_speeds(m, ref) if speeds is None else speeds, dtype=float)
     q = np.array([base_static_offset(system, float(w)) for w in s])
-    return StaticResult(s, q, np.asarray(system.rotor.node_x, float), float(ref), title)
+    return StaticResult(s, q, np.asarray(system.rotor.node_x, float), float(ref), ctx.title)

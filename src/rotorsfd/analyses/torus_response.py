@@ -45,8 +45,21 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsfd.analyses.context import RunContext, build, config_context
 from rotorsfd.analyses.response_words import column_slug
+from rotorsfd.analyses.torus_parameters import (
+    ALLOWED,
+    AMPLITUDES,
+    LAWS,
+    SPEED,
+    TorusParameter,
+    harmonic_base,
+    parameter_problem,
+    system_at,
+    torus_parameter,
+)
 from rotorsfd.errors import ConfigError, ConvergenceError
+from rotorsfd.io.schema import Config, parameter_values
 from rotorsfd.model.node_names import (
     NodeNames,
     node_words,
@@ -58,9 +71,13 @@ from rotorsfd.model.system import RotorSystem
 if TYPE_CHECKING:
     import xarray as xr
 
-    from rotorsfd.io.schema import Config
+    from rotorsfd.io.schema import ResponseAnalysis
     from rotorsfd.quasiperiodic import TorusBranch, TorusLattice
     from rotorsfd.quasiperiodic.torus_stability import TorusLyapunov
+
+__all__ = ["ALLOWED", "AMPLITUDES", "LAWS", "LYAPUNOV_POINTS", "TorusParameter", "TorusPoint",
+           "TorusResponseResult", "harmonic_base", "lyapunov_indices", "parameter_problem",
+           "run_torus_response", "system_at", "torus_parameter"]
 
 FloatArray = NDArray[np.float64]
 FIELD = "analysis.response"
@@ -69,7 +86,6 @@ FIELD = "analysis.response"
 LYAPUNOV_POINTS = 5
 #: torus samples per direction for the largest radius defl_<n>
 RADIUS_GRID = 64
-LAWS = ("rolling", "pitching", "yawing", "x", "y", "z")
 
 
 class TorusPoint(NamedTuple):
@@ -93,90 +109,9 @@ def continue_torus_section(problem: Any, lo: float, hi: float, lattice: Any, r: 
                           limit_max=r.max_eccentricity, callback=hook)
 
 
-def harmonic_base(config: Config) -> bool:
-    """True when a base law of the config is harmonic (the response is then a torus)."""
-    return any(getattr(config.base, name).law == "harmonic" for name in LAWS)
-
-
 def component_slug(k1: int, k2: int) -> str:
     """(k1, k2) in a column name: 1_m2 for (1, -2)."""
     return "_".join(f"m{-k}" if k < 0 else str(k) for k in (k1, k2))
-
-
-#: amplitude forms of a base law that a torus branch may be continued in
-AMPLITUDES = ("amplitude", "angle_amplitude", "acceleration_amplitude")
-ALLOWED = ("speed, base.<law>.frequency (w_b), base.<law>.amplitude (or angle_amplitude, "
-           "acceleration_amplitude) of a harmonic law, or unbalance[0].magnitude")
-
-
-class TorusParameter(NamedTuple):
-    """A torus branch's parameter: the config ``path``, the quasiperiodic API's ``name``
-    (``speed``, ``unbalance``, ``base.frequency``, ``base.<law>.<amplitude form>``), its SI
-    ``unit`` and, for the base frequency, which rotation amplitude is held (``hold``)."""
-
-    path: str
-    name: str
-    unit: str
-    hold: str = "angle"
-
-
-def torus_parameter(config: Config, path: str) -> TorusParameter:
-    """The torus parameter of ``analysis.response.parameter`` = ``path`` (module
-    docstring); ConfigError naming that field for anything else."""
-    from rotorsfd.io.schema import resolve_kind
-    from rotorsfd.io.units import KINDS
-
-    path = path.strip()
-    if path == "speed":
-        return TorusParameter(path, "speed", "rad/s")
-    field = f"{FIELD}.parameter"
-    if path in ("unbalance[0].magnitude", "unbalance.0.magnitude"):
-        if not config.unbalance:
-            raise ConfigError(field, path, "needs an [[unbalance]] to continue in")
-        return TorusParameter(path, "unbalance", KINDS[resolve_kind(config, path)].unit)
-    parts = path.split(".")
-    if len(parts) != 3 or parts[0] != "base" or parts[1] not in LAWS \
-            or parts[2] not in ("frequency", *AMPLITUDES):
-        raise ConfigError(field, path, "under a harmonic base law the torus branch is "
-                          f"continued in {ALLOWED}")
-    law = getattr(config.base, parts[1])
-    if law.law != "harmonic":
-        raise ConfigError(field, path, f"base.{parts[1]} has law = {law.law!r}: continue "
-                          "in a field of a harmonic law")
-    try:
-        unit = KINDS[resolve_kind(config, path)].unit
-    except KeyError:
-        raise ConfigError(field, path, f"base.{parts[1]} has no field {parts[2]!r}; "
-                          f"allowed: {ALLOWED}") from None
-    if parts[2] != "frequency":
-        return TorusParameter(path, path, unit)
-    forms = {"angle" if getattr(config.base, n).angle_amplitude is not None else "rate"
-             for n in LAWS[:3] if getattr(config.base, n).law == "harmonic"}
-    if len(forms) > 1:
-        raise ConfigError(field, path, "the base frequency moves every harmonic law: give "
-                          "the rotation laws' amplitudes in one form (all angle_amplitude "
-                          "or all amplitude)")
-    return TorusParameter(path, "base.frequency", unit, forms.pop() if forms else "angle")
-
-
-def parameter_problem(system: RotorSystem, par: TorusParameter, speed: float | None):
-    """The TorusProblem of ``system`` continued in ``par`` (at the fixed ``speed``)."""
-    from rotorsfd.quasiperiodic import base_parameter_problem, torus_problem
-
-    if par.name in ("speed", "unbalance"):
-        return torus_problem(system, par.name, speed=speed)
-    return base_parameter_problem(system, par.name, float(speed), hold=par.hold)
-
-
-def system_at(system: RotorSystem, par: TorusParameter, lam: float) -> RotorSystem:
-    """``system`` with the parameter at ``lam`` (for the time integration of a point)."""
-    if par.name == "speed":
-        return system
-    if par.name == "unbalance":
-        return system.with_parameter("unbalance.magnitude", lam)
-    from rotorsfd.quasiperiodic.torus_base_parameters import with_base_value
-
-    return with_base_value(system, par.name, lam, par.hold)
 
 
 @dataclasses.dataclass
@@ -402,46 +337,81 @@ def lyapunov_indices(n_points: int, count: int = LYAPUNOV_POINTS) -> list[int]:
     return sorted({int(np.rint(v)) for v in np.linspace(0, n_points - 1, min(count, n_points))})
 
 
-def run_torus_response(config: Config, *, search_path: Path | None = None,
+def run_torus_response(config_or_system: Config | RotorSystem,
+                       settings: ResponseAnalysis | None = None, *,
+                       context: RunContext | None = None,
+                       parameter: TorusParameter | None = None,
+                       start: float | None = None, stop: float | None = None,
+                       search_path: Path | None = None,
                        lattice: TorusLattice | None = None, progress: bool = True,
                        stability: bool | None = None, from_orbit: Any = None,
                        callback: Callable[[Any], bool | None] | None = None,
                        lyapunov_points: int = LYAPUNOV_POINTS) -> TorusResponseResult:
-    """The torus branch of a config with a harmonic base law over its speed range, or at
-    its fixed speed over ``parameter_range`` (module docstring); ``stability`` None:
-    ``[analysis.stability].enabled``. ``callback(point)`` returning True stops the branch
-    (``point.index``, ``point.lam``: the parameter in SI)."""
-    from rotorsfd.analyses.modal import reference_speed
-    from rotorsfd.io.config import show_config
-    from rotorsfd.io.schema import parameter_values
-    from rotorsfd.model.build import build_system
-    from rotorsfd.quasiperiodic import TorusLattice
+    """The torus branch of a system under a harmonic base law over its speed range, or at
+    its fixed speed over a parameter range (module docstring).
+
+    ``run_torus_response(system, settings, context=..., parameter=...)``: ``settings`` the
+    ``[analysis.response]`` section (default: the context's, an empty section's), the
+    speed range in Omega~ on the context's reference speed, ``parameter`` a
+    :class:`~rotorsfd.analyses.torus_parameters.TorusParameter` (default the speed) with
+    ``start, stop`` its range in SI. ``run_torus_response(config)`` is that call with
+    ``build(config)``, ``config.analysis.response``, :func:`config_context`, the parameter
+    of ``analysis.response.parameter`` (:func:`torus_parameter`) and its
+    ``parameter_range`` in SI: the two paths cannot disagree. ``stability`` None: the
+    context's ``[analysis.stability].enabled``. ``callback(point)`` returning True stops
+    the branch (``point.index``, ``point.lam``: the parameter in SI)."""
+    from rotorsfd.quasiperiodic import TorusLattice  # deferred: numba
     from rotorsfd.quasiperiodic.torus_stability import torus_lyapunov
 
-    r = config.analysis.response
     if from_orbit is not None:
         raise ConfigError("--from-orbit", str(from_orbit), "a torus branch (harmonic base "
                           "law) starts from the linear response, not from an orbit")
-    par = torus_parameter(config, r.parameter)
-    if not config.elements:
+    if isinstance(config_or_system, Config):
+        config = config_or_system
+        r = config.analysis.response if settings is None else settings
+        par = torus_parameter(config, r.parameter)
+        if not config.elements:
+            raise ConfigError("elements", None, "the nonlinear response needs at least one "
+                              "nonlinear element (an [elements.<name>] table)")
+        system = build(config, search_path)
+        if par.name != "speed" and (start is None or stop is None):
+            lo, hi = parameter_values(config, par.path, list(r.parameter_range))
+            start, stop = (lo if start is None else start), (hi if stop is None else stop)
+        return run_torus_response(
+            system, r, context=config_context(config, system, "response",
+                                              search_path=search_path),
+            parameter=par, start=start, stop=stop, lattice=lattice, progress=progress,
+            stability=stability, callback=callback, lyapunov_points=lyapunov_points)
+    system = config_or_system
+    ctx = context if context is not None else RunContext(search_path=search_path)
+    r = settings if settings is not None else ctx.response
+    par = parameter if parameter is not None else SPEED
+    if not len(system.elements):
         raise ConfigError("elements", None, "the nonlinear response needs at least one "
-                          "nonlinear element (an [elements.<name>] table)")
-    system = build_system(config, search_path)
-    ref = float(reference_speed(config, system))
+                          "nonlinear element")
+    ref = float(ctx.reference(system))
     speed = None
     if par.name == "speed":
         lo, hi = r.speed_range.bounds(ref)
+        lo, hi = (lo if start is None else start), (hi if stop is None else stop)
         if not (lo > 0 and hi > 0) or lo == hi:
             raise ConfigError(f"{FIELD}.speed_range", r.speed_range.model_dump(
                 exclude_none=True), "the torus branch needs two different speeds > 0")
     else:
+        if r.speed is None and r.speed_ratio is None:
+            raise ConfigError(f"{FIELD}.speed", None, f"continuing in {par.path} needs a "
+                              "fixed speed: speed or speed_ratio")
         speed = float(r.fixed_speed(ref))
-        lo, hi = parameter_values(config, par.path, list(r.parameter_range))
+        if start is None or stop is None:
+            raise ConfigError(f"{FIELD}.parameter_range", (start, stop),
+                              f"give the range of {par.path} in SI")
+        lo, hi = float(start), float(stop)
         low = 0.0 if par.name.endswith("amplitude") or par.name == "unbalance" else None
         if lo == hi or (low is None and not (lo > 0 and hi > 0)) or \
                 (low is not None and not (lo >= 0 and hi >= 0)):
             need = "> 0" if low is None else ">= 0"
-            raise ConfigError(f"{FIELD}.parameter_range", list(r.parameter_range),
+            raise ConfigError(f"{FIELD}.parameter_range", list(r.parameter_range or
+                                                               (lo, hi)),
                               f"the torus branch in {par.path} needs two different values "
                               f"{need}")
     nodes = tuple(r.nodes) or system.output_nodes
@@ -468,15 +438,15 @@ def run_torus_response(config: Config, *, search_path: Path | None = None,
     try:
         branch = continue_torus_section(problem, lo, hi, lattice, r, hook)
     except ConvergenceError as exc:
-        start = (f"the speed range ({where(lo)})" if speed is None else
-                 f"{FIELD}.parameter_range ({where(lo)}, Omega~ = {speed / ref:.4g})")
-        raise ConvergenceError(f"no torus at the start of {start}: {exc}") from None
+        where_start = (f"the speed range ({where(lo)})" if speed is None else
+                       f"{FIELD}.parameter_range ({where(lo)}, Omega~ = {speed / ref:.4g})")
+        raise ConvergenceError(f"no torus at the start of {where_start}: {exc}") from None
     finally:
         if progress:
             import sys
 
             print("\r\033[K", end="", file=sys.stderr, flush=True)
-    enabled = config.analysis.stability.enabled if stability is None else stability
+    enabled = ctx.stability.enabled if stability is None else stability
     lyap = {}
     if enabled:
         for i in lyapunov_indices(branch.n_points, lyapunov_points):
@@ -484,8 +454,8 @@ def run_torus_response(config: Config, *, search_path: Path | None = None,
                                      branch.X[i], float(branch.omega[i]),
                                      float(branch.wb[i]))
     return TorusResponseResult(branch, system, ref, tuple(nodes),
-                               tuple(r.directions), config.title,
+                               tuple(r.directions), ctx.title,
                                time.perf_counter() - t0, lyap,
-                               {"config_toml": show_config(config),
+                               {"config_toml": ctx.config_toml,
                                 "limit_max": float(r.max_eccentricity)},
                                parameter=par.path, parameter_units=par.unit, speed=speed)
