@@ -23,8 +23,9 @@ more, lightly damped, modes):
    original is *confirmed* when it exists and moved by at most ``rtol`` (relative);
    otherwise *unconfirmed* (vanished, or moved beyond rtol: the difference is reported).
 
-A ``branch-point`` (a multiplier through +1 without a turn of the branch) is matched by
-a branch point or a saddle-node of the check: if the converged branch turns there, the
+A branch point (``pitchfork``, ``transcritical`` or untyped ``branch-point``: a multiplier
+through +1 without a turn of the branch) is matched by a branch point or a saddle-node of
+the check: if the converged branch turns there, the
 original was a fold displaced by the truncation.
 """
 
@@ -42,6 +43,7 @@ from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.harmonic.truncation import check_harmonics
 from rotorsfd.stability.bifurcations import Bifurcation
+from rotorsfd.stability.branch_result import BRANCH_POINT_KINDS
 from rotorsfd.stability.branch_stability import (
     FOLD_MULTIPLIER_TOL,
     BranchStability,
@@ -95,8 +97,8 @@ FOLD_RTOL = 1e-6
 
 
 def _matches(kind: str, other: str) -> bool:
-    if kind == "branch-point":
-        return other in ("branch-point", "saddle-node")
+    if kind in BRANCH_POINT_KINDS:
+        return other in (*BRANCH_POINT_KINDS, "saddle-node")
     return other == kind
 
 

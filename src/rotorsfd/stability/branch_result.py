@@ -159,12 +159,20 @@ def located_critical(b: Bifurcation) -> complex:
     return complex(mu[int(np.argmin(target))])
 
 
+#: What a +1 crossing without a turn is reported as: typed on the HB equations
+#: (:mod:`~rotorsfd.stability.branch_typing`), or untyped.
+BRANCH_POINT_KINDS = ("pitchfork", "transcritical", "branch-point")
+
+
 def reported_kind(b: Bifurcation) -> str:
-    """The type a located bifurcation is reported as: ``branch-point`` for a real
-    multiplier through +1 where the branch does not turn (located by the multiplier, not
-    merged with a turning point: a symmetry-breaking or transcritical branch point, or a
-    truncation artefact), else its crossing type."""
-    if b.kind == "saddle-node" and b.via == "multiplier" and not b.info.get("merged"):
-        return "branch-point"
+    """The type a located bifurcation is reported as: for a real multiplier through +1
+    where the branch does not turn (located by the multiplier, not merged with a turning
+    point) or a sign change of the bordered HB determinant there, ``pitchfork``
+    (symmetry-breaking) or ``transcritical`` as typed on the HB equations, else
+    ``branch-point`` (untyped: no branch point of the HB equations next to it, a
+    truncation artefact); otherwise its crossing type."""
+    if (b.kind == "saddle-node" and b.via in ("multiplier", "determinant")
+            and not b.info.get("merged")):
+        return str(b.info.get("branch_type") or "branch-point")
     return str(b.kind)
 

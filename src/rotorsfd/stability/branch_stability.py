@@ -12,7 +12,7 @@ to a relative parameter tolerance ``rtol`` (default 1e-6):
 * saddle-node: a real multiplier through +1 and/or a sign change of dlam/ds. When the
   branch turns, the located point is the turning point ``dlam/ds = 0`` (exact for the
   HB equations; the Newmark multiplier there is ``1 + O(1e-4)``, its discretisation
-  error); without a turn (a symmetry-breaking branch point) the multiplier through +1.
+  error); without a turn it is a branch point (below), not a saddle-node.
   A multiplier crossing +1 within ``fold_merge_rtol`` (1e-3) of a turning point is that
   fold: for a truncated HB orbit they differ by the truncation error (paper rotor under
   pitching, U = 144.02 g mm: 2.6e-4 at H = 3, < 1e-5 at H = 8); the gap is reported.
@@ -20,6 +20,12 @@ to a relative parameter tolerance ``rtol`` (default 1e-6):
   point (and no other turn lies between): the isola of the C/R = 0.728 % case has, at
   H = 16 and N = 400, its only +1 crossing at Omega~ 1.0904 and |mu| = 1.037 at the turn
   1.0939; at H = 24, N = 1600 the crossing is in the turning interval.
+* branch point: a real multiplier through +1 where the branch does not turn, or a sign
+  change of the bordered HB determinant ``det [J; t^T]`` there
+  (:mod:`~rotorsfd.stability.branch_points`): located on the HB equations, typed
+  ``pitchfork`` (symmetry-breaking) or ``transcritical`` by its second tangent
+  (:mod:`~rotorsfd.stability.branch_typing`); a +1 crossing without that sign change stays
+  an untyped ``branch-point`` with a message (no branch point of the HB equations).
 * period-doubling: a real multiplier through -1 (``det(Phi + I)`` changes sign).
 * secondary-hopf: a complex pair leaves the unit circle (``|mu|^2 - 1`` of the pair).
 
@@ -30,7 +36,7 @@ bifurcation is reported as from :mod:`~rotorsfd.stability.branch_result`.
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -57,6 +63,7 @@ from rotorsfd.stability.branch_options import (
     StabilityOptions,
 )
 from rotorsfd.stability.branch_result import BranchStability, located_critical, reported_kind
+from rotorsfd.stability.branch_typing import branch_point_scan, type_branch_points
 from rotorsfd.stability.floquet import STABILITY_TOL, FloquetResult
 from rotorsfd.stability.floquet_evaluator import (
     HALVE_FRACTION,
@@ -80,7 +87,7 @@ def _pad(rows: list[NDArray]) -> tuple[NDArray[np.complex128], NDArray[np.int64]
 
 
 def _merge_folds(brackets: list[Bracket], samples: list[BranchSample], rtol: float,
-                 dead_band: float = STABILITY_TOL
+                 dead_band: float = STABILITY_TOL, branch_points: Sequence[int] = ()
                  ) -> tuple[list[Bracket], dict[int, Bracket]]:
     """One bracket per fold. A multiplier-only saddle-node bracket is the same fold as the
     nearest tangent (turning-point) bracket when it is next to it (within one interval:
@@ -90,7 +97,10 @@ def _merge_folds(brackets: list[Bracket], samples: list[BranchSample], rtol: flo
     turn without a crossing and a crossing without a turn are one fold displaced by the
     numerical error (HB truncation, Floquet discretisation; isola of the C/R 0.728 % case
     at H = 16, N = 400: 3.2e-3 apart, one interval apart at H = 24, N = 1600). Returns the
-    kept brackets and, by id of a kept tangent bracket, the merged multiplier one."""
+    kept brackets and, by id of a kept tangent bracket, the merged multiplier one. A
+    crossing next to (within one interval of) a sign change of the bordered HB
+    determinant without a turn (``branch_points``: their intervals) is a branch point,
+    never merged."""
     index = {id(p): i for i, p in enumerate(samples)}
     tang = [b for b in brackets if b.kind == "saddle-node" and b.via == "tangent"]
     turns = sorted(index[id(t.a)] for t in tang)
@@ -101,8 +111,11 @@ def _merge_folds(brackets: list[Bracket], samples: list[BranchSample], rtol: flo
 
     out, merged = [], {}
     for b in brackets:
+        i = index[id(b.a)]
+        if any(abs(i - j) <= 1 for j in branch_points):
+            out.append(b)
+            continue
         if b.kind == "saddle-node" and b.via == "multiplier" and tang:
-            i = index[id(b.a)]
             t = min(tang, key=lambda x: abs(index[id(x.a)] - i))
             it = index[id(t.a)]
             lam_b = 0.5 * (b.a.lam + b.b.lam)
@@ -225,8 +238,9 @@ def branch_stability(branch: Branch, problem: PeriodicProblem,
     samples = [BranchSample(float(s[i]), float(branch.lam[i]), r.multipliers,
                             float(dlam[i]) if np.isfinite(dlam[i]) else None)
                for i, r in enumerate(results)]
+    scan = branch_point_scan(branch, problem) if o.locate else None
     brackets, merged = _merge_folds(detect(samples, o.tol), samples, o.fold_merge_rtol,
-                                    o.tol)
+                                    o.tol, scan.intervals if scan is not None else ())
     index = {id(p): i for i, p in enumerate(samples)}
 
     located: dict[float, tuple[Any, FloquetResult]] = {}   # this bracket's re-solves
@@ -295,6 +309,9 @@ def branch_stability(branch: Branch, problem: PeriodicProblem,
         j, rep = _reported(br.kind, samples, ia, ib, o.tol, b.s)
         b.info.update(point=j, reported=rep, bracket=(ia, ib))
         bifs.append(b)
+    if scan is not None and can_locate:
+        bifs = type_branch_points(bifs, scan, branch, problem, samples,
+                                  lambda lam, X: ev(lam, X).multipliers, o, messages)
     if progress is not None:
         progress(n, n)
     mu, counts = _pad([r.multipliers for r in results])

@@ -1,0 +1,136 @@
+"""Branch points among a branch's located bifurcations: found by the bordered HB
+determinant, located on the HB equations and typed.
+
+:func:`branch_point_scan` evaluates ``tau_BP = det [J; t^T]``
+(:mod:`~rotorsfd.stability.branch_points`) at every computed point and keeps the
+intervals where it changes sign while dlam/ds does not (a turn is a fold, where tau_BP
+keeps its sign). :func:`type_branch_points` then, for each such interval,
+
+- locates the branch point on the HB equations (Brent on tau_BP in the arc length) and
+  types it (``pitchfork``: symmetry-breaking, the second branch tangent to lam = const;
+  ``transcritical``: it crosses);
+- attaches it to the Floquet crossing of +1 without a turn in (or next to) that interval:
+  the bifurcation's ``lam`` and ``s`` become the HB branch point's (as a fold's are the
+  turning point's), the Floquet one is kept in ``info['floquet_lam']``; without such a
+  crossing (the HB Jacobian singular, the multipliers not resolving it) a new branch
+  point is added with the multipliers there;
+- a +1 crossing without a turn and without a sign change of tau_BP next to it is no
+  branch point of the HB equations: it stays an untyped ``branch-point`` and a message
+  says so.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rotorsfd.continuation.branch import Branch
+from rotorsfd.errors import ConvergenceError
+from rotorsfd.harmonic.hb_system import HBSystem
+from rotorsfd.harmonic.problem import PeriodicProblem
+from rotorsfd.stability.bifurcations import Bifurcation, BranchSample
+from rotorsfd.stability.branch_options import StabilityOptions
+from rotorsfd.stability.branch_points import (
+    bordered_tests,
+    branch_point_intervals,
+    branch_system,
+    locate_branch_point,
+)
+from rotorsfd.stability.branch_result import reported_kind
+
+#: The short type names of :func:`~rotorsfd.stability.branch_result.reported_kind`.
+SHORT = {"symmetry-breaking pitchfork": "pitchfork", "transcritical": "transcritical"}
+
+
+@dataclass
+class BranchPointScan:
+    """The bordered test at every point (``tests``), the intervals i (points i, i+1)
+    where it changes sign without a turn, and the HB system it was evaluated in."""
+
+    tests: NDArray[np.float64]
+    intervals: list[int]
+    system: HBSystem = field(repr=False)
+
+
+def branch_point_scan(branch: Branch, problem: PeriodicProblem) -> BranchPointScan | None:
+    """:class:`BranchPointScan` of a condensed branch of one H with tangents; None where
+    the test does not apply (a full-HB or adaptive-H branch, fewer than 2 points) or
+    cannot be evaluated."""
+    if branch.n_points < 2 or branch.tangents.size == 0:
+        return None
+    try:
+        system = branch_system(problem, branch)
+        tests = bordered_tests(system, problem, branch)
+    except (ValueError, ArithmeticError, ConvergenceError, np.linalg.LinAlgError):
+        return None
+    if not np.all(np.isfinite(tests)):
+        return None
+    return BranchPointScan(tests, branch_point_intervals(branch, tests), system)
+
+
+def _critical_plus_one(mu: NDArray[np.complex128]) -> complex:
+    mu = np.asarray(mu, dtype=complex)
+    return complex(mu[int(np.argmin(np.abs(mu - 1.0)))]) if mu.size else complex(np.nan)
+
+
+def type_branch_points(bifs: list[Bifurcation], scan: BranchPointScan, branch: Branch,
+                       problem: PeriodicProblem, samples: list[BranchSample],
+                       multipliers: Callable[[float, NDArray], NDArray],
+                       options: StabilityOptions, messages: list[str]
+                       ) -> list[Bifurcation]:
+    """The bifurcations with the branch points located, typed and attached (module
+    docstring), in arc-length order; ``multipliers(lam, X)`` gives the Floquet multipliers
+    of a point (for a branch point that no multiplier crossing announced)."""
+    plus_one = [b for b in bifs if reported_kind(b) == "branch-point"]
+    out = list(bifs)
+    used: set[int] = set()
+    for i in scan.intervals:
+        try:
+            bp = locate_branch_point(problem, branch, i, scan.system)
+        except (ConvergenceError, ArithmeticError, ValueError, np.linalg.LinAlgError) as exc:
+            messages.append(f"branch point between lam = {branch.lam[i]:.9g} and "
+                            f"{branch.lam[i + 1]:.9g} (the bordered HB determinant changes "
+                            f"sign) not located: {' '.join(str(exc).split())}")
+            continue
+        near = [b for b in plus_one if id(b) not in used
+                and abs(int(b.info.get("bracket", (-9, -9))[0]) - i) <= 1]
+        info = {"branch_point": bp, "branch_type": SHORT[bp.kind],
+                "second_slope": bp.second_slope}
+        if near:
+            b = min(near, key=lambda x: abs(x.lam - bp.lam))
+            used.add(id(b))
+            gap = abs(b.lam - bp.lam) / max(abs(bp.lam), np.finfo(float).tiny)
+            info["floquet_lam"] = b.lam
+            b.lam, b.s = bp.lam, bp.s
+            b.info.update(info)
+            if gap > 10 * options.rtol:
+                messages.append(f"{SHORT[bp.kind]} at lam = {bp.lam:.9g} (HB branch point): "
+                                f"the multiplier crosses +1 at lam = {info['floquet_lam']:.9g}"
+                                f", {gap:.1e} (relative) away: the HB truncation and Floquet "
+                                "discretisation error; raise H and the intervals")
+            continue
+        try:
+            mu = np.asarray(multipliers(bp.lam, bp.X), dtype=complex)
+        except (ConvergenceError, ArithmeticError, ValueError):
+            mu = np.asarray(samples[i + 1].multipliers, dtype=complex)
+        j = i if abs(samples[i].s - bp.s) <= abs(samples[i + 1].s - bp.s) else i + 1
+        crit = _critical_plus_one(mu)
+        info.update(point=j, reported=_critical_plus_one(samples[j].multipliers),
+                    bracket=(i, i + 1))
+        out.append(Bifurcation("saddle-node", bp.s, bp.lam, mu, crit, "determinant", 0,
+                               (float(branch.lam[i]), float(branch.lam[i + 1])), info))
+        messages.append(f"{SHORT[bp.kind]} at lam = {bp.lam:.9g}: the HB Jacobian is "
+                        "singular there (the bordered determinant changes sign) without a "
+                        "Floquet multiplier crossing +1 between the computed points "
+                        f"(nearest +1: {crit.real:.5f}{crit.imag:+.5f}i)")
+    for b in plus_one:
+        if id(b) not in used:
+            b.info["branch_type"] = ""
+            messages.append(f"branch-point at lam = {b.lam:.9g}: a multiplier crosses +1 "
+                            "without a turn but the bordered HB determinant keeps its sign "
+                            "there: no branch point of the HB equations (the truncated "
+                            "orbit's multiplier: raise H and the intervals)")
+    return sorted(out, key=lambda x: x.s)
