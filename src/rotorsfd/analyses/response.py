@@ -329,7 +329,7 @@ def _with_branch_stability(result: ResponseResult, problem: Any,
     result = dataclasses.replace(result, branch=branch)
     out = result.with_stability(st.stable, st.max_multiplier, st.multipliers,
                                 st.rows(result.reference_speed, problem.frequency))
-    out.info.update(stability=st, n_multipliers=st.n_multipliers,
+    out.info.update(stability=st, stability_options=options, n_multipliers=st.n_multipliers,
                     stability_elapsed=st.elapsed, floquet_intervals=st.n_intervals)
     if st.multiplier_error is not None:
         out.info["multiplier_error"] = st.multiplier_error

@@ -31,12 +31,19 @@ from rotorsfd.interrupt import Interrupted, StopRequest
                              "(rotorsfd simulate output), Newton-corrected at its speed, "
                              "and continue it both ways over the speed range, stopping "
                              "when it closes on itself (an isola)"),
+                    arg("--switch-at", type=options.integer(1), default=None, metavar="N",
+                        help="continue the period-2 branch from the branch's N-th "
+                             "period-doubling point (counted from 1 along the branch, as "
+                             "in the summary and bifurcations.csv) with 4H harmonics of "
+                             "Omega/2: branch_period2.nc, branch_period2.csv, drawn in "
+                             "the response figures; needs [analysis.stability] enabled"),
                     arg("--stability-basis", choices=("reduced", "full"), default=None,
                         help="Floquet basis ([analysis.stability].basis): full = the "
                              "unreduced monodromy of the whole model, to check "
                              "max_multiplier against max_multiplier_outside (slow on "
                              "large models)")],
-         check=lambda args, config: options.check_exists("--from-orbit", args.from_orbit))
+         check=lambda args, config: (options.check_exists("--from-orbit", args.from_orbit),
+                                     check_switch_option(args, config)))
 def response(args: argparse.Namespace, config: Any) -> int:
     """Continue the branch and write it; exit 1 (after writing) if it stopped early."""
     from rotorsfd import api  # deferred: numpy, scipy, numba (keeps --help fast)
@@ -60,11 +67,57 @@ def response(args: argparse.Namespace, config: Any) -> int:
     if result.ended == "limit":   # a result up to the limit: exit 0, and say where and why
         print_written(result, paths, args.quiet, args.verbose)
         print_warning(result.message, args.verbose)
-        return 0
+        return period_two(args, result)
     if not result.success:
         print_error(result.message, args.verbose)
         return 1
     print_written(result, paths, args.quiet, args.verbose)
+    return period_two(args, result)
+
+
+def check_switch_option(args: argparse.Namespace, config: Any) -> None:
+    """``--switch-at`` before the work: the branch needs its Floquet stability (to find
+    the period doublings) and a period-1 branch (not a torus)."""
+    from rotorsfd.errors import ConfigError
+
+    if args.switch_at is None:
+        return
+    if not config.analysis.stability.enabled:
+        raise ConfigError("--switch-at", args.switch_at, "needs the branch's Floquet "
+                          "stability to find its period doublings: set "
+                          "analysis.stability.enabled = true (--set)")
+    from rotorsfd.analyses.dual_spool_response import dual_spool
+    from rotorsfd.analyses.torus_response import harmonic_base
+
+    if harmonic_base(config) or dual_spool(config):
+        raise ConfigError("--switch-at", args.switch_at, "switches from a periodic branch; "
+                          "a harmonic base law or two spools give a quasi-periodic one")
+
+
+def period_two(args: argparse.Namespace, result: Any) -> int:
+    """``--switch-at N``: the period-2 branch written next to the main one and drawn in
+    its response figures; a bad N (no such period doubling) is one line and exit 2."""
+    if args.switch_at is None:
+        return 0
+    from rotorsfd.analyses.response_switch import check_switch, run_switch
+    from rotorsfd.errors import ConfigError
+    from rotorsfd.io import atomic
+
+    try:
+        check_switch(result, args.switch_at)
+    except ConfigError as exc:
+        print_error(str(exc), args.verbose)
+        return 2
+    p2 = run_switch(result, args.switch_at)
+    out = Path(args.output)
+    paths = p2.write(out)
+    figures = result.plot()
+    p2.draw(figures)
+    for name, fig in figures.items():
+        paths[name] = atomic.save_figure(fig, out / name, dpi=120)
+    if not args.quiet:
+        print_summary(p2.summary(), args.verbose)
+        print("wrote " + ", ".join(str(p) for p in paths.values()))
     return 0
 
 

@@ -254,10 +254,12 @@ def switch_period_doubling(problem: PeriodicProblem, lam: float, X: ComplexArray
     the period-1 orbit's monodromy matrix) by the truncation of the odd harmonics; with
     ``locate`` (default) it is located first: the period-1 solution is re-solved in the
     doubled system at fixed lam, stepping outwards from ``lam`` (steps of 0.2 % of the
-    range, at most 40 each way, within the range) to the nearest sign change of
-    ``sign(det B) sigma_min(B)``, B the odd block of the HB Jacobian; then Brent. The
-    null vector ``phi`` of B there is the direction of the period-2 branch (the HB form of
-    the monodromy's eigenvector for -1: ``dq(t + T) = -dq(t)``, odd harmonics only).
+    range or 0.05 % of lam, the larger, at most 40 each way, within the range: a narrow
+    range still reaches 2 % of lam, the paper case's 1.0268 at H = 8 to 1.0356 at 4H)
+    to the nearest sign change of ``sign(det B) sigma_min(B)``, B the odd block of the
+    HB Jacobian; then Brent. The null vector ``phi`` of B there is the direction of the
+    period-2 branch (the HB form of the monodromy's eigenvector for -1:
+    ``dq(t + T) = -dq(t)``, odd harmonics only).
 
     ``delta``: odd amplitude ``phi . z`` of the first point (scaled units: fractions of
     the problem's length scale); from it the branch is continued away from the period-1
@@ -280,7 +282,8 @@ def switch_period_doubling(problem: PeriodicProblem, lam: float, X: ComplexArray
     lam_z = float(z0[-1])
     lam_pd_z = None
     if locate:
-        lam_pd_z = _locate_pd(p1, lam_z, lo / scale, hi / scale, 0.002)
+        lam_pd_z = _locate_pd(p1, lam_z, lo / scale, hi / scale,
+                              max(0.002, 5e-4 * abs(lam_z)))
     note = ""
     if lam_pd_z is None:
         lam_pd_z = lam_z
@@ -347,7 +350,7 @@ def switch_period_doubling(problem: PeriodicProblem, lam: float, X: ComplexArray
                f"{lam_start:.8g}: a closed bubble: it rejoins the period-1 branch at "
                f"lam={lam_rejoin:.8g} (another period doubling; the odd harmonics vanish "
                f"there, beyond it the branch is its own mirror, shifted by T): between "
-               f"lam={lam_pd:.8g} and {lam_rejoin:.8g}")
+               f"lam={lam_pd:.8g} and lam={lam_rejoin:.8g}")
         return PeriodDoublingSwitch(legs, p2, lam_pd, float(sv[-1]), coupling, delta,
                                     float(lam), True, lam_rejoin, msg)
     back = (last.n_points > 1 and (last.lam[-1] - lam_start) * (away - lam_start) < 0.0)
