@@ -41,6 +41,8 @@ REGISTRY: dict[str, tuple[str, str]] = {
                 "bench_scaling:run"),
     "branch-stability": ("stability of every branch point + bifurcation location",
                          "bench_branch_stability:run"),
+    "branch-points": ("branch_stability with and without the branch-point scan",
+                      "bench_branch_points:run"),
     "nf": ("AFT samples N_f along a pitching branch: adaptive vs the old grow-only rule",
            "bench_nf:run"),
     "linear": ("linear part of the HB problem on a moving base: assembled once vs per call",

@@ -48,8 +48,11 @@ if TYPE_CHECKING:
 
 OPTION = "--switch-at"
 FILES = ("branch_period2.nc", "branch_period2.csv")
-#: Odd amplitude of the period-2 branch's first point (scaled units: clearances).
-DELTA = 0.02
+#: Odd amplitude of the period-2 branch's first point (scaled units: clearances), and the
+#: longest step along it: the first point near the period doubling (lam - lam_pd ~ c a^2),
+#: steps short of jumping back onto the period-1 branch (the paper case's subharmonic
+#: part reaches ~0.05 C).
+DELTA, STEP_MAX = 0.005, 0.02
 OMEGA_TEX = r"$\tilde\Omega$"
 
 
@@ -263,7 +266,8 @@ def run_switch(result: ResponseResult, number: int, *, harmonics: int | None = N
     sys_param = system_parameter(result.parameter)
     problem = result.system.periodic_problem(sys_param, None if sys_param == "speed"
                                              else result.speed)
-    kw = {"limit_max": result.info.get("limit_max", 1.0), **continue_kw}
+    kw = {"limit_max": result.info.get("limit_max", 1.0), "ds_max": STEP_MAX,
+          **continue_kw}
     sw = switch_period_doubling(problem, lam, X, (float(b.lam.min()), float(b.lam.max())),
                                 H=harmonics, delta=delta, **kw)
     out = Period2Result(result, number, sw)

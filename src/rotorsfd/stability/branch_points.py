@@ -93,9 +93,10 @@ class LocatedBranchPoint:
         return abs(float(self.t2[-1])) / max(abs(float(self.t1[-1])), np.finfo(float).tiny)
 
 
-def bordered_test(system: Any, z: FloatArray, t: FloatArray) -> float:
+def bordered_test(system: Any, z: FloatArray, t: FloatArray, sign_only: bool = False
+                  ) -> float:
     """``sign(det A) sigma_min(A)``, ``A = [J(z); (W t)^T]`` (module docstring): changes
-    sign at a branch point, not at a fold."""
+    sign at a branch point, not at a fold; ``sign_only``: ``sign(det A)`` (no SVD)."""
     _, J = system.evaluate(z)
     if sp.issparse(J):
         if J.shape[0] > MAX_DENSE:
@@ -103,6 +104,8 @@ def bordered_test(system: Any, z: FloatArray, t: FloatArray) -> float:
         J = J.toarray()
     A = np.vstack([J, metric(system) * t])
     sign, _ = np.linalg.slogdet(A)
+    if sign_only:
+        return float(sign)
     return float(sign * np.linalg.svd(A, compute_uv=False)[-1])
 
 
@@ -127,9 +130,9 @@ def point_z(system: HBSystem, problem: PeriodicProblem, lam: float,
 
 
 def bordered_tests(system: HBSystem, problem: PeriodicProblem, branch: Branch) -> FloatArray:
-    """``bordered_test`` at every computed point of the branch."""
+    """The sign of ``bordered_test`` at every computed point of the branch."""
     return np.array([bordered_test(system, point_z(system, problem, float(branch.lam[i]),
-                                                   branch.X[i]), branch.tangents[i])
+                                                   branch.X[i]), branch.tangents[i], True)
                      for i in range(branch.n_points)])
 
 
