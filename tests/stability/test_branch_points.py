@@ -25,13 +25,16 @@ from scipy.special import mathieu_a, mathieu_b
 from rotorsfd.harmonic.examples import duffing
 from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.harmonic.problem import PeriodicProblem
+from rotorsfd.stability.bifurcations import BranchSample
 from rotorsfd.stability.branch_points import bordered_tests, branch_system, switch_branch_point
 from rotorsfd.stability.branch_stability import (
+    FloquetEvaluator,
+    StabilityOptions,
     branch_stability,
     located_critical,
     reported_kind,
 )
-from rotorsfd.stability.branch_typing import branch_point_scan
+from rotorsfd.stability.branch_typing import branch_point_scan, type_branch_points
 
 KY, CY, KAPPA, G3, H = 4.0, 0.2, 1.0, 1.0, 8
 
@@ -162,3 +165,27 @@ def test_a_fold_is_no_branch_point():
     assert branch_point_scan(branch, p).intervals == []
     st = branch_stability(branch, p)
     assert [reported_kind(b) for b in st.bifurcations] == ["saddle-node", "saddle-node"]
+
+
+def test_a_singular_hb_jacobian_without_a_multiplier_crossing_is_reported(first_tongue):
+    """The determinant alone (no Floquet crossing announced, e.g. under-resolved
+    multipliers): the branch point is still located, typed and reported, with the
+    multipliers at its point."""
+    p, branch, st = first_tongue
+    scan = branch_point_scan(branch, p)
+    samples = [BranchSample(float(branch.s[i]), float(branch.lam[i]),
+                            st.multipliers[i, : st.n_multipliers[i]]) for i in
+               range(branch.n_points)]
+    ev = FloquetEvaluator(p, StabilityOptions())
+    messages: list[str] = []
+    found = type_branch_points([], scan, branch, p, samples,
+                               lambda lam, X: ev(lam, X).multipliers, StabilityOptions(),
+                               messages)
+    assert [reported_kind(b) for b in found] == ["pitchfork", "pitchfork"]
+    assert [b.lam for b in found] == pytest.approx([b.lam for b in st.bifurcations],
+                                                   rel=1e-12)
+    assert all(b.via == "determinant" for b in found)
+    # near +1 there: 2e-5 from the Newmark step's crossing, where an undamped tongue edge
+    # moves the pair (mu, 1/mu) as the square root of the distance
+    assert all(abs(located_critical(b) - 1.0) < 2e-2 for b in found)
+    assert len(messages) == 2 and "without a Floquet multiplier crossing" in messages[0]
