@@ -189,3 +189,23 @@ def test_a_singular_hb_jacobian_without_a_multiplier_crossing_is_reported(first_
     # moves the pair (mu, 1/mu) as the square root of the distance
     assert all(abs(located_critical(b) - 1.0) < 2e-2 for b in found)
     assert len(messages) == 2 and "without a Floquet multiplier crossing" in messages[0]
+
+
+def test_branch_points_on_adaptive_harmonics_branches():
+    """H per point (``adaptive_harmonics``): intervals where H changes are tested in one
+    system; the pitchforks are still found and typed (at H = 2: 5e-5 from Mathieu's edges,
+    the truncation), and a Duffing branch whose H goes 3 -> 5 -> 3 -> 1 past its folds has
+    no branch point."""
+    p = pumped()
+    branch = continue_periodic(p, 0.8, 1.6, H, ds=0.02, ds_max=0.05,
+                               adaptive_harmonics=True, H_min=2, H_max=12)
+    assert len(set(branch.info["harmonics"])) > 1
+    st = branch_stability(branch, p)
+    assert [reported_kind(b) for b in st.bifurcations] == ["pitchfork", "pitchfork"]
+    exact = [mathieu_edge(1.0, lambda q: mathieu_a(1, q), 1.0, 1.03),
+             mathieu_edge(1.0, lambda q: mathieu_b(1, q), 1.03, 1.06)]
+    assert [b.lam for b in st.bifurcations] == pytest.approx(exact, rel=1e-4)
+    d = duffing(c=0.05, k=1.0, k3=1.0, F=0.3)
+    branch = continue_periodic(d, 0.5, 4.0, 3, adaptive_harmonics=True, H_max=15)
+    assert len(set(branch.info["harmonics"])) >= 3 and branch.folds().size == 2
+    assert branch_point_scan(branch, d).intervals == []

@@ -51,6 +51,7 @@ from rotorsfd.errors import ConvergenceError
 from rotorsfd.harmonic.fourier import to_real
 from rotorsfd.harmonic.hb_system import HBSystem, hb_system
 from rotorsfd.harmonic.problem import PeriodicProblem
+from rotorsfd.harmonic.truncation import convert_tangent
 
 FloatArray = NDArray[np.float64]
 
@@ -109,31 +110,52 @@ def bordered_test(system: Any, z: FloatArray, t: FloatArray, sign_only: bool = F
     return float(sign * np.linalg.svd(A, compute_uv=False)[-1])
 
 
-def branch_system(problem: PeriodicProblem, branch: Branch, index: int = 0,
-                  limit_max: float = 1.0) -> HBSystem:
-    """One HB system of the branch's H, N_f and scaling (its condensation shift fixed at
-    point ``index``), in which every point of the branch is evaluated. Needs a condensed
-    branch of one H (ValueError otherwise)."""
+def harmonics_of(branch: Branch) -> NDArray[np.int64]:
+    """H of every computed point (adaptive H: ``info['harmonics']``, else ``branch.H``)."""
     Hs = branch.info.get("harmonics")
-    if not branch.condensed or (Hs is not None and len(Hs) and np.any(Hs != branch.H)):
-        raise ValueError("branch points are tested on condensed branches of one H")
-    system, _ = hb_system(problem, branch.H, float(branch.lam[index]), branch.X[index],
+    if Hs is not None and len(Hs) == branch.n_points:
+        return np.asarray(Hs, dtype=np.int64)
+    return np.full(branch.n_points, branch.H, dtype=np.int64)
+
+
+def branch_system(problem: PeriodicProblem, branch: Branch, index: int = 0,
+                  H: int | None = None, limit_max: float = 1.0) -> HBSystem:
+    """An HB system of the branch's N_f and scaling with H harmonics (default the H of
+    point ``index``; its condensation shift fixed at that point), in which points of the
+    branch are evaluated. Needs a condensed branch (ValueError otherwise)."""
+    if not branch.condensed:
+        raise ValueError("branch points are tested on condensed branches")
+    H = int(harmonics_of(branch)[index]) if H is None else int(H)
+    system, _ = hb_system(problem, H, float(branch.lam[index]), branch.X[index][: H + 1],
                           int(branch.n_samples), True, branch.lam_scale, limit_max)
     return system
 
 
 def point_z(system: HBSystem, problem: PeriodicProblem, lam: float,
             X: NDArray[np.complex128]) -> FloatArray:
-    """Scaled unknowns of a branch point (its nonlinear DOFs' real coefficients, lam)."""
-    X = np.asarray(X)[: system.H + 1]
-    return system.to_z(to_real(X[:, problem.nl_dofs]), lam)
+    """Scaled unknowns of a branch point (its nonlinear DOFs' real coefficients up to the
+    system's H, zero-padded, and lam)."""
+    X = np.asarray(X)
+    Xs = np.zeros((system.H + 1, problem.m), dtype=complex)
+    h = min(system.H, X.shape[0] - 1)
+    Xs[: h + 1] = X[: h + 1][:, problem.nl_dofs]
+    return system.to_z(to_real(Xs), lam)
+
+
+def point_tangent(system: HBSystem, problem: PeriodicProblem, t: FloatArray) -> FloatArray:
+    """A stored tangent in the layout of the system's H (harmonics padded or cut)."""
+    return convert_tangent(np.asarray(t, dtype=float), system.H, problem.m)
+
+
+def point_test(system: HBSystem, problem: PeriodicProblem, branch: Branch, i: int) -> float:
+    """The sign of ``bordered_test`` at computed point i, in ``system``."""
+    return bordered_test(system, point_z(system, problem, float(branch.lam[i]), branch.X[i]),
+                         point_tangent(system, problem, branch.tangents[i]), True)
 
 
 def bordered_tests(system: HBSystem, problem: PeriodicProblem, branch: Branch) -> FloatArray:
-    """The sign of ``bordered_test`` at every computed point of the branch."""
-    return np.array([bordered_test(system, point_z(system, problem, float(branch.lam[i]),
-                                                   branch.X[i]), branch.tangents[i], True)
-                     for i in range(branch.n_points)])
+    """The sign of ``bordered_test`` at every computed point of the branch, in one system."""
+    return np.array([point_test(system, problem, branch, i) for i in range(branch.n_points)])
 
 
 def branch_point_intervals(branch: Branch, tests: FloatArray) -> list[int]:
@@ -178,21 +200,23 @@ def locate_branch_point(problem: PeriodicProblem, branch: Branch, i: int,
                         system: HBSystem | None = None, xtol: float = 1e-12
                         ) -> LocatedBranchPoint:
     """The branch point between computed points i and i+1 (a sign change of the bordered
-    test there), located by Brent in s, with its second tangent and type."""
-    system = system or branch_system(problem, branch, i)
+    test there), located by Brent in s, with its second tangent and type; ``system``: of
+    the H of point i+1 (the one ``Branch.point_at`` re-solves in between)."""
+    system = system or branch_system(problem, branch, i + 1)
     cache: dict[float, Any] = {}
 
     def f(s: float) -> float:
         p = branch.point_at(s)
         cache[s] = p
-        return bordered_test(system, system.to_z(p.xs, p.lam), p.tangent)
+        return bordered_test(system, point_z(system, problem, p.lam, p.X),
+                             point_tangent(system, problem, p.tangent))
 
     a, b = float(branch.s[i]), float(branch.s[i + 1])
     tol = xtol * max(1.0, abs(b))
     s_star = float(brentq(f, a, b, xtol=tol, rtol=4 * np.finfo(float).eps))
     p = cache.get(s_star) or branch.point_at(s_star)
-    z = system.to_z(p.xs, p.lam)
-    t1 = np.asarray(p.tangent, dtype=float)
+    z = point_z(system, problem, p.lam, p.X)
+    t1 = point_tangent(system, problem, p.tangent)
     t2, coef = second_tangent(system, z, t1)
     ratio = abs(t2[-1]) / max(abs(t1[-1]), np.finfo(float).tiny)
     kind = "symmetry-breaking pitchfork" if ratio <= PITCHFORK_TOL else "transcritical"

@@ -34,10 +34,10 @@ from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.stability.bifurcations import Bifurcation, BranchSample
 from rotorsfd.stability.branch_options import StabilityOptions
 from rotorsfd.stability.branch_points import (
-    bordered_tests,
-    branch_point_intervals,
     branch_system,
+    harmonics_of,
     locate_branch_point,
+    point_test,
 )
 from rotorsfd.stability.branch_result import reported_kind
 
@@ -47,28 +47,46 @@ SHORT = {"symmetry-breaking pitchfork": "pitchfork", "transcritical": "transcrit
 
 @dataclass
 class BranchPointScan:
-    """The bordered test at every point (``tests``), the intervals i (points i, i+1)
-    where it changes sign without a turn, and the HB system it was evaluated in."""
+    """The sign of the bordered test at every point (``tests``, in the system of the
+    point's H), the intervals i (points i, i+1) where it changes sign without a turn, and
+    the HB systems it was evaluated in, by H."""
 
     tests: NDArray[np.float64]
     intervals: list[int]
-    system: HBSystem = field(repr=False)
+    systems: dict[int, HBSystem] = field(repr=False)
 
 
 def branch_point_scan(branch: Branch, problem: PeriodicProblem) -> BranchPointScan | None:
-    """:class:`BranchPointScan` of a condensed branch of one H with tangents; None where
-    the test does not apply (a full-HB or adaptive-H branch, fewer than 2 points) or
-    cannot be evaluated."""
-    if branch.n_points < 2 or branch.tangents.size == 0:
+    """:class:`BranchPointScan` of a condensed branch with tangents; None where the test
+    does not apply (a full-HB branch, fewer than 2 points) or cannot be evaluated. An
+    interval whose ends have different H (adaptive harmonics) is tested with both ends
+    in the system of the second's H (the first padded or cut: near a solution, the sign
+    is that of the solution's)."""
+    if branch.n_points < 2 or branch.tangents.size == 0 or not branch.condensed:
         return None
+    Hs = harmonics_of(branch)
+    systems: dict[int, HBSystem] = {}
+    cache: dict[tuple[int, int], float] = {}
+
+    def test(i: int, H: int) -> float:
+        if (i, H) not in cache:
+            if H not in systems:
+                systems[H] = branch_system(problem, branch, i, H)
+            cache[(i, H)] = point_test(systems[H], problem, branch, i)
+        return cache[(i, H)]
+
     try:
-        system = branch_system(problem, branch)
-        tests = bordered_tests(system, problem, branch)
+        pairs = [(test(i, int(Hs[i + 1])), test(i + 1, int(Hs[i + 1])))
+                 for i in range(branch.n_points - 1)]
+        tests = np.array([test(i, int(Hs[i])) for i in range(branch.n_points)])
     except (ValueError, ArithmeticError, ConvergenceError, np.linalg.LinAlgError):
         return None
     if not np.all(np.isfinite(tests)):
         return None
-    return BranchPointScan(tests, branch_point_intervals(branch, tests), system)
+    turn = np.sign(branch.tangents[:, -1])
+    intervals = [i for i, (a, b) in enumerate(pairs)
+                 if a * b < 0 and turn[i] * turn[i + 1] > 0]
+    return BranchPointScan(tests, intervals, systems)
 
 
 def _critical_plus_one(mu: NDArray[np.complex128]) -> complex:
@@ -89,7 +107,8 @@ def type_branch_points(bifs: list[Bifurcation], scan: BranchPointScan, branch: B
     used: set[int] = set()
     for i in scan.intervals:
         try:
-            bp = locate_branch_point(problem, branch, i, scan.system)
+            bp = locate_branch_point(problem, branch, i,
+                                     scan.systems[int(harmonics_of(branch)[i + 1])])
         except (ConvergenceError, ArithmeticError, ValueError, np.linalg.LinAlgError) as exc:
             messages.append(f"branch point between lam = {branch.lam[i]:.9g} and "
                             f"{branch.lam[i + 1]:.9g} (the bordered HB determinant changes "
