@@ -8,6 +8,9 @@ affine pencil,
 
     (lambda^2 V^T M V + lambda V^T (D0 + Omega D1) V + V^T K V) y = 0,   q = V y,
 
+(a low-rank modal damping ``U diag(c) U^T`` beside D0 projected as ``W^T diag(c) W``,
+``W = U^T V``),
+
 is solved densely at every speed. Its error is measured, not assumed: at the midpoint of
 every two neighbouring snapshots the exact modes are computed and compared (largest
 |lambda_r - lambda| / |lambda| over the modes asked for); where it exceeds ``tol`` the
@@ -68,7 +71,12 @@ class ReducedModes:
         def project(a) -> np.ndarray:
             return v.T @ (a @ v)
 
-        return cls(v, project(m0), (project(d0), project(d1)), (project(k0), project(k1)),
+        d0r = project(d0)
+        if pencil.lowrank is not None:        # + W^T diag(c) W, W = U^T V (modal damping)
+            U, c = pencil.lowrank
+            W = U.T @ v
+            d0r = d0r + W.T @ (c[:, None] * W)
+        return cls(v, project(m0), (d0r, project(d1)), (project(k0), project(k1)),
                    sorted(exact), [], float("nan"), pencil.scale)
 
     def eigen(self, speed: float, n_modes: int) -> ModalResult:

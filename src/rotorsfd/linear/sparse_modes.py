@@ -17,11 +17,24 @@ ratio below ``sqrt(1 - 1 / COVER^2)`` (0.55) can be missed. Roots are then selec
 the dense path (:func:`rotorsfd.linear.modal.select_modes`), the rigid-body threshold taken
 on ``sqrt(max K_ii / M_ii)`` (a lower bound of max|lambda|, which the dense path uses).
 
-M, D, K come from ``system.sparse_matrices(speed)`` (CSR, no dense n x n array) when the
-system has it, else from ``system.matrices(speed)`` (dense): their nonzero pattern is
-extracted once per system at three speeds and stored sparse as the affine polynomial
-``D(speed) = D0 + speed D1`` (same for M and K), checked at the third speed; a system that
-is not affine in the speed is re-extracted at every speed.
+M, D, K come from ``system.split_matrices(speed)`` or ``system.sparse_matrices(speed)``
+(CSR, no dense n x n array) when the system has them, else from ``system.matrices(speed)``
+(dense): their nonzero pattern is extracted once per system at three speeds and stored
+sparse as the affine polynomial ``D(speed) = D0 + speed D1`` (same for M and K), checked
+at the third speed; a system that is not affine in the speed is re-extracted at every
+speed.
+
+Modal damping of a few modes (``rotor.damping.modes``) stays beside the band:
+``D = D_b + U diag(c) U^T`` (:class:`rotorsfd.model.lowrank.BandedLowRank`, U n x r), so
+``Z(sigma) = Z_b(sigma) + sigma U diag(c) U^T`` with the banded
+``Z_b = K + sigma D_b + sigma^2 M``, and by the Woodbury identity
+
+    Z^-1 b = Z_b^-1 b - Y Cap^-1 U^T Z_b^-1 b,   Y = Z_b^-1 U,
+    Cap = diag(1 / (sigma c)) + U^T Y   (r x r),
+
+one banded LU and r more solves per speed (at sigma = 0, Z = K: no correction); the
+products ``D x`` apply the term as ``U (c * U^T x)``. Exact: the same operator as with
+the dense D, up to rounding.
 """
 
 from __future__ import annotations
@@ -34,9 +47,11 @@ import numpy as np
 import scipy.linalg.lapack as lapack
 import scipy.sparse as sp
 import scipy.sparse.linalg as sla
+from scipy.linalg import lu_factor, lu_solve
 
 from rotorsfd.errors import ConvergenceError
 from rotorsfd.linear.modes import RIGID_BODY_TOL, LinearDynamics, ModalResult, select_modes
+from rotorsfd.model.lowrank import BandedLowRank
 
 COVER = 1.2            # retained modes: Im(lambda) < |farthest root found - sigma| / COVER
 BANDED_MAX = 200       # widest half-bandwidth factorised by LAPACK's banded LU
@@ -90,9 +105,21 @@ def _affine(s0: sp.csr_matrix, s1: sp.csr_matrix, s2: sp.csr_matrix, h: float
 
 def _matrices(system: LinearDynamics, speed: float) -> tuple[Any, Any, Any]:
     """(M, D, K) at ``speed``: the system's sparse ones when it has them
-    (``sparse_matrices``, e.g. :class:`~rotorsfd.model.system.RotorSystem`), else dense."""
-    sparse = getattr(system, "sparse_matrices", None)
-    return sparse(speed) if sparse is not None else system.matrices(speed)
+    (``split_matrices``: D may be a :class:`~rotorsfd.model.lowrank.BandedLowRank`, or
+    ``sparse_matrices``, e.g. :class:`~rotorsfd.model.system.RotorSystem`), else dense."""
+    for name in ("split_matrices", "sparse_matrices"):
+        sparse = getattr(system, name, None)
+        if sparse is not None:
+            return sparse(speed)
+    return system.matrices(speed)
+
+
+def _split(a: Any) -> tuple[Any, tuple[np.ndarray, np.ndarray] | None]:
+    """(the sparse or dense part, the low-rank factors (U, c) with c != 0 or None)."""
+    if isinstance(a, BandedLowRank):
+        keep = a.c != 0.0
+        return a.band, ((a.U[:, keep], a.c[keep]) if np.any(keep) else None)
+    return a, None
 
 
 def _half_band(a: sp.spmatrix) -> int:
@@ -110,6 +137,8 @@ class SparsePencil:
     scale: float                      # sqrt(max K_ii / M_ii): lower bound of max|lambda|
     state_scale: float                # w_s of the state [q, q' / w_s] (a half-sine's RQ)
     last_start: dict[tuple[int, int], np.ndarray] = field(default_factory=dict)
+    #: (U, c): a constant damping term ``U diag(c) U^T`` beside D (not in ``terms``)
+    lowrank: tuple[np.ndarray, np.ndarray] | None = None
 
     @classmethod
     def from_system(cls, system: LinearDynamics) -> SparsePencil:
@@ -117,10 +146,11 @@ class SparsePencil:
         h = SPEED_PROBE
         samples = [_matrices(system, s) for s in (0.0, h, 2.0 * h)]
         done: dict[int, sp.csr_matrix] = {}      # one conversion per distinct array
+        lowrank = _split(samples[0][1])[1]
 
         def convert(a: Any) -> sp.csr_matrix:
             if id(a) not in done:
-                done[id(a)] = _sparse(a)
+                done[id(a)] = _sparse(_split(a)[0])
             return done[id(a)]
 
         sparse_samples = [[convert(a) for a in sample] for sample in samples]
@@ -142,13 +172,13 @@ class SparsePencil:
         bend[0::4] = np.sin(np.pi * (np.arange(bend[0::4].size) + 0.5) / bend[0::4].size)
         w_s = float(np.sqrt(abs(bend @ (mats[2] @ bend)) / (bend @ (mats[0] @ bend))))
         return cls(tuple(terms) if terms is not None else None, mats[0].shape[0],
-                   half, scale, w_s if w_s > 1.0 else 1.0)
+                   half, scale, w_s if w_s > 1.0 else 1.0, lowrank=lowrank)
 
     def matrices(self, system: LinearDynamics, speed: float
                  ) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
         """(M, D, K) of ``system`` (the one extracted) at ``speed``, sparse."""
         if self.terms is None:
-            return tuple(_sparse(x) for x in _matrices(system, speed))  # type: ignore
+            return tuple(_sparse(_split(x)[0]) for x in _matrices(system, speed))  # type: ignore
         return tuple(x0 + speed * x1 if x1.nnz else x0 for x0, x1 in self.terms)  # type: ignore
 
 
@@ -193,10 +223,25 @@ def _operator(pencil: SparsePencil, mats, sigma: float) -> sla.LinearOperator:
     z = stiffness + sigma * damping + sigma * sigma * mass if sigma else stiffness
     factor = _Factor(sp.csr_matrix(z))
     d_shift = damping + sigma * mass if sigma else damping
+    solve, damp = factor.solve, d_shift.dot
+    if pencil.lowrank is not None:             # D = D_b + U diag(c) U^T (module docstring)
+        U, c = pencil.lowrank
+
+        def damp(x: np.ndarray) -> np.ndarray:
+            return d_shift @ x + U @ (c * (U.T @ x))
+
+        if sigma:
+            Y = factor.solve(U)
+            cap = np.diag(1.0 / (sigma * c)) + U.T @ Y
+            cap_lu = lu_factor(cap)
+
+            def solve(b: np.ndarray) -> np.ndarray:
+                x = factor.solve(b)
+                return x - Y @ lu_solve(cap_lu, U.T @ x)
 
     def apply(x: np.ndarray) -> np.ndarray:
         x1, x2 = x[:n], x[n:]
-        y1 = -factor.solve(mass @ (w_s * x2) + d_shift @ x1)
+        y1 = -solve(mass @ (w_s * x2) + damp(x1))
         return np.concatenate([y1, (x1 + sigma * y1) / w_s])
 
     return sla.LinearOperator((2 * n, 2 * n), matvec=apply, dtype=float)

@@ -25,7 +25,8 @@ def static_deflection(system: LinearDynamics, force: np.ndarray, speed: float = 
     """q = K(speed)^-1 f, with K the stiffness returned by ``system.matrices(speed)``
     (including any base-motion stiffness). Raises ConvergenceError if K is singular."""
     f = np.asarray(force, dtype=float)
-    sparse = getattr(system, "sparse_matrices", None)
+    sparse = getattr(system, "split_matrices", None) or getattr(system, "sparse_matrices",
+                                                                  None)
     if sparse is not None and system.n_dof > DENSE_MAX_DOF:
         return _sparse_deflection(sparse(speed)[2], f)
     _, _, k = system.matrices(speed)

@@ -23,6 +23,7 @@ from rotorsfd.model.base_terms import (
     base_coefficients,
     sum_terms,
 )
+from rotorsfd.model.lowrank import with_lowrank
 from rotorsfd.model.sparse import BandedLinearPart, as_csr, bandwidths
 
 # ---------------------------------------------------------------------------------------
@@ -245,6 +246,11 @@ class PolynomialTerms:
         """K(p) as CSR."""
         return self._as_sparse(self._value(self.K, p))
 
+    def split_damping(self, p: float) -> Any:
+        """D(p) without a dense n x n array: CSR, or with a low-rank term a
+        :class:`~rotorsfd.model.lowrank.BandedLowRank` (the CSR rest beside it)."""
+        return with_lowrank(self._as_sparse(self._value(self.D, p)), self.lowrank)
+
 
 class DenseLinearPart:
     """``matrices(lam) -> (M, D(lam), K(lam))`` dense from :class:`PolynomialTerms` (the
@@ -293,8 +299,10 @@ class MovingBaseRotor:
     def terms(self) -> PolynomialTerms:
         if self._terms is None:
             r = self.rotor
+            lowrank = getattr(r, "damping_lowrank", None)  # modal damping of a few modes
+            C = r.C_csr if lowrank is None else r.C_band_csr
             self._terms = PolynomialTerms.of_base(self.basis, self.state, 0.0, "speed").plus(
-                D=(r.C_csr, r.G_csr), K=(r.K_csr,))
+                D=(C, r.G_csr), K=(r.K_csr,), lowrank=lowrank)
         return self._terms
 
     def matrices(self, speed: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -306,6 +314,12 @@ class MovingBaseRotor:
         """(M, D, K) at ``speed`` as CSR (no dense n x n array)."""
         t = self.terms
         return self.rotor.M_csr, t.sparse_damping(speed), t.sparse_stiffness(speed)
+
+    def split_matrices(self, speed: float) -> tuple[sp.csr_matrix, Any, sp.csr_matrix]:
+        """(M, D, K) at ``speed`` without a dense n x n array: CSR, D a
+        :class:`~rotorsfd.model.lowrank.BandedLowRank` with modal damping of a few modes."""
+        t = self.terms
+        return self.rotor.M_csr, t.split_damping(speed), t.sparse_stiffness(speed)
 
     def force(self, speed: float) -> np.ndarray:
         return self.terms.load(speed).copy()

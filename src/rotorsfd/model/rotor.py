@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 from functools import cached_property
+from typing import Any
 
 import numpy as np
 
@@ -16,6 +17,7 @@ from rotorsfd.errors import ConfigError
 from rotorsfd.model import dofs, sparse
 from rotorsfd.model.damping import ModalDamping, RayleighDamping
 from rotorsfd.model.disk import Disk, PointMass
+from rotorsfd.model.lowrank import with_lowrank
 from rotorsfd.model.shaft import ShaftElement
 from rotorsfd.model.supports import LinearSupport
 
@@ -145,6 +147,12 @@ class Rotor(LinearRotor):
         u, c = self.damping_lowrank
         full = (u * c) @ u.T
         return sparse.as_csr(self.C_band_csr + 0.5 * (full + full.T))
+
+    def split_matrices(self, speed: float) -> tuple[Any, Any, Any]:
+        """(M, C + speed G, K) as CSR without a dense n x n array; the damping a
+        :class:`~rotorsfd.model.lowrank.BandedLowRank` with modal damping of a few modes."""
+        return (self.M_csr, with_lowrank(sparse.as_csr(self.C_band_csr + speed * self.G_csr),
+                                         self.damping_lowrank), self.K_csr)
 
     @cached_property
     def M(self) -> np.ndarray:

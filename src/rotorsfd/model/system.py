@@ -18,6 +18,7 @@ from __future__ import annotations
 import functools
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
@@ -192,6 +193,13 @@ class RotorSystem:
         """:meth:`matrices` as CSR (scipy.sparse), without a dense n x n array."""
         lin = self._speed_polynomial()
         return self.rotor.M_csr, lin.sparse_damping(speed), lin.sparse_stiffness(speed)
+
+    def split_matrices(self, speed: float) -> tuple[sp.csr_matrix, Any, sp.csr_matrix]:
+        """:meth:`matrices` without a dense n x n array: CSR, the damping a
+        :class:`~rotorsfd.model.lowrank.BandedLowRank` (CSR + ``U diag(c) U^T``) when the
+        rotor has modal damping of a few modes (``rotor.damping.modes``)."""
+        lin = self._speed_polynomial()
+        return self.rotor.M_csr, lin.split_damping(speed), lin.sparse_stiffness(speed)
 
     def static_force(self, speed: float) -> np.ndarray:
         """Constant load F_base (base acceleration, gravity, gyroscopic moments) [N, N m]."""
