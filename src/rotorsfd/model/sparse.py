@@ -190,6 +190,15 @@ class BandedLinearPart:
             D = as_csr(D + self.lowrank_dense())
         return M, D, K
 
+    def split(self, lam: float) -> tuple[sp.csr_matrix, object, sp.csr_matrix]:
+        """(M, D(lam), K(lam)) without a dense n x n array: CSR, D with the low-rank term
+        a :class:`~rotorsfd.model.lowrank.BandedLowRank` (the band beside the factors)."""
+        from rotorsfd.model.lowrank import with_lowrank
+
+        kl, ku = self.band
+        M, D, K = (band_to_csr(a, kl, ku) for a in self.banded(lam))
+        return M, with_lowrank(D, self.lowrank), K
+
     def lowrank_dense(self) -> np.ndarray:
         """``U diag(c) U^T`` of ``lowrank`` as a dense matrix (formed once)."""
         if self._lowrank_dense is None:

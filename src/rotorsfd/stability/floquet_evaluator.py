@@ -101,12 +101,15 @@ class FloquetEvaluator:
         return o.interval_tol is not None and not o.method.startswith("hill")
 
     def linear_part(self, lam: float) -> tuple[object, object, object]:
-        """(M, D, K) at lam for the basis: CSR (``problem.matrices.sparse``) when the
-        problem's linear part is banded and larger than ``DENSE_MAX_DOF`` (the switch of
-        the linear solvers), else the dense arrays."""
+        """(M, D, K) at lam for the basis: CSR (``problem.matrices.split``, D a
+        :class:`~rotorsfd.model.lowrank.BandedLowRank` with a low-rank modal damping) when
+        the problem's linear part is banded and larger than ``DENSE_MAX_DOF`` (the switch
+        of the linear solvers), else the dense arrays."""
         from rotorsfd.model.sparse import DENSE_MAX_DOF
 
         part = self.problem.matrices
+        if hasattr(part, "split") and self.problem.n_dof > DENSE_MAX_DOF:
+            return part.split(lam)     # a low-rank modal damping kept as its factors
         if hasattr(part, "sparse") and self.problem.n_dof > DENSE_MAX_DOF:
             return part.sparse(lam)
         M, D, K = part(lam)

@@ -153,9 +153,10 @@ class FixedInterfaceBasis:
 
     def reduce(self, D: ArrayLike, n_modes: int | None, omega_max: float | None
                ) -> ReducedModel:
-        """The reduced model with damping D (dense or sparse) and the modes kept by
+        """The reduced model with damping D (dense, sparse or
+        :class:`~rotorsfd.model.lowrank.BandedLowRank`) and the modes kept by
         ``n_modes`` / ``omega_max`` (:func:`craig_bampton`)."""
-        import scipy.sparse as sp
+        from rotorsfd.model.lowrank import project
 
         if self.sparse:
             self._lowest(n_modes, omega_max)
@@ -176,7 +177,7 @@ class FixedInterfaceBasis:
             else:
                 self._models[k] = (psi, psi.T @ self.M @ psi, psi.T @ self.K @ psi)
         psi, Mr, Kr = self._models[k]
-        Dr = psi.T @ (D @ psi) if sp.issparse(D) else psi.T @ np.asarray(D, float) @ psi
+        Dr = project(D, psi)      # dense, CSR or banded + low-rank (modal damping)
         return ReducedModel(np.asarray(Mr), np.asarray(Dr), np.asarray(Kr),
                             psi, np.arange(self.nl.size), self.omegas[:k])
 
