@@ -82,11 +82,14 @@ def linear_start(inputs) -> tuple[np.ndarray, np.ndarray]:
     kept): ``K q_s = f_0`` plus ``Re X``, ``(K - w^2 M + i w D) X = F_c - i F_s``. From
     there the nonlinear runs start without a transient of the undamped high modes (which
     the full step would keep forever and the reduced one does not have)."""
+    from rotorsfd.model.lowrank import dense
+
     h = inputs.forcing.harmonics[0]
     w = inputs.speed
-    X = np.linalg.solve(inputs.K - w**2 * inputs.M + 1j * w * inputs.D, h.cos - 1j * h.sin)
+    M, D, K = (dense(a) for a in (inputs.M, inputs.D, inputs.K))   # CSR above 400 DOFs
+    X = np.linalg.solve(K - w**2 * M + 1j * w * D, h.cos - 1j * h.sin)
     f0 = inputs.forcing.constant
-    qs = np.zeros(inputs.n_dof) if f0 is None else np.linalg.solve(inputs.K, f0)
+    qs = np.zeros(inputs.n_dof) if f0 is None else np.linalg.solve(K, f0)
     return qs + X.real, (1j * w * X).real
 
 

@@ -130,11 +130,13 @@ class SecondOrderSystem:
 
     def matrices_at(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``(M, D(t), K(t))`` (callable coefficients only)."""
-        D, K = np.array(self.D, dtype=float), np.array(self.K, dtype=float)
+        from rotorsfd.model.lowrank import dense
+
+        D, K = dense(self.D).copy(), dense(self.K).copy()   # CSR above 400 DOFs
         tv = self.time_varying
         if tv is not None:
             for c, X in tv.damping:
                 D += float(np.asarray(c(np.asarray([t])))[0]) * np.asarray(X)
             for c, X in tv.stiffness:
                 K += float(np.asarray(c(np.asarray([t])))[0]) * np.asarray(X)
-        return np.asarray(self.M, dtype=float), D, K
+        return dense(self.M), D, K

@@ -49,6 +49,7 @@ import numpy as np
 
 from rotorsfd.analyses.td_integration import TimeDomainInputs, integrate_periods
 from rotorsfd.errors import ConfigError, ConvergenceError, ElementDomainError
+from rotorsfd.model.lowrank import dense
 from rotorsfd.timedomain.poincare import converging_period
 
 FIELD = "attractors"
@@ -154,7 +155,7 @@ def start_states(model: CensusModel, u: np.ndarray, options: CensusOptions
     n = model.inputs.n_dof
     nl = model.nl_dofs
     other = np.setdiff1d(np.arange(n), nl)
-    K = np.asarray(model.inputs.K, float)
+    K = dense(model.inputs.K)              # CSR above DENSE_MAX_DOF DOFs
     try:
         G = -np.linalg.solve(K[np.ix_(other, other)], K[np.ix_(other, nl)]) \
             if other.size else np.zeros((0, m))

@@ -94,6 +94,9 @@ class BandedLowRank:
         full = (self.U * self.c) @ self.U.T
         return self.band.toarray() + 0.5 * (full + full.T)
 
+    def copy(self) -> BandedLowRank:
+        return BandedLowRank(self.band.copy(), self.U.copy(), self.c.copy())
+
     def diagonal(self) -> np.ndarray:
         return self.band.diagonal() + np.einsum("ij,j,ij->i", self.U, self.c, self.U)
 

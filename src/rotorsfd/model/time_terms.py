@@ -4,9 +4,12 @@ SecondOrderSystem` (what :meth:`rotorsfd.model.system.RotorSystem.second_order` 
     M q'' + (C + Omega G + C_base(t)) q' + (K + K_base(t)) q = F_mu(t) + F_base(t) + F_nl
 
 A constant base (and no unbalance that starts later: a sudden unbalance is a series load)
-gives constant matrices ``matrices(speed)``, the constant load ``static_force(speed)`` and
-the unbalance harmonics at Omega; a harmonic, callable, pulse or recorded base
-gives the base terms as time-varying matrices and series loads
+gives constant matrices ``matrices(speed)`` (above
+:data:`~rotorsfd.model.sparse.DENSE_MAX_DOF` DOFs ``split_matrices(speed)``: CSR, a modal
+damping of a few modes as :class:`~rotorsfd.model.lowrank.BandedLowRank`, no dense n x n
+array; the full step densifies them, the reduced step projects them), the constant load
+``static_force(speed)`` and the unbalance harmonics at Omega; a harmonic, callable, pulse
+or recorded base gives the base terms as time-varying matrices and series loads
 (:func:`~rotorsfd.model.base_terms.time_varying_terms`,
 :func:`~rotorsfd.model.unbalance.unbalance_series`), a coefficient that stays constant
 over the run folded into the constant matrices.
@@ -29,6 +32,7 @@ import numpy as np
 from rotorsfd.errors import ConfigError
 from rotorsfd.model.base_motion import BaseMotion, Constant
 from rotorsfd.model.multishaft_loads import other_spool_harmonics, split_unbalances
+from rotorsfd.model.sparse import DENSE_MAX_DOF
 from rotorsfd.model.unbalance import unbalance_harmonics
 from rotorsfd.second_order import SecondOrderSystem
 from rotorsfd.timedomain.forcing import Forcing, HarmonicLoad, TimeVaryingMatrices
@@ -68,7 +72,11 @@ def second_order_system(system: Any, speed: float, *,
     events = any(u.start > 0.0 for u in system.unbalances)   # a sudden unbalance: series
     own, other = split_unbalances(r, system.unbalances)   # each at its own shaft's speed
     if system.base.is_constant and not events:
-        M, D, K = system.matrices(speed)
+        split = getattr(system, "split_matrices", None)
+        if split is not None and system.n_dof > DENSE_MAX_DOF:
+            M, D, K = split(speed)       # CSR, a modal damping as banded + low-rank
+        else:
+            M, D, K = system.matrices(speed)
         Fc, Fs = unbalance_harmonics(own, r, speed, system.constant_base_state())
         harm = ([HarmonicLoad(1.0, Fc, Fs)] if own else []) + [
             HarmonicLoad(k, fc, fs) for k, fc, fs in other_spool_harmonics(

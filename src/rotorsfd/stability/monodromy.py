@@ -439,7 +439,12 @@ def system_multipliers(system: SecondOrderSystem, dFdq: JacobianInput = None,
     if system.has_inertia and dFda is None:
         raise ValueError("a force law with fluid inertia needs its acceleration Jacobian "
                          "dFda on the orbit (the added mass of the monodromy)")
-    return floquet_multipliers(system.M, system.D, system.K, system.period,
+    M, D, K = system.M, system.D, system.K
+    if o.reduction is None:          # the full model's monodromy: dense (CSR above 400 DOFs)
+        from rotorsfd.model.lowrank import dense
+
+        M, D, K = dense(M), dense(D), dense(K)
+    return floquet_multipliers(M, D, K, system.period,
                                nl_dofs=system.nl_dofs, dFdq=dFdq, dFdv=dFdv,
                                n_intervals=o.n_intervals, reduction=o.reduction,
                                n_modes=o.n_modes, omega_max=o.omega_max, scheme=o.scheme,

@@ -17,6 +17,7 @@ import numpy as np
 
 from rotorsfd.errors import ConvergenceError, JournalContactError
 from rotorsfd.kernels import as_inertial_cfunc
+from rotorsfd.model.lowrank import dense
 from rotorsfd.timedomain import newmark as nm
 from rotorsfd.timedomain.forcing import Forcing, TimeVaryingMatrices, sample_coefficient
 from rotorsfd.timedomain.kernels import as_cfunc, null_inertial_kernel, null_kernel
@@ -27,7 +28,7 @@ if TYPE_CHECKING:
 
 
 def _matrix(a: Any, n: int | None, name: str) -> np.ndarray:
-    a = np.ascontiguousarray(a, dtype=float)
+    a = np.ascontiguousarray(dense(a))      # CSR or banded + low-rank: the full step's form
     if a.ndim != 2 or a.shape[0] != a.shape[1] or (n is not None and a.shape[0] != n):
         raise ValueError(f"{name}: expected a square ({n}, {n}) matrix, got {a.shape}")
     if not np.all(np.isfinite(a)):

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import scipy.sparse as sp
 
 from rotorsfd.errors import ConvergenceError
 from rotorsfd.timedomain import newmark as nm
@@ -197,7 +198,7 @@ def modal_projector(M: np.ndarray, basis: np.ndarray) -> Projector:
     (n, k): ``P x = V (V^T M V)^-1 V^T M x``; with the Craig-Bampton basis of the low modes
     it removes the high modes' components."""
     V = np.asarray(basis, dtype=float)
-    MV = np.asarray(M, dtype=float) @ V
+    MV = np.asarray(M @ V) if sp.issparse(M) else np.asarray(M, dtype=float) @ V
     G = np.linalg.inv(V.T @ MV)
     L = G @ MV.T                                   # (k, n): coordinates of M-projection
 

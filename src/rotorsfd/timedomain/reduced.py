@@ -10,6 +10,9 @@ static constraint modes ``-K_ii^-1 K_ib`` plus the fixed-interface modes with
 ``omega <= omega_max``). Galerkin projection, term by term::
 
     M_r = Psi^T M Psi,  D_r = Psi^T D Psi,  K_r = Psi^T K Psi,
+
+(a modal damping of a few modes, ``D = D_b + U diag(c) U^T``, projected from its factors:
+``Psi^T D_b Psi + W^T diag(c) W``, ``W = U^T Psi``, :mod:`rotorsfd.model.lowrank`),
     D_r(t) = D_r + sum d_i(t) Psi^T D_i Psi,  K_r(t) = K_r + sum k_i(t) Psi^T K_i Psi,
     f_r(t) = Psi^T f0 + sum_h [Psi^T fc_h cos + Psi^T fs_h sin] + sum_j c_j(t) Psi^T f_j
 
@@ -55,6 +58,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from rotorsfd.model.lowrank import BandedLowRank, project
 from rotorsfd.stability.reduction import ReducedModel, craig_bampton
 from rotorsfd.timedomain.forcing import Forcing, HarmonicLoad, TimeVaryingMatrices
 
@@ -80,6 +84,8 @@ def sparse_if_large(a: Any) -> Any:
     then cost O(nnz), the beam matrices being banded), else as a dense array."""
     import scipy.sparse as sp
 
+    if isinstance(a, BandedLowRank):      # a modal damping of a few modes beside the band
+        return a if a.shape[0] > DENSE_MAX else a.toarray()
     if sp.issparse(a):
         return a.tocsr() if a.shape[0] > DENSE_MAX else a.toarray()
     a = np.asarray(a, dtype=float)
@@ -175,7 +181,7 @@ def sparse_craig_bampton(M: Any, D: Any, K: Any, boundary: np.ndarray,
     psi[b, :m] = np.eye(m)
     psi[i, :m] = phi_c
     psi[i, m:] = modes
-    return ReducedModel(psi.T @ (M @ psi), psi.T @ (D @ psi), psi.T @ (K @ psi), psi,
+    return ReducedModel(project(M, psi), project(D, psi), project(K, psi), psi,
                         np.arange(m), np.sqrt(np.clip(w2[keep], 0.0, None)))
 
 
@@ -277,7 +283,7 @@ def reduce_step(M: np.ndarray, D: np.ndarray, K: np.ndarray, nl_dofs: np.ndarray
         cb = sparse_craig_bampton(M, D, K, nl, float(omega_max))
     extra = static_residuals(K, M, cb.basis, nl, load_vectors(forcing, M.shape[0]))
     psi = np.hstack([cb.basis, extra])
-    model = ReducedModel(psi.T @ (M @ psi), psi.T @ (D @ psi), psi.T @ (K @ psi), psi,
+    model = ReducedModel(project(M, psi), project(D, psi), project(K, psi), psi,
                          cb.nl_dofs, cb.omegas)
 
     def vec(v: np.ndarray | None) -> np.ndarray | None:
