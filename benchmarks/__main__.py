@@ -51,6 +51,9 @@ REGISTRY: dict[str, tuple[str, str]] = {
                     "checked bifurcations) vs fixed H = 3, M = 400", "bench_convergence:run"),
     "scale": ("first critical speed and modal of a stepped rotor, 80-2560 elements: sparse "
               "shift-invert vs the dense eig path", "bench_scale:run"),
+    "scale-modal": ("modal damping of a few modes on the stepped rotor: banded + low-rank "
+                    "vs the full damping matrix (linear, Floquet, time step)",
+                    "bench_scale_modal:run"),
     "scale-timedomain": ("500 periods x 200 steps of the stepped rotor, 80-1280 elements: "
                          "reduced (Craig-Bampton) step vs the full dense step",
                          "bench_scale_timedomain:run"),

@@ -151,8 +151,10 @@ class Rotor(LinearRotor):
     def split_matrices(self, speed: float) -> tuple[Any, Any, Any]:
         """(M, C + speed G, K) as CSR without a dense n x n array; the damping a
         :class:`~rotorsfd.model.lowrank.BandedLowRank` with modal damping of a few modes."""
-        return (self.M_csr, with_lowrank(sparse.as_csr(self.C_band_csr + speed * self.G_csr),
-                                         self.damping_lowrank), self.K_csr)
+        lowrank = getattr(self, "damping_lowrank", None)   # a subclass may assemble its own
+        C = self.C_csr if lowrank is None else self.C_band_csr
+        return self.M_csr, with_lowrank(sparse.as_csr(C + speed * self.G_csr), lowrank), \
+            self.K_csr
 
     @cached_property
     def M(self) -> np.ndarray:
