@@ -177,8 +177,20 @@ def _memory_main(n: int, workload: str, which: str) -> None:
         stability(problem, br, before)
     elif workload == "simulate":
         simulate(system, 0.8 * first(system, cfg), before)
-    print(json.dumps({"peak_gib": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-                      / 2**20}))
+    print(json.dumps({"peak_gib": peak_rss_gib()}))
+
+
+def peak_rss_gib() -> float:
+    """Peak resident memory of this process [GiB]: ``VmHWM`` of /proc/self/status (its
+    own address space; ``ru_maxrss`` would carry the parent's size at the fork across
+    the exec), else ``ru_maxrss``."""
+    try:
+        for line in Path("/proc/self/status").read_text().splitlines():
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1]) / 2**20
+    except OSError:
+        pass
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20
 
 
 def pair(rows: list[Row], case: str, label: str, new: tuple, old: tuple, note: str) -> None:
@@ -216,12 +228,19 @@ def run(quick: bool = False, repeat: int = 1) -> list[Row]:
         b = timed(partial(simulate, system, 0.8 * w1, before=True))
         pair(rows, case, f"simulate {PERIODS} x {STEPS} (inputs + reduction + run)", a, b,
              f"{a[2][1]} coordinates; SFD / disk orbit difference {rel(a[2][0], b[2][0]):.1e}")
-        for workload in ("first", "modal", "stability", "simulate"):
-            for before in (False, True):
-                rows.append(Row("scale-modal", case, f"peak memory: {workload}"
-                                + (" (before)" if before else ""),
-                                peak_memory(n, workload, before), unit="GiB",
-                                note="fresh process: build + workload"))
+        rows += memory_rows(n, case)
+    return rows
+
+
+def memory_rows(n: int, case: str) -> list[Row]:
+    """Peak memory of build + each workload in a fresh process, after and before."""
+    rows = []
+    for workload in ("first", "modal", "stability", "simulate"):
+        for before in (False, True):
+            rows.append(Row("scale-modal", case, f"peak memory: {workload}"
+                            + (" (before)" if before else ""),
+                            peak_memory(n, workload, before), unit="GiB",
+                            note="fresh process: build + workload"))
     return rows
 
 
@@ -231,5 +250,7 @@ if __name__ == "__main__":
     else:
         from benchmarks.__main__ import fmt_value
 
-        for r in run(quick="--quick" in sys.argv):
+        rows = (memory_rows(TARGET, f"{TARGET} elements") if "--memory-rows" in sys.argv
+                else run(quick="--quick" in sys.argv))
+        for r in rows:
             print(f"{r.case} | {r.method}: {fmt_value(r)}  {r.note}")
