@@ -67,6 +67,7 @@ def test_inputs_keep_the_band(model) -> None:
     M, D, K = system.matrices(300.0)
     np.testing.assert_allclose(dense_inputs.D, D, rtol=0, atol=1e-13 * np.abs(D).max())
     np.testing.assert_array_equal(dense_inputs.K, K)
+    np.testing.assert_array_equal(dense_inputs.M, M)
 
 
 def test_reduced_step_equals_the_dense_damping(model) -> None:

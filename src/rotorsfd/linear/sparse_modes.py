@@ -115,9 +115,12 @@ def _matrices(system: LinearDynamics, speed: float) -> tuple[Any, Any, Any]:
 
 
 def _split(a: Any) -> tuple[Any, tuple[np.ndarray, np.ndarray] | None]:
-    """(the sparse or dense part, the low-rank factors (U, c) with c != 0 or None)."""
+    """(the sparse or dense part, the low-rank factors (U, c) or None): the columns with
+    ``|c| > 1e-14 max |c|`` (a rigid-body mode's rounding-level damping would put
+    ``1 / (sigma c)`` near overflow in the Woodbury capacitance, for a term below 1e-14
+    of the damping)."""
     if isinstance(a, BandedLowRank):
-        keep = a.c != 0.0
+        keep = np.abs(a.c) > 1e-14 * np.abs(a.c).max(initial=0.0)
         return a.band, ((a.U[:, keep], a.c[keep]) if np.any(keep) else None)
     return a, None
 
