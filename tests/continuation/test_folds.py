@@ -4,15 +4,10 @@ the fold-augmented system against one-parameter branches."""
 import numpy as np
 import pytest
 
-from rotorsfd.continuation.folds import (
-    FoldSystem,
-    TwoParameterHB,
-    TwoParameterProblem,
-    continue_folds,
-    locate_branch_fold,
-)
+from rotorsfd.continuation.folds import FoldSystem, continue_folds, locate_branch_fold
 from rotorsfd.harmonic import continue_periodic
 from rotorsfd.harmonic.examples import duffing
+from rotorsfd.harmonic.fold_curve import TwoParameterHB, TwoParameterProblem
 from rotorsfd.harmonic.problem import PeriodicProblem
 
 C, K, K3 = 0.05, 1.0, 0.1

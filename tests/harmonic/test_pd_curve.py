@@ -10,7 +10,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rotorsfd.continuation.folds import FoldOptions, TwoParameterProblem
+from rotorsfd.continuation.folds import FoldOptions
+from rotorsfd.harmonic.fold_curve import TwoParameterProblem
 from rotorsfd.harmonic.pd_curve import continue_period_doublings
 from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.harmonic.problem import PeriodicProblem

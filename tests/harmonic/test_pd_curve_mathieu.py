@@ -15,7 +15,8 @@ import numpy as np
 import pytest
 from scipy.special import mathieu_a, mathieu_b
 
-from rotorsfd.continuation.folds import FoldOptions, TwoParameterProblem
+from rotorsfd.continuation.folds import FoldOptions
+from rotorsfd.harmonic.fold_curve import TwoParameterProblem
 from rotorsfd.harmonic.pd_curve import continue_period_doublings
 from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.harmonic.problem import PeriodicProblem

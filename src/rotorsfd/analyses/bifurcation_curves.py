@@ -46,8 +46,9 @@ from numpy.typing import NDArray
 from rotorsfd.analyses.fold_curve import FoldCurve, config_two_parameter, fold_curve
 from rotorsfd.analyses.modal import first_critical
 from rotorsfd.analyses.response_words import PARAMETER_UNITS, column_slug, system_parameter
-from rotorsfd.continuation.folds import FoldBranch, FoldOptions, TwoParameterHB
+from rotorsfd.continuation.folds import FoldBranch, FoldOptions
 from rotorsfd.errors import ConfigError, ConvergenceError
+from rotorsfd.harmonic.fold_curve import TwoParameterHB
 from rotorsfd.harmonic.ns_curve import continue_neimark_sacker
 from rotorsfd.harmonic.pd_curve import continue_period_doublings
 from rotorsfd.harmonic.periodic import continue_periodic

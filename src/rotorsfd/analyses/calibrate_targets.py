@@ -268,10 +268,10 @@ def fold_speed_derivative(result: Any, point: Any, index: int, parameter: str,
 
         w^T R_Omega dOmega + w^T R_p dp = 0   =>   dOmega/dp = -(w^T R_p) / (w^T R_Omega),
 
-    with R_Omega and R_p exact (:class:`~rotorsfd.continuation.folds.TwoParameterHB`, the
+    with R_Omega and R_p exact (:class:`~rotorsfd.harmonic.fold_curve.TwoParameterHB`, the
     residual of ``rotorsfd fold-curve``) at the fold's H and N_f; ``w`` from the SVD of R_x.
     """
-    from rotorsfd.continuation.folds import TwoParameterHB
+    from rotorsfd.harmonic.fold_curve import TwoParameterHB
 
     family = result.system.two_parameter_problem(parameter)
     b = result.branch

@@ -3,7 +3,8 @@ continued in a second parameter (base pitching rate, unbalance, ...), with their
 
 From the speed branch at ``range2[0]`` (HB-AFT, condensed), every saddle-node (turning
 point ``dOmega/ds = 0``) is located and continued in (Omega, lam2) by the fold-augmented
-system of :mod:`rotorsfd.continuation.folds`::
+system of :mod:`rotorsfd.continuation.folds` on the condensed HB residual of
+:mod:`rotorsfd.harmonic.fold_curve`::
 
     R(xs, Omega, lam2) = 0,     g(xs, Omega, lam2) = 0     (g: bordered test function),
 
@@ -18,7 +19,7 @@ Per point: ``speed_rad_s``, ``speed_ratio`` = Omega / Omega_ref, the second para
 eccentricity ratio |q - o| / C), ``aliasing`` (the sampling error of N_f in the
 units of the Newton test: the change of the scaled residual if N_f doubled,
 :meth:`TwoParameterHB.sampling_error
-<rotorsfd.continuation.folds.TwoParameterHB.sampling_error>`, the criterion of
+<rotorsfd.harmonic.fold_curve.TwoParameterHB.sampling_error>`, the criterion of
 ``continue_periodic``'s adaptive N_f rule) and ``amp_<n>_m`` = max_t sqrt(y^2 + z^2) [m]
 at each output node.
 """
@@ -38,15 +39,9 @@ from numpy.typing import NDArray
 
 from rotorsfd.analyses.context import RunContext
 from rotorsfd.analyses.response_words import PARAMETER_UNITS, column_slug, system_parameter
-from rotorsfd.continuation.folds import (
-    FoldBranch,
-    FoldOptions,
-    TwoParameterHB,
-    continue_folds,
-    locate_branch_fold,
-)
+from rotorsfd.continuation.folds import FoldBranch, FoldOptions, locate_branch_fold
 from rotorsfd.errors import ConfigError, ConvergenceError
-from rotorsfd.harmonic.fourier import smallest_n_samples
+from rotorsfd.harmonic.fold_curve import TwoParameterHB, needed_n_samples, trace_fold_curves
 from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.harmonic.synthesis import max_radius, orbit_samples
 from rotorsfd.harmonic.truncation import pad_harmonics
@@ -260,45 +255,6 @@ def _table(hb: TwoParameterHB, curves: list[FoldBranch], system: RotorSystem,
     return out
 
 
-def _trace(family: Any, H: int, N: int, scales: tuple[float, float], folds: list,
-           range2: tuple[float, float], options: FoldOptions | None
-           ) -> tuple[TwoParameterHB, list[FoldBranch], list[str]]:
-    """Fold curves from every located saddle-node not reached by an earlier curve."""
-    hb = TwoParameterHB(family, H, N, scales, folds[0].xs, (folds[0].lam, range2[0]))
-    lam_range = (range2[0] / scales[1], range2[1] / scales[1])
-    curves: list[FoldBranch] = []
-    covered = [False] * len(folds)
-    messages = []
-    for i, p in enumerate(folds):
-        if covered[i]:
-            continue
-        covered[i] = True
-        curve = continue_folds(hb, hb.to_z(p.xs, p.lam, range2[0]), lam_range, options,
-                               lam_physical=lambda lam: lam * scales[1])
-        curves.append(curve)
-        messages.append(curve.message)
-        end_speed, end_value = hb.from_z(curve.z[-1])[1:]
-        if curve.cusps and np.isclose(end_value, range2[0], rtol=0, atol=1e-9 * scales[1]):
-            for j, q in enumerate(folds):
-                if not covered[j] and abs(q.lam - end_speed) <= 1e-6 * q.lam:
-                    covered[j] = True
-    return hb, curves, messages
-
-
-def _needed_n_samples(hb: TwoParameterHB, curves: list[FoldBranch], target: float,
-                      n_max: int) -> int:
-    """The smallest power of two N >= hb.N whose sampling error
-    (:meth:`TwoParameterHB.sampling_error`, the criterion of ``continue_periodic``'s
-    adaptive rule) is <= target at every point of the curves (n_max if none)."""
-    N = hb.N
-    for c in curves:
-        for z in c.z:
-            if N < n_max and hb.sampling_error(z, N) > target:
-                N = smallest_n_samples(lambda n, z=z: hb.sampling_error(z, n), 2 * N, n_max,
-                                       target)
-    return N
-
-
 def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_parameter: str,
                range2: tuple[float, float], H: int | None = 3, *,
                reference_speed: float | None = None, n_samples: int | None = None,
@@ -368,10 +324,10 @@ def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_par
         alias_tol = (options or FoldOptions()).tol
     scales = (abs(speed_range[1] - speed_range[0]), abs(range2[1] - range2[0]))
     while True:
-        hb, curves, messages = _trace(family, H, N, scales, folds, range2, options)
+        hb, curves, messages = trace_fold_curves(family, H, N, scales, folds, range2, options)
         if n_samples is not None or N >= n_samples_max:
             break
-        N_new = _needed_n_samples(hb, curves, alias_tol, n_samples_max)
+        N_new = needed_n_samples(hb, curves, alias_tol, n_samples_max)
         if N_new <= N:
             break
         N = N_new

@@ -30,9 +30,8 @@ so at a nondegenerate fold (``w.R_lam1 != 0``) ``dlam2/ds = 0`` forces ``dlam1/d
 the curve turns back in lam2 exactly at a cusp, where the two folds of a pair meet. It is
 located by the Illinois method on ``dlam2/ds`` (the tangent's last entry) along the arc.
 
-:class:`TwoParameterHB` puts the condensed HB-AFT residual
-(:class:`~rotorsfd.harmonic.condensation.CondensedHB`) of a :class:`TwoParameterProblem` in
-this form, with exact ``R_lam1`` and ``R_lam2``.
+The condensed HB-AFT residual in this form (exact ``R_lam1`` and ``R_lam2``) is
+:class:`rotorsfd.harmonic.fold_curve.TwoParameterHB`; this module knows no HB.
 """
 
 from __future__ import annotations
@@ -48,12 +47,8 @@ from rotorsfd.continuation.arclength import ArcLengthOptions, arclength
 from rotorsfd.continuation.branch import Branch, BranchPoint
 from rotorsfd.continuation.newton import metric, newton_extended, tangent
 from rotorsfd.errors import ConvergenceError
-from rotorsfd.harmonic.condensation import CondensedHB
-from rotorsfd.harmonic.fourier import to_real
-from rotorsfd.harmonic.problem import PeriodicProblem
 
 FloatArray = NDArray[np.float64]
-ComplexArray = NDArray[np.complex128]
 
 #: Step of the central difference of the Jacobian along v (scaled unknowns).
 FD_STEP = 1e-5
@@ -368,96 +363,3 @@ def locate_branch_fold(branch: Branch, i: int, rtol: float = 1e-10,
         return f == 0.0 or min(abs(s - a), abs(s - b)) <= rtol * width
 
     return _illinois(g, a, fa, b, fb, done, max_iter)[1]
-
-
-# ---- the condensed HB residual in two parameters -----------------------------------------
-
-
-@dataclass
-class TwoParameterProblem:
-    """A periodic problem in two parameters, as its two one-parameter views:
-    ``first(lam2)`` the :class:`PeriodicProblem` in lam1 at fixed lam2 and
-    ``second(lam1)`` the one in lam2 at fixed lam1 (the same system at (lam1, lam2), each
-    with exact derivatives in its own parameter). ``names`` label the parameters."""
-
-    first: Callable[[float], PeriodicProblem]
-    second: Callable[[float], PeriodicProblem]
-    names: tuple[str, str] = ("lam1", "lam2")
-
-
-class TwoParameterHB:
-    """Condensed HB-AFT residual ``R(xs, lam1, lam2)`` (receptance form, fixed shift
-    Delta) in scaled unknowns ``z = (xs / c, lam1 / scale1, lam2 / scale2)``, with the
-    exact ``[R_x, R_lam1, R_lam2]``: R, R_x, R_lam1 from the condensation of
-    ``first(lam2)`` at lam1, R_lam2 from that of ``second(lam1)`` at lam2 (one complex LU
-    per harmonic each). The shift is set once, at ``(xs0, lam1_0, lam2_0)``.
-    """
-
-    def __init__(self, problem: TwoParameterProblem, H: int, N: int,
-                 scales: tuple[float, float], xs0: FloatArray, lam0: tuple[float, float],
-                 limit_max: float = 1.0) -> None:
-        self.problem, self.H, self.N = problem, H, N
-        self.scales = (float(scales[0]), float(scales[1]))
-        self.limit_max = limit_max
-        p1 = problem.first(lam0[1])
-        self.template = p1
-        self.n = (2 * H + 1) * p1.m
-        self.cx = np.tile(p1.dof_scale[p1.nl_dofs], 2 * H + 1)
-        hb = CondensedHB(p1, H, N)
-        hb.set_shift(np.reshape(xs0, (2 * H + 1, p1.m)), lam0[0])
-        self._shifted = hb   # holds the fixed shift, passed on by CondensedHB.with_problem
-        self.aft = hb.aft
-        self._key: tuple[float, float] | None = None
-        self._hb: tuple[CondensedHB, CondensedHB] | None = None
-
-    def to_z(self, xs: FloatArray, lam1: float, lam2: float) -> FloatArray:
-        return np.concatenate([np.ravel(xs) / self.cx,
-                               [lam1 / self.scales[0], lam2 / self.scales[1]]])
-
-    def from_z(self, z: FloatArray) -> tuple[FloatArray, float, float]:
-        return (z[: self.n] * self.cx, float(z[-2]) * self.scales[0],
-                float(z[-1]) * self.scales[1])
-
-    def _condensers(self, lam1: float, lam2: float) -> tuple[CondensedHB, CondensedHB]:
-        if self._key != (lam1, lam2) or self._hb is None:
-            self._key = (lam1, lam2)
-            self._hb = (self._shifted.with_problem(self.problem.first(lam2)),
-                        self._shifted.with_problem(self.problem.second(lam1)))
-        return self._hb
-
-    def evaluate(self, z: FloatArray) -> tuple[FloatArray, FloatArray]:
-        xs, l1, l2 = self.from_z(z)
-        hb1, hb2 = self._condensers(l1, l2)
-        R, Rx, R1 = hb1.residual(xs, l1, jac=True)
-        R2 = hb2.residual(xs, l2, jac=True)[2]
-        cx, n = self.cx, self.n
-        J = np.empty((n, n + 2))
-        J[:, :n] = Rx * (cx[None, :] / cx[:, None])
-        J[:, n] = R1 * (self.scales[0] / cx)
-        J[:, n + 1] = R2 * (self.scales[1] / cx)
-        return R.ravel() / cx, J
-
-    def admissible(self, z: FloatArray) -> bool:
-        if self.template.nl_limit is None:
-            return True
-        xs = z[: self.n] * self.cx
-        val = self.template.limit(self.aft.E @ xs.reshape(2 * self.H + 1, self.template.m))
-        return bool(np.isfinite(val) and val < self.limit_max)
-
-    def coefficients(self, z: FloatArray) -> ComplexArray:
-        """Fourier coefficients of all DOFs (H+1, n_dof) at z."""
-        xs, l1, l2 = self.from_z(z)
-        return self._condensers(l1, l2)[0].recover(xs, l1)
-
-    def sampling_error(self, z: FloatArray, N: int) -> float:
-        """Error of N AFT samples at z in the units of the Newton test of R (scaled by
-        c): :meth:`CondensedHB.sampling_error
-        <rotorsfd.harmonic.condensation.CondensedHB.sampling_error>`, the criterion of
-        ``continue_periodic``'s adaptive N_f rule."""
-        xs, l1, l2 = self.from_z(z)
-        xs = np.ascontiguousarray(xs.reshape(2 * self.H + 1, self.template.m))
-        return self._condensers(l1, l2)[0].sampling_error(xs, l1, N)[0]
-
-    def z_from_point(self, X: ComplexArray, lam1: float, lam2: float) -> FloatArray:
-        """Scaled z of all-DOF coefficients X (H+1, n_dof) at (lam1, lam2)."""
-        return self.to_z(to_real(np.asarray(X))[:, self.template.nl_dofs], lam1, lam2)

@@ -35,11 +35,10 @@ from numpy.typing import NDArray
 from rotorsfd.continuation.folds import (
     FoldBranch,
     FoldOptions,
-    TwoParameterHB,
-    TwoParameterProblem,
     bordered,
     continue_folds,
 )
+from rotorsfd.harmonic.fold_curve import TwoParameterHB, TwoParameterProblem
 from rotorsfd.harmonic.fourier import to_real
 from rotorsfd.harmonic.synthesis import orbit_samples
 
@@ -81,7 +80,7 @@ def shifted_hill(problem, X: ComplexArray, lam: float, theta: float, K: int,
 
 class NeimarkSackerSystem:
     """``F = [R; Re g; Im g]`` in ``z = (x, lam1, theta, lam2)`` over a
-    :class:`~rotorsfd.continuation.folds.TwoParameterHB`; the interface of
+    :class:`~rotorsfd.harmonic.fold_curve.TwoParameterHB`; the interface of
     :class:`~rotorsfd.continuation.folds.FoldSystem` (module docstring)."""
 
     def __init__(self, base: TwoParameterHB, z0: FloatArray, K: int,

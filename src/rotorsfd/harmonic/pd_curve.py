@@ -34,13 +34,12 @@ from rotorsfd.continuation.folds import (
     FD_STEP,
     FoldBranch,
     FoldOptions,
-    TwoParameterHB,
-    TwoParameterProblem,
     bordered,
     continue_folds,
     null_vectors,
 )
 from rotorsfd.harmonic.branch_switching import doubled_coefficients, period_doubled
+from rotorsfd.harmonic.fold_curve import TwoParameterHB, TwoParameterProblem
 from rotorsfd.harmonic.fourier import to_real
 
 FloatArray = NDArray[np.float64]
@@ -55,7 +54,7 @@ def odd_rows(H2: int) -> NDArray[np.int64]:
 
 class PeriodDoublingSystem:
     """``F = [R_e; g]`` in ``z_e = (x_e, lam1, lam2)`` over a period-2
-    :class:`~rotorsfd.continuation.folds.TwoParameterHB` (module docstring); the interface
+    :class:`~rotorsfd.harmonic.fold_curve.TwoParameterHB` (module docstring); the interface
     of :class:`~rotorsfd.continuation.folds.FoldSystem` (a continuation system in lam2)."""
 
     def __init__(self, base: TwoParameterHB, z0: FloatArray, fd_step: float = FD_STEP

@@ -433,11 +433,11 @@ class RotorSystem:
 
     def two_parameter_problem(self, second: str):
         """The HB problem in (speed, ``second``) as a
-        :class:`~rotorsfd.continuation.folds.TwoParameterProblem`: ``first(value)`` is
+        :class:`~rotorsfd.harmonic.fold_curve.TwoParameterProblem`: ``first(value)`` is
         ``periodic_problem("speed")`` of :meth:`with_parameter` (second = value), and
         ``second(speed)`` is ``periodic_problem(second, speed)``; both exact in their
         parameter, so ``dR/dspeed`` and ``dR/dsecond`` are exact at every (speed, value)."""
-        from rotorsfd.continuation.folds import TwoParameterProblem
+        from rotorsfd.harmonic.fold_curve import TwoParameterProblem
 
         self.constant_base_state()
         par = find_parameter(second)
