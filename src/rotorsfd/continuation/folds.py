@@ -36,7 +36,7 @@ The condensed HB-AFT residual in this form (exact ``R_lam1`` and ``R_lam2``) is
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
@@ -152,6 +152,9 @@ class FoldBranch:
     success: bool
     message: str
     system: FoldSystem = field(repr=False)
+    #: the event (index into ``continue_folds``' ``events``) whose zero ended the curve
+    #: (the located zero is the last point), None if none did
+    ended_at: int | None = None
 
     @property
     def n_points(self) -> int:
@@ -220,25 +223,48 @@ def _illinois(g: Callable[[float], tuple[float, Any]], a: float, fa: float, b: f
     return x, payload
 
 
+def locate_on_curve(system: Any, z: FloatArray, t: FloatArray, z1: FloatArray,
+                    test: Callable[[FloatArray, FloatArray], float], fa: float, fb: float,
+                    tol: float, *, ftol: float = 0.0, xtol: float = 1e-10,
+                    max_iter: int = 60) -> tuple[FloatArray, FloatArray, float, float]:
+    """Zero of ``test(z, t)`` (z a point of the curve of ``system``, t its tangent) between
+    the curve's points z (tangent t, ``test = fa``) and z1 (``test = fb``, of the other
+    sign), by the Illinois method on the arc distance d from z: each trial point solves
+    the curve's equations with the pseudo arc-length condition ``t.W (z' - z) = d``.
+    Stops when ``|test| <= ftol`` or the bracket is below ``xtol`` (scaled arc length;
+    the located unknowns, parameters included, are then within ``xtol`` of the zero).
+    Returns (z, t, d, test) at the last trial point."""
+    W = metric(system)
+
+    def g(d: float) -> tuple[float, tuple[FloatArray, FloatArray]]:
+        res = newton_extended(system, z + d * t, W * t, float((W * t) @ z) + d, tol, 30)
+        if not res.converged:
+            raise ConvergenceError(f"locating a zero along the curve failed: {res.message}")
+        tc = tangent(res.J, t, W)
+        return float(test(res.z, tc)), (res.z, tc)
+
+    def done(d: float, f: float, a: float, b: float) -> bool:
+        return abs(f) <= ftol or abs(b - a) <= xtol
+
+    state = {"f": fb}
+
+    def g_kept(d: float):
+        f, payload = g(d)
+        state["f"] = f
+        return f, payload
+
+    d, (zc, tc) = _illinois(g_kept, 0.0, fa, float(t @ (W * (z1 - z))), fb, done, max_iter)
+    return zc, tc, d, state["f"]
+
+
 def _locate_turn(fold: FoldSystem, z: FloatArray, t: FloatArray, z1: FloatArray,
                  t1: FloatArray, tol: float, turn_tol: float
                  ) -> tuple[FloatArray, FloatArray, float]:
     """Point between z (tangent t) and z1 where the tangent's lam2 entry vanishes
-    (Illinois on the arc length d from z); returns (z, t, d)."""
-    W = metric(fold)
-
-    def g(d: float) -> tuple[float, tuple[FloatArray, FloatArray]]:
-        res = newton_extended(fold, z + d * t, W * t, float((W * t) @ z) + d, tol, 30)
-        if not res.converged:
-            raise ConvergenceError(f"fold curve: locating the cusp failed: {res.message}")
-        tc = tangent(res.J, t, W)
-        return float(tc[-1]), (res.z, tc)
-
-    def done(d: float, f: float, a: float, b: float) -> bool:
-        return abs(f) <= turn_tol or abs(b - a) <= 1e-14 * max(1.0, abs(b))
-
-    d, (zc, tc) = _illinois(g, 0.0, float(t[-1]), float(t @ (W * (z1 - z))), float(t1[-1]),
-                            done, 60)
+    (:func:`locate_on_curve` on ``dlam2/ds``); returns (z, t, d)."""
+    zc, tc, d, _ = locate_on_curve(fold, z, t, z1, lambda z_, t_: float(t_[-1]),
+                                   float(t[-1]), float(t1[-1]), tol, ftol=turn_tol,
+                                   xtol=1e-14)
     return zc, tc, d
 
 
@@ -246,8 +272,9 @@ def continue_folds(base: TwoParameterSystem, z0: FloatArray, lam2_range: tuple[f
                    options: FoldOptions | None = None,
                    on_point: Callable[[FloatArray, int], None] | None = None,
                    lam_physical: Callable[[float], float] = float,
-                   augmented: Callable[[TwoParameterSystem, FloatArray], Any] | None = None
-                   ) -> FoldBranch:
+                   augmented: Callable[[TwoParameterSystem, FloatArray], Any] | None = None,
+                   events: Sequence[Callable[[FloatArray], float]] = (),
+                   event_xtol: float = 1e-10) -> FoldBranch:
     """Continue the fold near z0 (scaled ``(x, lam1, lam2)``) in lam2 over ``lam2_range``
     (scaled), from ``z0[-1]`` towards ``lam2_range[1]``.
 
@@ -260,6 +287,10 @@ def continue_folds(base: TwoParameterSystem, z0: FloatArray, lam2_range: tuple[f
     ``augmented(base, z0)`` builds another singularity's augmented system with the
     interface of :class:`FoldSystem` (default: the fold's; a period doubling's:
     :class:`rotorsfd.harmonic.pd_curve.PeriodDoublingSystem`).
+    ``events``: functions of a point whose sign change between two points ends the curve
+    there: the zero is located along the arc (:func:`locate_on_curve`, to ``event_xtol``
+    in scaled arc length), stored as the last point, and ``ended_at`` names the event
+    (e.g. a Neimark-Sacker curve reaching theta = 1/2).
     """
     o = options or FoldOptions()
     z0 = np.asarray(z0, dtype=float)
@@ -276,7 +307,8 @@ def continue_folds(base: TwoParameterSystem, z0: FloatArray, lam2_range: tuple[f
     ss: list[float] = []
     seg: list[int] = []
     cusps: list[Cusp] = []
-    state = {"segment": 0, "turned": False}
+    state: dict[str, Any] = {"segment": 0, "turned": False, "ended": None}
+    ev_prev: list[float] = []
 
     def record(z: FloatArray, t: FloatArray, step: float) -> None:
         zs.append(z.copy())
@@ -288,6 +320,18 @@ def continue_folds(base: TwoParameterSystem, z0: FloatArray, lam2_range: tuple[f
             on_point(z, state["segment"])
 
     def handler(z: FloatArray, t: FloatArray, J: FloatArray, it: int, step: float) -> bool:
+        if state["ended"] is not None:
+            return True
+        values = [float(f(z)) for f in events]
+        for k, (fa, fb) in enumerate(zip(ev_prev, values, strict=False)):
+            if fa * fb < 0 or (fb == 0.0 and fa != 0.0):
+                zc, tc, d, _ = locate_on_curve(fold, zs[-1], ts[-1], z,
+                                               lambda z_, t_, f=events[k]: float(f(z_)),
+                                               fa, fb, o.tol, xtol=event_xtol)
+                record(zc, tc, d)
+                state["ended"] = k
+                return True
+        ev_prev[:] = values
         if ts and ts[-1][-1] * t[-1] < 0:
             zc, tc, d = _locate_turn(fold, zs[-1], ts[-1], z, t, o.tol, o.turn_tol)
             record(zc, tc, d)
@@ -312,6 +356,11 @@ def continue_folds(base: TwoParameterSystem, z0: FloatArray, lam2_range: tuple[f
         status = arclength(fold, z, J, ends[target],
                            _skip_first(handler) if restart else handler, opts,
                            lam_physical=lam_physical, t_prev=t_prev)
+        if state["ended"] is not None:
+            res = _result(zs, ts, ss, seg, cusps, True, f"ended at event {state['ended']} "
+                          f"(lam={lam_physical(float(zs[-1][-1])):.8g})", fold)
+            res.ended_at = int(state["ended"])
+            return res
         if not state["turned"]:
             return _result(zs, ts, ss, seg, cusps, status.success, status.message, fold)
         if len(cusps) > o.max_turns:

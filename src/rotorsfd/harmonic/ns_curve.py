@@ -48,33 +48,47 @@ ComplexArray = NDArray[np.complex128]
 NS_FD_STEP = 1e-6
 """Central-difference step of g in the scaled unknowns."""
 
+THETA_MARGIN = 0.05
+"""theta is admitted in (-THETA_MARGIN, 1/2 + THETA_MARGIN): the curve may step past
+theta = 0 or 1/2 (the pair meeting at +1 or -1: a 1:1 or 1:2 resonance), where the
+continuation's events locate the crossing and end the curve."""
+
+
+def receptance_blocks(problem, lam: float, theta: float, K: int) -> ComplexArray:
+    """The diagonal blocks ``Zs(k w + sigma)`` of ``A(sigma)``, ``k = -K .. K-1``, at
+    ``lam`` (``sigma = theta * w``): (2K, m, m), one batched solve and inverse."""
+    w = float(problem.frequency(lam))
+    nl = np.asarray(problem.nl_dofs)
+    M, D, Kmat = (np.asarray(a) for a in problem.matrices(lam))
+    W = (np.arange(-K, K) + theta) * w
+    Z = (Kmat[None] - W[:, None, None] ** 2 * M[None] + 1j * W[:, None, None] * D[None])
+    E = np.broadcast_to(np.eye(Kmat.shape[0])[:, nl], (W.size, Kmat.shape[0], nl.size))
+    return np.linalg.inv(np.linalg.solve(Z, E)[:, nl, :])
+
 
 def shifted_hill(problem, X: ComplexArray, lam: float, theta: float, K: int,
-                 n_samples: int = 64) -> ComplexArray:
+                 n_samples: int = 64, blocks: ComplexArray | None = None) -> ComplexArray:
     """``A(sigma)`` (module docstring) of ``problem`` at ``lam`` on the orbit ``X``
-    (H+1, n_dof), ``sigma = theta * w``, harmonics ``k = -K .. K-1``: (2K m, 2K m)."""
+    (H+1, n_dof), ``sigma = theta * w``, harmonics ``k = -K .. K-1``: (2K m, 2K m).
+    ``blocks``: :func:`receptance_blocks` at (lam, theta), if already computed."""
     w = float(problem.frequency(lam))
     sigma = theta * w
     nl = np.asarray(problem.nl_dofs)
     m = nl.size
-    M, D, Kmat = problem.matrices(lam)
     ks = np.arange(-K, K)
-    A = np.zeros((2 * K * m, 2 * K * m), dtype=complex)
-    for i, k in enumerate(ks):
-        W = k * w + sigma
-        Z = Kmat - W**2 * M + 1j * W * D
-        Hs = np.linalg.solve(Z, np.eye(Z.shape[0])[:, nl])[nl]
-        A[i * m:(i + 1) * m, i * m:(i + 1) * m] = np.linalg.inv(Hs)
+    if blocks is None:
+        blocks = receptance_blocks(problem, lam, theta, K)
+    A = np.zeros((2 * K, m, 2 * K, m), dtype=complex)
+    A[np.arange(2 * K), :, np.arange(2 * K), :] = blocks
+    A = A.reshape(2 * K * m, 2 * K * m)
     N = max(n_samples, 4 * K + 2 * X.shape[0])
     q, v = orbit_samples(np.asarray(X)[:, nl], w, N)
     Jq, Jv = problem.law(lam).jacobian(q, v)    # the law at lam (speed-dependent films)
     Jq_hat = np.fft.fft(np.asarray(Jq), axis=0) / N      # Jq_hat[l] ~ exp(+i l w t)
     Jv_hat = np.fft.fft(np.asarray(Jv), axis=0) / N
-    for i, k in enumerate(ks):
-        for j, kj in enumerate(ks):
-            lag = (k - kj) % N
-            A[i * m:(i + 1) * m, j * m:(j + 1) * m] -= (
-                Jq_hat[lag] + 1j * (kj * w + sigma) * Jv_hat[lag])
+    lag = (ks[:, None] - ks[None, :]) % N                  # (2K, 2K)
+    conv = Jq_hat[lag] + 1j * (ks * w + sigma)[None, :, None, None] * Jv_hat[lag]
+    A -= conv.transpose(0, 2, 1, 3).reshape(2 * K * m, 2 * K * m)
     return A
 
 
@@ -89,6 +103,7 @@ class NeimarkSackerSystem:
         self.n = base.n + 2
         self.weights = None
         self._problems: dict[float, object] = {}
+        self._blocks: dict[tuple[float, float, float], ComplexArray] = {}
         self.unit = 1.0
         A = self.hill(z0)
         U, sv, Vh = np.linalg.svd(A)
@@ -110,11 +125,18 @@ class NeimarkSackerSystem:
             if len(self._problems) > 4:
                 self._problems.clear()
             self._problems[lam2] = self.base.problem.first(lam2)
-        return self.unit * shifted_hill(self._problems[lam2], X, lam1,
-                                        self.theta(z), self.K, self.base.N)
+        key = (lam1, self.theta(z), lam2)
+        if key not in self._blocks:   # the linear part: only the orbit changes with x
+            if len(self._blocks) > 8:
+                self._blocks.clear()
+            self._blocks[key] = receptance_blocks(self._problems[lam2], lam1,
+                                                  self.theta(z), self.K)
+        return self.unit * shifted_hill(self._problems[lam2], X, lam1, self.theta(z),
+                                        self.K, self.base.N, blocks=self._blocks[key])
 
     def admissible(self, z: FloatArray) -> bool:
-        return self.base.admissible(self.embed(z)) and 0.0 < self.theta(z) < 0.5
+        return (self.base.admissible(self.embed(z))
+                and -THETA_MARGIN < self.theta(z) < 0.5 + THETA_MARGIN)
 
     def g(self, z: FloatArray) -> complex:
         return bordered(self.hill(z), self.b, self.c)[1]
@@ -148,12 +170,17 @@ def continue_neimark_sacker(problem: TwoParameterProblem, X: ComplexArray, lam1:
                             H: int, N: int, K: int, scales: tuple[float, float],
                             options: FoldOptions | None = None, limit_max: float = 1.0,
                             on_point: Callable[[FloatArray, int], None] | None = None,
+                            event_xtol: float = 1e-10,
                             ) -> tuple[TwoParameterHB, FoldBranch]:
     """The Neimark-Sacker curve through the secondary Hopf near ``(X, lam1, theta)`` at
     ``lam2`` (X the period-1 coefficients (H+1, n_dof), theta = arg(mu) / 2 pi of the
     critical multiplier, in (0, 1/2)), continued from lam2 towards ``lam2_range[1]``
     (physical units, scaled by ``scales``) with K shifted harmonic pairs. Points
-    ``z = (x, lam1, theta, lam2)`` scaled; ``leg.system.embed(z)`` gives the base z."""
+    ``z = (x, lam1, theta, lam2)`` scaled; ``leg.system.embed(z)`` gives the base z.
+    The curve ends where theta reaches 0 or 1/2 (a 1:1 or 1:2 resonance: the pair meets
+    at +1 or -1; beyond, the mirror image theta -> -theta or 1 - theta of the same
+    curve): the crossing is located to ``event_xtol`` (scaled arc length), stored as the
+    last point, and ``leg.ended_at`` is 0 (theta = 0) or 1 (theta = 1/2)."""
     template = problem.first(lam2)
     xs0 = to_real(np.asarray(X))[:, template.nl_dofs]
     hb = TwoParameterHB(problem, H, N, scales, xs0, (lam1, lam2), limit_max=limit_max)
@@ -163,5 +190,7 @@ def continue_neimark_sacker(problem: TwoParameterProblem, X: ComplexArray, lam1:
     lo, hi = lam2_range[0] / scales[1], lam2_range[1] / scales[1]
     leg = continue_folds(hb, z0, (lo, hi), options, on_point=on_point,
                          lam_physical=lambda s: s * scales[1],
-                         augmented=lambda base, z: ns)
+                         augmented=lambda base, z: ns,
+                         events=(lambda z: float(z[-2]), lambda z: float(z[-2]) - 0.5),
+                         event_xtol=event_xtol)
     return hb, leg

@@ -1,0 +1,279 @@
+"""Codimension-2 points on fold, period-doubling and Neimark-Sacker curves
+(harmonic/codim2.py) where their locations are known independently.
+
+The model: a forced Duffing oscillator y pumps three linear oscillators,
+
+    y''  + c y'  + y + a y^3         = F cos(w t)
+    x1'' + c1 x1' + k1 (1 + kap1 y) x1 = 0       (Mathieu: a flip near w = 2 sqrt(k1))
+    x2'' + (c2 - beta y^2) x2' + k2 x2 = 0       (damping pumped: a secondary Hopf)
+    x3'' + c3 x3' + k3 (1 + kap3 y) x3 = 0       (Mathieu: a +1 pair near w = sqrt(k3))
+
+On the orbit (y the Duffing response, x = 0) each x block is a linear periodic system
+with its own two multipliers, so every codimension-2 point of the y fold curve in (w, F)
+is where one x block reaches its condition, which is checked without the Floquet code:
+
+- fold-flip: the x1 multipliers of scipy's solve_ivp monodromy (along y(t) of the HB
+  orbit) have one at -1;
+- 1:1 resonance (a second +1): the x3 multipliers have one at +1;
+- fold-Neimark-Sacker: Liouville, |mu|^2 = exp(-int (c2 - beta y^2) dt) for the complex
+  x2 pair, so the pair is on the unit circle where c2 = beta <y^2>, the mean square of y
+  from the HB coefficients (no monodromy at all).
+
+Each is found along the fold curve by brentq on that condition (re-solving the curve at
+fixed F) and compared with the located point (1e-4 in both parameters). The PD curve of
+x1 and the NS curve of x2 meet the fold curve at the same points: there the y multiplier
+reaches +1 (the +1 test on those curves), located independently of the fold curve's.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
+
+from rotorsfd.continuation.folds import FoldOptions, locate_branch_fold
+from rotorsfd.harmonic.codim2 import codim2_tests, curve_codim2
+from rotorsfd.harmonic.fold_curve import TwoParameterProblem, trace_fold_curves
+from rotorsfd.harmonic.ns_curve import continue_neimark_sacker
+from rotorsfd.harmonic.pd_curve import continue_period_doublings
+from rotorsfd.harmonic.periodic import continue_periodic
+from rotorsfd.harmonic.problem import PeriodicProblem
+from rotorsfd.stability.branch_options import StabilityOptions
+from rotorsfd.stability.branch_stability import branch_stability
+from rotorsfd.stability.floquet_evaluator import FloquetEvaluator
+
+C, A3 = 0.05, 0.1
+C1, K1, KAP1 = 0.005, 0.497, 0.05
+C2, K2, BETA = 0.3, 0.5, 0.1
+C3, K3, KAP3 = 0.002, 1.3, 0.3
+H, N = 5, 32
+SCALES = (0.8, 0.2)
+OPTIONS = StabilityOptions(n_intervals=1600)
+
+
+def pumped(w: float | None = None, F: float | None = None) -> PeriodicProblem:
+    """The model with lam = w (``F`` given) or lam = F (``w`` given)."""
+    in_w = F is not None
+    M, D = np.eye(4), np.diag([C, C1, C2, C3])
+    K, Z = np.diag([1.0, K1, K2, K3]), np.zeros((4, 4))
+
+    def forcing(lam, h):
+        f = np.zeros((h + 1, 4), complex)
+        f[1, 0] = F if in_w else lam
+        return f
+
+    def dforcing(lam, h):
+        f = np.zeros((h + 1, 4), complex)
+        f[1, 0] = 0.0 if in_w else 1.0
+        return f
+
+    def force(q, v):
+        y, x1, x3 = q[..., 0], q[..., 1], q[..., 3]
+        return np.stack([-A3 * y**3, -K1 * KAP1 * y * x1, BETA * y**2 * v[..., 2],
+                         -K3 * KAP3 * y * x3], axis=-1)
+
+    def jacobian(q, v):
+        y, x1, x3 = q[..., 0], q[..., 1], q[..., 3]
+        Jq = np.zeros((*q.shape[:-1], 4, 4))
+        Jv = np.zeros_like(Jq)
+        Jq[..., 0, 0] = -3 * A3 * y**2
+        Jq[..., 1, 0], Jq[..., 1, 1] = -K1 * KAP1 * x1, -K1 * KAP1 * y
+        Jq[..., 2, 0], Jv[..., 2, 2] = 2 * BETA * y * v[..., 2], BETA * y**2
+        Jq[..., 3, 0], Jq[..., 3, 3] = -K3 * KAP3 * x3, -K3 * KAP3 * y
+        return Jq, Jv
+
+    return PeriodicProblem(
+        n_dof=4, nl_dofs=np.arange(4), matrices=lambda lam: (M, D, K),
+        dmatrices=lambda lam: (Z, Z, Z), forcing=forcing, dforcing=dforcing,
+        frequency=(lambda lam: lam) if in_w else (lambda lam: w),
+        dfrequency=(lambda lam: 1.0) if in_w else (lambda lam: 0.0),
+        nl_force=force, nl_jacobian=jacobian, name="Duffing pumping three oscillators")
+
+
+FAMILY = TwoParameterProblem(lambda F: pumped(F=F), lambda w: pumped(w=w), ("w", "F"))
+
+
+def floquet(problem: PeriodicProblem, lam: float, X) -> np.ndarray:
+    return FloquetEvaluator(problem, OPTIONS)(lam, X).multipliers
+
+
+def block_multipliers(X, w: float, block: int) -> np.ndarray:
+    """The two multipliers of x_block along y(t) = Re sum X_k exp(i k w t), by scipy's
+    DOP853 monodromy (rtol 1e-11)."""
+    y = X[:, 0]
+    k = np.arange(y.size)
+
+    def yt(t):
+        return float(np.real(np.sum(y * np.exp(1j * k * w * t))))
+
+    def rhs(t, s):
+        x, v = s
+        yy = yt(t)
+        if block == 1:
+            return [v, -C1 * v - K1 * (1 + KAP1 * yy) * x]
+        if block == 2:
+            return [v, -(C2 - BETA * yy**2) * v - K2 * x]
+        return [v, -C3 * v - K3 * (1 + KAP3 * yy) * x]
+
+    T = 2 * np.pi / w
+    cols = [solve_ivp(rhs, (0, T), e, method="DOP853", rtol=1e-11, atol=1e-13).y[:, -1]
+            for e in ([1.0, 0.0], [0.0, 1.0])]
+    return np.linalg.eigvals(np.array(cols).T)
+
+
+@pytest.fixture(scope="module")
+def fold():
+    b = continue_periodic(pumped(F=0.1), 0.8, 1.6, H, n_samples=N, ds_max=0.02)
+    folds = [locate_branch_fold(b, int(i)) for i in b.folds()]
+    hb, curves, _ = trace_fold_curves(FAMILY, H, N, SCALES, folds, (0.1, 0.3))
+    upper = max(curves, key=lambda c: hb.from_z(c.z[-1])[1])
+    points = curve_codim2("saddle-node", hb, upper, floquet, FAMILY.first)
+    return hb, upper, points
+
+
+def on_fold(fold, F: float):
+    hb, upper, _ = fold
+    (z,) = upper.solve_at(F / SCALES[1])
+    _, w, _ = hb.from_z(z)
+    return w, hb.coefficients(z)
+
+
+def located(points, kind: str, below: float = 0.25):
+    """The one point of ``kind`` with F < ``below``."""
+    (p,) = [p for p in points if p.type == kind and p.lam2 < below]
+    return p
+
+
+def test_test_functions_of_known_multipliers():
+    """psi_+1, psi_-1, psi_circle of hand-made multiplier sets (a fold's +1 removed)."""
+    mu = np.array([1.0, 0.5, -0.8, 0.3 + 0.9j, 0.3 - 0.9j])
+    v = codim2_tests("saddle-node", mu)
+    assert v["-1"] == pytest.approx(1.5 * 0.2 * abs(1.3 + 0.9j) ** 2)
+    assert v["circle"] == pytest.approx(0.9 - 1.0)
+    # a second real multiplier at +1: the sum of the two nearest +1 deviations
+    assert v["+1"] == pytest.approx((0.0 - 0.5) * (-1.8) * abs(-0.7 + 0.9j) ** 2)
+    above = codim2_tests("saddle-node", [1.0, 1.0 + 1e-3, 0.2])["+1"]
+    assert above == pytest.approx(1e-3 * (0.2 - 1.0))
+    assert codim2_tests("saddle-node", [1.0, 1.0 - 1e-3, 0.2])["+1"] == pytest.approx(-above)
+    # the computed own multiplier off by delta: the zero where the second is at 1 - delta
+    assert codim2_tests("saddle-node", [1.0 + 2e-4, 1.0 - 2e-4, 0.2])["+1"] == 0.0
+    pd = codim2_tests("period-doubling", np.array([-1.0, -1.01, 0.5]))
+    assert pd["-1"] == pytest.approx(-0.01 * 1.5) and pd["+1"] == pytest.approx(-2.01 * -0.5)
+
+
+def test_fold_flip_on_the_fold_curve(fold):
+    p = located(fold[2], "fold-flip")
+    assert abs(p.multiplier + 1.0) < 1e-6
+
+    def x1_flip(F):
+        w, X = on_fold(fold, F)
+        return float(np.min(np.real(block_multipliers(X, w, 1)))) + 1.0
+
+    F = brentq(x1_flip, 0.21, 0.235, xtol=1e-10)
+    w, _ = on_fold(fold, F)
+    assert p.lam2 == pytest.approx(F, rel=1e-4)     # measured 9.5e-7 (w: 3.0e-7)
+    assert p.lam1 == pytest.approx(w, rel=1e-4)
+
+
+def test_second_plus_one_on_the_fold_curve(fold):
+    p = located(fold[2], "1:1 resonance")
+
+    def x3_plus(F):
+        w, X = on_fold(fold, F)
+        return float(np.max(np.real(block_multipliers(X, w, 3)))) - 1.0
+
+    F = brentq(x3_plus, 0.115, 0.13, xtol=1e-10)
+    w, _ = on_fold(fold, F)
+    # measured 7.4e-6 (w: 1.5e-6): the Newmark fold multiplier is 1 + 4e-5 at T/1600
+    assert p.lam2 == pytest.approx(F, rel=1e-4)
+    assert p.lam1 == pytest.approx(w, rel=1e-4)
+
+
+def test_fold_neimark_sacker_on_the_fold_curve_is_liouvilles(fold):
+    p = located(fold[2], "fold-Neimark-Sacker")
+    assert abs(abs(p.multiplier) - 1.0) < 1e-6 and abs(p.multiplier.imag) > 0.1
+
+    def mean_square(F):
+        _, X = on_fold(fold, F)
+        y = X[:, 0]
+        return C2 - BETA * (abs(y[0]) ** 2 + 0.5 * np.sum(abs(y[1:]) ** 2))
+
+    F = brentq(mean_square, 0.13, 0.17, xtol=1e-12)
+    w, X = on_fold(fold, F)
+    assert p.lam2 == pytest.approx(F, rel=1e-4)     # measured 1.1e-9 (w: 2.7e-10)
+    assert p.lam1 == pytest.approx(w, rel=1e-4)
+    assert abs(abs(block_multipliers(X, w, 2)) - 1.0).max() < 1e-6    # Liouville itself
+
+
+def test_located_to_the_tolerance_not_the_step(fold):
+    """The points are re-solved on the curve and the test function is zero there: the
+    bracket ends at 1e-9 in scaled arc length while the steps are ~0.02."""
+    hb, upper, points = fold
+    assert {p.type for p in points} >= {"fold-flip", "1:1 resonance",
+                                        "fold-Neimark-Sacker"}
+    steps = np.diff(upper.s)
+    assert np.median(steps) > 1e-3
+    for p in points:
+        w = upper.solve_at(p.lam2 / SCALES[1])
+        assert min(abs(hb.from_z(z)[1] - p.lam1) for z in w) < 1e-7
+
+
+def first_of(F: float, kind: str):
+    """The branch at F and its lowest-speed bifurcation of ``kind`` (Floquet)."""
+    p = pumped(F=F)
+    b = continue_periodic(p, 0.8, 1.6, H, n_samples=N, ds_max=0.02)
+    st = branch_stability(b, p, OPTIONS)
+    return b, min((x for x in st.bifurcations if x.kind == kind), key=lambda x: x.lam)
+
+
+@pytest.fixture(scope="module")
+def pd_points():
+    """The x1 flip of the branch at F = 0.25 continued down in F: it reaches the fold
+    curve at the fold-flip, where it turns (the flips of the upper and the middle branch
+    meet there) and goes back up to 0.25."""
+    b, flip = first_of(0.25, "period-doubling")
+    pt = b.point_at(flip.s)
+    hb, (leg,) = continue_period_doublings(FAMILY, pt.X, pt.lam, 0.25, (0.25, 0.15),
+                                           H2=2 * H, N=2 * N, scales=SCALES,
+                                           options=FoldOptions(ds=0.02, ds_max=0.05),
+                                           both_ways=False)
+    return hb, leg, curve_codim2("period-doubling", hb, leg, floquet, FAMILY.first)
+
+
+@pytest.fixture(scope="module")
+def ns_points():
+    """The x2 secondary Hopf of the branch at F = 0.2 continued down in F: it reaches the
+    fold curve at the fold-Neimark-Sacker point (the y multiplier at +1)."""
+    b, hopf = first_of(0.2, "secondary-hopf")
+    pt = b.point_at(hopf.s)
+    theta = abs(float(np.angle(hopf.critical))) / (2 * np.pi)
+    hb, leg = continue_neimark_sacker(FAMILY, pt.X, pt.lam, 0.2, theta, (0.2, 0.1), H=H,
+                                      N=N, K=H, scales=SCALES,
+                                      options=FoldOptions(ds=0.05, ds_max=0.1))
+    return hb, leg, curve_codim2("Neimark-Sacker", hb, leg, floquet, FAMILY.first)
+
+
+def test_period_doubling_curve_meets_the_fold_curve_at_the_fold_flip(fold, pd_points):
+    on_fold_curve = located(fold[2], "fold-flip")
+    hb, leg, points = pd_points
+    on_pd = located(points, "fold-flip")
+    assert on_pd.curve == "period-doubling" and abs(on_pd.multiplier - 1.0) < 1e-6
+    assert on_pd.lam2 == pytest.approx(on_fold_curve.lam2, rel=1e-4)   # measured 5.1e-7
+    assert on_pd.lam1 == pytest.approx(on_fold_curve.lam1, rel=1e-4)
+    # the PD curve's own turn in F is the same point (HB: the even block singular there;
+    # measured 1.3e-5: the Newmark +1 against HB's)
+    (turn,) = leg.cusps
+    _, w, F = hb.from_z(leg.system.embed(turn.z))
+    assert F == pytest.approx(on_pd.lam2, rel=1e-4) and w == pytest.approx(on_pd.lam1,
+                                                                           rel=1e-4)
+
+
+@pytest.mark.slow
+def test_neimark_sacker_curve_meets_the_fold_curve_at_the_fold_ns(fold, ns_points):
+    """6 s CPU (the NS curve's Jacobian by differences of the shifted Hill operator)."""
+    on_fold_curve = located(fold[2], "fold-Neimark-Sacker")
+    on_ns = located(ns_points[2], "fold-Neimark-Sacker")
+    assert on_ns.curve == "Neimark-Sacker" and abs(on_ns.multiplier - 1.0) < 1e-6
+    assert on_ns.lam2 == pytest.approx(on_fold_curve.lam2, rel=1e-4)   # measured 5.8e-6
+    assert on_ns.lam1 == pytest.approx(on_fold_curve.lam1, rel=1e-4)
