@@ -95,6 +95,9 @@ def test_files(curves, tmp_path):
     summary = json.loads((tmp_path / "summary.json").read_text())
     assert summary["period_doubling_harmonics_of_half_speed"] == 12
     assert [t["kind"] for t in summary["turning_points"]] == ["period-doubling"]
+    (c2,) = summary["codim2_points"]
+    assert c2["type"] == "1:2 resonance" and c2["curve"] == "period-doubling"
+    assert "secondary Hopf meets period doubling" in c2["meaning"]
 
 
 def test_command_says_when_the_start_branch_has_no_bifurcation(tmp_path, capsys):
@@ -144,19 +147,43 @@ def test_fold_curves_of_the_pitching_rotor_through_the_folds_of_another_branch()
     assert result.speeds_at("saddle-node", 3.0) == pytest.approx(folds, rel=1e-4)
 
 
+def test_one_two_resonance_located_on_the_period_doubling_curve(curves):
+    """Above the PD curve's turn a second multiplier passes -1 on it (the pair at -1 of
+    the secondary Hopf that the NS curve from 1 g mm brings): located on the curve
+    (re-solved there: the speed at that U within 1e-7) with the multiplier at -1 to the
+    monodromy's accuracy (the zero is where the two nearest -1 sum to -2; the curve's own
+    Newmark multiplier at T/400 is -1.0005 there)."""
+    (r2,) = [c for c in curves.codim2 if c.type == "1:2 resonance"]
+    assert r2.curve == "period-doubling" and "mu_j + 1" in r2.test
+    assert abs(complex(r2.multiplier_re, r2.multiplier_im) + 1.0) < 1e-3
+    assert curves.turns[0].value < r2.value < 3e-6
+    on_pd = curves.speeds_at("period-doubling", r2.value)
+    assert min(abs(on_pd - r2.speed_rad_s)) < 1e-7 * r2.speed_rad_s
+    assert "1:2 resonance" in curves.summary()
+
+
 @pytest.mark.slow
 def test_neimark_sacker_curve_ends_on_the_period_doubling_curve(curves, tmp_path):
     """From 1 g mm the whirl onset is a secondary Hopf; its Neimark-Sacker curve runs up in
-    U until theta = sigma / w reaches 1/2 (the pair meets at -1): a 1:2 resonance, which
-    lies on the period-doubling curve traced from 5 g mm by the other test function
-    (measured 2e-7 in speed; located to the step: about 0.01 g mm in U). 15 s CPU."""
+    U until theta = sigma / w reaches 1/2 (the pair meets at -1): a 1:2 resonance, located
+    there (theta = 1/2 to 1e-9) and on the period-doubling curve traced from 5 g mm by
+    the other test function (measured 2e-7 in speed). Along the PD curve the two
+    locations differ by 3.2e-4 in speed and 1.3 % in U: here the pair stays within 5e-4
+    of -1 from 2.30 to 2.42 g mm (Newmark at T/1600), so the point where it splits is
+    ill-conditioned along the curve, at the monodromy's accuracy (T/400 on the PD
+    curve; the NS curve's theta is HB's). 20 s CPU."""
     result = api.run_bifurcation_curves(config(), "unbalance[0].magnitude", "1 g*mm",
                                         "3 g*mm")
     assert result.success, result.message
     assert result.start_period_doublings == [] and len(result.start_secondary_hopfs) == 1
     assert set(result.table["kind"].tolist()) == {"Neimark-Sacker"}
-    (r2,) = result.turns
-    assert r2.kind == "1:2 resonance" and curves.turns[0].value < r2.value < 3e-6
+    (r2,) = result.codim2
+    assert r2.type == "1:2 resonance" and r2.curve == "Neimark-Sacker"
+    assert abs(r2.test_value) < 1e-9
+    assert curves.turns[0].value < r2.value < 3e-6
     on_pd = curves.speeds_at("period-doubling", r2.value)
     assert min(abs(on_pd - r2.speed_rad_s)) < 1e-5 * r2.speed_rad_s
+    (r2_pd,) = [c for c in curves.codim2 if c.type == "1:2 resonance"]
+    assert r2.speed_rad_s == pytest.approx(r2_pd.speed_rad_s, rel=1e-3)
+    assert r2.value == pytest.approx(r2_pd.value, rel=0.03)
     assert "curves.png" in result.write(tmp_path)

@@ -18,8 +18,15 @@ stability (:func:`~rotorsfd.stability.branch_stability.branch_stability`):
   ``exp(+-i sigma T)``) is continued as a Neimark-Sacker curve by
   :func:`rotorsfd.harmonic.ns_curve.continue_neimark_sacker` (the shifted Hill operator,
   harmonics ``k Omega + sigma``, with K = H2 / 2 pairs: at sigma = Omega/2 the PD test's
-  block); it ends where theta = sigma / Omega reaches 1/2 (the pair meets at -1: a 1:2
-  resonance).
+  block); it ends where theta = sigma / Omega reaches 1/2 or 0 (the pair meets at -1
+  or +1: a 1:2 or 1:1 resonance), located there.
+
+Codimension-2 points where the curves meet (:mod:`rotorsfd.analyses.bifurcation_points`,
+:mod:`rotorsfd.harmonic.codim2`): cusps, 1:1 and 1:2 resonances, fold-flip,
+fold-Neimark-Sacker and flip-Neimark-Sacker points, each detected by a test function of
+the Floquet multipliers along a curve (the stability options of the speed branch) and
+located along the curve to 1e-9 of the ranges (not to the step); ``codim2`` lists them,
+the summary and ``summary.json`` name them, the chart marks them.
 
 A PD curve that passes ``range2[0]`` again at another located period doubling of the start
 branch covers it (it is not continued twice), as for the fold curves.
@@ -43,6 +50,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsfd.analyses.bifurcation_points import Codim2Record, codim2_records
 from rotorsfd.analyses.fold_curve import FoldCurve, config_two_parameter, fold_curve
 from rotorsfd.analyses.modal import first_critical
 from rotorsfd.analyses.response_words import PARAMETER_UNITS, column_slug, system_parameter
@@ -68,18 +76,17 @@ FloatArray = NDArray[np.float64]
 KINDS = ("saddle-node", "period-doubling", "Neimark-Sacker")
 
 THETA_END = 1e-6
-"""A Neimark-Sacker curve ends at the first point with theta = sigma / w > 1/2 - THETA_END:
-at theta = 1/2 the shifted Hill operator is the period-doubling test's block, so every
-point of the PD curve solves the NS equations too and the continuation would slide
-along it."""
+"""A Neimark-Sacker curve that did not end at its theta = 1/2 event (located) is cut at
+the first point with theta = sigma / w > 1/2 - THETA_END: at theta = 1/2 the shifted Hill
+operator is the period-doubling test's block, so every point of the PD curve solves the
+NS equations too and the continuation could slide along it."""
 
 
 @dataclass
 class TurningPoint:
     """A turn of a curve in the second parameter (where the pair of its kind meets)."""
 
-    #: "saddle-node" (a cusp), "period-doubling", or "1:2 resonance" (a Neimark-Sacker
-    #: curve's end where its multipliers meet at -1, on a period-doubling curve)
+    #: "saddle-node" (a cusp), "period-doubling" or "Neimark-Sacker"
     kind: str
     speed_rad_s: float
     speed_ratio: float
@@ -106,6 +113,7 @@ class BifurcationCurves:
     ns_hb: TwoParameterHB | None = field(default=None, repr=False)
     ns_curves: list[FoldBranch] = field(default_factory=list, repr=False)
     start_secondary_hopfs: list[float] = field(default_factory=list)
+    codim2: list[Codim2Record] = field(default_factory=list)
     success: bool = True
     message: str = ""
     timings: dict[str, float] = field(default_factory=dict)
@@ -156,6 +164,12 @@ class BifurcationCurves:
         for t in self.turns:
             lines.append(f"{t.kind} curve turns at {self.parameter} = {t.value:.6g}{unit}, "
                          f"Omega~ = {t.speed_ratio:.5f} ({t.speed_rad_s:.2f} rad/s)")
+        for c in self.codim2:
+            lines.append(f"{c.type} ({c.meaning}) at {self.parameter} = {c.value:.7g}"
+                         f"{unit}, Omega~ = {c.speed_ratio:.6f} ({c.speed_rad_s:.4f} "
+                         f"rad/s), on the {c.curve} curve; test: {c.test}")
+        if not self.codim2:
+            lines.append("no codimension-2 point on the curves")
         lines.append("time: " + ", ".join(f"{k} {v:.2f} s" for k, v in self.timings.items()))
         return "\n".join(lines)
 
@@ -169,6 +183,7 @@ class BifurcationCurves:
                 "start_period_doublings_rad_s": self.start_period_doublings,
                 "start_secondary_hopfs_rad_s": self.start_secondary_hopfs,
                 "turning_points": [vars(t) for t in self.turns],
+                "codim2_points": [{**vars(c), "meaning": c.meaning} for c in self.codim2],
                 "success": self.success, "message": self.message,
                 "timings_s": self.timings}
 
@@ -209,6 +224,7 @@ class BifurcationCurves:
         return bifurcation_curves_figure(
             t["kind"], t["curve"], t["speed_ratio"], t[self.value_column],
             turns=[(p.kind, p.speed_ratio, p.value) for p in self.turns],
+            codim2=[(c.type, c.speed_ratio, c.value) for c in self.codim2],
             parameter=self.parameter, units=self.units, H=self.H,
             H2=self.H2 if self.pd_curves else None, title=title)
 
@@ -263,10 +279,13 @@ def bifurcation_curves(system: RotorSystem, speed_range: tuple[float, float],
                        nodes: tuple[int, ...] | None = None,
                        options: FoldOptions | None = None,
                        stability_options: StabilityOptions | None = None,
-                       branch_options: dict[str, Any] | None = None) -> BifurcationCurves:
-    """Fold and period-doubling curves from the speed branch at ``range2[0]`` (SI),
-    continued towards ``range2[1]`` (module docstring). ConfigError if that branch has
-    neither a saddle-node nor a period doubling; ConvergenceError if it stops first."""
+                       branch_options: dict[str, Any] | None = None,
+                       codim2: bool = True) -> BifurcationCurves:
+    """Fold, period-doubling and Neimark-Sacker curves from the speed branch at
+    ``range2[0]`` (SI), continued towards ``range2[1]`` (module docstring), and their
+    codimension-2 points (``codim2=False``: only the cusps and the NS curves' ends, no
+    Floquet multipliers along the curves). ConfigError if that branch has no saddle-node,
+    period doubling or secondary Hopf; ConvergenceError if it stops first."""
     param = system_parameter(second_parameter)
     if param == "speed":
         raise ConfigError("--parameter", second_parameter,
@@ -346,13 +365,17 @@ def bifurcation_curves(system: RotorSystem, speed_range: tuple[float, float],
             messages.append(f"secondary Hopf at {b.lam:.6g} rad/s not continued: {exc}")
             continue
         at_half = np.flatnonzero(leg.z[:, -2] > 0.5 - THETA_END)
-        if at_half.size:    # the pair meets at -1; beyond, A(w/2) = the PD block: stop
+        if leg.ended_at is None and at_half.size:   # no located event: cut at the step
             k = int(at_half[0])
             leg = dataclasses.replace(
                 leg, z=leg.z[: k + 1], tangents=leg.tangents[: k + 1], s=leg.s[: k + 1],
                 segment=leg.segment[: k + 1], cusps=[c for c in leg.cusps if c.index <= k],
                 success=True, message="ended where the multipliers meet at -1 (theta = "
                 "1/2, a 1:2 resonance, located to the continuation step)")
+        elif leg.ended_at is not None:
+            leg.message = ("ended where the multipliers meet at " + ("+1 (theta = 0, a 1:1"
+                           if leg.ended_at == 0 else "-1 (theta = 1/2, a 1:2") +
+                           " resonance, located)")
         ns_curves.append(leg)
         messages.append(f"secondary Hopf at {b.lam:.6g} rad/s: {leg.message}")
     t3 = time.perf_counter()
@@ -367,20 +390,27 @@ def bifurcation_curves(system: RotorSystem, speed_range: tuple[float, float],
             _, speed, value = pd_hb.from_z(c.system.embed(cp.z))
             turns.append(TurningPoint("period-doubling", speed, speed / ref, value))
     for c in ns_curves:
-        if c.message.startswith("ended where the multipliers meet at -1"):
+        for cp in c.cusps:
             assert ns_hb is not None
-            _, speed, value = ns_hb.from_z(c.system.embed(c.z[-1]))
-            turns.append(TurningPoint("1:2 resonance", speed, speed / ref, value))
+            _, speed, value = ns_hb.from_z(c.system.embed(cp.z))
+            turns.append(TurningPoint("Neimark-Sacker", speed, speed / ref, value))
+    points, codim2_messages = codim2_records(
+        family, ref, [("saddle-node", fold.hb if fold else None, fold.curves if fold else []),
+                      ("period-doubling", pd_hb, pd_curves),
+                      ("Neimark-Sacker", ns_hb, ns_curves)], stability_options,
+        multipliers=codim2)
+    messages += codim2_messages
+    t4 = time.perf_counter()
     success = (fold.success if fold else True) and all(c.success for c in
                                                        pd_curves + ns_curves)
     timings = {"speed_branch_and_stability": t1 - t0, "fold_curves": t2 - t1,
                "period_doubling_and_neimark_sacker_curves": t3 - t2,
-               "total": time.perf_counter() - t0}
+               "codimension_2_points": t4 - t3, "total": time.perf_counter() - t0}
     return BifurcationCurves(param, (float(range2[0]), float(range2[1])), ref, H, H2, N2,
                              fold.start_folds if fold else [],
                              [float(b.lam) for b in flips], table, turns, fold, pd_hb,
                              pd_curves, ns_hb, ns_curves, [float(b.lam) for b in hopfs],
-                             success, "; ".join(messages), timings)
+                             points, success, "; ".join(messages), timings)
 
 
 def run_bifurcation_curves(config: Config, parameter: str, start: Any, stop: Any, *,
