@@ -52,10 +52,11 @@ SCALES = (0.8, 0.2)
 OPTIONS = StabilityOptions(n_intervals=1600)
 
 
-def pumped(w: float | None = None, F: float | None = None) -> PeriodicProblem:
-    """The model with lam = w (``F`` given) or lam = F (``w`` given)."""
+def pumped(w: float | None = None, F: float | None = None, c2: float = C2
+           ) -> PeriodicProblem:
+    """The model with lam = w (``F`` given) or lam = F (``w`` given); x2's damping c2."""
     in_w = F is not None
-    M, D = np.eye(4), np.diag([C, C1, C2, C3])
+    M, D = np.eye(4), np.diag([C, C1, c2, C3])
     K, Z = np.diag([1.0, K1, K2, K3]), np.zeros((4, 4))
 
     def forcing(lam, h):
@@ -194,12 +195,8 @@ def test_fold_neimark_sacker_on_the_fold_curve_is_liouvilles(fold):
     p = located(fold[2], "fold-Neimark-Sacker")
     assert abs(abs(p.multiplier) - 1.0) < 1e-6 and abs(p.multiplier.imag) > 0.1
 
-    def mean_square(F):
-        _, X = on_fold(fold, F)
-        y = X[:, 0]
-        return C2 - BETA * (abs(y[0]) ** 2 + 0.5 * np.sum(abs(y[1:]) ** 2))
-
-    F = brentq(mean_square, 0.13, 0.17, xtol=1e-12)
+    F = brentq(lambda F: C2 - BETA * mean_square(on_fold(fold, F)[1]), 0.13, 0.17,
+               xtol=1e-12)
     w, X = on_fold(fold, F)
     assert p.lam2 == pytest.approx(F, rel=1e-4)     # measured 1.1e-9 (w: 2.7e-10)
     assert p.lam1 == pytest.approx(w, rel=1e-4)
@@ -227,18 +224,50 @@ def first_of(F: float, kind: str):
     return b, min((x for x in st.bifurcations if x.kind == kind), key=lambda x: x.lam)
 
 
-@pytest.fixture(scope="module")
-def pd_points():
+def pd_curve(family: TwoParameterProblem):
     """The x1 flip of the branch at F = 0.25 continued down in F: it reaches the fold
     curve at the fold-flip, where it turns (the flips of the upper and the middle branch
     meet there) and goes back up to 0.25."""
     b, flip = first_of(0.25, "period-doubling")
     pt = b.point_at(flip.s)
-    hb, (leg,) = continue_period_doublings(FAMILY, pt.X, pt.lam, 0.25, (0.25, 0.15),
+    hb, (leg,) = continue_period_doublings(family, pt.X, pt.lam, 0.25, (0.25, 0.15),
                                            H2=2 * H, N=2 * N, scales=SCALES,
                                            options=FoldOptions(ds=0.02, ds_max=0.05),
                                            both_ways=False)
-    return hb, leg, curve_codim2("period-doubling", hb, leg, floquet, FAMILY.first)
+    return hb, leg, curve_codim2("period-doubling", hb, leg, floquet, family.first)
+
+
+@pytest.fixture(scope="module")
+def pd_points():
+    return pd_curve(FAMILY)
+
+
+def mean_square(X) -> float:
+    """<y^2> over a period of y = Re sum_k X_k0 exp(i k w t)."""
+    y = X[:, 0]
+    return float(abs(y[0]) ** 2 + 0.5 * np.sum(abs(y[1:]) ** 2))
+
+
+def test_flip_neimark_sacker_on_the_period_doubling_curve_is_liouvilles():
+    """With c2 = 0.55 the x2 pair crosses the unit circle on the PD curve's upper leg
+    (<y^2> from 5.59 to 5.39 there): located by psi_circle, against brentq on Liouville's
+    c2 = beta <y^2> along the leg (1e-4)."""
+    c2 = 0.55
+    family = TwoParameterProblem(lambda F: pumped(F=F, c2=c2),
+                                 lambda w: pumped(w=w, c2=c2), ("w", "F"))
+    hb, leg, points = pd_curve(family)
+    (p,) = [q for q in points if q.type == "flip-Neimark-Sacker"]
+    assert abs(abs(p.multiplier) - 1.0) < 1e-6 and abs(p.multiplier.imag) > 0.1
+
+    def upper_leg(F):       # the leg of lower speed: the upper branch's flips
+        z = min(leg.solve_at(F / SCALES[1]), key=lambda z: z[-2])
+        full = leg.system.embed(z)
+        return hb.from_z(full)[1], hb.coefficients(full)[::2]
+
+    F = brentq(lambda F: c2 - BETA * mean_square(upper_leg(F)[1]), 0.2235, 0.249,
+               xtol=1e-12)
+    assert p.lam2 == pytest.approx(F, rel=1e-4)                 # measured 2.6e-8
+    assert p.lam1 == pytest.approx(upper_leg(F)[0], rel=1e-4)
 
 
 @pytest.fixture(scope="module")
