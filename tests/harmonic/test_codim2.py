@@ -306,3 +306,89 @@ def test_neimark_sacker_curve_meets_the_fold_curve_at_the_fold_ns(fold, ns_point
     assert on_ns.curve == "Neimark-Sacker" and abs(on_ns.multiplier - 1.0) < 1e-6
     assert on_ns.lam2 == pytest.approx(on_fold_curve.lam2, rel=1e-4)   # measured 5.8e-6
     assert on_ns.lam1 == pytest.approx(on_fold_curve.lam1, rel=1e-4)
+
+
+# ---- 1:1 resonance at the end of a Neimark-Sacker curve -----------------------------------
+# y the Duffing oscillator at F = 0.2 pumps x4'' + (c4 - b4 y^2) x4' + (k4 + p4 y) x4 = 0,
+# continued in (w, k4): the x4 pair is on the unit circle where c4 = b4 <y^2> (Liouville,
+# k4 plays no part: the NS curve is w = w* at every k4), and its angle theta -> 0 where k4
+# reaches the edge of x4's second Mathieu tongue (w ~ sqrt(k4)): the pair meets at +1.
+C4, B4, P4, F4 = 0.29, 0.1, 0.15, 0.2
+
+
+def whirl(w: float | None = None, k4: float | None = None) -> PeriodicProblem:
+    """DOFs (y, x4); lam = w (``k4`` given) or lam = k4 (``w`` given)."""
+    in_w = k4 is not None
+    M, D, Z = np.eye(2), np.diag([C, C4]), np.zeros((2, 2))
+    dK = Z if in_w else np.diag([0.0, 1.0])
+
+    def forcing(lam, h):
+        f = np.zeros((h + 1, 2), complex)
+        f[1, 0] = F4
+        return f
+
+    def force(q, v):
+        y, x = q[..., 0], q[..., 1]
+        return np.stack([-A3 * y**3, B4 * y**2 * v[..., 1] - P4 * y * x], axis=-1)
+
+    def jacobian(q, v):
+        y, x = q[..., 0], q[..., 1]
+        Jq = np.zeros((*q.shape[:-1], 2, 2))
+        Jv = np.zeros_like(Jq)
+        Jq[..., 0, 0] = -3 * A3 * y**2
+        Jq[..., 1, 0], Jq[..., 1, 1] = 2 * B4 * y * v[..., 1] - P4 * x, -P4 * y
+        Jv[..., 1, 1] = B4 * y**2
+        return Jq, Jv
+
+    return PeriodicProblem(
+        n_dof=2, nl_dofs=np.arange(2),
+        matrices=lambda lam: (M, D, np.diag([1.0, k4 if in_w else lam])),
+        dmatrices=lambda lam: (Z, Z, dK), forcing=forcing,
+        dforcing=lambda lam, h: np.zeros((h + 1, 2), complex),
+        frequency=(lambda lam: lam) if in_w else (lambda lam: w),
+        dfrequency=(lambda lam: 1.0) if in_w else (lambda lam: 0.0),
+        nl_force=force, nl_jacobian=jacobian, name="Duffing pumping a whirl")
+
+
+def test_one_one_resonance_ends_the_neimark_sacker_curve():
+    """The NS curve from the secondary Hopf of the branch at k4 = 1.87 (theta = 0.146)
+    runs down in k4 until theta reaches 0; its end (extrapolated from theta = 0.005 ..
+    0.015, where the curve meets the x4 +1 set) against w* from Liouville (brentq on the
+    HB speed branch's <y^2>) and k4* where scipy's x4 monodromy along y(t) at w* has
+    trace 2 (both multipliers +1; det = 1 there by Liouville). 3 s CPU."""
+    family = TwoParameterProblem(lambda k4: whirl(k4=k4), lambda w: whirl(w=w),
+                                 ("w", "k4"))
+    p = whirl(k4=1.87)
+    b = continue_periodic(p, 0.8, 1.6, H, n_samples=N, ds_max=0.02)
+    hopf = min((x for x in branch_stability(b, p).bifurcations
+                if x.kind == "secondary-hopf"), key=lambda x: x.lam)
+    pt = b.point_at(hopf.s)
+    theta = abs(float(np.angle(hopf.critical))) / (2 * np.pi)
+    hb, leg = continue_neimark_sacker(family, pt.X, pt.lam, 1.87, theta, (1.87, 1.2), H=H,
+                                      N=N, K=2 * H, scales=(0.8, 0.7),
+                                      options=FoldOptions(ds=0.05, ds_max=0.1))
+    (end,) = curve_codim2("Neimark-Sacker", hb, leg, floquet, family.first)
+    assert leg.ended_at == 0 and end.type == "1:1 resonance" and end.value == 0.0
+
+    def excess(s):          # c4 - b4 <y^2> on the speed branch (y does not see k4)
+        return C4 - B4 * mean_square(b.point_at(s).X)
+
+    i = next(i for i in range(b.n_points - 1)
+             if 1.1 < b.lam[i] < 1.25 and excess(b.s[i]) * excess(b.s[i + 1]) < 0)
+    star = b.point_at(brentq(excess, b.s[i], b.s[i + 1], xtol=1e-14))
+    w = star.lam
+
+    def trace_minus_2(k4):
+        y, k = star.X[:, 0], np.arange(star.X.shape[0])
+
+        def rhs(t, s):
+            yy = float(np.real(np.sum(y * np.exp(1j * k * w * t))))
+            return [s[1], -(C4 - B4 * yy**2) * s[1] - (k4 + P4 * yy) * s[0]]
+
+        cols = [solve_ivp(rhs, (0, 2 * np.pi / w), e, method="DOP853", rtol=1e-12,
+                          atol=1e-14).y[:, -1] for e in ([1.0, 0.0], [0.0, 1.0])]
+        return float(np.trace(np.array(cols).T)) - 2.0
+
+    k4 = brentq(trace_minus_2, 1.5, 1.65, xtol=1e-12)
+    assert end.lam1 == pytest.approx(w, rel=1e-4)       # measured 1e-9
+    assert end.lam2 == pytest.approx(k4, rel=1e-4)      # measured 6e-8 (K = 5: 1.3e-4)

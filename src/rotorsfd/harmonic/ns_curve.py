@@ -27,6 +27,7 @@ curve, continued in lam2 by the fold curve's driver
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable
 
 import numpy as np
@@ -38,6 +39,7 @@ from rotorsfd.continuation.folds import (
     bordered,
     continue_folds,
 )
+from rotorsfd.continuation.newton import newton_extended
 from rotorsfd.harmonic.fold_curve import TwoParameterHB, TwoParameterProblem
 from rotorsfd.harmonic.fourier import to_real
 from rotorsfd.harmonic.synthesis import orbit_samples
@@ -49,9 +51,15 @@ NS_FD_STEP = 1e-6
 """Central-difference step of g in the scaled unknowns."""
 
 THETA_MARGIN = 0.05
-"""theta is admitted in (-THETA_MARGIN, 1/2 + THETA_MARGIN): the curve may step past
-theta = 0 or 1/2 (the pair meeting at +1 or -1: a 1:1 or 1:2 resonance), where the
-continuation's events locate the crossing and end the curve."""
+"""theta is admitted in (-THETA_MARGIN, 1/2 + THETA_MARGIN) (a step may pass theta = 0 or
+1/2 before the end event stops the curve)."""
+
+THETA_STOP = 0.002
+"""The curve stops where theta comes within THETA_STOP of 0 or 1/2 (an event, located)."""
+
+THETA_FIT = 0.005
+"""The 1:1 / 1:2 end is extrapolated from the curve's points at theta = t + j THETA_FIT,
+j = 1, 2, 3 (t = 0), or t - j THETA_FIT (t = 1/2)."""
 
 
 def receptance_blocks(problem, lam: float, theta: float, K: int) -> ComplexArray:
@@ -178,9 +186,8 @@ def continue_neimark_sacker(problem: TwoParameterProblem, X: ComplexArray, lam1:
     (physical units, scaled by ``scales``) with K shifted harmonic pairs. Points
     ``z = (x, lam1, theta, lam2)`` scaled; ``leg.system.embed(z)`` gives the base z.
     The curve ends where theta reaches 0 or 1/2 (a 1:1 or 1:2 resonance: the pair meets
-    at +1 or -1; beyond, the mirror image theta -> -theta or 1 - theta of the same
-    curve): the crossing is located to ``event_xtol`` (scaled arc length), stored as the
-    last point, and ``leg.ended_at`` is 0 (theta = 0) or 1 (theta = 1/2)."""
+    at +1 or -1): :func:`resonance_end`, the last point, and ``leg.ended_at`` is 0
+    (theta = 0) or 1 (theta = 1/2)."""
     template = problem.first(lam2)
     xs0 = to_real(np.asarray(X))[:, template.nl_dofs]
     hb = TwoParameterHB(problem, H, N, scales, xs0, (lam1, lam2), limit_max=limit_max)
@@ -191,6 +198,57 @@ def continue_neimark_sacker(problem: TwoParameterProblem, X: ComplexArray, lam1:
     leg = continue_folds(hb, z0, (lo, hi), options, on_point=on_point,
                          lam_physical=lambda s: s * scales[1],
                          augmented=lambda base, z: ns,
-                         events=(lambda z: float(z[-2]), lambda z: float(z[-2]) - 0.5),
+                         events=(lambda z: float(z[-2]) - THETA_STOP,
+                                 lambda z: 0.5 - THETA_STOP - float(z[-2])),
                          event_xtol=event_xtol)
+    if leg.ended_at is not None:
+        leg = resonance_end(leg, options.tol if options else 1e-8)
     return hb, leg
+
+
+def resonance_end(leg: FoldBranch, tol: float = 1e-8, step: float = THETA_FIT
+                  ) -> FoldBranch:
+    """The 1:1 (``leg.ended_at`` 0) or 1:2 (1) resonance at the end of a Neimark-Sacker
+    leg, extrapolated to theta = t (0 or 1/2) and stored as its last point.
+
+    At t the curve meets a second solution set of the same equations (at theta = 0 the
+    shifted Hill operator is real-equivalent, so Im g = 0 there identically, and every
+    point where it is singular, a +1 curve, solves them; at 1/2 the period-doubling
+    curve): a branch point, where the continuation may slide onto the other set rather
+    than pass. So the end is not located on theta itself: the curve is mirror-symmetric
+    about t (theta -> -theta, or 1 - theta: the same multiplier pair), its unknowns even
+    functions of (theta - t), and the points solved at fixed theta = t +- j * step
+    (j = 1, 2, 3; Newton on the NS equations from the nearest curve point) are fitted by
+    ``c0 + c1 u + c2 u^2``, ``u = (theta - t)^2``: c0, error O(step^6), is the end.
+    Points of the leg closer to t than ``step`` are dropped (they may lie on the other set).
+    """
+    t = 0.0 if leg.ended_at == 0 else 0.5
+    side = 1.0 if leg.ended_at == 0 else -1.0
+    system = leg.system
+    e = np.zeros(system.n + 1)
+    e[-2] = 1.0
+    keep = np.flatnonzero(side * (leg.z[:, -2] - t) >= step)
+    if keep.size == 0:
+        return leg
+    last = int(keep[-1])
+    thetas, zs = [], []
+    for j in (1, 2, 3):
+        th = t + side * j * step
+        z0 = leg.z[int(np.argmin(np.abs(leg.z[: last + 1, -2] - th)))]
+        res = newton_extended(system, z0, e, th, tol, 30)
+        if not res.converged:
+            return leg
+        thetas.append(th)
+        zs.append(res.z)
+    u = (np.asarray(thetas) - t) ** 2
+    V = np.vander(u, 3, increasing=True)
+    z_end = np.linalg.solve(V, np.asarray(zs))[0]
+    z_end[-2] = t
+    d = float(np.linalg.norm(z_end - leg.z[last]))
+    return dataclasses.replace(
+        leg, z=np.vstack([leg.z[: last + 1], z_end]),
+        tangents=np.vstack([leg.tangents[: last + 1], leg.tangents[last]]),
+        s=np.append(leg.s[: last + 1], leg.s[last] + d),
+        segment=np.append(leg.segment[: last + 1], leg.segment[last]),
+        cusps=[c for c in leg.cusps if c.index <= last])
+
