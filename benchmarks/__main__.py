@@ -63,6 +63,8 @@ REGISTRY: dict[str, tuple[str, str]] = {
              "the paper rotor's branch with each", "bench_film:run"),
     "attractors": ("attractor census: 256 starts at one speed on 2 workers, stopped once "
                    "settled, vs 2000 periods each", "bench_attractors:run"),
+    "ns-curve": ("Neimark-Sacker curve: one evaluation of the augmented system, batched "
+                 "shifted Hill operator vs the previous loops", "bench_ns_curve:run"),
 }
 
 

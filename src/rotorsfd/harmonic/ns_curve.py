@@ -54,12 +54,11 @@ THETA_MARGIN = 0.05
 """theta is admitted in (-THETA_MARGIN, 1/2 + THETA_MARGIN) (a step may pass theta = 0 or
 1/2 before the end event stops the curve)."""
 
-THETA_STOP = 0.002
-"""The curve stops where theta comes within THETA_STOP of 0 or 1/2 (an event, located)."""
-
 THETA_FIT = 0.005
-"""The 1:1 / 1:2 end is extrapolated from the curve's points at theta = t + j THETA_FIT,
-j = 1, 2, 3 (t = 0), or t - j THETA_FIT (t = 1/2)."""
+"""The 1:1 / 1:2 end (theta = t, 0 or 1/2) is extrapolated from the curve's points at
+theta = t +- j h, j = 1, 2, 3, h = min(THETA_FIT, |theta_start - t| / 4) (a curve that
+starts close to t spans only that range of theta); the curve stops (an event, located)
+where theta comes within h / 2 of t."""
 
 
 def receptance_blocks(problem, lam: float, theta: float, K: int) -> ComplexArray:
@@ -195,14 +194,15 @@ def continue_neimark_sacker(problem: TwoParameterProblem, X: ComplexArray, lam1:
     z0 = np.concatenate([zb[:-1], [theta], zb[-1:]])
     ns = NeimarkSackerSystem(hb, z0, K)
     lo, hi = lam2_range[0] / scales[1], lam2_range[1] / scales[1]
+    h = (min(THETA_FIT, abs(theta) / 4), min(THETA_FIT, abs(0.5 - theta) / 4))
     leg = continue_folds(hb, z0, (lo, hi), options, on_point=on_point,
                          lam_physical=lambda s: s * scales[1],
                          augmented=lambda base, z: ns,
-                         events=(lambda z: float(z[-2]) - THETA_STOP,
-                                 lambda z: 0.5 - THETA_STOP - float(z[-2])),
+                         events=(lambda z: float(z[-2]) - 0.5 * h[0],
+                                 lambda z: 0.5 - 0.5 * h[1] - float(z[-2])),
                          event_xtol=event_xtol)
     if leg.ended_at is not None:
-        leg = resonance_end(leg, options.tol if options else 1e-8)
+        leg = resonance_end(leg, options.tol if options else 1e-8, h[leg.ended_at])
     return hb, leg
 
 
