@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.ticker import MaxNLocator
 
 from rotorsfd.plots.labels import axis_label, wrap
 
@@ -69,6 +70,8 @@ def bifurcation_curves_figure(kind: Any, curve: Any, speed_ratio: Any, value: An
             ax.plot(r, factor * v, marker, ms=9, color=colour, mec="k", mew=0.6,
                     label=words, zorder=5)
     ax.set_xlabel(r"speed ratio $\tilde\Omega$")
+    ax.xaxis.set_major_locator(MaxNLocator(5))   # a narrow speed range: no offset text
+    ax.ticklabel_format(axis="x", useOffset=False)
     ax.set_ylabel(axis_label(parameter, shown))
     ax.set_title(wrap((f"{title}\n" if title else "") + "Bifurcation curves in "
                       rf"($\Omega$, {axis_label(parameter)}), H = {H}"
