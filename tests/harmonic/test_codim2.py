@@ -52,12 +52,13 @@ SCALES = (0.8, 0.2)
 OPTIONS = StabilityOptions(n_intervals=1600)
 
 
-def pumped(w: float | None = None, F: float | None = None, c2: float = C2
-           ) -> PeriodicProblem:
-    """The model with lam = w (``F`` given) or lam = F (``w`` given); x2's damping c2."""
+def pumped(w: float | None = None, F: float | None = None, c2: float = C2,
+           k1: float = K1) -> PeriodicProblem:
+    """The model with lam = w (``F`` given) or lam = F (``w`` given); x2's damping c2,
+    x1's stiffness k1."""
     in_w = F is not None
     M, D = np.eye(4), np.diag([C, C1, c2, C3])
-    K, Z = np.diag([1.0, K1, K2, K3]), np.zeros((4, 4))
+    K, Z = np.diag([1.0, k1, K2, K3]), np.zeros((4, 4))
 
     def forcing(lam, h):
         f = np.zeros((h + 1, 4), complex)
@@ -71,7 +72,7 @@ def pumped(w: float | None = None, F: float | None = None, c2: float = C2
 
     def force(q, v):
         y, x1, x3 = q[..., 0], q[..., 1], q[..., 3]
-        return np.stack([-A3 * y**3, -K1 * KAP1 * y * x1, BETA * y**2 * v[..., 2],
+        return np.stack([-A3 * y**3, -k1 * KAP1 * y * x1, BETA * y**2 * v[..., 2],
                          -K3 * KAP3 * y * x3], axis=-1)
 
     def jacobian(q, v):
@@ -79,7 +80,7 @@ def pumped(w: float | None = None, F: float | None = None, c2: float = C2
         Jq = np.zeros((*q.shape[:-1], 4, 4))
         Jv = np.zeros_like(Jq)
         Jq[..., 0, 0] = -3 * A3 * y**2
-        Jq[..., 1, 0], Jq[..., 1, 1] = -K1 * KAP1 * x1, -K1 * KAP1 * y
+        Jq[..., 1, 0], Jq[..., 1, 1] = -k1 * KAP1 * x1, -k1 * KAP1 * y
         Jq[..., 2, 0], Jv[..., 2, 2] = 2 * BETA * y * v[..., 2], BETA * y**2
         Jq[..., 3, 0], Jq[..., 3, 3] = -K3 * KAP3 * x3, -K3 * KAP3 * y
         return Jq, Jv
@@ -99,7 +100,7 @@ def floquet(problem: PeriodicProblem, lam: float, X) -> np.ndarray:
     return FloquetEvaluator(problem, OPTIONS)(lam, X).multipliers
 
 
-def block_multipliers(X, w: float, block: int) -> np.ndarray:
+def block_multipliers(X, w: float, block: int, k1: float = K1) -> np.ndarray:
     """The two multipliers of x_block along y(t) = Re sum X_k exp(i k w t), by scipy's
     DOP853 monodromy (rtol 1e-11)."""
     y = X[:, 0]
@@ -112,7 +113,7 @@ def block_multipliers(X, w: float, block: int) -> np.ndarray:
         x, v = s
         yy = yt(t)
         if block == 1:
-            return [v, -C1 * v - K1 * (1 + KAP1 * yy) * x]
+            return [v, -C1 * v - k1 * (1 + KAP1 * yy) * x]
         if block == 2:
             return [v, -(C2 - BETA * yy**2) * v - K2 * x]
         return [v, -C3 * v - K3 * (1 + KAP3 * yy) * x]
@@ -392,3 +393,39 @@ def test_one_one_resonance_ends_the_neimark_sacker_curve():
     k4 = brentq(trace_minus_2, 1.5, 1.65, xtol=1e-12)
     assert end.lam1 == pytest.approx(w, rel=1e-4)       # measured 1e-9
     assert end.lam2 == pytest.approx(k4, rel=1e-4)      # measured 6e-8 (K = 5: 1.3e-4)
+
+
+@pytest.mark.slow
+def test_flip_neimark_sacker_on_the_neimark_sacker_curve():
+    """With k1 = 0.393 the x1 flip tongue moves to w ~ 1.2, where the x2 NS curve from
+    F = 0.2 runs down to the fold-NS point and back up on the middle branch: there an x1
+    multiplier passes -1 (psi_-1 on the NS curve), against brentq along that leg on
+    scipy's x1 monodromy (1e-4). 5 s CPU."""
+    k1 = 0.393
+    family = TwoParameterProblem(lambda F: pumped(F=F, k1=k1),
+                                 lambda w: pumped(w=w, k1=k1), ("w", "F"))
+    p = pumped(F=0.2, k1=k1)
+    b = continue_periodic(p, 0.8, 1.6, H, n_samples=N, ds_max=0.02)
+    hopf = min((x for x in branch_stability(b, p, OPTIONS).bifurcations
+                if x.kind == "secondary-hopf"), key=lambda x: x.lam)
+    pt = b.point_at(hopf.s)
+    theta = abs(float(np.angle(hopf.critical))) / (2 * np.pi)
+    hb, leg = continue_neimark_sacker(family, pt.X, pt.lam, 0.2, theta, (0.2, 0.1), H=H,
+                                      N=N, K=H, scales=SCALES,
+                                      options=FoldOptions(ds=0.05, ds_max=0.1))
+    points = curve_codim2("Neimark-Sacker", hb, leg, floquet, family.first)
+    (q,) = [q for q in points if q.type == "flip-Neimark-Sacker"]
+    assert abs(q.multiplier + 1.0) < 1e-6
+
+    def middle_leg(F):      # the leg of higher speed, after the turn at the fold-NS point
+        z = max(leg.solve_at(F / SCALES[1]), key=lambda z: z[-3])
+        base = leg.system.embed(z)
+        return hb.from_z(base)[1], hb.coefficients(base)
+
+    def x1_flip(F):
+        w, X = middle_leg(F)
+        return float(np.min(np.real(block_multipliers(X, w, 1, k1)))) + 1.0
+
+    F = brentq(x1_flip, 0.154, 0.165, xtol=1e-12)
+    assert q.lam2 == pytest.approx(F, rel=1e-4)         # measured 5.2e-6 (w: 3.2e-7)
+    assert q.lam1 == pytest.approx(middle_leg(F)[0], rel=1e-4)
