@@ -59,6 +59,7 @@ from rotorsfd.model.node_names import NodeNames, node_words
 from rotorsfd.model.system import RotorSystem
 
 if TYPE_CHECKING:
+    import xarray as xr
     from matplotlib.figure import Figure
 
     from rotorsfd.io.schema import BifurcationDiagramAnalysis, Config, SimulateAnalysis
@@ -211,23 +212,36 @@ class BifurcationDiagramResult:
                                    "message": p.contact} for p in self.contacts],
                      "notes": self.notes, "title": self.title}))}
         if plots:
-            paths["diagram.png"] = atomic.save_figure(self.plot(), out / "diagram.png",
-                                                      dpi=120)
+            paths.update(atomic.save_figures(self.plot(), out))
         return paths
 
-    def plot(self) -> Figure:
-        """Poincare y (in C) of every node against Omega~ (or the speed)."""
+    def to_dataset(self) -> xr.Dataset:
+        """The Poincare points (dimension ``point``: the rows of :meth:`table`) and the
+        speeds (dimension ``run``: the rows of :meth:`speeds_table`), SI units."""
+        import xarray as xr
+
+        units = {"speed_rad_s": "rad/s", "y": "m", "z": "m", "vy": "m/s", "vz": "m/s",
+                 "max_eccentricity": "1", "step_error": "1"}
+        data = {f"poincare_{k}": ("point", v, {"units": units.get(k, "1")})
+                for k, v in self.table().items()}
+        data |= {f"run_{k}": ("run", v, {"units": units.get(k, "1")})
+                 for k, v in self.speeds_table().items()}
+        return xr.Dataset(data, attrs={"title": self.title, "ended": self.ended})
+
+    def plot(self) -> dict[str, Figure]:
+        """``diagram.png``: Poincare y (in C) of every node against Omega~ (or the
+        speed)."""
         from rotorsfd.plots.timedomain import bifurcation_figure
 
         table = self.table()
         x_name = "speed_ratio" if self.reference_speed else "speed_rad_s"
         label = r"$\tilde\Omega = \Omega / \Omega_{ref}$" if self.reference_speed \
             else r"$\Omega$ [rad/s]"
-        return bifurcation_figure(table, nodes=self.nodes, x_name=x_name, x_label=label,
-                                  scale=self.clearance or 1.0,
-                                  unit="C" if self.clearance else "m", title=self.title,
-                                  node_labels={n: node_words(self.node_names, n)
-                                               for n in self.nodes})
+        return {"diagram.png": bifurcation_figure(
+            table, nodes=self.nodes, x_name=x_name, x_label=label,
+            scale=self.clearance or 1.0, unit="C" if self.clearance else "m",
+            title=self.title,
+            node_labels={n: node_words(self.node_names, n) for n in self.nodes})}
 
     def summary(self) -> str:
         """Speeds, sweeps, motion counts, contacts."""

@@ -192,20 +192,20 @@ class RunUpResult:
             lines.append(f"warning: {step['warning']}")
         return "\n".join(lines)
 
-    def figures(self) -> dict[str, Any]:
-        """``envelope`` and ``waterfall_<node>`` (:mod:`rotorsfd.plots.transient`)."""
+    def plot(self) -> dict[str, Any]:
+        """``envelope.png`` and ``waterfall_<node>.png`` (:mod:`rotorsfd.plots.transient`)."""
         from rotorsfd.plots.transient import envelope_figure, waterfall_figure
 
         run = self.run
         branch = self.branch
-        figs = {"envelope": envelope_figure(
+        figs = {"envelope.png": envelope_figure(
             t=run.t, speed=run.omega, radius={n: self.radius(n) for n in self.nodes},
             clearances=self.clearances, events=self.events, branch=branch,
             title=f"{self.title}: {self.settings['speed_law']}".strip(": "))}
         for n in self.nodes:
             f = self.waterfall(n)
             c = self.clearances.get(n)
-            figs[f"waterfall_{n}"] = waterfall_figure(
+            figs[f"waterfall_{n}.png"] = waterfall_figure(
                 time=f.time, frequency_hz=f.frequency, amplitude=f.amplitude, node=n,
                 t=run.t, speed=run.omega, natural=self.natural,
                 unit_scale=1.0 / c if c else 1e6, unit="C" if c else "µm",
@@ -225,8 +225,7 @@ class RunUpResult:
         paths = {"timeseries.nc": atomic.write_netcdf(ds, out / "timeseries.nc"),
                  "summary.json": atomic.write_json(out / "summary.json", self.summary_dict())}
         if plots:
-            for name, fig in self.figures().items():
-                paths[f"{name}.png"] = atomic.save_figure(fig, out / f"{name}.png", dpi=120)
+            paths.update(atomic.save_figures(self.plot(), out))
         return paths
 
 

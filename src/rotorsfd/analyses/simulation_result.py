@@ -249,8 +249,7 @@ class SimulationResult:
                  "poincare.csv": write_table(out / "poincare.csv", self.poincare_table()),
                  "summary.json": atomic.write_json(out / "summary.json", self.summary_dict())}
         if plots:
-            for name, fig in self.plot().items():
-                paths[name] = atomic.save_figure(fig, out / name, dpi=120)
+            paths.update(atomic.save_figures(self.plot(), out))
         return paths
 
     # ---- plots and text ----------------------------------------------------------------------

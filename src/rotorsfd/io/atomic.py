@@ -15,7 +15,7 @@ import json
 import math
 import os
 import tempfile
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -112,6 +112,17 @@ def save_figure(fig: Any, path: str | Path, **kwargs: Any) -> Path:
     with atomic_path(path) as tmp:
         fig.savefig(tmp, format=fmt, **kwargs)
     return Path(path)
+
+
+def save_figures(figures: Mapping[str, Any], directory: str | Path,
+                 dpi: int = 120) -> dict[str, Path]:
+    """Save named figures (``{"campbell.png": fig}``) in ``directory`` atomically;
+    returns the paths by name."""
+    out = Path(directory)
+    paths = {}
+    for name, fig in figures.items():
+        paths[name] = save_figure(fig, out / name, dpi=dpi)
+    return paths
 
 
 def write_netcdf(dataset: Any, path: str | Path, **kwargs: Any) -> Path:
