@@ -160,8 +160,13 @@ class SweepResult:
                 "shape": list(self.grid.shape), "n_points": len(self.grid),
                 "counts": self.counts(), "complete": self.complete, "files": list(FILES)}
 
-    def write(self, directory: str | Path) -> dict[str, Path]:
-        """Write ``sweep.nc``, ``summary.csv`` and ``sweep.json`` atomically."""
+    def plot(self) -> dict[str, Any]:
+        """No figures: a sweep records scalars per point (summary.csv, sweep.nc)."""
+        return {}
+
+    def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
+        """Write ``sweep.nc``, ``summary.csv`` and ``sweep.json`` atomically (``plots``:
+        the protocol's flag; a sweep draws nothing itself)."""
         from rotorsfd.io.provenance import netcdf_attrs
 
         out = Path(directory)
