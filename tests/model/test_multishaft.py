@@ -112,7 +112,7 @@ def test_coupled_matrices_equal_a_block_assembly() -> None:
     om = [800.0, 1900.0]
     _, D, _ = ms.shaft_matrices(om)
     np.testing.assert_allclose(D, C + sla.block_diag(om[0] * a.G, om[1] * b.G), atol=1e-9)
-    assert ms.dof_names[36] == "y@hp.3" and ms.dof_names[3] == "tz@lp.1"
+    assert ms.dof_names[36] == "y@hp:3" and ms.dof_names[3] == "tz@lp:1"
 
 
 def test_identical_shafts_coupled_split_into_symmetric_and_antisymmetric_modes() -> None:

@@ -44,7 +44,7 @@ def test_example_builds_the_two_shafts_at_their_ratio(raw: dict) -> None:
     assert k[32, 68] == pytest.approx(-2e7, rel=1e-12)      # y of node 9, y of node 18
     assert rotor.supports[-2:][0].kyy == 4e6 and rotor.supports[-1].node == 14
     assert [e.nodes for e in system.elements] == [(1,), (14,)]
-    assert rotor.dof_names[68] == "y@hp.5"
+    assert rotor.dof_names[68] == "y@hp:5"
 
 
 def test_single_shaft_examples_build_a_plain_rotor() -> None:

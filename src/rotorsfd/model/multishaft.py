@@ -249,13 +249,14 @@ class MultiShaftRotor(Rotor):
         return float(self.shafts[self.shaft_index(node, "node")].speed_ratio)
 
     def node_label(self, node: int) -> str:
-        """``<shaft>.<local node>`` of global ``node`` (``hp.3``)."""
+        """``<shaft>:<local node>`` of global ``node`` (``hp:3``, as configs and results
+        files name it)."""
         k = self.shaft_index(node, "node")
-        return f"{self.shafts[k].name}.{node - self.node_offsets[k]}"
+        return f"{self.shafts[k].name}:{node - self.node_offsets[k]}"
 
     @property
     def dof_names(self) -> list[str]:
-        """``<direction>@<shaft>.<local node>`` per global DOF (``y@lp.3``)."""
+        """``<direction>@<shaft>:<local node>`` per global DOF (``y@lp:3``)."""
         return [f"{d}@{self.node_label(n)}" for n in range(1, self.n_nodes + 1)
                 for d in dofs.DIRECTIONS]
 
