@@ -113,13 +113,14 @@ def classify_motion(poincare: np.ndarray, signal: np.ndarray | None = None,
         ev["lyapunov_per_period"] = lam
         ev["lyapunov_uncertainty_per_period"] = err
     if n is not None:
-        ev["basis"] = "poincare period"
+        ev["basis"] = (f"the Poincare points repeat every {n} period"
+                       + ("s" if n > 1 else "") + f" within {rtol:g}")
         conv = converging_period(P, n, rtol=rtol)
         if conv is not None:
             m, rate = conv
             ev.update(poincare_period=m, converging={"from_period": n, "to_period": m,
                                                      "shrink_per_period": rate},
-                      basis="poincare points converging",
+                      basis=f"the Poincare points converge to a period-{m} orbit",
                       note=(f"the Poincare points look period-{n} but their differences "
                             f"shrink by {rate:.3g} per period: a transient spiralling into "
                             f"a period-{m} orbit (a slowly damped complex multiplier); "
