@@ -114,7 +114,7 @@ def classify_motion(poincare: np.ndarray, signal: np.ndarray | None = None,
         ev["lyapunov_uncertainty_per_period"] = err
     if n is not None:
         ev["basis"] = (f"the Poincare points repeat every {n} period"
-                       + ("s" if n > 1 else "") + f" within {rtol:g}")
+                       + ("s" if n > 1 else "") + f" within {rtol:g} of the orbit's spread")
         conv = converging_period(P, n, rtol=rtol)
         if conv is not None:
             m, rate = conv
