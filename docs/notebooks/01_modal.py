@@ -55,8 +55,8 @@ assert result.reference_speed == 811.3   # [reference] speed: Omega~ = Omega / 8
 # synchronous line; the critical speeds are where a forward branch crosses it.
 
 # %%
-ax = result.plot()
-ax.figure  # noqa: B018 (a notebook shows its cell's last value)
+figures = result.plot()   # the figures by file name, as `rotorsfd modal` writes them
+figures["campbell.png"]  # noqa: B018 (a notebook shows its cell's last value)
 
 # %% [markdown]
 # A second, independent look at the same numbers: where each tracked forward branch of

@@ -41,8 +41,8 @@ def modal():
 
 
 def test_modal_campbell_title_whole_and_axes_in_words(modal):
-    ax = modal.plot()
-    fig = ax.figure
+    fig = modal.plot()["campbell.png"]
+    ax = fig.axes[0]
     words = _words(fig)
     assert "the end of a long title" in words
     _no_ascii_symbols(words)
@@ -97,7 +97,7 @@ def test_stability_chart_through_chart_axes(tmp_path):
 
     r = _chart_result()
     fig = Figure(figsize=(7.4, 5.6), layout="constrained")
-    ax = r.plot(fig.add_subplot())
+    ax = r.plot_on(fig.add_subplot())
     assert ax.get_xlabel() == r"pitching frequency $\omega_b$ [rad/s]"
     assert ax.get_ylabel() == r"pitching amplitude $A_0$ [rad]"
     title = " ".join(ax.get_title().split())

@@ -25,7 +25,7 @@ from rotorsfd.analyses.linear_model import (
     linear_system,
     reference_speed,
 )
-from rotorsfd.io import atomic
+from rotorsfd.analyses.modal_files import modal_dataset, write_modal
 from rotorsfd.io.schema import Config, ModalAnalysis
 from rotorsfd.linear import CampbellResult, CriticalSpeed, campbell, critical_speeds
 
@@ -70,35 +70,37 @@ class ModalRunResult:
             return f"{method} eigensolver at every speed"
         return ""
 
-    def plot(self, ax: Any = None) -> Any:
-        """Campbell diagram (:func:`rotorsfd.plots.campbell.campbell_axes`) with the
-        critical speeds marked, the title wrapped (never cut); returns the Axes."""
-        from rotorsfd.plots.campbell import campbell_axes, campbell_figure
+    def plot_on(self, ax: Any) -> Any:
+        """The Campbell diagram on ``ax`` (:func:`rotorsfd.plots.campbell.campbell_axes`),
+        critical speeds marked, the title wrapped (never cut); returns ``ax``."""
+        from rotorsfd.plots.campbell import campbell_axes
 
         c = self.campbell
-        crit = [s.speed_rad_s for s in self.critical_speeds]
-        title = self.title or "Campbell diagram"
-        if ax is None:
-            return campbell_figure(c.speeds, c.frequencies, c.whirl, critical=crit,
-                                   title=title).axes[0]
-        return campbell_axes(ax, c.speeds, c.frequencies, c.whirl, critical=crit,
-                             title=title)
+        return campbell_axes(ax, c.speeds, c.frequencies, c.whirl,
+                             critical=[s.speed_rad_s for s in self.critical_speeds],
+                             title=self.title or "Campbell diagram")
+
+    def plot(self) -> dict[str, Any]:
+        """``campbell.png``: the Campbell diagram (:meth:`plot_on` on a new figure)."""
+        from rotorsfd.plots.campbell import campbell_figure
+
+        c = self.campbell
+        return {"campbell.png": campbell_figure(
+            c.speeds, c.frequencies, c.whirl,
+            critical=[s.speed_rad_s for s in self.critical_speeds],
+            title=self.title or "Campbell diagram")}
+
+    def to_dataset(self) -> Any:
+        """The Campbell diagram (:meth:`CampbellResult.to_dataset`) with the critical
+        speeds (dimension ``critical``) and the reference speed."""
+        return modal_dataset(self.campbell, self.critical_speeds_rows(),
+                             self.reference_speed, self.title)
 
     def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
         """Write ``critical_speeds.csv`` (mode, whirl, speed_rad_s), ``campbell.csv`` and
         (if ``plots``) ``campbell.png`` atomically into ``directory`` (created if
         missing)."""
-        out = Path(directory)
-        paths = {name: out / name for name in self.FILES}
-        atomic.write_csv(paths["critical_speeds.csv"], ("mode", "whirl", "speed_rad_s"),
-                         self.critical_speeds_rows())
-        with atomic.atomic_path(paths["campbell.csv"]) as tmp:
-            self.campbell.to_csv(tmp)
-        if not plots:
-            return {k: v for k, v in paths.items() if k != "campbell.png"}
-        fig = self.plot().figure
-        atomic.save_figure(fig, paths["campbell.png"], dpi=120)
-        return paths
+        return write_modal(self, Path(directory), ("mode", "whirl", "speed_rad_s"), plots)
 
     def summary(self) -> str:
         """Human-readable lines: the Campbell method (and its measured error when known),

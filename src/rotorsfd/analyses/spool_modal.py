@@ -24,8 +24,8 @@ from typing import Any
 
 import numpy as np
 
+from rotorsfd.analyses.modal_files import modal_dataset, write_modal
 from rotorsfd.errors import ConfigError
-from rotorsfd.io import atomic
 from rotorsfd.io.schema import ModalAnalysis
 from rotorsfd.linear import CampbellResult, campbell
 from rotorsfd.linear.critical import CriticalSpeed, line_critical_speeds
@@ -75,35 +75,48 @@ class SpoolModalResult:
         return [(c.mode, c.whirl, float(c.speed_rad_s) / self.ratio, name,
                  float(c.speed_rad_s)) for name, c in self.line_critical]
 
-    def plot(self, ax: Any = None) -> Any:
-        from rotorsfd.plots.campbell import campbell_axes, campbell_figure
+    def _campbell_words(self) -> dict[str, Any]:
+        """The Campbell plot's keywords: each shaft's 1X line, the critical speeds marked
+        on their line, the axis and title against the spool."""
+        return dict(lines=[(h, rf"1X {name} ($\omega = "
+                               + ("" if h == 1.0 else rf"{h:.4g}\,")
+                               + rf"\Omega_{{{self.spool}}}$)")
+                           for name, h in self.lines.items()],
+                    marks=[(cs.speed_rad_s, self.lines[name] * cs.speed_rad_s)
+                           for name, cs in self.line_critical],
+                    xlabel=rf"speed of spool {self.spool} $\Omega_{{{self.spool}}}$ [rad/s]",
+                    title=(self.title or "Campbell diagram")
+                    + f" (against spool {self.spool})")
+
+    def plot_on(self, ax: Any) -> Any:
+        """The Campbell diagram against the spool on ``ax``; returns ``ax``."""
+        from rotorsfd.plots.campbell import campbell_axes
 
         c = self.campbell
-        spools = dict(lines=[(h, rf"1X {name} ($\omega = "
-                                 + ("" if h == 1.0 else rf"{h:.4g}\,")
-                                 + rf"\Omega_{{{self.spool}}}$)")
-                             for name, h in self.lines.items()],
-                      marks=[(cs.speed_rad_s, self.lines[name] * cs.speed_rad_s)
-                             for name, cs in self.line_critical],
-                      xlabel=rf"speed of spool {self.spool} $\Omega_{{{self.spool}}}$ [rad/s]")
-        title = (self.title or "Campbell diagram") + f" (against spool {self.spool})"
-        if ax is None:
-            return campbell_figure(c.speeds, c.frequencies, c.whirl, title=title,
-                                   **spools).axes[0]
-        return campbell_axes(ax, c.speeds, c.frequencies, c.whirl, title=title, **spools)
+        return campbell_axes(ax, c.speeds, c.frequencies, c.whirl, **self._campbell_words())
+
+    def plot(self) -> dict[str, Any]:
+        """``campbell.png``: the Campbell diagram against the spool."""
+        from rotorsfd.plots.campbell import campbell_figure
+
+        c = self.campbell
+        return {"campbell.png": campbell_figure(c.speeds, c.frequencies, c.whirl,
+                                                **self._campbell_words())}
+
+    def to_dataset(self) -> Any:
+        """The Campbell diagram against the spool, its critical speeds and Omega_ref."""
+        ds = modal_dataset(self.campbell, self.critical_speeds_rows(), self.reference_speed,
+                           self.title)
+        ds["critical_line"] = ("critical", np.array([r[3] for r in
+                                                     self.critical_speeds_rows()]))
+        ds.attrs.update(spool=self.spool, spool_ratio=self.ratio)
+        return ds
 
     def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
-        out = Path(directory)
-        paths = {name: out / name for name in self.FILES}
-        atomic.write_csv(paths["critical_speeds.csv"],
-                         ("mode", "whirl", "speed_rad_s", "line", "spool_speed_rad_s"),
-                         self.critical_speeds_rows())
-        with atomic.atomic_path(paths["campbell.csv"]) as tmp:
-            self.campbell.to_csv(tmp)
-        if not plots:
-            return {k: v for k, v in paths.items() if k != "campbell.png"}
-        atomic.save_figure(self.plot().figure, paths["campbell.png"], dpi=120)
-        return paths
+        """``critical_speeds.csv``, ``campbell.csv`` and ``campbell.png``."""
+        return write_modal(self, Path(directory),
+                           ("mode", "whirl", "speed_rad_s", "line", "spool_speed_rad_s"),
+                           plots)
 
     def summary(self) -> str:
         lines = [f"reference speed: {self.reference_speed:.6g} rad/s (of the first shaft)",

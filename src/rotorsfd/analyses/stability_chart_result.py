@@ -75,36 +75,40 @@ class ChartResult:
             ds.attrs["config_toml"] = self.config_toml
         return ds
 
-    def plot(self, ax: Any = None) -> Any:
-        """Figure 6 style (:func:`rotorsfd.plots.chart.chart_axes`): unstable points shaded
-        by max |mu| (white: stable), the boundary max |mu| = 1 + tol in black, islands
-        ringed, the axes in words with their units, the title (wrapped, never cut) saying
-        what the grid shows; on ``ax`` or a new figure (``chart.png``'s); returns the
-        Axes."""
-        from rotorsfd.plots.chart import chart_axes, chart_figure  # deferred: matplotlib
+    def _words(self) -> dict[str, Any]:
+        return {"tol": self.chart.tol, "speed": self.speed,
+                "title": self.title or "Stability chart"}
+
+    def plot_on(self, ax: Any) -> Any:
+        """Figure 6 style on ``ax`` (:func:`rotorsfd.plots.chart.chart_axes`): unstable
+        points shaded by max |mu| (white: stable), the boundary max |mu| = 1 + tol in
+        black, islands ringed, the axes in words with their units, the title (wrapped,
+        never cut) saying what the grid shows; returns ``ax``."""
+        from rotorsfd.plots.chart import chart_axes  # deferred: matplotlib
 
         x, y = self.x, self.y
-        kw = {"tol": self.chart.tol, "speed": self.speed,
-              "title": self.title or "Stability chart"}
-        if ax is None:
-            return chart_figure(x.values, y.values, self.chart.max_abs, x_path=x.path,
-                                y_path=y.path, x_units=x.units, y_units=y.units,
-                                **kw).axes[0]
         return chart_axes(ax, x.values, y.values, self.chart.max_abs,
                           x_label=f"{x.path} [{x.units}]", y_label=f"{y.path} [{y.units}]",
-                          **kw)
+                          **self._words())
 
-    def write(self, directory: str | Path, plot: bool = True) -> dict[str, Path]:
-        """``chart.nc`` and (if ``plot``) ``chart.png`` written atomically into
+    def plot(self) -> dict[str, Any]:
+        """``chart.png``: :meth:`plot_on` on a figure of its own."""
+        from rotorsfd.plots.chart import chart_figure  # deferred: matplotlib
+
+        x, y = self.x, self.y
+        return {"chart.png": chart_figure(x.values, y.values, self.chart.max_abs,
+                                          x_path=x.path, y_path=y.path, x_units=x.units,
+                                          y_units=y.units, **self._words())}
+
+    def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
+        """``chart.nc`` and (if ``plots``) ``chart.png`` written atomically into
         ``directory``."""
         from rotorsfd.io import atomic
 
         out = Path(directory)
-        paths = {name: out / name for name in self.FILES}
-        atomic.write_netcdf(self.to_dataset(), paths["chart.nc"])
-        if not plot:
-            return {"chart.nc": paths["chart.nc"]}
-        atomic.save_figure(self.plot().figure, paths["chart.png"], dpi=130)
+        paths = {"chart.nc": atomic.write_netcdf(self.to_dataset(), out / "chart.nc")}
+        if plots:
+            paths.update(atomic.save_figures(self.plot(), out, dpi=130))
         return paths
 
     def summary(self) -> str:

@@ -51,6 +51,26 @@ class CampbellResult(EigenvalueMeasures):
                                 repr(float(zeta[i, j])), repr(float(dec[i, j]))])
         return path
 
+    def to_dataset(self) -> Any:
+        """xarray Dataset over ``(speed, mode)``: eigenvalue real and imaginary parts,
+        damped natural frequency, damping ratio, log decrement, whirl."""
+        import xarray as xr  # deferred: xarray
+
+        dims = ("speed", "mode")
+        return xr.Dataset(
+            {"eigenvalue_re": (dims, self.eigenvalues.real, {"units": "1/s"}),
+             "eigenvalue_im": (dims, self.eigenvalues.imag, {"units": "rad/s"}),
+             "frequency": (dims, self.frequencies,
+                           {"units": "rad/s", "long_name": "damped natural frequency"}),
+             "damping_ratio": (dims, self.damping_ratios, {"units": "1"}),
+             "log_decrement": (dims, self.log_decrements, {"units": "1"}),
+             "whirl": (dims, self.whirl.astype(str))},
+            coords={"speed": ("speed", self.speeds, {"units": "rad/s",
+                                                     "long_name": "spin speed"}),
+                    "mode": ("mode", np.arange(1, self.eigenvalues.shape[1] + 1),
+                             {"long_name": "tracked branch (1-based)"})},
+            attrs={"method": str(self.info.get("method", ""))})
+
 
 def _track(prev: ModalResult, cur: ModalResult, n_modes: int) -> np.ndarray:
     """Column of ``cur`` assigned to each of the ``n_modes`` branches of ``prev``."""

@@ -393,7 +393,7 @@ def _chart(case: Case, config: Any, out: Path | None,
 
     r = run_stability_chart(config, workers=1, progress=False)
     if out is not None:
-        r.write(out, plot=plots)
+        r.write(out, plots=plots)
     n = {"unstable_fraction": float((~r.stable).mean())}
     return n, {"x": r.x.values, "y": r.y.values, "max_abs": r.chart.max_abs,
                "x_label": f"{r.x.path} [{r.x.units}]", "y_label": f"{r.y.path} [{r.y.units}]",
