@@ -86,7 +86,7 @@ def hb_amplitudes() -> list[float]:
 
 def test_duffing_two_orbits_with_hb_amplitudes(result):
     kinds = [(a.motion, len(a.members)) for a in result.attractors]
-    assert [k for k, _ in kinds] == ["period-1", "period-1"], result.text()
+    assert [k for k, _ in kinds] == ["period-1", "period-1"], result.summary()
     amps = sorted(abs(a.hb["hb_X"][1, 0]) for a in result.attractors)
     assert amps == pytest.approx(hb_amplitudes(), rel=1e-6)
     for a in result.attractors:
@@ -148,7 +148,7 @@ def test_speed_map_one_table_with_a_speed_column(tmp_path):
                          velocity_fraction=FRACTION, max_periods=400, harmonics=5)
     maps = census_map([duffing_model(W), duffing_model(1.3)], opts)
     paths = write_census(maps, tmp_path, ["x(0) / 3", "x'(0) / (3 w)"], "Duffing")
-    rows = list(csv.DictReader(open(paths["attractors"])))
+    rows = list(csv.DictReader(open(paths["attractors.csv"])))
     per_speed = {}
     for r in rows:
         per_speed.setdefault(float(r["speed_rad_s"]), []).append(r)
@@ -158,9 +158,9 @@ def test_speed_map_one_table_with_a_speed_column(tmp_path):
     assert float(single["basin_fraction"]) == 1.0 and float(single["basin_se"]) == 0.0
     for group_rows in per_speed.values():
         assert sum(float(r["basin_fraction"]) for r in group_rows) == pytest.approx(1.0)
-    text = paths["attractors"].read_text() + paths["summary"].read_text()
+    text = paths["attractors.csv"].read_text() + paths["summary.json"].read_text()
     assert "nan" not in text.lower()
-    assert len(list(csv.DictReader(open(paths["starts"])))) == 48
+    assert len(list(csv.DictReader(open(paths["starts.csv"])))) == 48
 
 
 def test_flip_transient_into_a_period_1_orbit_is_not_period_2():

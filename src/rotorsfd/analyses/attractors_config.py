@@ -20,6 +20,7 @@ from rotorsfd.analyses.attractors import (
     CensusOptions,
     census_map,
 )
+from rotorsfd.analyses.attractors_result import CensusResult
 from rotorsfd.analyses.context import RunContext, build, config_context
 from rotorsfd.errors import ConfigError
 from rotorsfd.io.schema import Config
@@ -47,9 +48,10 @@ def run_census(config_or_system: Any, speeds: Sequence[float] | None = None, *,
                speed_ratios: Sequence[float] | None = None,
                options: CensusOptions | None = None, settings: SimulateAnalysis | None = None,
                context: RunContext | None = None, search_path: Any = None,
-               executor: Any = None, progress: Any = None) -> list[Any]:
-    """Censuses at ``speeds`` [rad/s] or ``speed_ratios`` (of the reference speed; neither:
-    the ``[analysis.simulate]`` speed) with ``options`` (:class:`CensusOptions`).
+               executor: Any = None, progress: Any = None) -> CensusResult:
+    """Censuses (a :class:`CensusResult`, one per speed) at ``speeds`` [rad/s] or
+    ``speed_ratios`` (of the reference speed; neither: the ``[analysis.simulate]`` speed)
+    with ``options`` (:class:`CensusOptions`).
 
     ``run_census(system, settings=..., context=...)``: ``settings`` the
     ``[analysis.simulate]`` section (the speed, the step: ``options.steps_per_period``,
@@ -92,4 +94,5 @@ def run_census(config_or_system: Any, speeds: Sequence[float] | None = None, *,
     models = [census_model(system, float(s), reduction=sim.reduction,
                            cutoff=sim.reduction_cutoff, reference_speed=ref)
               for s in speeds]
-    return census_map(models, o, executor=executor, progress=progress)
+    return CensusResult(census_map(models, o, executor=executor, progress=progress),
+                        title=ctx.title)

@@ -21,6 +21,7 @@ the Floquet multiplier of largest modulus over ``n T``
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -220,7 +221,7 @@ class AttractorCensus:
             rows.append(row)
         return rows
 
-    def summary(self) -> dict[str, Any]:
+    def summary_dict(self) -> dict[str, Any]:
         """summary.json's content."""
         from dataclasses import asdict
 
@@ -233,7 +234,7 @@ class AttractorCensus:
                 "periods_run_total": int(sum(r.periods_run for r in self.outcomes)),
                 "attractors": self.rows()}
 
-    def text(self) -> str:
+    def summary(self) -> str:
         """A few lines for the terminal."""
         head = (f"{self.n_starts} starts at {self.speed:.6g} rad/s"
                 + (f" (speed ratio {self.speed_ratio:.5g})" if self.speed_ratio else "")
@@ -252,20 +253,94 @@ class AttractorCensus:
         return "\n".join(lines)
 
 
-def write_census(censuses: list[AttractorCensus], folder: str | Path,
-                 coordinate_names: list[str] | None = None, title: str = ""
-                 ) -> dict[str, Path]:
+#: what the two axes of basins.png are, unless the caller says
+DEFAULT_COORDINATES = ["initial displacement of the element's first DOF (y) / clearance",
+                       "initial displacement of its second DOF (z) / clearance"]
+
+
+@dataclass
+class CensusResult(Sequence):
+    """The censuses of ``rotorsfd attractors`` (one per speed, a sequence of
+    :class:`AttractorCensus`) on the result protocol: ``coordinate_names`` the two axes
+    of the basin plot, ``title`` the run's."""
+
+    censuses: list[AttractorCensus]
+    coordinate_names: list[str] | None = None
+    title: str = ""
+
+    def __getitem__(self, i: Any) -> Any:
+        return self.censuses[i]
+
+    def __len__(self) -> int:
+        return len(self.censuses)
+
+    def summary(self) -> str:
+        """Each census's lines."""
+        return "\n".join(c.summary() for c in self.censuses)
+
+    def summary_dict(self) -> dict[str, Any]:
+        """summary.json's content."""
+        return {"title": self.title, "censuses": [c.summary_dict() for c in self.censuses]}
+
+    def plot(self) -> dict[str, Any]:
+        """``basins.png``: the first census's starts coloured by attractor
+        (:func:`rotorsfd.plots.basins.basin_figure`)."""
+        from rotorsfd.plots.basins import basin_figure  # deferred: matplotlib
+
+        if not self.censuses:
+            return {}
+        return {"basins.png": basin_figure(self.censuses[0],
+                                           self.coordinate_names or DEFAULT_COORDINATES,
+                                           self.title)}
+
+    def to_dataset(self) -> Any:
+        """Every start (dimension ``start``: its speed, coordinates, motion, attractor
+        number and periods run) and every attractor (dimension ``attractor``: speed,
+        motion, period (0: not periodic), basin fraction and its standard error)."""
+        import xarray as xr  # deferred: xarray
+
+        starts = [(c, r) for c in self.censuses for r in c.outcomes]
+        labels = {id(c): c.labels() for c in self.censuses}
+        atts = [(c, a) for c in self.censuses for a in c.attractors]
+        width = max((c.coords.shape[1] for c in self.censuses), default=0)
+        return xr.Dataset(
+            {"start_speed": ("start", [c.speed for c, _ in starts], {"units": "rad/s"}),
+             "start_coords": (("start", "coordinate"),
+                              np.array([c.coords[r.index] for c, r in starts]).reshape(
+                                  len(starts), width),
+                              {"long_name": "q_i / c_i, v_i / (c_i Omega) of the start"}),
+             "start_motion": ("start", [r.motion for _, r in starts]),
+             "start_attractor": ("start", np.array([labels[id(c)][r.index]
+                                                    for c, r in starts], dtype=np.int32)),
+             "start_periods_run": ("start", np.array([r.periods_run for _, r in starts],
+                                                     dtype=np.int32)),
+             "attractor_speed": ("attractor", [c.speed for c, _ in atts],
+                                 {"units": "rad/s"}),
+             "attractor_motion": ("attractor", [a.motion for _, a in atts]),
+             "attractor_period": ("attractor", np.array([a.period or 0 for _, a in atts],
+                                                        dtype=np.int32)),
+             "basin_fraction": ("attractor", [c.fraction(a)[0] for c, a in atts]),
+             "basin_se": ("attractor", [c.fraction(a)[1] for c, a in atts])},
+            attrs={"title": self.title})
+
+    def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
+        """attractors.csv, starts.csv, summary.json and (``plots``) basins.png."""
+        return write_census(self, directory, self.coordinate_names, self.title, plots)
+
+
+def write_census(censuses: Sequence[AttractorCensus], folder: str | Path,
+                 coordinate_names: list[str] | None = None, title: str = "",
+                 plots: bool = True) -> dict[str, Path]:
     """attractors.csv (every census, a speed column), starts.csv, summary.json and
-    basins.png (the first census) in ``folder``."""
-    from rotorsfd.io.atomic import save_figure, write_csv, write_json
-    from rotorsfd.plots.basins import basin_figure
+    (``plots``) basins.png (the first census) in ``folder``."""
+    from rotorsfd.io.atomic import save_figures, write_csv, write_json
 
     out = Path(folder)
     out.mkdir(parents=True, exist_ok=True)
     names = sorted({k for c in censuses for a in c.attractors for k in a.eccentricity})
     rows = [r for c in censuses for r in c.rows(names)]
     header = list(rows[0]) if rows else ["speed_rad_s"]
-    paths = {"attractors": write_csv(out / "attractors.csv", header,
+    paths = {"attractors.csv": write_csv(out / "attractors.csv", header,
                                      [[r.get(h, "") for h in header] for r in rows])}
     start_rows = []
     for c in censuses:
@@ -276,11 +351,11 @@ def write_census(censuses: list[AttractorCensus], folder: str | Path,
     m = censuses[0].coords.shape[1] // 2
     cols = [f"q{j + 1}" for j in range(m)] + [f"v{j + 1}" for j in range(m)]
     cols += ["orbit_phase"] * (censuses[0].coords.shape[1] - 2 * m)
-    paths["starts"] = write_csv(out / "starts.csv", ["speed_rad_s", "start", *cols,
+    paths["starts.csv"] = write_csv(out / "starts.csv", ["speed_rad_s", "start", *cols,
                                                      "motion", "attractor", "periods_run"],
                                 start_rows)
-    paths["summary"] = write_json(out / "summary.json",
-                                  {"title": title, "censuses": [c.summary() for c in censuses]})
-    fig = basin_figure(censuses[0], coordinate_names, title)
-    paths["basins"] = save_figure(fig, out / "basins.png")
+    result = CensusResult(list(censuses), coordinate_names, title)
+    paths["summary.json"] = write_json(out / "summary.json", result.summary_dict())
+    if plots:
+        paths.update(save_figures(result.plot(), out))
     return paths

@@ -256,9 +256,39 @@ class CalibrationResult:
         lines.append(self.message)
         return "\n".join(lines)
 
-    def write(self, directory: str | Path) -> dict[str, Path]:
+    def to_dataset(self) -> Any:
+        """The fit as a Dataset: fitted ``value`` and ``standard_error`` over ``field``,
+        ``computed``, ``target`` and ``residual`` over ``target``, the ``jacobian``
+        (target, field) and the ``covariance`` (field, field; NaN where not estimated,
+        the files write null)."""
+        import xarray as xr  # deferred: xarray
+
+        nf = len(self.fields)
+        se = self.standard_errors
+        cov = self.covariance if self.covariance is not None else np.full((nf, nf), np.nan)
+        return xr.Dataset(
+            {"value": ("field", self.values), "start": ("field", [f.start for f in self.fields]),
+             "standard_error": ("field", np.full(nf, np.nan) if se is None else se),
+             "computed": ("target", self.computed),
+             "target_value": ("target", [t.value for t in self.targets]),
+             "residual": ("target", self.residuals),
+             "derivative": ("target", list(self.derivative_kinds)),
+             "jacobian": (("target", "field"), self.jacobian),
+             "covariance": (("field", "field_2"), cov)},
+            coords={"field": [f.path for f in self.fields],
+                    "field_2": [f.path for f in self.fields],
+                    "target": [t.name for t in self.targets]},
+            attrs={"message": self.message, "success": int(self.success),
+                   "covariance_basis": self.covariance_basis, "created": self.created})
+
+    def plot(self) -> dict[str, Any]:
+        """No figures: the fit is a table (:meth:`summary`, ``calibration.json``)."""
+        return {}
+
+    def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
         """``calibration.json`` and ``calibrated.toml`` (the fitted config, resolved, SI,
-        with :meth:`header`), atomically."""
+        with :meth:`header`), atomically (``plots``: the protocol's flag; the fit draws
+        nothing)."""
         from rotorsfd.io import atomic
         from rotorsfd.io.config import dump_config, to_toml
 

@@ -63,12 +63,43 @@ class StaticResult:
                             y, z, ty, tz))
         return out
 
-    def write(self, directory: str | Path) -> Path:
-        """``static_deflection.csv`` (long format, :data:`COLUMNS`) written atomically."""
+    def to_dataset(self) -> Any:
+        """``q`` over ``(speed, dof)`` [m, rad] with the node positions and DOF names."""
+        import xarray as xr  # deferred: xarray
+
+        n_nodes = self.node_x.size
+        return xr.Dataset(
+            {"q": (("speed", "dof"), self.q,
+                   {"long_name": "static deflection", "units": "m or rad"}),
+             "node_x": ("node", self.node_x, {"units": "m", "long_name": "axial position"})},
+            coords={"speed": ("speed", self.speeds, {"units": "rad/s"}),
+                    "speed_ratio": ("speed", self.speeds / self.reference_speed,
+                                    {"units": "1"}),
+                    "node": ("node", np.arange(1, n_nodes + 1, dtype=np.int32)),
+                    "dof_name": ("dof", [f"{d}{i}" for i in range(1, n_nodes + 1)
+                                         for d in ("y", "z", "ty", "tz")])},
+            attrs={"reference_speed_rad_s": self.reference_speed, "title": self.title})
+
+    def plot(self) -> dict[str, Any]:
+        """``static_deflection.png``: y and z along the shaft at the speeds
+        (:func:`rotorsfd.plots.static.static_figure`)."""
+        from rotorsfd.plots.static import static_figure  # deferred: matplotlib
+
+        return {"static_deflection.png": static_figure(
+            self.node_x, self.speeds, self.q[:, :4 * self.node_x.size],
+            reference_speed=self.reference_speed, title=self.title)}
+
+    def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
+        """``static_deflection.csv`` (long format, :data:`COLUMNS`) and (``plots``)
+        ``static_deflection.png``, written atomically."""
         from rotorsfd.io import atomic
 
-        return atomic.write_csv(Path(directory) / "static_deflection.csv", COLUMNS,
-                                self.rows())
+        out = Path(directory)
+        paths = {"static_deflection.csv": atomic.write_csv(
+            out / "static_deflection.csv", COLUMNS, self.rows())}
+        if plots:
+            paths.update(atomic.save_figures(self.plot(), out))
+        return paths
 
     def summary(self) -> str:
         """The largest lateral static deflection and where."""

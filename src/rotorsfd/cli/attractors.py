@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import Any
 
 from rotorsfd.cli import options
-from rotorsfd.cli.output import print_summary
+from rotorsfd.cli.output import print_written
 from rotorsfd.cli.registry import arg, command
 from rotorsfd.errors import ConfigError
 
@@ -103,7 +103,6 @@ def attractors(args: argparse.Namespace, config: Any) -> int:
     """Run the census, write and print it."""
     # deferred: numpy, scipy, numba (keeps --help fast)
     from rotorsfd.analyses.attractors_config import run_census
-    from rotorsfd.analyses.attractors_result import write_census
     from rotorsfd.studies.executors import make_executor
 
     opts = census_options(args)
@@ -112,10 +111,5 @@ def attractors(args: argparse.Namespace, config: Any) -> int:
         result = run_census(config, speeds, speed_ratios=_ratios(args),
                             search_path=Path(args.config).parent, options=opts,
                             executor=ex)
-    names = ["initial displacement of the element's first DOF (y) / clearance",
-             "initial displacement of its second DOF (z) / clearance"]
-    paths = write_census(result, args.output, names, config.title)
-    if not args.quiet:
-        print_summary("\n".join(c.text() for c in result), args.verbose)
-        print("wrote " + ", ".join(str(p) for p in paths.values()))
+    print_written(result, result.write(args.output), args.quiet, args.verbose)
     return 0
