@@ -91,27 +91,19 @@ class DualSpoolResponseResult(TorusResponseResult):
                     f"{b.lattice.H1}, grid {b.grid[0]} x {b.grid[1]}, {self.elapsed:.2f} s")
         return "\n".join(lines)
 
-    def write(self, directory: str | Path, plots: bool = True,
-              multipliers_at: float | None = None) -> dict[str, Path]:
-        """torus.nc, torus.csv and dual_spool_response.png, atomically."""
-        from rotorsfd.io import atomic
-        from rotorsfd.io.branch_files import write_table
-        from rotorsfd.io.torus_files import write_torus_netcdf
-        from rotorsfd.model.node_names import write_node_table
-
-        out = Path(directory)
-        ds = self.to_dataset()
+    def to_dataset(self) -> Any:
+        """The torus branch's Dataset with ``speed_ratio_hp_lp`` = r."""
+        ds = super().to_dataset()
         ds.attrs["speed_ratio_hp_lp"] = self.ratio
-        paths = {"torus.nc": write_torus_netcdf(ds, out / "torus.nc"),
-                 "torus.csv": write_table(out / "torus.csv", self.table()),
-                 **write_node_table(out, self.node_names, self.nodes)}
-        if plots and self.branch.n_points:
-            from rotorsfd.plots.dual_spool import plot_dual_spool_response
+        return ds
 
-            name = "dual_spool_response.png"
-            paths[name] = atomic.save_figure(plot_dual_spool_response(self), out / name,
-                                             dpi=120)
-        return paths
+    def plot(self, multipliers_at: float | None = None) -> dict[str, Any]:
+        """``dual_spool_response.png`` (none for an empty branch)."""
+        if not self.branch.n_points:
+            return {}
+        from rotorsfd.plots.dual_spool import plot_dual_spool_response
+
+        return {"dual_spool_response.png": plot_dual_spool_response(self)}
 
 
 def run_dual_spool_response(config_or_system: Config | RotorSystem,

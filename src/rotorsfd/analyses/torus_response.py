@@ -306,11 +306,21 @@ class TorusResponseResult:
         x = self.branch.omega / self.reference_speed if self.is_speed else self.branch.lam
         return int(np.argmin(np.abs(x - speed_ratio)))
 
+    def plot(self, multipliers_at: float | None = None) -> dict[str, Any]:
+        """``torus_components.png`` and ``torus_spectrum.png`` (at the point nearest
+        ``multipliers_at``, a speed ratio; default the largest deflection; a non-speed
+        branch: the parameter's value); none for an empty branch."""
+        if not self.branch.n_points:
+            return {}
+        from rotorsfd.plots.torus import plot_torus_components, plot_torus_spectrum
+
+        return {"torus_components.png": plot_torus_components(self),
+                "torus_spectrum.png": plot_torus_spectrum(
+                    self, self.spectrum_index(multipliers_at))}
+
     def write(self, directory: str | Path, plots: bool = True,
               multipliers_at: float | None = None) -> dict[str, Path]:
-        """Write torus.nc, torus.csv and the plots (torus_components.png, and
-        torus_spectrum.png at the point nearest ``multipliers_at``, a speed ratio; default
-        the largest deflection; a non-speed branch: the parameter's value) atomically."""
+        """Write torus.nc, torus.csv and the plots (:meth:`plot`) atomically."""
         from rotorsfd.io import atomic
         from rotorsfd.io.branch_files import write_table
         from rotorsfd.io.torus_files import write_torus_netcdf
@@ -319,14 +329,8 @@ class TorusResponseResult:
         paths = {"torus.nc": write_torus_netcdf(self.to_dataset(), out / "torus.nc"),
                  "torus.csv": write_table(out / "torus.csv", self.table()),
                  **write_node_table(out, self.node_names, self.nodes)}
-        if plots and self.branch.n_points:
-            from rotorsfd.plots.torus import plot_torus_components, plot_torus_spectrum
-
-            figs = {"torus_components.png": plot_torus_components(self),
-                    "torus_spectrum.png": plot_torus_spectrum(
-                        self, self.spectrum_index(multipliers_at))}
-            for name, fig in figs.items():
-                paths[name] = atomic.save_figure(fig, out / name, dpi=120)
+        if plots:
+            paths.update(atomic.save_figures(self.plot(multipliers_at), out))
         return paths
 
 
