@@ -325,14 +325,7 @@ class ResponseResult:
                     for c in bifurcation_columns(self.bifurcations)}
             paths["bifurcations.csv"] = write_table(out / "bifurcations.csv", cols)
         if plots:
-            for name, fig in self.plot().items():
-                paths[name] = atomic.save_figure(fig, out / name, dpi=120)
-            if self.multipliers is not None and self.branch.n_points:
-                at = ({} if multipliers_at is None else {"speed_ratio": multipliers_at}
-                      if self.is_speed else {"parameter": multipliers_at})
-                fig = self.plot_multipliers(**at)
-                paths["multipliers.png"] = atomic.save_figure(fig, out / "multipliers.png",
-                                                              dpi=120)
+            paths.update(atomic.save_figures(self.plot(multipliers_at), out))
         return paths
 
     # ---- multipliers of one point ---------------------------------------------------------
@@ -398,8 +391,19 @@ class ResponseResult:
                                 title=self.title)
 
     # ---- plots and text -------------------------------------------------------------------
-    def plot(self) -> dict[str, Figure]:
-        """Frequency-response figures by file name (:mod:`rotorsfd.plots.response`)."""
+    def plot(self, multipliers_at: float | None = None) -> dict[str, Figure]:
+        """Frequency-response figures by file name (:mod:`rotorsfd.plots.response`) and,
+        when the multipliers are known, ``multipliers.png`` at the point nearest
+        ``multipliers_at`` (see :meth:`write`)."""
+        figures = self.response_figures()
+        if self.multipliers is not None and self.branch.n_points:
+            at = ({} if multipliers_at is None else {"speed_ratio": multipliers_at}
+                  if self.is_speed else {"parameter": multipliers_at})
+            figures["multipliers.png"] = self.plot_multipliers(**at)
+        return figures
+
+    def response_figures(self) -> dict[str, Figure]:
+        """The frequency-response figures by file name (:mod:`rotorsfd.plots.response`)."""
         from rotorsfd.plots.response import response_figures
 
         x_name = "speed_ratio" if self.is_speed else self.parameter_column

@@ -111,10 +111,9 @@ def period_two(args: argparse.Namespace, result: Any) -> int:
     p2 = run_switch(result, args.switch_at)
     out = Path(args.output)
     paths = p2.write(out)
-    figures = result.plot()
+    figures = result.response_figures()
     p2.draw(figures)
-    for name, fig in figures.items():
-        paths[name] = atomic.save_figure(fig, out / name, dpi=120)
+    paths.update(atomic.save_figures(figures, out))
     if not args.quiet:
         print_summary(p2.summary(), args.verbose)
         print("wrote " + ", ".join(str(p) for p in paths.values()))
