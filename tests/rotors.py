@@ -190,3 +190,29 @@ def chart_rotor_raw() -> dict:
             "base": {"pitching": {"law": "harmonic", "frequency": 300.0,
                                   "angle_amplitude": 0.1}},
             "analysis": {"stability_chart": {"speed": 250.0}}}
+
+
+def uniform_sfd_rotor_raw(n_elements: int = 104, modal_ratio: float | None = None) -> dict:
+    """A 1 m uniform steel shaft of ``n_elements`` elements (above DENSE_MAX_DOF at 104),
+    a disk at mid-span, a support at the far end and an SFD at node 1, as a raw config
+    table; ``modal_ratio``: modal damping of that ratio on the 6 lowest modes."""
+    mid = n_elements // 2 + 1
+    rotor = {"shaft": [{"length": 1.0, "n_elements": n_elements, "outer_radius": 0.02,
+                        "material": "steel"}],
+             "disks": [{"node": mid, "material": "steel", "inner_radius": 0.02,
+                        "outer_radius": 0.12, "thickness": 0.03}],
+             "supports": [{"node": n_elements + 1, "stiffness": 3e7, "damping": 500.0}]}
+    title = "uniform rotor, SFD at node 1"
+    if modal_ratio is not None:
+        rotor["damping"] = {"kind": "modal", "ratio": modal_ratio, "modes": 6}
+        title += ", modal damping of 6 modes"
+    return {"title": title,
+            "materials": {"steel": {"density": 7810.0, "young_modulus": 211e9,
+                                    "shear_modulus": 81.2e9}},
+            "rotor": rotor,
+            "elements": {"sfd": {"kind": "sfd", "node": 1, "viscosity": 0.0051,
+                                 "clearance": 1.27e-4, "clearance_ratio": 0.00485,
+                                 "length_to_diameter": 0.325, "cavitation": "pi",
+                                 "centring_stiffness": 1e7, "centring_damping": 0.0}},
+            "unbalance": [{"node": mid, "magnitude": 5e-5}],
+            "gravity": {"enabled": False}}

@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from rotors import uniform_sfd_rotor_raw
 from rotorsfd.model.sparse import DENSE_MAX_DOF
 from rotorsfd.stability.branch_options import StabilityOptions
 from rotorsfd.stability.floquet_evaluator import FloquetEvaluator
@@ -17,23 +18,7 @@ pytestmark = pytest.mark.slow   # ~7 s: the dense companion form of 888 states
 
 
 def _config() -> dict:
-    return {
-        "title": "uniform rotor, SFD at node 1",
-        "materials": {"steel": {"density": 7810.0, "young_modulus": 211e9,
-                                "shear_modulus": 81.2e9}},
-        "rotor": {"shaft": [{"length": 1.0, "n_elements": N_EL, "outer_radius": 0.02,
-                             "material": "steel"}],
-                  "disks": [{"node": N_EL // 2 + 1, "material": "steel",
-                             "inner_radius": 0.02, "outer_radius": 0.12,
-                             "thickness": 0.03}],
-                  "supports": [{"node": N_EL + 1, "stiffness": 3e7, "damping": 500.0}]},
-        "elements": {"sfd": {"kind": "sfd", "node": 1, "viscosity": 0.0051,
-                             "clearance": 1.27e-4, "clearance_ratio": 0.00485,
-                             "length_to_diameter": 0.325, "cavitation": "pi",
-                             "centring_stiffness": 1e7, "centring_damping": 0.0}},
-        "unbalance": [{"node": N_EL // 2 + 1, "magnitude": 5e-5}],
-        "gravity": {"enabled": False},
-    }
+    return uniform_sfd_rotor_raw(N_EL)
 
 
 @pytest.fixture(scope="module")

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
+from rotors import uniform_sfd_rotor_raw
 from rotorsfd import api
 from rotorsfd.analyses.td_integration import (
     integrate_periods,
@@ -27,24 +28,7 @@ N_EL = 104
 
 @pytest.fixture(scope="module")
 def model():
-    cfg = {
-        "title": "uniform rotor, SFD at node 1, modal damping of 6 modes",
-        "materials": {"steel": {"density": 7810.0, "young_modulus": 211e9,
-                                "shear_modulus": 81.2e9}},
-        "rotor": {"shaft": [{"length": 1.0, "n_elements": N_EL, "outer_radius": 0.02,
-                             "material": "steel"}],
-                  "disks": [{"node": N_EL // 2 + 1, "material": "steel",
-                             "inner_radius": 0.02, "outer_radius": 0.12,
-                             "thickness": 0.03}],
-                  "supports": [{"node": N_EL + 1, "stiffness": 3e7, "damping": 500.0}],
-                  "damping": {"kind": "modal", "ratio": 0.02, "modes": 6}},
-        "elements": {"sfd": {"kind": "sfd", "node": 1, "viscosity": 0.0051,
-                             "clearance": 1.27e-4, "clearance_ratio": 0.00485,
-                             "length_to_diameter": 0.325, "cavitation": "pi",
-                             "centring_stiffness": 1e7, "centring_damping": 0.0}},
-        "unbalance": [{"node": N_EL // 2 + 1, "magnitude": 5e-5}],
-        "gravity": {"enabled": False},
-    }
+    cfg = uniform_sfd_rotor_raw(N_EL, modal_ratio=0.02)
     system = api.build_system(config_from_dict(cfg))
     inputs = time_domain_inputs(system, 300.0)
     dense_inputs = dataclasses.replace(inputs, M=dense(inputs.M), D=dense(inputs.D),
