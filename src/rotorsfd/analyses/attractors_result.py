@@ -324,38 +324,39 @@ class CensusResult(Sequence):
             attrs={"title": self.title})
 
     def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
-        """attractors.csv, starts.csv, summary.json and (``plots``) basins.png."""
-        return write_census(self, directory, self.coordinate_names, self.title, plots)
+        """attractors.csv (every census, a speed column), starts.csv, summary.json and
+        (``plots``) basins.png (the first census) in ``directory``."""
+        from rotorsfd.io.atomic import save_figures, write_csv, write_json
+
+        censuses = self.censuses
+        out = Path(directory)
+        out.mkdir(parents=True, exist_ok=True)
+        names = sorted({k for c in censuses for a in c.attractors for k in a.eccentricity})
+        rows = [r for c in censuses for r in c.rows(names)]
+        header = list(rows[0]) if rows else ["speed_rad_s"]
+        paths = {"attractors.csv": write_csv(out / "attractors.csv", header,
+                                             [[r.get(h, "") for h in header]
+                                              for r in rows])}
+        start_rows = []
+        for c in censuses:
+            lab = c.labels()
+            for r in c.outcomes:
+                start_rows.append([c.speed, r.index, *c.coords[r.index], r.motion,
+                                   int(lab[r.index]), r.periods_run])
+        m = censuses[0].coords.shape[1] // 2
+        cols = [f"q{j + 1}" for j in range(m)] + [f"v{j + 1}" for j in range(m)]
+        cols += ["orbit_phase"] * (censuses[0].coords.shape[1] - 2 * m)
+        paths["starts.csv"] = write_csv(out / "starts.csv",
+                                        ["speed_rad_s", "start", *cols, "motion",
+                                         "attractor", "periods_run"], start_rows)
+        paths["summary.json"] = write_json(out / "summary.json", self.summary_dict())
+        if plots:
+            paths.update(save_figures(self.plot(), out))
+        return paths
 
 
 def write_census(censuses: Sequence[AttractorCensus], folder: str | Path,
                  coordinate_names: list[str] | None = None, title: str = "",
                  plots: bool = True) -> dict[str, Path]:
-    """attractors.csv (every census, a speed column), starts.csv, summary.json and
-    (``plots``) basins.png (the first census) in ``folder``."""
-    from rotorsfd.io.atomic import save_figures, write_csv, write_json
-
-    out = Path(folder)
-    out.mkdir(parents=True, exist_ok=True)
-    names = sorted({k for c in censuses for a in c.attractors for k in a.eccentricity})
-    rows = [r for c in censuses for r in c.rows(names)]
-    header = list(rows[0]) if rows else ["speed_rad_s"]
-    paths = {"attractors.csv": write_csv(out / "attractors.csv", header,
-                                     [[r.get(h, "") for h in header] for r in rows])}
-    start_rows = []
-    for c in censuses:
-        lab = c.labels()
-        for r in c.outcomes:
-            start_rows.append([c.speed, r.index, *c.coords[r.index], r.motion,
-                               int(lab[r.index]), r.periods_run])
-    m = censuses[0].coords.shape[1] // 2
-    cols = [f"q{j + 1}" for j in range(m)] + [f"v{j + 1}" for j in range(m)]
-    cols += ["orbit_phase"] * (censuses[0].coords.shape[1] - 2 * m)
-    paths["starts.csv"] = write_csv(out / "starts.csv", ["speed_rad_s", "start", *cols,
-                                                     "motion", "attractor", "periods_run"],
-                                start_rows)
-    result = CensusResult(list(censuses), coordinate_names, title)
-    paths["summary.json"] = write_json(out / "summary.json", result.summary_dict())
-    if plots:
-        paths.update(save_figures(result.plot(), out))
-    return paths
+    """:meth:`CensusResult.write` of ``censuses``."""
+    return CensusResult(list(censuses), coordinate_names, title).write(folder, plots)

@@ -47,8 +47,6 @@ class ModalRunResult:
     reference_speed: float
     title: str = ""
 
-    FILES = ("critical_speeds.csv", "campbell.csv", "campbell.png")
-
     def critical_speeds_rows(self) -> list[tuple[int, str, float]]:
         """Rows ``(mode, whirl, speed_rad_s)``."""
         return [(c.mode, c.whirl, float(c.speed_rad_s)) for c in self.critical_speeds]

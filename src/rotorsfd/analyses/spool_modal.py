@@ -60,8 +60,6 @@ class SpoolModalResult:
     lines: dict[str, float] = field(default_factory=dict)
     line_critical: list[tuple[str, CriticalSpeed]] = field(default_factory=list)
 
-    FILES = ("critical_speeds.csv", "campbell.csv", "campbell.png")
-
     def method_words(self) -> str:
         """How the modes were computed (``CampbellResult.info``)."""
         info = self.campbell.info

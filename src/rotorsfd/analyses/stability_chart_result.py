@@ -43,8 +43,6 @@ class ChartResult:
     title: str = ""
     config_toml: str = ""       # the resolved configuration it was run from, if any
 
-    FILES = ("chart.nc", "chart.png")
-
     @property
     def stable(self) -> NDArray[np.bool_]:
         return self.chart.stable
