@@ -38,3 +38,15 @@ def test_deflection_figure_has_style_and_marker_key():
     labels = {t.get_text() for legend in fig.findobj(lambda a: a.__class__.__name__ == "Legend")
               for t in legend.get_texts()}
     assert {"stable", "unstable", "saddle-node", "node 1"} <= labels
+
+
+def test_branch_points_get_their_own_markers():
+    x, y = _s_curve()
+    rows = [{"type": "saddle-node", "speed_ratio": 1.1, "point": 10},
+            {"type": "pitchfork", "speed_ratio": 1.05, "point": 5},
+            {"type": "transcritical", "speed_ratio": 1.02, "point": 25}]
+    fig = Figure()
+    ax = fig.add_subplot()
+    mark_bifurcations(ax, x, y, rows, "speed_ratio")
+    markers = [line.get_marker() for line in ax.lines]
+    assert markers == ["o", "D", "v"]      # none drawn with the untyped cross

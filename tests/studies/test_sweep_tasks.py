@@ -89,6 +89,17 @@ def test_response_summary_from_result_fields():
     assert out.arrays["branch_stable"].data.dtype == np.int8
 
 
+def test_response_summary_counts_branch_points_by_type():
+    res = _fake_result()
+    res.bifurcations = [
+        *res.bifurcations,
+        {"type": "pitchfork", "speed_ratio": 1.3, "parameter": 1.3 * 800.0},
+        {"type": "branch-point", "speed_ratio": 0.65, "parameter": 0.65 * 800.0}]
+    s = response_output(res).scalars
+    assert (s["n_pitchfork"], s["n_transcritical"], s["n_branch_point"]) == (1, 0, 1)
+    assert s["n_saddle_node"] == 2      # a branch point is not counted as a fold
+
+
 def test_response_summary_without_stability_marks_missing():
     out = response_output(_fake_result(stability=False))
     assert out.scalars["n_saddle_node"] is None

@@ -5,7 +5,8 @@ The figures are drawn from the columns of ``branch.csv`` (no physics here): the 
 r~ of every output node, and per node the static term X_0 / C and the harmonic amplitudes
 |X_k| / C of each direction. Stable parts solid, unstable parts dashed (when a ``stable``
 column is present); bifurcations marked (circle saddle-node, square period doubling,
-triangle secondary Hopf).
+triangle secondary Hopf, diamond pitchfork, down triangle transcritical, cross an untyped
+branch point).
 """
 
 from __future__ import annotations
@@ -20,7 +21,8 @@ from matplotlib.lines import Line2D
 
 from rotorsfd.plots.labels import label, mathtext, wrap
 
-MARKERS = {"saddle-node": "o", "period-doubling": "s", "secondary-hopf": "^"}
+MARKERS = {"saddle-node": "o", "period-doubling": "s", "secondary-hopf": "^",
+           "pitchfork": "D", "transcritical": "v", "branch-point": "x"}
 
 
 def styled_line(ax: Axes, x: Any, y: Any, stable: Any = None, **kw: Any) -> None:

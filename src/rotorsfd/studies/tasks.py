@@ -46,7 +46,10 @@ from rotorsfd.io.schema import Config
 
 Scalar = bool | int | float | str | None
 
-BIFURCATION_TYPES = ("saddle-node", "period-doubling", "secondary-hopf")
+#: The reported types counted per sweep case (``n_<type>``): the codim-1 bifurcations and
+#: the branch points (typed on the HB equations, or untyped ``branch-point``).
+BIFURCATION_TYPES = ("saddle-node", "period-doubling", "secondary-hopf", "pitchfork",
+                     "transcritical", "branch-point")
 
 
 @dataclass(frozen=True)
