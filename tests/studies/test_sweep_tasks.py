@@ -100,6 +100,13 @@ def test_response_summary_counts_branch_points_by_type():
     assert s["n_saddle_node"] == 2      # a branch point is not counted as a fold
 
 
+def test_counted_types_include_every_branch_point_kind():
+    from rotorsfd.stability.branch_result import BRANCH_POINT_KINDS
+    from rotorsfd.studies.tasks import BIFURCATION_TYPES
+
+    assert BIFURCATION_TYPES[3:] == BRANCH_POINT_KINDS
+
+
 def test_response_summary_without_stability_marks_missing():
     out = response_output(_fake_result(stability=False))
     assert out.scalars["n_saddle_node"] is None

@@ -47,7 +47,10 @@ from rotorsfd.io.schema import Config
 Scalar = bool | int | float | str | None
 
 #: The reported types counted per sweep case (``n_<type>``): the codim-1 bifurcations and
-#: the branch points (typed on the HB equations, or untyped ``branch-point``).
+#: the branch points (typed on the HB equations, or untyped ``branch-point``: the
+#: names of ``stability.branch_result.BRANCH_POINT_KINDS``, written out here because
+#: importing ``rotorsfd.stability`` brings numba into the sweep's start-up; a test keeps
+#: the two equal).
 BIFURCATION_TYPES = ("saddle-node", "period-doubling", "secondary-hopf", "pitchfork",
                      "transcritical", "branch-point")
 
