@@ -121,3 +121,24 @@ def test_large_reduced_runup_truncation_error_is_bounded():
     a, b = _run(inputs, "auto"), _run(inputs, "none")
     err = np.max(np.abs(a.q - b.q)) / np.max(np.abs(b.q))
     assert 1e-9 < err <= 1e-3
+
+
+def test_large_runup_simulation_forms_no_dense_matrix(monkeypatch):
+    """``simulate`` under a speed law (the CLI's path: the reduced step, the step check,
+    the Campbell lines of the waterfall) on the 404-DOF rotor without a dense matrix."""
+    from rotorsfd.analyses.runup_simulation import run_speed_law_simulation
+    from rotorsfd.model.build import build_system
+
+    raw = uniform_sfd_rotor_raw(100, modal_ratio=0.02)
+    raw["base"] = {"pitching": {"law": "harmonic", "frequency": 120.0,
+                                "angle_amplitude": 2e-3}}
+    config = config_from_dict(raw)
+    system = build_system(config)
+    with monkeypatch.context() as m:
+        _no_dense_matrices(m)
+        res = run_speed_law_simulation(system, LAW, sim=config.analysis.simulate,
+                                       nodes=[1, 51], steps_per_period=STEPS,
+                                       natural_modes=2)
+    assert res.settings["reduction"] == "auto"
+    assert res.natural is not None and np.all(res.natural[1] > 0.0)
+    assert np.max(res.radius(1)) > 0.0
