@@ -23,7 +23,8 @@ The "before" runs raise the module thresholds (``DENSE_MAX_DOF`` of
 :mod:`rotorsfd.stability.chart`) so that the code takes the dense path it takes at <= 400
 DOFs; the equations are the same (the tests compare both paths at 404 DOFs).
 
-``--quick``: 112 elements (452 DOF), the banded path only, no baseline.
+``--quick``: 112 elements (452 DOF), 5 periods, a 2 x 2 chart of 100 intervals, the
+banded path only, in this process (no baseline, no peak memory asserted).
 Run: ``python -m benchmarks --only scale-ltp`` or ``python benchmarks/bench_scale_ltp.py``.
 """
 
@@ -84,7 +85,7 @@ def dense_path(chart: bool) -> None:
         ltp_chart.DENSE_MAX_DOF = big
 
 
-def runup(n_elements: int, w_c: float) -> dict[str, Any]:
+def runup(n_elements: int, w_c: float, periods: int = RUNUP_PERIODS) -> dict[str, Any]:
     from rotorsfd.analyses.runup import run_speed_law
     from rotorsfd.io.config import config_from_dict
     from rotorsfd.model.build import build_system
@@ -92,7 +93,7 @@ def runup(n_elements: int, w_c: float) -> dict[str, Any]:
 
     system = build_system(config_from_dict(raw_config(n_elements)))
     w1 = 1.2 * w_c
-    t_end = RUNUP_PERIODS * 2.0 * np.pi / w1
+    t_end = periods * 2.0 * np.pi / w1
     law = RampSpeed(0.5 * w_c, w1, t_end)
     q0 = np.zeros(system.n_dof)
     q0[0::4] = q0[1::4] = 1e-6
@@ -104,15 +105,16 @@ def runup(n_elements: int, w_c: float) -> dict[str, Any]:
             "peak_radius_C": float(r.max() / system.length_scale)}
 
 
-def chart(n_elements: int, w_c: float) -> dict[str, Any]:
+def chart(n_elements: int, w_c: float, grid: int = GRID, intervals: int = INTERVALS
+          ) -> dict[str, Any]:
     from rotorsfd.analyses.stability_chart import run_stability_chart
     from rotorsfd.io.config import config_from_dict
 
     raw = raw_config(n_elements)
     raw["analysis"] = {"stability_chart": {"speed": 0.8 * w_c}}
-    res = run_stability_chart(config_from_dict(raw), x=(A0, np.linspace(0.0, 0.2, GRID)),
-                              y=(FREQ, np.linspace(0.2, 1.6, GRID) * w_c),
-                              n_intervals=INTERVALS)
+    res = run_stability_chart(config_from_dict(raw), x=(A0, np.linspace(0.0, 0.2, grid)),
+                              y=(FREQ, np.linspace(0.2, 1.6, grid) * w_c),
+                              n_intervals=intervals)
     return {"n_dof": int(res.chart.info["n_dof"]),
             "n_reduced": int(res.chart.info["n_reduced"]),
             "max_abs": res.chart.max_abs.tolist()}
@@ -126,12 +128,16 @@ def peak_memory_gib() -> float:
     return float("nan")
 
 
-def workload(name: str, n_elements: int, w_c: float, before: bool) -> dict[str, Any]:
+def workload(name: str, n_elements: int, w_c: float, before: bool,
+             quick: bool = False) -> dict[str, Any]:
     """Run one workload in this process: its result, CPU seconds and VmHWM."""
     if before:
         dense_path(chart=name == "chart")
     c0, t0 = time.process_time(), time.perf_counter()
-    out = (runup if name == "runup" else chart)(n_elements, w_c)
+    if name == "runup":
+        out = runup(n_elements, w_c, 5 if quick else RUNUP_PERIODS)
+    else:
+        out = chart(n_elements, w_c, 2 if quick else GRID, 100 if quick else INTERVALS)
     out.update(cpu_s=time.process_time() - c0, wall_s=time.perf_counter() - t0,
                peak_gib=peak_memory_gib())
     return out
@@ -151,10 +157,13 @@ def run(quick: bool = False, repeat: int = 1) -> list[Row]:
     w_c = critical_speed()
     rows: list[Row] = []
     for name in ("runup", "chart"):
-        now = fresh(name, n_el, w_c, before=False)
+        now = workload(name, n_el, w_c, False, quick=True) if quick else \
+            fresh(name, n_el, w_c, before=False)
         what = (f"run-up 0.5-1.2 x w_c, {RUNUP_PERIODS} periods x T/{STEPS}, reduced step"
                 if name == "runup" else
                 f"LTP chart {GRID}x{GRID} (A0, w_b), {INTERVALS} intervals")
+        if quick:
+            what = f"{name}, quick settings"
         case = f"stepped rotor {n_el} el. ({now['n_dof']} DOF), pitching base: {what}"
         note = (f"peak SFD radius {now['peak_radius_C']:.3f} C" if name == "runup" else
                 f"basis {now['n_reduced']} modes (shift-invert)")
