@@ -57,6 +57,10 @@ REGISTRY: dict[str, tuple[str, str]] = {
     "scale-timedomain": ("500 periods x 200 steps of the stepped rotor, 80-1280 elements: "
                          "reduced (Craig-Bampton) step vs the full dense step",
                          "bench_scale_timedomain:run"),
+    "scale-ltp": ("run-up and LTP stability chart of the stepped rotor at 1280 elements on "
+                  "a pitching base: banded / reduced vs the dense path of before (fresh "
+                  "processes, CPU s and VmHWM; --quick: 112 elements, banded only)",
+                  "bench_scale_ltp:run"),
     "elements": ("nonlinear elements: one SFD through the element interface vs the previous "
                  "path; cost against 1, 2, 4, 8 elements", "bench_elements:run"),
     "film": ("squeeze film models: force + Jacobian per sample, short vs finite-length film; "

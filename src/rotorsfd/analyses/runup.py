@@ -14,8 +14,13 @@ at the rotor angle ``phi = theta(t) + eta``, ``theta = int Omega``
 
 The base terms are those of :func:`rotorsfd.model.base_terms.time_varying_terms` at
 speed 0 plus their part linear in the speed at Omega(t): ``Omega wx (P11 + P22)`` in K and
-``-Omega wz pty + Omega wy ptz`` in F. The step is ``dt = 2 pi / (Omega_max
-steps_per_period)`` with ``Omega_max`` the highest speed of the run.
+``-Omega wz pty + Omega wy ptz`` in F. Above :data:`~rotorsfd.model.sparse.DENSE_MAX_DOF`
+DOFs every matrix stays in the band (CSR; a modal damping of a few modes as
+:class:`~rotorsfd.model.lowrank.BandedLowRank`), no dense n x n array: the reduced step
+(``reduction = "auto"``, :func:`~rotorsfd.analyses.td_integration.with_reduction`)
+projects them term by term; only the full step (``"none"``) densifies them.
+The step is ``dt = 2 pi / (Omega_max steps_per_period)`` with ``Omega_max`` the
+highest speed of the run.
 """
 
 from __future__ import annotations
@@ -45,22 +50,32 @@ def speed_law_inputs(system: RotorSystem, law: SpeedLaw, t_end: float) -> TimeDo
         raise ConfigError(FIELD, "an element whose law depends on the speed",
                           "a speed law needs elements independent of the speed "
                           "(a journal bearing needs a constant speed)")
-    from rotorsfd.model.base_terms import base_basis, time_varying_terms
+    from rotorsfd.model.base_terms import base_basis, keeps_band, time_varying_terms
+    from rotorsfd.model.time_terms import banded_rotor_terms
 
     _, w_max = speed_range(law, t_end)
     r = system.rotor
     el = system.elements_at(w_max)
     kernel, params = (el.kernel, el.kernel_params) if len(el) else (None, None)
     basis = base_basis(r)
-    P21 = 0.5 * (basis.matrix("PS") + basis.matrix("PJ"))
-    damping: list[tuple[Any, np.ndarray]] = [(law.omega, np.asarray(r.G, float))]
-    stiffness: list[tuple[Any, np.ndarray]] = []
-    if np.any(P21):
+    banded = banded_rotor_terms(r)          # above DENSE_MAX_DOF: CSR (+ low rank)
+    sparse = banded is not None and keeps_band(r.n_dof)
+
+    def pattern(name: str) -> Any:
+        return basis.sparse_matrix(name) if sparse else basis.matrix(name)
+
+    M, C, K, G = (np.asarray(r.M, float), np.asarray(r.C, float).copy(),
+                  np.asarray(r.K, float).copy(), np.asarray(r.G, float)) \
+        if banded is None else (banded[0], banded[1].copy(), banded[2].copy(), banded[3])
+    P21 = 0.5 * (pattern("PS") + pattern("PJ"))
+    damping: list[tuple[Any, Any]] = [(law.omega, G)]
+    stiffness: list[tuple[Any, Any]] = []
+    if (P21.count_nonzero() if sparse else np.count_nonzero(P21)):
         stiffness.append((lambda t: -law.domega(t), P21))
     series: list[tuple[Any, np.ndarray]] = []
     if not system.base.is_fixed:
         motion = system.base
-        c_b, k_b, f_b = time_varying_terms(basis, motion, 0.0)
+        c_b, k_b, f_b = time_varying_terms(basis, motion, 0.0, sparse=sparse)
         damping += c_b
         stiffness += k_b
 
@@ -68,16 +83,15 @@ def speed_law_inputs(system: RotorSystem, law: SpeedLaw, t_end: float) -> TimeDo
             return np.broadcast_to(np.asarray(motion.state(t).w, float)[i],
                                    np.shape(t)) * law.omega(t)
 
-        stiffness += [(lambda t: w(t, 0), basis.matrix("P11") + basis.matrix("P22"))]
+        stiffness += [(lambda t: w(t, 0), pattern("P11") + pattern("P22"))]
         series += [*f_b, (lambda t: -w(t, 2), basis.vector("pty")),
                    (lambda t: w(t, 1), basis.vector("ptz"))]
     series += unbalance_series_law(system.unbalances, r.n_dof, law,
                                    None if system.base.is_fixed else system.base)
     forcing = Forcing(omega=w_max, series=series)
     tv = TimeVaryingMatrices(damping=damping, stiffness=stiffness)
-    return TimeDomainInputs(np.asarray(r.M, float), np.asarray(r.C, float).copy(),
-                            np.asarray(r.K, float).copy(), system.nl_dofs, kernel, params,
-                            forcing, tv, float(w_max), el)
+    return TimeDomainInputs(M, C, K, system.nl_dofs, kernel, params, forcing, tv,
+                            float(w_max), el)
 
 
 @dataclass

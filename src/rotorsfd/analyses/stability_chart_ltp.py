@@ -13,10 +13,16 @@ lowest undamped modes of ``(K + constant base terms, M)``: every mode below a cu
 chart takes ``MODE_CUTOFF`` times the highest of 2 w_b and Omega over the grid), at
 least ``MIN_MODES``, which holds the combination resonances ``omega_i + omega_j = k w_b``
 with ``k <= 2`` that the chart can show.
+
+Above :data:`~rotorsfd.model.sparse.DENSE_MAX_DOF` DOFs the system keeps the band (the
+record's CSR matrices, a modal damping of a few modes as
+:class:`~rotorsfd.model.lowrank.BandedLowRank`, the CSR base patterns) and the modes come
+from the sparse shift-invert eigensolver: no dense n x n array.
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -24,9 +30,9 @@ import scipy.linalg as sla
 from numpy.typing import NDArray
 
 from rotorsfd.analyses.stability_chart_rates import ChartParams, CoefficientCache
-from rotorsfd.model.base_terms import MATRIX_NAMES
+from rotorsfd.model.base_terms import MATRIX_NAMES, keeps_band
 from rotorsfd.model.time_terms import linear_part
-from rotorsfd.stability.chart import LTPSystem
+from rotorsfd.stability.chart import LTPSystem, lowest_modes
 
 if TYPE_CHECKING:
     from rotorsfd.model.system import RotorSystem
@@ -56,40 +62,72 @@ def rotor_ltp_system(system: RotorSystem, params: ChartParams, p1_probe: NDArray
     record = linear_part(system, rates=(0.0, 0.0, 0.0)).second_order(at)
     basis = system.basis
     cache = CoefficientCache(params)
-    M = np.asarray(record.M, float)
-    D0 = np.array(record.D, float)
-    K0 = np.array(record.K, float)
-    d_terms: list[tuple[NDArray, Any]] = []
-    k_terms: list[tuple[NDArray, Any]] = []
+    large = keeps_band(system.n_dof)    # CSR (+ low-rank modal damping), no n x n array
+    if large:
+        M, const = record.M, [record.D, record.K]
+        patterns: Sequence[Any] = basis.sparse_matrices
+        G = record.gyroscopic
+    else:
+        M = np.asarray(record.M, float)
+        const = [np.array(record.D, float), np.array(record.K, float)]
+        patterns = basis.matrices
+        G = np.asarray(record.gyroscopic, float) if speed_is_axis else None
+    d_terms: list[tuple[Any, Any]] = []
+    k_terms: list[tuple[Any, Any]] = []
     if speed_is_axis:   # D(Omega) = D(1) + (Omega - 1) G
         which = 1 if params.p1 is not None and params.p1[0] < 0 else 2
-        d_terms.append((np.asarray(record.gyroscopic, float),
-                        (lambda t, a, b: a - at + 0.0 * t) if which == 1 else
+        d_terms.append((G, (lambda t, a, b: a - at + 0.0 * t) if which == 1 else
                         (lambda t, a, b: b - at + 0.0 * t)))
     probes = [params.coefficients(_PROBE_T, float(a), np.asarray(p2_probe)[None, :])
               for a in np.atleast_1d(p1_probe)]
-    for which, (const, terms) in enumerate(((D0, d_terms), (K0, k_terms))):
+    for which, terms in enumerate((d_terms, k_terms)):
         values = np.concatenate([p[which].reshape(12, -1) for p in probes], axis=1)
         for i in range(len(MATRIX_NAMES)):
             v = values[i]
             if np.all(v == 0.0):
                 continue
             if np.all(v == v[0]):
-                const += v[0] * basis.matrices[i]
+                const[which] = const[which] + v[0] * patterns[i]
             else:
-                terms.append((basis.matrices[i], cache.term(which, i)))
-    return LTPSystem(M, [(D0, None), *d_terms], [(K0, None), *k_terms], params.period)
+                terms.append((patterns[i], cache.term(which, i)))
+    return LTPSystem(M, [(const[0], None), *d_terms], [(const[1], None), *k_terms],
+                     params.period)
 
 
 def modal_basis(system: LTPSystem, cutoff: float, n_modes: int | None = None) -> NDArray:
     """Lowest undamped modes of (constant K, M): ``n_modes`` of them, or all below
-    ``cutoff`` [rad/s] (at least MIN_MODES, degenerate partners kept together)."""
-    K0 = sum((np.asarray(K) for K, c in system.K_terms if c is None), np.zeros_like(system.M))
+    ``cutoff`` [rad/s] (at least MIN_MODES, degenerate partners kept together). Dense
+    ``eigh`` up to ``DENSE_MAX_DOF`` DOFs; above, shift-invert Lanczos
+    (:func:`~rotorsfd.stability.chart.lowest_modes`), the count doubled until a mode above
+    the cutoff (and not degenerate with the last kept one) is found."""
+    if system.is_large:
+        return _sparse_modal_basis(system, cutoff, n_modes)
+    K0 = system.constant_stiffness()
     K0 = 0.5 * (K0 + K0.T)
     lam, V = sla.eigh(K0, 0.5 * (system.M + system.M.T))
     if n_modes is None:
-        w = np.sqrt(np.abs(lam))
-        n_modes = max(min(MIN_MODES, w.size), int(np.sum(w < cutoff)))
-        while n_modes < w.size and abs(w[n_modes] - w[n_modes - 1]) <= 1e-6 * w[n_modes]:
-            n_modes += 1
+        n_modes = _kept(np.sqrt(np.abs(lam)), cutoff)
     return V[:, :n_modes]
+
+
+def _kept(w: NDArray, cutoff: float) -> int:
+    """Modes kept of the ascending frequencies ``w``: those below ``cutoff``, at least
+    MIN_MODES, and the degenerate partners of the last one."""
+    n_modes = max(min(MIN_MODES, w.size), int(np.sum(w < cutoff)))
+    while n_modes < w.size and abs(w[n_modes] - w[n_modes - 1]) <= 1e-6 * w[n_modes]:
+        n_modes += 1
+    return n_modes
+
+
+def _sparse_modal_basis(system: LTPSystem, cutoff: float, n_modes: int | None) -> NDArray:
+    K0 = system.constant_stiffness()
+    top = system.n_dof - 2
+    k = min(top, n_modes if n_modes is not None else 4 * MIN_MODES)
+    while True:
+        lam, V = lowest_modes(K0, system.M, k)
+        if n_modes is not None:
+            return V[:, :n_modes]
+        kept = _kept(np.sqrt(np.abs(lam)), cutoff)
+        if kept < k or k >= top:   # a mode above the cutoff, not a partner, was found
+            return V[:, :kept]
+        k = min(top, 2 * k)

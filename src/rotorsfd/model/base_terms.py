@@ -55,7 +55,7 @@ import scipy.sparse as sp
 
 from rotorsfd.model import dofs
 from rotorsfd.model.base_motion import BaseState
-from rotorsfd.model.sparse import as_csr, assemble
+from rotorsfd.model.sparse import DENSE_MAX_DOF, as_csr, assemble
 
 MATRIX_NAMES: tuple[str, ...] = (
     "T11", "T22", "TS", "TJ", "P11", "P22", "PS", "PJ", "D11", "D22", "DS", "DJ",
@@ -250,6 +250,10 @@ class BaseBasis:
         """Pattern ``name`` (MATRIX_NAMES), dense."""
         return self.sparse_matrices[MATRIX_NAMES.index(name)].toarray()
 
+    def sparse_matrix(self, name: str) -> sp.csr_matrix:
+        """Pattern ``name`` (MATRIX_NAMES), CSR."""
+        return self.sparse_matrices[MATRIX_NAMES.index(name)]
+
     def vector(self, name: str) -> np.ndarray:
         return self.vectors[VECTOR_NAMES.index(name)]
 
@@ -267,6 +271,13 @@ class BaseBasis:
         need scalar ones)."""
         C, K, F = self.combine_sparse(co)
         return C.toarray(), K.toarray(), F
+
+
+def keeps_band(n_dof: int) -> bool:
+    """True when a model of ``n_dof`` DOFs keeps its base terms as the CSR patterns of
+    ``BaseBasis.sparse_matrices`` (inside the rotor's band) instead of the dense stack:
+    above :data:`~rotorsfd.model.sparse.DENSE_MAX_DOF` (12 n^2 floats would be formed)."""
+    return int(n_dof) > DENSE_MAX_DOF
 
 
 def base_basis(rotor) -> BaseBasis:
@@ -321,7 +332,8 @@ def base_static_deflection(rotor, state: BaseState, speed: float = 0.0,
 # ---------------------------------------------------------------------------------------
 # time-varying terms for time stepping
 # ---------------------------------------------------------------------------------------
-def time_varying_terms(basis: BaseBasis, motion, speed: float, probe_times: int = 7):
+def time_varying_terms(basis: BaseBasis, motion, speed: float, probe_times: int = 7,
+                       sparse: bool | None = None):
     """Base terms of a time-varying base motion as ``(coefficient(t), array)`` pairs.
 
     Returns ``(damping, stiffness, force)``: lists of pairs with vectorised callables
@@ -329,8 +341,12 @@ def time_varying_terms(basis: BaseBasis, motion, speed: float, probe_times: int 
     F_base(t) = sum f_j(t) f_j (the shape of ``timedomain.forcing.TimeVaryingMatrices`` and
     ``Forcing.series``). Coefficients that vanish at ``probe_times`` irrational sample times
     in [0, 10] s and at the times where a law that acts only for a while (a shock pulse, a
-    record) is nonzero are dropped (exact for the built-in laws).
+    record) is nonzero are dropped (exact for the built-in laws). The matrices are the
+    CSR patterns when ``sparse`` (default: :func:`keeps_band` of the model's size), else
+    the dense stack.
     """
+    sparse = keeps_band(basis.n_dof) if sparse is None else bool(sparse)
+    mats = basis.sparse_matrices if sparse else basis.matrices
     cache: dict[bytes, BaseCoefficients] = {}
 
     def coeffs(t: np.ndarray) -> BaseCoefficients:
@@ -348,10 +364,10 @@ def time_varying_terms(basis: BaseBasis, motion, speed: float, probe_times: int 
     def make(attr: str, i: int):
         return lambda t: getattr(coeffs(t), attr)[i]
 
-    def pairs(attr: str, arrays: np.ndarray) -> list:
+    def pairs(attr: str, arrays: Sequence[Any]) -> list:
         values = np.asarray(getattr(probe_co, attr))
-        return [(make(attr, i), arrays[i]) for i in range(arrays.shape[0])
+        return [(make(attr, i), arrays[i]) for i in range(len(arrays))
                 if np.any(values[i] != 0.0)]
 
-    return (pairs("c_C", basis.matrices), pairs("c_K", basis.matrices),
+    return (pairs("c_C", mats), pairs("c_K", mats),
             pairs("c_F", basis.vectors))

@@ -28,6 +28,7 @@ from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
+import scipy.sparse as sp
 
 from rotorsfd.errors import ConfigError
 from rotorsfd.model.base_motion import BaseMotion, Constant
@@ -37,7 +38,21 @@ from rotorsfd.model.unbalance import unbalance_harmonics
 from rotorsfd.second_order import SecondOrderSystem
 from rotorsfd.timedomain.forcing import Forcing, HarmonicLoad, TimeVaryingMatrices
 
-__all__ = ["fold_constant", "linear_part", "second_order_system"]
+__all__ = ["banded_rotor_terms", "fold_constant", "linear_part", "second_order_system"]
+
+
+def banded_rotor_terms(rotor: Any) -> tuple[Any, Any, Any, Any] | None:
+    """``(M, C, K, G)`` of ``rotor`` without a dense n x n array when it has more than
+    :data:`~rotorsfd.model.sparse.DENSE_MAX_DOF` DOFs: CSR, the damping a
+    :class:`~rotorsfd.model.lowrank.BandedLowRank` with modal damping of a few modes;
+    None for a smaller (or matrix-free) rotor, whose dense matrices the callers take."""
+    if rotor.n_dof <= DENSE_MAX_DOF or not hasattr(rotor, "G_csr"):
+        return None
+    from rotorsfd.model.lowrank import with_lowrank
+
+    lowrank = getattr(rotor, "damping_lowrank", None)
+    C = rotor.C_csr if lowrank is None else rotor.C_band_csr
+    return rotor.M_csr, with_lowrank(C, lowrank), rotor.K_csr, rotor.G_csr
 
 
 def fold_constant(pairs: Sequence[tuple[Any, np.ndarray]], probe: np.ndarray
@@ -48,8 +63,8 @@ def fold_constant(pairs: Sequence[tuple[Any, np.ndarray]], probe: np.ndarray
     const = None
     for c, X in pairs:
         values = np.broadcast_to(np.asarray(c(probe), dtype=float), probe.shape)
-        if np.ptp(values) == 0.0:
-            term = float(values[0]) * np.asarray(X, dtype=float)
+        if np.ptp(values) == 0.0:                  # X dense or CSR (a large model)
+            term = float(values[0]) * (X if sp.issparse(X) else np.asarray(X, dtype=float))
             const = term if const is None else const + term
         else:
             varying.append((c, X))
@@ -82,8 +97,10 @@ def second_order_system(system: Any, speed: float, *,
             HarmonicLoad(k, fc, fs) for k, fc, fs in other_spool_harmonics(
                 r, system.unbalances, speed)]
         forcing = Forcing(omega=speed, constant=system.static_force(speed), harmonics=harm)
+        banded = banded_rotor_terms(r)
         return SecondOrderSystem(M, D.copy(), K.copy(), nl, kernel, params, forcing, None,
-                                 float(speed), el, gyroscopic=r.G)
+                                 float(speed), el,
+                                 gyroscopic=r.G if banded is None else banded[3])
     from rotorsfd.model.base_terms import time_varying_terms
     from rotorsfd.model.unbalance import unbalance_series
 
@@ -96,16 +113,24 @@ def second_order_system(system: Any, speed: float, *,
     damping, dC = fold_constant(damping, probe)
     stiffness, dK = fold_constant(stiffness, probe)
     force, f0 = fold_constant(force, probe)
-    D = r.C + speed * r.G + (dC if dC is not None else 0.0)
-    K = r.K + (dK if dK is not None else 0.0)
+    banded = banded_rotor_terms(r)     # above DENSE_MAX_DOF: the band, no n x n array
+    M0, C0, K0, G0 = (r.M, r.C, r.K, r.G) if banded is None else banded
+    D = C0 + speed * G0
+    K = K0
+    if dC is not None:
+        D = D + dC
+    if dK is not None:
+        K = K + dK
     series = list(force) + unbalance_series(own, r, speed, system.base)
     for k, us in other.items():     # a second spool's unbalances at its speed k Omega
         series += unbalance_series(us, r, k * speed, system.base)
     forcing = Forcing(omega=speed, constant=f0, series=series)
     tv = TimeVaryingMatrices(damping=damping, stiffness=stiffness) \
         if damping or stiffness else None
-    return SecondOrderSystem(r.M, np.asarray(D, float), np.asarray(K, float), nl, kernel,
-                             params, forcing, tv, float(speed), el, gyroscopic=r.G)
+    if banded is None:
+        D, K = np.asarray(D, float), np.asarray(K, float)
+    return SecondOrderSystem(M0, D, K, nl, kernel, params, forcing, tv, float(speed), el,
+                             gyroscopic=G0)
 
 
 def linear_part(system: Any, rates: Sequence[float] | None = None) -> Any:

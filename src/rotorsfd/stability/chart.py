@@ -16,6 +16,15 @@ keeps undamped ones on the unit circle (the trapezoidal map is symplectic) but c
 their frequencies, so keep the basis to the modes that matter (``n_modes``) and check a
 few points with a larger ``n_intervals`` (benchmark pitching chart, A0 = 1, 20 values of
 w_b: N = 200 and N = 3200 agree to 1e-3 in max |mu| except at one point, 8e-3).
+
+Large models (issue 17 item 2): above :data:`~rotorsfd.model.sparse.DENSE_MAX_DOF` DOFs
+the matrices may be CSR (a modal damping of a few modes a
+:class:`~rotorsfd.model.lowrank.BandedLowRank`), projected term by term
+(:func:`~rotorsfd.model.lowrank.project`), and the basis is never the n x n identity:
+without ``basis`` or ``n_modes`` it is the :data:`LARGE_MODES` lowest undamped modes,
+found by shift-invert Lanczos (:func:`lowest_modes`). The monodromy of a Galerkin basis
+depends only on its span, so the sparse eigensolver's basis gives the dense one's
+multipliers when the span is the same (no degenerate pair split by the count).
 """
 
 from __future__ import annotations
@@ -23,12 +32,19 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import scipy.linalg as sla
+import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
+from rotorsfd.model.lowrank import project
+from rotorsfd.model.sparse import DENSE_MAX_DOF
 from rotorsfd.stability.floquet import STABILITY_TOL
+
+LARGE_MODES = 12
+"""Modes of the default basis of a model above ``DENSE_MAX_DOF`` DOFs (no identity)."""
 
 Coefficient = Callable[[NDArray, NDArray, NDArray], NDArray]
 """``c(t, p1, p2)`` with numpy broadcasting (t: (N+1, n2), p1: scalar, p2: (1, n2))."""
@@ -46,13 +62,61 @@ class LTPSystem:
     K_terms: Sequence[tuple[NDArray, Coefficient | None]]
     period: float | Callable[[NDArray, NDArray], NDArray]
 
+    @property
+    def n_dof(self) -> int:
+        return int(self.M.shape[0])
+
+    @property
+    def is_large(self) -> bool:
+        """More than ``DENSE_MAX_DOF`` DOFs: the sparse eigensolver, no identity basis."""
+        return self.n_dof > DENSE_MAX_DOF
+
+    def constant_stiffness(self) -> Any:
+        """Sum of the constant K terms (dense, or CSR when M is sparse)."""
+        if sp.issparse(self.M):
+            out = sp.csr_matrix(self.M.shape)
+            for K, c in self.K_terms:
+                if c is None:
+                    out = out + (K if sp.issparse(K) else sp.csr_matrix(np.asarray(K)))
+            return out.tocsr()
+        return sum((np.asarray(K) for K, c in self.K_terms if c is None),
+                   np.zeros_like(self.M))
+
     def modal_basis(self, n_modes: int) -> NDArray[np.float64]:
-        """Lowest ``n_modes`` undamped modes of (sum of constant K terms, M)."""
-        K0 = sum((np.asarray(K) for K, c in self.K_terms if c is None),
-                 np.zeros_like(self.M))
+        """Lowest ``n_modes`` undamped modes of (sum of constant K terms, M): dense
+        ``eigh`` up to ``DENSE_MAX_DOF`` DOFs, else :func:`lowest_modes`."""
+        K0 = self.constant_stiffness()
+        if self.is_large:
+            return lowest_modes(K0, self.M, n_modes)[1]
         K0 = 0.5 * (K0 + K0.T)
-        _, V = sla.eigh(K0, 0.5 * (self.M + self.M.T), subset_by_index=(0, n_modes - 1))
+        M = np.asarray(self.M, float)
+        _, V = sla.eigh(K0, 0.5 * (M + M.T), subset_by_index=(0, n_modes - 1))
         return V
+
+
+def lowest_modes(K: Any, M: Any, count: int) -> tuple[NDArray, NDArray]:
+    """``(omega^2 (count,), Phi (n, count))``: the lowest ``count`` undamped modes of the
+    symmetric parts of (K, M) (sparse or dense), ``K_s phi = omega^2 M_s phi``, by
+    shift-invert Lanczos (ARPACK ``eigsh``) at ``sigma = 0`` (at ``-1`` when K is
+    singular) from the deterministic start ``v0_i = 1 + cos(sqrt(2) i)``; ascending,
+    mass-normalised. O(nnz) per iteration, no dense n x n array."""
+    from scipy.sparse.linalg import eigsh
+
+    n = int(M.shape[0])
+    if not 1 <= count <= n - 2:
+        raise ValueError(f"count must be in 1..{n - 2} for the sparse eigensolver, "
+                         f"got {count}")
+    Ks = sp.csc_matrix(0.5 * (sp.csr_matrix(K) + sp.csr_matrix(K).T))
+    Ms = sp.csc_matrix(0.5 * (sp.csr_matrix(M) + sp.csr_matrix(M).T))
+    v0 = 1.0 + np.cos(np.sqrt(2.0) * np.arange(n))
+    try:
+        lam, V = eigsh(Ks, count, M=Ms, sigma=0.0, which="LM", v0=v0)
+    except RuntimeError:                    # "Factor is exactly singular": a free rotor
+        lam, V = eigsh(Ks, count, M=Ms, sigma=-1.0, which="LM", v0=v0)
+    order = np.argsort(lam)
+    lam, V = lam[order], V[:, order]
+    V = V / np.sqrt(np.einsum("ij,ij->j", V, Ms @ V))
+    return lam, V
 
 
 @dataclass
@@ -137,20 +201,31 @@ def stability_chart(system: LTPSystem, p1: ArrayLike, p2: ArrayLike, *,
     """Max Floquet multiplier modulus on the grid ``p1 x p2`` (rows p1, columns p2).
 
     ``basis`` (n, r) or ``n_modes`` (lowest undamped modes of the constant K terms) gives
-    a Galerkin reduction; default: the full model. ``n_intervals``: Newmark intervals per
+    a Galerkin reduction; default: the full model up to ``DENSE_MAX_DOF`` DOFs, above it
+    the ``LARGE_MODES`` lowest modes (module docstring). ``info`` reports ``n_reduced``
+    (the basis size) and ``basis`` (full, modal, given). ``n_intervals``: Newmark intervals per
     period. ``workers``: threads over rows.
     """
     p1 = np.asarray(p1, float).ravel()
     p2 = np.asarray(p2, float).ravel()
-    M = np.asarray(system.M, float)
+    n = system.n_dof
+    kind = "given" if basis is not None else "modal" if n_modes is not None else "full"
+    if basis is None and n_modes is None and system.is_large:
+        n_modes, kind = min(LARGE_MODES, n - 2), "modal (default above DENSE_MAX_DOF)"
     if basis is None and n_modes is not None:
         basis = system.modal_basis(n_modes)
-    V = np.eye(M.shape[0]) if basis is None else np.asarray(basis, float)
+    if basis is None:                      # the full model (<= DENSE_MAX_DOF DOFs)
+        V = np.eye(n)
 
-    def proj(X: ArrayLike) -> NDArray:
-        return V.T @ np.asarray(X, float) @ V
+        def proj(X: Any) -> NDArray:
+            return V.T @ np.asarray(X, float) @ V
+    else:
+        V = np.asarray(basis, float)
 
-    sys_r = {"M": proj(M),
+        def proj(X: Any) -> NDArray:
+            return project(X, V)
+
+    sys_r = {"M": proj(system.M),
              "D": np.array([proj(Dm) for Dm, _ in system.D_terms]).reshape(
                  -1, V.shape[1], V.shape[1]),
              "K": np.array([proj(Km) for Km, _ in system.K_terms]).reshape(
@@ -166,5 +241,5 @@ def stability_chart(system: LTPSystem, p1: ArrayLike, p2: ArrayLike, *,
         for i, (a, c) in enumerate(ex.map(lambda v: _row(sys_r, v, p2, n_intervals), p1)):
             max_abs[i], crit[i] = a, c
     return StabilityChart(p1, p2, max_abs, crit, tol, names,
-                          {"n_intervals": n_intervals, "n_dof": M.shape[0],
-                           "n_reduced": V.shape[1]})
+                          {"n_intervals": n_intervals, "n_dof": n,
+                           "n_reduced": V.shape[1], "basis": kind})
