@@ -46,6 +46,12 @@ if TYPE_CHECKING:
 #: Distance of each leg's first point from the branch point along +-t2 (scaled units:
 #: clearances), and the longest step along the legs.
 DELTA, STEP_MAX = 0.01, 0.05
+#: A leg closes on itself (the second branch of a tongue between two branch points is a
+#: loop through both) when, after going further than ``CLOSURE_AWAY`` delta from its
+#: first point, it crosses that point's parameter again within ``CLOSURE_NEAR`` of it
+#: (the largest coefficient difference over the clearance; ~ the longest step).
+CLOSURE_AWAY, CLOSURE_NEAR = 4.0, 2 * STEP_MAX
+CLOSED = "closes on itself"
 
 
 def files(number: int) -> tuple[str, str]:
@@ -197,6 +203,36 @@ class SecondBranchResult:
         return "\n".join(lines)
 
 
+class ClosureStop:
+    """The event hook of the legs: stops a leg that closes on itself (see
+    :data:`CLOSURE_AWAY`); a leg starts again at point index 0. ``closed`` holds the
+    parameter of each leg's stop (None: it did not close)."""
+
+    def __init__(self, clearance: float, delta: float) -> None:
+        self.c, self.away = clearance, CLOSURE_AWAY * delta
+        self.X0: NDArray[np.complex128] | None = None
+        self.lam0 = self.lam_prev = 0.0
+        self.left = False
+        self.closed: list[float | None] = []
+
+    def __call__(self, point: Any) -> bool:
+        if point.index == 0 or self.X0 is None:
+            self.X0, self.lam0, self.lam_prev = point.X, point.lam, point.lam
+            self.left = False
+            self.closed.append(None)
+            return False
+        h = min(point.X.shape[0], self.X0.shape[0])
+        d = float(np.abs(point.X[:h] - self.X0[:h]).max()) / self.c
+        crossed = (point.lam - self.lam0) * (self.lam_prev - self.lam0) <= 0
+        self.lam_prev = point.lam
+        if d > self.away:
+            self.left = True
+        elif self.left and crossed and d < CLOSURE_NEAR:
+            self.closed[-1] = float(point.lam)
+            return True
+        return False
+
+
 def second_branch_problem(result: ResponseResult) -> Any:
     """The periodic problem the main branch was continued on (speed or a system
     parameter at the fixed speed)."""
@@ -225,9 +261,13 @@ def run_branch_switch(result: ResponseResult, number: int, *, stability: bool = 
     point = result.info["stability"].bifurcations[i].info["branch_point"]
     problem = second_branch_problem(result)
     lam = result.branch.lam
-    sw = switch_branch_point(problem, point, (float(lam.min()), float(lam.max())),
-                             **switch_kwargs(result, **continue_kw))
+    kw = switch_kwargs(result, **continue_kw)
+    stop = ClosureStop(result.clearance, kw["delta"])
+    kw.setdefault("callback", stop)
+    sw = switch_branch_point(problem, point, (float(lam.min()), float(lam.max())), **kw)
+    sw.message = sw.message.replace("stopped by the callback", CLOSED)
     out = SecondBranchResult(result, number, sw)
+    out.info["closed"] = stop.closed
     if stability:
         options = result.info.get("stability_options")
         sts = [branch_stability(leg, problem, options) for leg in sw.legs]
