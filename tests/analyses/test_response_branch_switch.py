@@ -80,7 +80,7 @@ def test_cli_second_branch_is_the_python_switch(cli_run, second):
     assert second["attrs"]["branch_point_kind"] == "symmetry-breaking pitchfork"
     cfg = api.load_config(str(CASE))
     r = api.run_response(cfg, progress=False)
-    bif = [b for b in r.info["stability"].bifurcations if "branch_point" in b.info][0]
+    bif = next(b for b in r.info["stability"].bifurcations if "branch_point" in b.info)
     point = bif.info["branch_point"]
     assert second["attrs"]["branch_point_parameter"] == pytest.approx(point.lam, rel=1e-12)
     counts = np.bincount(second["leg"])
