@@ -1,4 +1,6 @@
-"""The period-2 branch of a response: ``rotorsfd response CONFIG --switch-at N``.
+"""The period-2 branch of a response: ``rotorsfd response CONFIG --switch-at pd:N`` (or
+plain ``N``; ``bp:N``, the second branch at a branch point, is
+:mod:`rotorsfd.analyses.response_branch_switch`).
 
 N counts the branch's period-doubling points from 1, in the order of the branch (the
 order of the summary lines and of ``bifurcations.csv``'s ``period-doubling`` rows). At that
