@@ -1,4 +1,6 @@
-"""The period-2 branch of a response: ``rotorsfd response CONFIG --switch-at N``.
+"""The period-2 branch of a response: ``rotorsfd response CONFIG --switch-at pd:N`` (or
+plain ``N``; ``bp:N``, the second branch at a branch point, is
+:mod:`rotorsfd.analyses.response_branch_switch`).
 
 N counts the branch's period-doubling points from 1, in the order of the branch (the
 order of the summary lines and of ``bifurcations.csv``'s ``period-doubling`` rows). At that
@@ -63,25 +65,27 @@ def period_doublings(result: ResponseResult) -> list[int]:
             if row["type"] == "period-doubling"]
 
 
-def check_switch(result: ResponseResult, n: int) -> int:
+def check_switch(result: ResponseResult, n: int, value: str = "") -> int:
     """The bifurcation index of the n-th period doubling (from 1); ConfigError naming
-    ``--switch-at`` when the branch has none or fewer than n."""
+    ``--switch-at`` and ``value`` (default n) when the branch has none or fewer than n."""
     pds = period_doublings(result)
+    shown: Any = value or n
     if result.bifurcations is None or "stability" not in result.info:
-        raise ConfigError(OPTION, n, "needs the branch's Floquet stability: set "
+        raise ConfigError(OPTION, shown, "needs the branch's Floquet stability: set "
                           "[analysis.stability] enabled = true")
     if not pds:
-        raise ConfigError(OPTION, n, "the branch has no period-doubling point (no Floquet "
-                          "multiplier crosses -1 over its range)")
+        raise ConfigError(OPTION, shown, "the branch has no period-doubling point (no "
+                          "Floquet multiplier crosses -1 over its range)")
     if not 1 <= n <= len(pds):
-        where = ", ".join(f"{k + 1}: {_where(result, result.bifurcations[i])}"
+        where = ", ".join(f"{k + 1}: {where_words(result, result.bifurcations[i])}"
                           for k, i in enumerate(pds))
-        raise ConfigError(OPTION, n, f"must be 1..{len(pds)}, the branch's period-doubling "
-                          f"points ({where})")
+        raise ConfigError(OPTION, shown, f"must be 1..{len(pds)}, the branch's "
+                          f"period-doubling points ({where})")
     return pds[n - 1]
 
 
-def _where(result: ResponseResult, row: dict[str, Any], tex: bool = False) -> str:
+def where_words(result: ResponseResult, row: dict[str, Any], tex: bool = False) -> str:
+    """Where a bifurcation row is, in user terms (``Omega~ = ...`` or the parameter)."""
     if result.is_speed:
         return f"{OMEGA_TEX if tex else 'Omega~'} = {row['speed_ratio']:.5g}"
     return f"{result.parameter} = {row['parameter']:.6g} {result.parameter_units}"
@@ -129,13 +133,13 @@ class Period2Result:
     def label(self) -> str:
         """The legend entry: the period-2 branch and where it starts, in user terms."""
         row = self.main.bifurcations[check_switch(self.main, self.number)]
-        return f"period-2 branch (from the period doubling at {_where(self.main, row)})"
+        return f"period-2 branch (from the period doubling at {where_words(self.main, row)})"
 
     @property
     def legend(self) -> str:
         """:attr:`label` for a figure (mathtext)."""
         row = self.main.bifurcations[check_switch(self.main, self.number)]
-        return f"period-2 branch, from the period doubling at {_where(self.main, row, True)}"
+        return f"period-2 branch, from the period doubling at {where_words(self.main, row, True)}"
 
     def table(self) -> dict[str, NDArray[Any]]:
         """The columns of ``branch_period2.csv`` (module docstring)."""
@@ -188,35 +192,15 @@ class Period2Result:
         """Draw the period-2 branch over the main branch's response figures: r~ in
         ``response_deflection.png``, the Omega/2 subharmonic |X_1|/C in each
         ``response_node<n>.png`` panel (dashed where unstable), and the legends redone."""
-        from matplotlib.lines import Line2D
-
-        from rotorsfd.plots.response import key_handles, outside_legend, styled_line
-
         m = self.main
         tab = self.table()
         x = tab["speed_ratio"] if m.is_speed else tab[m.parameter_column]
-        st = tab.get("stable")
-        both = [a for a in (m.stable, st) if a is not None]
-        key = key_handles(np.concatenate(both) if both else None, m.bifurcations)
-        key.insert(0, Line2D([], [], color="k", lw=1.1, label=self.legend))
-        fig = figures.get("response_deflection.png")
-        if fig is not None:
-            axes = fig.axes[: len(m.nodes)] if len(fig.axes) >= len(m.nodes) else fig.axes
-            for k, n in enumerate(m.nodes):
-                ax = axes[k] if len(axes) == len(m.nodes) else axes[0]
-                styled_line(ax, x, tab[f"defl_{n}"], st, color="k", lw=1.1)
-            outside_legend(fig, axes, key)
-        for n in m.nodes:
-            fig = figures.get(f"response_node{n}.png")
-            if fig is None:
-                continue
-            axes = [a for a in fig.axes if a.get_title()]
-            for ax, d in zip(axes, m.directions, strict=False):
-                styled_line(ax, x, tab[f"amp_{n}_{d}_h1_2"] / m.clearance, st,
-                            color="k", lw=1.1)
-            sub = Line2D([], [], color="k", lw=1.1, label=self.legend.replace(
-                "period-2 branch", "period-2 branch: its 1/2X"))
-            outside_legend(fig, axes, [sub, *key[1:]])
+        draw_over(figures, m, x, tab.get("stable"),
+                  {n: tab[f"defl_{n}"] for n in m.nodes},
+                  {(n, d): tab[f"amp_{n}_{d}_h1_2"] / m.clearance for n in m.nodes
+                   for d in m.directions},
+                  self.legend, self.legend.replace("period-2 branch",
+                                                   "period-2 branch: its 1/2X"))
 
     def summary(self) -> str:
         sw, m = self.switch, self.main
@@ -239,20 +223,61 @@ class Period2Result:
         return "\n".join(lines)
 
 
+def draw_over(figures: dict[str, Figure], main: ResponseResult, x: NDArray[np.float64],
+              stable: NDArray[np.bool_] | None, deflection: dict[int, NDArray[np.float64]],
+              amplitude: dict[tuple[int, str], NDArray[np.float64]], legend: str,
+              amplitude_legend: str, pieces: list[NDArray[np.bool_]] | None = None
+              ) -> None:
+    """Draw a second branch (period-2 or at a branch point) over ``main``'s response
+    figures: ``deflection[n]`` (r~) in ``response_deflection.png``, ``amplitude[n, d]``
+    (/C) in each ``response_node<n>.png`` panel, dashed where not ``stable``, each of
+    ``pieces`` (masks of the points, default all) its own line; the legends redone."""
+    from matplotlib.lines import Line2D
+
+    from rotorsfd.plots.response import key_handles, outside_legend, styled_line
+
+    m = main
+    masks = pieces or [np.ones(len(x), dtype=bool)]
+    both = [a for a in (m.stable, stable) if a is not None]
+    key = key_handles(np.concatenate(both) if both else None, m.bifurcations)
+    key.insert(0, Line2D([], [], color="k", lw=1.1, label=legend))
+
+    def lines(ax: Any, y: NDArray[np.float64]) -> None:
+        for p in masks:
+            styled_line(ax, x[p], y[p], None if stable is None else stable[p],
+                        color="k", lw=1.1)
+
+    fig = figures.get("response_deflection.png")
+    if fig is not None:
+        axes = fig.axes[: len(m.nodes)] if len(fig.axes) >= len(m.nodes) else fig.axes
+        for k, n in enumerate(m.nodes):
+            lines(axes[k] if len(axes) == len(m.nodes) else axes[0], deflection[n])
+        outside_legend(fig, axes, key)
+    for n in m.nodes:
+        fig = figures.get(f"response_node{n}.png")
+        if fig is None:
+            continue
+        axes = [a for a in fig.axes if a.get_title()]
+        for ax, d in zip(axes, m.directions, strict=False):
+            lines(ax, amplitude[(n, d)])
+        sub = Line2D([], [], color="k", lw=1.1, label=amplitude_legend)
+        outside_legend(fig, axes, [sub, *key[1:]])
+
+
 def _ratio(result: ResponseResult, lam: float) -> float:
     return lam / result.reference_speed if result.is_speed else lam
 
 
 def run_switch(result: ResponseResult, number: int, *, harmonics: int | None = None,
-               delta: float = DELTA, stability: bool = True, **continue_kw: Any
-               ) -> Period2Result:
+               delta: float = DELTA, stability: bool = True, value: str = "",
+               **continue_kw: Any) -> Period2Result:
     """The period-2 branch at the ``number``-th period doubling of ``result`` (module
     docstring); ``harmonics`` of Omega/2 (default 4 H); ``continue_kw`` go to
     :func:`~rotorsfd.harmonic.branch_switching.switch_period_doubling`. ConfigError (the
     option named) when there is no such period doubling."""
     from rotorsfd.harmonic.branch_switching import switch_period_doubling
 
-    i = check_switch(result, number)
+    i = check_switch(result, number, value)
     t0 = time.perf_counter()
     st = result.info["stability"]
     bif = st.bifurcations[i]

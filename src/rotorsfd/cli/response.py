@@ -5,12 +5,46 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 from rotorsfd.cli import options
 from rotorsfd.cli.output import print_error, print_summary, print_warning, print_written
 from rotorsfd.cli.registry import arg, command
 from rotorsfd.interrupt import Interrupted, StopRequest
+
+
+class SwitchPoint(NamedTuple):
+    """A ``--switch-at`` value: ``kind`` ``pd`` (period doubling) or ``bp`` (branch
+    point) and its ``number`` along the branch (from 1), as typed (``text``)."""
+
+    kind: str
+    number: int
+    text: str
+
+
+SWITCH_ALLOWED = ("pd:N (the N-th period doubling; plain N means the same) or bp:N (the "
+                  "N-th branch point), N an integer >= 1")
+
+
+def switch_point(text: str) -> SwitchPoint:
+    """The argparse type of ``--switch-at``: ``pd:N``, ``bp:N`` or ``N`` (= ``pd:N``)."""
+    kind, sep, number = text.strip().partition(":")
+    if not sep:
+        kind, number = "pd", kind
+    if kind.lower() not in ("pd", "bp"):
+        raise argparse.ArgumentTypeError(f"expected {SWITCH_ALLOWED}, got {text!r}")
+    try:
+        n = int(number)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected {SWITCH_ALLOWED}, got {text!r}"
+                                         ) from None
+    if n < 1:
+        raise argparse.ArgumentTypeError(f"N must be >= 1 in {SWITCH_ALLOWED}, got "
+                                         f"{text!r}")
+    return SwitchPoint(kind.lower(), n, text)
+
+
+switch_point.__name__ = "pd:N, bp:N or N"
 
 
 @command("response", "periodic response by harmonic balance and arc-length continuation "
@@ -31,12 +65,17 @@ from rotorsfd.interrupt import Interrupted, StopRequest
                              "(rotorsfd simulate output), Newton-corrected at its speed, "
                              "and continue it both ways over the speed range, stopping "
                              "when it closes on itself (an isola)"),
-                    arg("--switch-at", type=options.integer(1), default=None, metavar="N",
-                        help="continue the period-2 branch from the branch's N-th "
-                             "period-doubling point (counted from 1 along the branch, as "
-                             "in the summary and bifurcations.csv) with 4H harmonics of "
-                             "Omega/2: branch_period2.nc, branch_period2.csv, drawn in "
-                             "the response figures; needs [analysis.stability] enabled"),
+                    arg("--switch-at", type=switch_point, default=None, metavar="pd:N|bp:N",
+                        help="switch to a second branch at the branch's N-th "
+                             "bifurcation of a kind (counted from 1 along the branch, as "
+                             "in the summary and bifurcations.csv), drawn in the response "
+                             "figures; pd:N (or plain N): the period-2 branch from the "
+                             "N-th period-doubling point, with 4H harmonics of Omega/2 "
+                             "(branch_period2.nc, branch_period2.csv); bp:N: the second "
+                             "branch at the N-th branch point (pitchfork or "
+                             "transcritical), continued both ways over the speed range "
+                             "(branch_bp<N>.nc, branch_bp<N>.csv); needs "
+                             "[analysis.stability] enabled"),
                     arg("--stability-basis", choices=("reduced", "full"), default=None,
                         help="Floquet basis ([analysis.stability].basis): full = the "
                              "unreduced monodromy of the whole model, to check "
@@ -82,40 +121,51 @@ def check_switch_option(args: argparse.Namespace, config: Any) -> None:
 
     if args.switch_at is None:
         return
+    what = {"pd": "period doublings", "bp": "branch points"}[args.switch_at.kind]
     if not config.analysis.stability.enabled:
-        raise ConfigError("--switch-at", args.switch_at, "needs the branch's Floquet "
-                          "stability to find its period doublings: set "
+        raise ConfigError("--switch-at", args.switch_at.text, "needs the branch's Floquet "
+                          f"stability to find its {what}: set "
                           "analysis.stability.enabled = true (--set)")
     from rotorsfd.analyses.dual_spool_response import dual_spool
     from rotorsfd.analyses.torus_response import harmonic_base
 
     if harmonic_base(config) or dual_spool(config):
-        raise ConfigError("--switch-at", args.switch_at, "switches from a periodic branch; "
+        raise ConfigError("--switch-at", args.switch_at.text, "switches from a periodic "
+                          "branch; "
                           "a harmonic base law or two spools give a quasi-periodic one")
 
 
 def period_two(args: argparse.Namespace, result: Any) -> int:
-    """``--switch-at N``: the period-2 branch written next to the main one and drawn in
-    its response figures; a bad N (no such period doubling) is one line and exit 2."""
+    """``--switch-at pd:N`` (or ``N``): the period-2 branch, ``bp:N``: the second branch
+    at a branch point, written next to the main one and drawn in its response figures;
+    a bad N (no such bifurcation) is one line and exit 2."""
     if args.switch_at is None:
         return 0
-    from rotorsfd.analyses.response_switch import check_switch, run_switch
     from rotorsfd.errors import ConfigError
     from rotorsfd.io import atomic
 
+    sw = args.switch_at
+    if sw.kind == "bp":
+        from rotorsfd.analyses.response_branch_switch import (
+            check_branch_switch as check,
+        )
+        from rotorsfd.analyses.response_branch_switch import run_branch_switch as run
+    else:
+        from rotorsfd.analyses.response_switch import check_switch as check
+        from rotorsfd.analyses.response_switch import run_switch as run
     try:
-        check_switch(result, args.switch_at)
+        check(result, sw.number, sw.text)
     except ConfigError as exc:
         print_error(str(exc), args.verbose)
         return 2
-    p2 = run_switch(result, args.switch_at)
+    second = run(result, sw.number, value=sw.text)
     out = Path(args.output)
-    paths = p2.write(out)
+    paths = second.write(out)
     figures = result.response_figures()
-    p2.draw(figures)
+    second.draw(figures)
     paths.update(atomic.save_figures(figures, out))
     if not args.quiet:
-        print_summary(p2.summary(), args.verbose)
+        print_summary(second.summary(), args.verbose)
         print("wrote " + ", ".join(str(p) for p in paths.values()))
     return 0
 
