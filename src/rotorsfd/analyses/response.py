@@ -1,7 +1,8 @@
 """Nonlinear periodic response of the rotor and its elements: a branch of HB-AFT solutions
 continued in the rotor speed (or a base rate, or the unbalance), its table, files and plots.
 
-``run_response(config) -> ResponseResult`` reads ``[analysis.response]``; the result holds
+``run_response(system, settings) -> ResponseResult`` (or ``run_response(config)``: the same
+code, :mod:`rotorsfd.analyses.response_inputs`) reads ``[analysis.response]``; the result holds
 the :class:`~rotorsfd.continuation.branch.Branch` and writes ``branch.nc`` (every Fourier
 coefficient), ``branch.csv`` (the paper's quantities per point) and the frequency-response
 plots. Quantities per point, for an output node n and direction d in (y, z)::
@@ -144,6 +145,9 @@ def run_response(config_or_system: Config | RotorSystem,
         inputs = ResponseInputs.from_system(config_or_system, settings, context,
                                             reference_speed=reference_speed, **over)
     else:       # a harmonic base law or two spools' unbalances: a torus
+        if settings is not None or context is not None:
+            raise TypeError("settings and context go with a RotorSystem; a Config gives "
+                            "its own [analysis.response] and context")
         from rotorsfd.analyses.dual_spool_response import dual_spool, run_dual_spool_response
         from rotorsfd.analyses.torus_response import harmonic_base, run_torus_response
 
