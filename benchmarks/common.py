@@ -113,9 +113,9 @@ def paper_system(overrides: list[str] | None = None, unbalance: str = U_TABLE1) 
 def response_options(config: Any) -> dict[str, Any]:
     """``continue_periodic`` keywords of the config's ``[analysis.response]`` (what
     ``rotorsfd response`` uses), without ``condensed``."""
-    from rotorsfd.analyses.response import _options
+    from rotorsfd.analyses.response_inputs import continuation_options
 
-    opts = dict(_options(config.analysis.response))
+    opts = dict(continuation_options(config.analysis.response))
     opts.pop("condensed")
     return opts
 

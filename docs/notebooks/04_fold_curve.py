@@ -49,7 +49,7 @@ assert abs(curve.bistability_end - 4.4097) < 5e-3, curve.bistability_end
 # The two fold speeds and the width of the unstable range against w_by:
 
 # %%
-curve.plot()
+curve.plot()["fold_curve.png"]
 
 # %% [markdown]
 # ## A second method at one rate

@@ -133,7 +133,7 @@ def test_response_of_a_system_alone_is_that_of_an_empty_section():
     raw["analysis"]["stability"] = {"enabled": False}
     cfg = config_from_dict(raw, FIRST_CRITICAL)
     a = run_response(cfg, progress=False)
-    b = run_response(build(cfg), progress=False)
+    b = run_response(build(cfg), stability_options=False, progress=False)   # default: on
     assert a.branch.n_points == b.branch.n_points > 10
     np.testing.assert_array_equal(a.branch.lam, b.branch.lam)
     np.testing.assert_array_equal(a.branch.X, b.branch.X)
@@ -141,6 +141,7 @@ def test_response_of_a_system_alone_is_that_of_an_empty_section():
     assert a.branch.info["adaptive_harmonics"] and b.branch.info["adaptive_harmonics"]
     assert (a.nodes, a.directions, a.reference_speed) == \
         (b.nodes, b.directions, b.reference_speed)
+    assert a.stable is None and b.stable is None
 
 
 def test_modal_of_a_time_varying_rate_names_the_law():

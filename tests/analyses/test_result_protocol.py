@@ -18,9 +18,11 @@ EXAMPLES = Path(__file__).parents[2] / "examples"
 
 def _result_classes() -> list[type]:
     from rotorsfd.analyses.attractors_result import CensusResult
+    from rotorsfd.analyses.bifurcation_curves import BifurcationCurves
     from rotorsfd.analyses.bifurcation_diagram import BifurcationDiagramResult
     from rotorsfd.analyses.calibrate import CalibrationResult
     from rotorsfd.analyses.dual_spool_response import DualSpoolResponseResult
+    from rotorsfd.analyses.fold_curve import FoldCurve
     from rotorsfd.analyses.modal import ModalRunResult
     from rotorsfd.analyses.response_result import ResponseResult
     from rotorsfd.analyses.runup_simulation import RunUpResult
@@ -31,8 +33,8 @@ def _result_classes() -> list[type]:
     from rotorsfd.analyses.torus_response import TorusResponseResult
     from rotorsfd.studies.sweep import SweepResult
 
-    return [CensusResult, BifurcationDiagramResult, CalibrationResult,
-            DualSpoolResponseResult, ModalRunResult, ResponseResult, RunUpResult,
+    return [CensusResult, BifurcationCurves, BifurcationDiagramResult, CalibrationResult,
+            DualSpoolResponseResult, FoldCurve, ModalRunResult, ResponseResult, RunUpResult,
             SimulationResult, SpoolModalResult, ChartResult, StaticResult,
             TorusResponseResult, SweepResult]
 
@@ -129,3 +131,67 @@ def test_census_result(tmp_path):
     ds = result.to_dataset()
     assert ds.sizes["start"] == 8
     assert float(ds["basin_fraction"].sum()) == pytest.approx(1.0, abs=1e-12)
+
+
+def _fold_table(n: int, value_column: str) -> dict[str, np.ndarray]:
+    """A fold pair meeting at a cusp: Omega~ = 1.1 -+ 0.05 sqrt(1 - v / 4) (v in rad/s)."""
+    v = np.linspace(0.0, 4.0, n)
+    half = 0.05 * np.sqrt(1.0 - v / 4.0)
+    ratio = np.r_[1.1 - half, (1.1 + half)[::-1]]
+    return {"curve": np.zeros(2 * n, np.int64),
+            "segment": np.r_[np.zeros(n, np.int64), np.ones(n, np.int64)],
+            "s": np.arange(2.0 * n), value_column: np.r_[v, v[::-1]],
+            "speed_rad_s": 800.0 * ratio, "speed_ratio": ratio,
+            "max_eps": np.full(2 * n, 0.5), "aliasing": np.full(2 * n, 1e-9),
+            "amp_1_m": np.full(2 * n, 2e-5)}
+
+
+def test_fold_curve_result(tmp_path):
+    """A synthetic fold curve: the Dataset holds the table's numbers with their units, and
+    the CSV written holds the same numbers (an independent path: the CSV writer); the
+    unstable width at v = 0 is the table's 1.15 - 1.05 = 0.1."""
+    import csv
+
+    from rotorsfd.analyses.fold_curve import CuspPoint, FoldCurve
+
+    f = FoldCurve("base.pitching", (0.0, 5.0), 800.0, 3, 64, (1,), [840.0, 920.0], [],
+                  None, {}, [CuspPoint(880.0, 1.1, 4.0, 0.5)], True, "ok", {"total": 1.0},
+                  title="synthetic fold pair")
+    f.table = _fold_table(21, f.value_column)
+    _check_result(f, tmp_path)
+    assert list(f.plot()) == ["fold_curve.png"]
+    ds = f.to_dataset()
+    for key, values in f.table.items():
+        np.testing.assert_array_equal(ds[key].values, values)
+    assert ds[f.value_column].attrs["units"] == "rad/s"
+    assert ds["amp_1_m"].attrs["units"] == "m" and ds["speed_rad_s"].attrs["units"] == "rad/s"
+    np.testing.assert_array_equal(ds["start_fold"].values, [840.0, 920.0])
+    assert float(ds["cusp_value"].values[0]) == 4.0
+    assert float(f.unstable_width([0.0])[0]) == pytest.approx(0.1, abs=1e-12)
+    with open(tmp_path / "with" / "fold_curve.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    np.testing.assert_array_equal([float(r["speed_ratio"]) for r in rows],
+                                  ds["speed_ratio"].values)
+
+
+def test_bifurcation_curves_result(tmp_path):
+    """A synthetic two-kind table: ``curves.nc`` read back equals the table (kind as
+    text), the summary counts the points of each kind."""
+    import xarray as xr
+
+    from rotorsfd.analyses.bifurcation_curves import BifurcationCurves, TurningPoint
+
+    b = BifurcationCurves("base.pitching", (0.0, 5.0), 800.0, 3, 12, 256, [840.0],
+                          [900.0], {}, [TurningPoint("saddle-node", 880.0, 1.1, 4.0)],
+                          None, None, [], title="synthetic curves")
+    t = _fold_table(11, b.value_column)
+    kind = np.asarray(["saddle-node"] * 12 + ["period-doubling"] * 10, dtype=object)
+    b.table = {"kind": kind, **t}
+    _check_result(b, tmp_path)
+    assert list(b.plot()) == ["curves.png"]
+    assert "12 saddle-node points, 10 period-doubling points" in b.summary()
+    with xr.open_dataset(tmp_path / "with" / "curves.nc") as ds:
+        assert list(ds["kind"].values) == list(kind)
+        for key, values in t.items():
+            np.testing.assert_array_equal(ds[key].values, values)
+        assert ds["speed_ratio"].attrs["units"] == "1"

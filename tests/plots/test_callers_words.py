@@ -127,7 +127,8 @@ def _fold_curve():
 
 def test_fold_curve_plot_through_fold_curve_figure():
     f = _fold_curve()
-    fig = f.plot(title=LONG)
+    f.title = LONG
+    fig = f.plot()["fold_curve.png"]
     ax, ax2 = fig.axes
     assert ax2.get_xlabel() == r"pitching rate $\omega_{by}$ [rad/s]"
     assert ax.get_ylabel() == r"$\tilde\Omega$ of the saddle-nodes"

@@ -51,8 +51,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rotorsfd.analyses.bifurcation_points import Codim2Record, codim2_records
-from rotorsfd.analyses.fold_curve import FoldCurve, config_two_parameter, fold_curve
+from rotorsfd.analyses.context import RunContext
+from rotorsfd.analyses.fold_curve import FoldCurve, curves_dataset, fold_curve
 from rotorsfd.analyses.modal import first_critical
+from rotorsfd.analyses.response_inputs import TwoParameterInputs
 from rotorsfd.analyses.response_words import PARAMETER_UNITS, column_slug, system_parameter
 from rotorsfd.continuation.folds import FoldBranch, FoldOptions
 from rotorsfd.errors import ConfigError, ConvergenceError
@@ -67,9 +69,10 @@ from rotorsfd.model.system import RotorSystem
 from rotorsfd.stability.branch_stability import StabilityOptions, branch_stability
 
 if TYPE_CHECKING:
+    import xarray as xr
     from matplotlib.figure import Figure
 
-    from rotorsfd.io.schema import Config
+    from rotorsfd.io.schema import Config, ResponseAnalysis
 
 FloatArray = NDArray[np.float64]
 
@@ -187,46 +190,42 @@ class BifurcationCurves:
                 "success": self.success, "message": self.message,
                 "timings_s": self.timings}
 
-    def dataset(self) -> Any:
-        import xarray as xr
-
-        data = {k: ("point", np.asarray(v)) for k, v in self.table.items()}
-        ds = xr.Dataset(data)
-        ds["kind"] = ("point", np.asarray(self.table["kind"], dtype=str))
-        ds.attrs.update(parameter=self.parameter, units=self.units, harmonics=self.H,
-                        period_doubling_harmonics_of_half_speed=self.H2)
+    def to_dataset(self) -> xr.Dataset:
+        """The table on ``point`` (``kind`` a string column), with units and long names;
+        the settings as attributes (``curves.nc``)."""
+        ds = curves_dataset(self.table, self.parameter, self.units, self.value_column)
+        ds.attrs.update(harmonics=self.H, period_doubling_harmonics_of_half_speed=self.H2)
         return ds
 
-    def write(self, directory: str | Path, plot: bool = True) -> dict[str, Path]:
+    def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
         """``curves.csv``, ``curves.nc`` (one row per point, ``kind`` column),
-        ``summary.json`` (start points, turns, timings), ``curves.png``; atomically."""
+        ``summary.json`` (start points, turns, timings), ``curves.png`` (with ``plots``);
+        atomically."""
         out = Path(directory)
-        paths = {name: out / name for name in self.FILES}
         cols = list(self.table)
         n = len(self.table["kind"])
         rows = [tuple(self.table[c][i].item() if hasattr(self.table[c][i], "item")
                       else self.table[c][i] for c in cols) for i in range(n)]
-        atomic.write_csv(paths["curves.csv"], cols, rows)
-        atomic.write_netcdf(self.dataset(), paths["curves.nc"])
-        atomic.write_json(paths["summary.json"], self.to_json())
-        if plot:
-            atomic.save_figure(self.plot(self.title), paths["curves.png"], dpi=120)
-        else:
-            paths.pop("curves.png")
+        paths = {"curves.csv": atomic.write_csv(out / "curves.csv", cols, rows),
+                 "curves.nc": atomic.write_netcdf(self.to_dataset(), out / "curves.nc"),
+                 "summary.json": atomic.write_json(out / "summary.json", self.to_json())}
+        if plots:
+            paths.update(atomic.save_figures(self.plot(), out))
         return paths
 
-    def plot(self, title: str = "") -> Figure:
-        """The curves in the (Omega~, parameter) plane, turning points marked
+    def plot(self) -> dict[str, Figure]:
+        """``curves.png``: the curves in the (Omega~, parameter) plane, turning points
+        marked, titled by :attr:`title`
         (:func:`rotorsfd.plots.bifurcation_curves.bifurcation_curves_figure`)."""
         from rotorsfd.plots.bifurcation_curves import bifurcation_curves_figure
 
         t = self.table
-        return bifurcation_curves_figure(
+        return {"curves.png": bifurcation_curves_figure(
             t["kind"], t["curve"], t["speed_ratio"], t[self.value_column],
             turns=[(p.kind, p.speed_ratio, p.value) for p in self.turns],
             codim2=[(c.type, c.speed_ratio, c.value) for c in self.codim2],
             parameter=self.parameter, units=self.units, H=self.H,
-            H2=self.H2 if self.pd_curves else None, title=title)
+            H2=self.H2 if self.pd_curves else None, title=self.title)}
 
 
 def _curve_rows(kind: str, hb: TwoParameterHB | None, curves: list[FoldBranch],
@@ -413,21 +412,28 @@ def bifurcation_curves(system: RotorSystem, speed_range: tuple[float, float],
                              points, success, "; ".join(messages), timings)
 
 
-def run_bifurcation_curves(config: Config, parameter: str, start: Any, stop: Any, *,
+def run_bifurcation_curves(config_or_system: Config | RotorSystem, parameter: str,
+                           start: Any, stop: Any, settings: ResponseAnalysis | None = None,
+                           *, context: RunContext | None = None,
                            search_path: Path | None = None, harmonics: int | None = None,
                            harmonics_factor: int = 4,
                            options: FoldOptions | None = None) -> BifurcationCurves:
-    """:func:`bifurcation_curves` from a configuration: the speed range, H
-    (``start_harmonics``), output nodes and reference speed of ``[analysis.response]`` /
-    ``[reference]``; ``parameter`` a config path and ``start, stop`` its range (numbers in
-    SI or strings with units)."""
-    setup = config_two_parameter(config, parameter, start, stop, "the bifurcation curves need",
-                                 search_path)
-    r = setup.response
-    result = bifurcation_curves(setup.system, setup.speed_range, setup.param, setup.range2,
-                                harmonics or r.start_harmonics,
+    """:func:`bifurcation_curves` with the speed range, H (``start_harmonics``), output
+    nodes of ``[analysis.response]`` and Omega_ref, title of the context; ``parameter``
+    a config path or parameter name and ``start, stop`` its range (SI numbers or strings
+    with units). From a :class:`RotorSystem` with ``settings`` and ``context`` (defaults:
+    an empty configuration's) or from a Config (its system, section and context), through
+    the same :meth:`TwoParameterInputs.from_system`."""
+    if isinstance(config_or_system, RotorSystem):
+        inputs = TwoParameterInputs.from_system(config_or_system, parameter, start, stop,
+                                                settings, context)
+    else:
+        inputs = TwoParameterInputs.from_config(config_or_system, parameter, start, stop,
+                                                "the bifurcation curves need", search_path)
+    result = bifurcation_curves(inputs.system, inputs.speed_range, inputs.param,
+                                inputs.range2, harmonics or inputs.response.start_harmonics,
                                 harmonics_factor=harmonics_factor,
-                                reference_speed=setup.reference_speed,
-                                nodes=tuple(r.nodes) or None, options=options)
-    result.title = config.title
+                                reference_speed=inputs.reference_speed, nodes=inputs.nodes,
+                                options=options)
+    result.title = inputs.title
     return result

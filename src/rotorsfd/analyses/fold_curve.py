@@ -38,6 +38,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rotorsfd.analyses.context import RunContext
+from rotorsfd.analyses.response_inputs import TwoParameterInputs
 from rotorsfd.analyses.response_words import PARAMETER_UNITS, column_slug, system_parameter
 from rotorsfd.continuation.folds import FoldBranch, FoldOptions, locate_branch_fold
 from rotorsfd.errors import ConfigError, ConvergenceError
@@ -47,13 +48,13 @@ from rotorsfd.harmonic.synthesis import max_radius, orbit_samples
 from rotorsfd.harmonic.truncation import pad_harmonics
 from rotorsfd.io import atomic
 from rotorsfd.model import dofs
-from rotorsfd.model.parameters import find_parameter
 from rotorsfd.model.system import RotorSystem
 
 if TYPE_CHECKING:
+    import xarray as xr
     from matplotlib.figure import Figure
 
-    from rotorsfd.io.schema import Config
+    from rotorsfd.io.schema import Config, ResponseAnalysis
 
 FloatArray = NDArray[np.float64]
 
@@ -195,35 +196,87 @@ class FoldCurve:
                 "bistability_end": self.bistability_end, "success": self.success,
                 "message": self.message, "timings_s": self.timings}
 
-    def write(self, directory: str | Path, plot: bool = True) -> dict[str, Path]:
+    def to_dataset(self) -> xr.Dataset:
+        """The table on the ``point`` dimension (units and long names), the start
+        saddle-nodes and the cusps; the settings as attributes."""
+        ds = curves_dataset(self.table, self.parameter, self.units, self.value_column)
+        ds.coords["start_fold"] = ("start_fold", np.asarray(self.start_folds, float),
+                                   {"long_name": "saddle-node speed of the branch at the "
+                                    "start value", "units": "rad/s"})
+        cusps = {"cusp_speed": ([c.speed_rad_s for c in self.cusps], "rad/s",
+                                "speed of the cusp"),
+                 "cusp_speed_ratio": ([c.speed_ratio for c in self.cusps], "1",
+                                      "speed of the cusp / reference speed"),
+                 "cusp_value": ([c.value for c in self.cusps], self.units,
+                                f"{self.parameter} at the cusp"),
+                 "cusp_max_eps": ([c.max_eps for c in self.cusps], "1",
+                                  "largest validity measure of the elements at the cusp")}
+        for key, (values, unit, words) in cusps.items():
+            ds[key] = ("cusp", np.asarray(values, float), {"long_name": words,
+                                                            "units": unit})
+        end = self.bistability_end
+        ds.attrs.update(reference_speed_rad_s=self.reference_speed, harmonics=self.H,
+                        n_samples=self.n_samples, range=np.asarray(self.range2, float),
+                        bistability_end=np.nan if end is None else end,
+                        success=int(self.success), message=self.message,
+                        run_title=self.title)
+        return ds
+
+    def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
         """``fold_curve.csv`` (one row per point), ``fold_curve.json`` (cusps, start
-        folds, timings), ``fold_curve.png``; atomically."""
+        folds, timings), ``fold_curve.png`` (with ``plots``); atomically."""
         out = Path(directory)
-        paths = {name: out / name for name in self.FILES}
         cols, rows = self.rows()
-        atomic.write_csv(paths["fold_curve.csv"], cols, rows)
-        atomic.write_json(paths["fold_curve.json"], self.to_json())
-        if plot:
-            atomic.save_figure(self.plot(self.title), paths["fold_curve.png"], dpi=120)
-        else:
-            paths.pop("fold_curve.png")
+        paths = {"fold_curve.csv": atomic.write_csv(out / "fold_curve.csv", cols, rows),
+                 "fold_curve.json": atomic.write_json(out / "fold_curve.json",
+                                                      self.to_json())}
+        if plots:
+            paths.update(atomic.save_figures(self.plot(), out))
         return paths
 
-    def plot(self, title: str = "") -> Figure:
-        """Omega~ of the folds against the second parameter (bistable region shaded,
-        cusps marked) and the unstable width (the paper's Figure 19), through
-        :func:`rotorsfd.plots.fold.fold_curve_figure`: the parameter in words with its unit,
-        symbols in mathtext, the legend beside the panels."""
+    def plot(self) -> dict[str, Figure]:
+        """``fold_curve.png``: Omega~ of the folds against the second parameter (bistable
+        region shaded, cusps marked) and the unstable width (the paper's Figure 19),
+        titled by :attr:`title`, through :func:`rotorsfd.plots.fold.fold_curve_figure`."""
         from rotorsfd.plots.fold import fold_curve_figure
 
         t = self.table
         grid = np.linspace(min(self.range2), max(self.range2), 401)
         lo, hi, count = self.envelope(grid)
-        return fold_curve_figure(t[self.value_column], t["speed_ratio"], t["curve"],
-                                 grid=grid, lo=lo, hi=hi, count=count,
-                                 cusps=[(c.value, c.speed_ratio) for c in self.cusps],
-                                 parameter=self.parameter, units=self.units, H=self.H,
-                                 title=title)
+        return {"fold_curve.png": fold_curve_figure(
+            t[self.value_column], t["speed_ratio"], t["curve"], grid=grid, lo=lo, hi=hi,
+            count=count, cusps=[(c.value, c.speed_ratio) for c in self.cusps],
+            parameter=self.parameter, units=self.units, H=self.H, title=self.title)}
+
+
+#: units and long names of the columns of a curve table (``amp_<n>_m``: metres)
+COLUMNS = {"curve": ("1", "curve number (per kind)"),
+           "segment": ("1", "turns in the second parameter passed"),
+           "s": ("1", "arc length along the curve (scaled variables)"),
+           "speed_rad_s": ("rad/s", "rotor speed Omega"),
+           "speed_ratio": ("1", "Omega / Omega_ref"),
+           "max_eps": ("1", "largest validity measure of the elements over the orbit"),
+           "aliasing": ("1", "change of the scaled residual if N_f doubled"),
+           "kind": ("", "bifurcation: saddle-node, period-doubling or Neimark-Sacker")}
+
+
+def curves_dataset(table: dict[str, NDArray], parameter: str, units: str,
+                   value_column: str) -> xr.Dataset:
+    """A curve table as a Dataset on ``point``, each column with its units and long
+    name (:data:`COLUMNS`; the second parameter ``value_column`` in ``units``)."""
+    import xarray as xr
+
+    ds = xr.Dataset(attrs={"parameter": parameter, "units": units})
+    for key, values in table.items():
+        if key == value_column:
+            unit, words = units, parameter
+        elif key.startswith("amp_"):
+            unit, words = "m", f"largest radius over the period at node {key[4:-2]}"
+        else:
+            unit, words = COLUMNS.get(key, ("", key))
+        data = np.asarray(values, dtype=str) if key == "kind" else np.asarray(values)
+        ds[key] = ("point", data, {"long_name": words, "units": unit})
+    return ds
 
 
 def _table(hb: TwoParameterHB, curves: list[FoldBranch], system: RotorSystem,
@@ -350,60 +403,30 @@ def fold_curve(system: RotorSystem, speed_range: tuple[float, float], second_par
                      "; ".join(messages), timings)
 
 
-def run_fold_curve(config: Config, parameter: str, start: Any, stop: Any, *,
-                   search_path: Path | None = None, harmonics: int | None = None,
+def run_fold_curve(config_or_system: Config | RotorSystem, parameter: str, start: Any,
+                   stop: Any, settings: ResponseAnalysis | None = None, *,
+                   context: RunContext | None = None, search_path: Path | None = None,
+                   harmonics: int | None = None,
                    options: FoldOptions | None = None) -> FoldCurve:
-    """:func:`fold_curve` from a configuration: the speed range, H, output nodes and
-    reference speed of ``[analysis.response]`` / ``[reference]``; ``parameter`` a config
-    path (``base.pitching.value``, ``unbalance[0].magnitude``, ...) and ``start, stop``
-    its range (numbers in SI or strings with units)."""
-    setup = config_two_parameter(config, parameter, start, stop, "the fold curve needs",
-                                 search_path)
-    r = setup.response
+    """:func:`fold_curve` with the speed range, H ('auto': the speed branch chooses),
+    output nodes of ``[analysis.response]`` and Omega_ref, title of the context.
+
+    ``parameter`` a config path (``base.pitching.value``, ``unbalance[0].magnitude``,
+    ...) or parameter name and ``start, stop`` its range (SI numbers or strings with
+    units). From a :class:`RotorSystem`: ``settings`` (default: the context's,
+    ``ResponseAnalysis()``) and ``context`` (default ``RunContext()``); from a Config:
+    its system (one ``build``), section and context, through the same
+    :meth:`TwoParameterInputs.from_system`."""
+    if isinstance(config_or_system, RotorSystem):
+        inputs = TwoParameterInputs.from_system(config_or_system, parameter, start, stop,
+                                                settings, context)
+    else:
+        inputs = TwoParameterInputs.from_config(config_or_system, parameter, start, stop,
+                                                "the fold curve needs", search_path)
+    r = inputs.response
     H = harmonics or (None if r.adaptive_harmonics else r.start_harmonics)
-    result = fold_curve(setup.system, setup.speed_range, setup.param, setup.range2, H,
-                        reference_speed=setup.reference_speed,
-                        nodes=tuple(r.nodes) or None, options=options)
-    result.title = config.title
+    result = fold_curve(inputs.system, inputs.speed_range, inputs.param, inputs.range2, H,
+                        reference_speed=inputs.reference_speed, nodes=inputs.nodes,
+                        options=options)
+    result.title = inputs.title
     return result
-
-
-@dataclass
-class TwoParameterSetup:
-    """What a (speed, lam2) analysis takes from a configuration
-    (:func:`config_two_parameter`)."""
-
-    system: RotorSystem
-    param: str                        # the system parameter lam2
-    reference_speed: float            # rad/s
-    speed_range: tuple[float, float]  # rad/s
-    range2: tuple[float, float]       # lam2's range, SI
-    response: Any                     # config.analysis.response
-
-
-def config_two_parameter(config: Config, parameter: str, start: Any, stop: Any,
-                         what: str, search_path: Path | None = None) -> TwoParameterSetup:
-    """The system, second parameter (a config path or parameter name; it must not be the
-    speed), reference speed, speed range of ``[analysis.response]`` and lam2's range
-    (numbers in SI or strings with units) of a two-parameter analysis; ConfigError
-    before any work if the config has no nonlinear element (``what`` its subject, e.g.
-    "the fold curve needs")."""
-    from rotorsfd.analyses.modal import reference_speed as config_reference_speed
-    from rotorsfd.io.schema import parameter_values
-    from rotorsfd.model.build import build_system
-
-    if not config.elements:
-        raise ConfigError("elements", None, f"{what} at least one nonlinear "
-                          "element (an [elements.<name>] table)")
-    param = system_parameter(parameter)
-    if param == "speed":
-        raise ConfigError("--parameter", parameter, "must differ from the speed")
-    system = build_system(config, search_path)
-    ref = config_reference_speed(config, system)
-    r = config.analysis.response
-    lo, hi = r.speed_range.bounds(ref)
-    path = parameter.strip()
-    if path == param:           # a parameter name: its config path for the units
-        path = find_parameter(param).path
-    v0, v1 = parameter_values(config, path, [start, stop])
-    return TwoParameterSetup(system, param, ref, (lo, hi), (v0, v1), r)

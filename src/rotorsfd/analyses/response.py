@@ -1,7 +1,8 @@
 """Nonlinear periodic response of the rotor and its elements: a branch of HB-AFT solutions
 continued in the rotor speed (or a base rate, or the unbalance), its table, files and plots.
 
-``run_response(config) -> ResponseResult`` reads ``[analysis.response]``; the result holds
+``run_response(system, settings) -> ResponseResult`` (or ``run_response(config)``: the same
+code, :mod:`rotorsfd.analyses.response_inputs`) reads ``[analysis.response]``; the result holds
 the :class:`~rotorsfd.continuation.branch.Branch` and writes ``branch.nc`` (every Fourier
 coefficient), ``branch.csv`` (the paper's quantities per point) and the frequency-response
 plots. Quantities per point, for an output node n and direction d in (y, z)::
@@ -27,7 +28,6 @@ with ``multipliers.png`` (the multipliers of one point against the unit circle,
 from __future__ import annotations
 
 import dataclasses
-import math
 import sys
 import time
 from collections.abc import Callable, Sequence
@@ -38,43 +38,31 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rotorsfd.analyses.context import RunContext
-from rotorsfd.continuation.branch import Branch, BranchPoint
-from rotorsfd.errors import ConfigError, ConvergenceError
-from rotorsfd.harmonic.periodic import continue_periodic
-from rotorsfd.model.system import RotorSystem
-
-if TYPE_CHECKING:
-
-    from rotorsfd.io.schema import Config, ResponseAnalysis
-    from rotorsfd.stability.branch_stability import StabilityOptions
-
+from rotorsfd.analyses.response_inputs import ResponseInputs
 from rotorsfd.analyses.response_result import PointStability, ResponseResult, StabilityHook
 from rotorsfd.analyses.response_words import (
-    FIELD,
     PARAMETER_UNITS,
     column_slug,
     start_failure,
     system_parameter,
 )
+from rotorsfd.continuation.branch import Branch, BranchPoint
+from rotorsfd.errors import ConfigError, ConvergenceError
+from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.harmonic.synthesis import max_radius, orbit_samples
+from rotorsfd.model.system import RotorSystem
 
-__all__ = ["PARAMETER_UNITS", "PointStability", "ResponseResult", "column_slug", "max_radius",
-           "orbit_samples", "run_response", "system_parameter"]
+if TYPE_CHECKING:
+    from rotorsfd.io.schema import Config, ResponseAnalysis
+    from rotorsfd.stability.branch_stability import StabilityOptions
+
+__all__ = ["PARAMETER_UNITS", "PointStability", "ResponseInputs", "ResponseResult",
+           "column_slug", "max_radius", "orbit_samples", "response_branch", "run_response",
+           "system_parameter"]
 
 FloatArray = NDArray[np.float64]
 
 # ---- running ------------------------------------------------------------------------------
-
-
-def _options(r: ResponseAnalysis) -> dict[str, Any]:
-    """continue_periodic keyword arguments from ``[analysis.response]``."""
-    return {"n_samples": r.n_samples, "condensed": r.condensed, "tol": r.tolerance,
-            "ds": r.step_initial, "ds_min": r.step_min, "ds_max": r.step_max,
-            "max_iter": r.max_iterations, "max_points": r.max_points,
-            "max_angle_deg": math.degrees(r.max_tangent_angle),
-            "limit_max": r.max_eccentricity, "harmonics_tol": r.harmonics_tolerance,
-            "adaptive_harmonics": r.adaptive_harmonics, "H_min": r.harmonics_min,
-            "H_max": r.harmonics_max}
 
 
 class _Progress:
@@ -104,7 +92,9 @@ class _Progress:
         self.bar.close()
 
 
-def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | None = None,
+def run_response(config_or_system: Config | RotorSystem,
+                 settings: ResponseAnalysis | None = None, *,
+                 context: RunContext | None = None, search_path: Path | None = None,
                  parameter: str | None = None, start: float | None = None,
                  stop: float | None = None, speed: float | None = None,
                  reference_speed: float | None = None, harmonics: int | None = None,
@@ -114,28 +104,26 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
                  stability_options: StabilityOptions | bool | None = None,
                  callback: Callable[[BranchPoint], bool | None] | None = None,
                  title: str | None = None, from_orbit: Any = None,
-                 closure_tol: float | None = None, settings: ResponseAnalysis | None = None,
-                 context: RunContext | None = None, **options: Any) -> ResponseResult:
+                 closure_tol: float | None = None, **options: Any) -> ResponseResult:
     """Continue periodic solutions and return a :class:`ResponseResult`.
 
-    From a Config: everything from ``[analysis.response]`` and ``[reference]``; keyword
-    arguments override. From a :class:`RotorSystem` with ``settings`` (an
-    ``[analysis.response]`` section) and ``context`` (:class:`RunContext`: the reference
-    speed, nodes, title): the same run as from a config with that section (its speed
-    range in Omega~, its continuation options, H, nodes, directions; ``start, stop`` in
-    SI for a parameter other than the speed, ``speed`` [rad/s] there unless the section
-    gives one). Without settings: the context's ``[analysis.response]``, by default
-    ``ResponseAnalysis()`` (the defaults of an empty section: speeds 0.5 to 1.6 x
-    Omega_ref, H 'auto' from 3, its continuation options), so a system given alone runs
-    what an empty configuration runs; ``reference_speed`` defaults to the first forward
-    critical speed. ``options`` go to
+    The inputs are resolved once by :class:`~rotorsfd.analyses.response_inputs.
+    ResponseInputs`: from a :class:`RotorSystem` with ``settings`` (an
+    ``[analysis.response]`` section; default the context's, by default
+    ``ResponseAnalysis()``: speeds 0.5 to 1.6 x Omega_ref, H 'auto' from 3) and
+    ``context`` (:class:`RunContext`: the reference speed, default the first forward
+    critical speed; ``[analysis.stability]``, default on; the title); from a Config, its
+    system (one ``build``), ``[analysis.response]`` and context, through the same code,
+    so ``run_response(config)`` is ``run_response(build(config),
+    config.analysis.response, context=config_context(...))``. Keyword arguments override
+    the section (``start, stop`` in SI; a given H is fixed). ``options`` go to
     :func:`~rotorsfd.harmonic.periodic.continue_periodic`.
     ``stability(point)`` may return a :class:`PointStability` per point; otherwise
-    ``stability_options`` (None: from ``[analysis.stability]`` of a Config, off for a
-    RotorSystem; True: defaults; False: off) computes the multipliers of every point and
-    the located bifurcations after the branch. ``callback(point)`` returning True stops
-    the branch. A failed step never raises: the result then has ``success`` False and the
-    points so far.
+    ``stability_options`` (None: as ``[analysis.stability].enabled``; True: on, with that
+    section's options; False: off; or a StabilityOptions) computes the multipliers of
+    every point and the located bifurcations after the branch. ``callback(point)``
+    returning True stops the branch. A failed step never raises: the result then has
+    ``success`` False and the points so far.
 
     A Config whose base law is harmonic gets the quasi-periodic response instead (a
     :class:`~rotorsfd.analyses.torus_response.TorusResponseResult`, the torus branch in the
@@ -149,7 +137,17 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
     (an isola, ``info["closed"]``; ``closure_tol`` see
     :func:`~rotorsfd.analyses.orbit_branch.continue_both_ways`).
     """
-    if not isinstance(config_or_system, RotorSystem):   # a harmonic base law: a torus
+    over: dict[str, Any] = {"parameter": parameter, "start": start, "stop": stop,
+                            "speed": speed, "harmonics": harmonics, "nodes": nodes,
+                            "directions": directions, "title": title,
+                            "stability_options": stability_options}
+    if isinstance(config_or_system, RotorSystem):
+        inputs = ResponseInputs.from_system(config_or_system, settings, context,
+                                            reference_speed=reference_speed, **over)
+    else:       # a harmonic base law or two spools' unbalances: a torus
+        if settings is not None or context is not None:
+            raise TypeError("settings and context go with a RotorSystem; a Config gives "
+                            "its own [analysis.response] and context")
         from rotorsfd.analyses.dual_spool_response import dual_spool, run_dual_spool_response
         from rotorsfd.analyses.torus_response import harmonic_base, run_torus_response
 
@@ -161,46 +159,25 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
             return run_torus_response(config_or_system, search_path=search_path,
                                       progress=progress, from_orbit=from_orbit,
                                       callback=callback)
-    if isinstance(config_or_system, RotorSystem):
-        system = config_or_system
-        ctx = context if context is not None else RunContext()
-        if reference_speed is not None:
-            ctx = dataclasses.replace(ctx, reference_speed=float(reference_speed))
-        ref = ctx.reference(system)
-        r = settings if settings is not None else ctx.response   # default: an empty section
-        path = (parameter or r.parameter).strip()
-        opts: dict[str, Any] = _options(r)
-        H = harmonics or r.start_harmonics
-        if harmonics:       # a given H is fixed
-            opts["adaptive_harmonics"] = False
-        if system_parameter(path) == "speed":
-            lo, hi = r.speed_range.bounds(ref)
-            start = lo if start is None else start
-            stop = hi if stop is None else stop
-        elif speed is None and (r.speed is not None or r.speed_ratio is not None):
-            speed = r.fixed_speed(ref)
-        directions = directions or tuple(r.directions)
-        if start is None or stop is None:
-            raise ConfigError("start/stop", (start, stop), "give the parameter range in SI")
-        out_nodes = tuple(nodes or r.nodes) or ctx.output_nodes(system)
-        name = ctx.title if title is None else title
-        floquet = _stability_options(None, stability_options)
-    else:
-        system, path, ref, H, opts, (start, stop, speed), out_nodes = _from_config(
-            config_or_system, search_path, parameter, start, stop, speed, reference_speed,
-            harmonics, nodes)
-        name = config_or_system.title if title is None else title
-        directions = directions or tuple(config_or_system.analysis.response.directions)
-        floquet = _stability_options(config_or_system, stability_options)
-    sys_param = system_parameter(path)
-    if sys_param != "speed" and not (speed is not None and speed > 0):
-        raise ConfigError(f"{FIELD}.speed", speed,
-                          f"continuing in {path} needs a fixed speed > 0 rad/s")
-    for n in out_nodes:
-        if not 1 <= n <= system.rotor.n_nodes:
-            raise ConfigError(f"{FIELD}.nodes", n, f"must be 1..{system.rotor.n_nodes}")
-    opts.update(options)
-    problem = system.periodic_problem(sys_param, None if sys_param == "speed" else speed)
+        inputs = ResponseInputs.from_config(config_or_system, search_path,
+                                            reference_speed=reference_speed, **over)
+    return response_branch(inputs, X0=X0, progress=progress, stability=stability,
+                           callback=callback, from_orbit=from_orbit,
+                           closure_tol=closure_tol, **options)
+
+
+def response_branch(inputs: ResponseInputs, *, X0: Any = None, progress: bool = True,
+                    stability: StabilityHook | None = None,
+                    callback: Callable[[BranchPoint], bool | None] | None = None,
+                    from_orbit: Any = None, closure_tol: float | None = None,
+                    **options: Any) -> ResponseResult:
+    """The branch of resolved ``inputs`` (:func:`run_response`): HB-AFT continuation of
+    ``R(X, lam) = 0`` from ``inputs.start`` to ``inputs.stop``, then the Floquet stability
+    of every point when ``inputs.stability`` is set (and no ``stability`` hook)."""
+    system, sys_param, ref = inputs.system, inputs.parameter, inputs.reference_speed
+    start, stop, H = inputs.start, inputs.stop, inputs.harmonics
+    opts = {**inputs.options, **options}
+    problem = system.periodic_problem(sys_param, inputs.speed)
     scale, unit = ((ref, " x ref") if sys_param == "speed"
                    else (1.0, f" {PARAMETER_UNITS[sys_param]}"))
     bar = _Progress(start, stop, progress, "response", scale, unit)
@@ -228,19 +205,16 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
             try:
                 branch = continue_periodic(problem, start, stop, H, X0, callback=hook, **opts)
             except ConvergenceError as exc:   # only the first point raises
-                raise ConvergenceError(start_failure(system, path, start, float(ref),
+                raise ConvergenceError(start_failure(system, inputs.path, start, ref,
                                                      opts.get("limit_max"), str(exc))) from None
     finally:
         bar.close()
-    result = ResponseResult(branch, system, float(ref), tuple(out_nodes),
-                            tuple(directions or ("y", "z")), path,
-                            None if sys_param == "speed" else float(speed), name,
+    result = ResponseResult(branch, system, ref, inputs.nodes, inputs.directions or ("y", "z"),
+                            inputs.path, inputs.speed, inputs.title,
                             time.perf_counter() - t0)
     result.info.update(orbit_info)
-    if not isinstance(config_or_system, RotorSystem):
-        from rotorsfd.io.config import show_config
-
-        result.info["config_toml"] = show_config(config_or_system)
+    if inputs.config_toml:
+        result.info["config_toml"] = inputs.config_toml
     if "limit_max" in opts:
         result.info["limit_max"] = float(opts["limit_max"])
     if data and len(data) >= branch.n_points:
@@ -250,8 +224,8 @@ def run_response(config_or_system: Config | RotorSystem, *, search_path: Path | 
             mu = np.array([np.asarray(p.multipliers, dtype=complex) for p in pts])
         result = result.with_stability([p.stable for p in pts],
                                        [p.max_multiplier for p in pts], mu)
-    elif stability is None and floquet is not None and branch.n_points:
-        result = _with_branch_stability(result, problem, floquet, progress)
+    elif stability is None and inputs.stability is not None and branch.n_points:
+        result = _with_branch_stability(result, problem, inputs.stability, progress)
     return result
 
 
@@ -274,28 +248,6 @@ def _branch_from_orbit(problem: Any, sys_param: str, from_orbit: Any, H: int,
             "closed": bool(branch.info.get("closed")),
             "start_index": int(branch.info.get("start_index", 0))}
     return branch, info
-
-
-def _stability_options(config: Config | None, given: StabilityOptions | bool | None
-                       ) -> StabilityOptions | None:
-    """Options of the after-branch stability (None: off), see :func:`run_response`."""
-    from rotorsfd.stability.branch_stability import StabilityOptions
-
-    if isinstance(given, StabilityOptions):
-        return given
-    if given is False or (given is None and config is None):
-        return None
-    if config is None:
-        return StabilityOptions()
-    st = config.analysis.stability
-    if given is None and not st.enabled:
-        return None
-    return StabilityOptions(method=st.method, n_intervals=st.intervals, n_modes=st.n_modes,
-                            tol=st.tolerance, rtol=st.locate_tolerance,
-                            interval_tol=st.interval_tolerance if st.adaptive_intervals
-                            else None, max_intervals=st.max_intervals,
-                            check=st.check_bifurcations, check_rtol=st.check_tolerance,
-                            basis=st.basis)
 
 
 def _with_branch_stability(result: ResponseResult, problem: Any,
@@ -336,42 +288,3 @@ def _with_branch_stability(result: ResponseResult, problem: Any,
     out.info.update(floquet_basis=st.basis, floquet_modes=st.n_modes,
                     max_multiplier_outside=st.max_multiplier_outside)
     return out
-
-
-def _from_config(config: Config, search_path: Path | None, parameter: str | None,
-                 start: float | None, stop: float | None, speed: float | None,
-                 reference_speed: float | None, harmonics: int | None,
-                 nodes: Sequence[int] | None):
-    """(system, parameter path, reference speed, H, options, (start, stop, speed), nodes)."""
-    from rotorsfd.analyses.modal import reference_speed as config_reference_speed
-    from rotorsfd.io.schema import parameter_values
-    from rotorsfd.model.build import build_system
-
-    r = config.analysis.response
-    if not config.elements:
-        raise ConfigError("elements", None, "the nonlinear response needs at least one "
-                          "nonlinear element (an [elements.<name>] table)")
-    system = build_system(config, search_path)
-    path = (parameter or r.parameter).strip()
-    sys_param = system_parameter(path)
-    ref = reference_speed if reference_speed is not None else config_reference_speed(
-        config, system)
-    if sys_param == "speed":
-        lo, hi = r.speed_range.bounds(ref)
-        if not (lo > 0 and hi > 0):
-            raise ConfigError(f"{FIELD}.speed_range", r.speed_range.model_dump(
-                exclude_none=True), "the response needs speeds > 0")
-    else:
-        lo, hi = parameter_values(config, path, list(r.parameter_range))
-        if speed is None:
-            speed = r.speed if r.speed is not None else r.speed_ratio * ref
-    lo = lo if start is None else start
-    hi = hi if stop is None else stop
-    if lo == hi:
-        raise ConfigError(f"{FIELD}.speed_range", (lo, hi), "start and stop must differ")
-    out_nodes = tuple(nodes or r.nodes) or system.output_nodes
-    opts = _options(r)
-    if harmonics:       # a given H is fixed
-        opts["adaptive_harmonics"] = False
-    return (system, path, float(ref), harmonics or r.start_harmonics, opts,
-            (float(lo), float(hi), speed), out_nodes)

@@ -328,9 +328,9 @@ def _fold_curve(case: Case, config: Any, out: Path | None,
     if out is not None:                        # the figure titled by the case's settings
         from rotorsfd.io import atomic
 
-        f.write(out, plot=False)
+        f.write(out, plots=False)
         if plots:
-            atomic.save_figure(f.plot(title=config.title), out / "fold_curve.png", dpi=120)
+            atomic.save_figure(f.plot()["fold_curve.png"], out / "fold_curve.png", dpi=120)
     grid = np.linspace(lo, hi, 201)
     w = f.unstable_width(grid)
     n = {"end_rate": f.bistability_end, "width0": float(f.unstable_width([lo])[0]),
