@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from rotorsfd.paper.case_config import case_title, load_case_config, paper_stability
-from rotorsfd.paper.cases import READINGS, Case, Outcome, examples_dir, literal_name
+from rotorsfd.paper.cases import READINGS, Case, Outcome, examples_dir
 from rotorsfd.paper.isola import run_isola
 from rotorsfd.paper.numbers import (
     local_peaks,
@@ -202,9 +202,12 @@ def _worker_init() -> None:
 
 def run_cases(cases: Sequence[Case], *, examples: Path | None = None, quick: bool = False,
               out: Path | None = None, workers: int | None = None,
-              progress: bool = True, plots: bool = False) -> dict[str, Outcome]:
+              progress: bool = True, plots: bool = False,
+              on_outcome: Callable[[Outcome], None] | None = None) -> dict[str, Outcome]:
     """Run ``cases`` (longest first) in ``workers`` processes (default: the CPUs, at most
-    2; 1: in this process) with a tqdm bar on stderr; ``plots``: see :func:`run_case`."""
+    2; 1: in this process) with a tqdm bar on stderr; ``plots``: see :func:`run_case`;
+    ``on_outcome(outcome)`` is called in this process as each case ends (the workers
+    keep running meanwhile)."""
     from tqdm import tqdm
 
     examples = examples or examples_dir()
@@ -217,8 +220,10 @@ def run_cases(cases: Sequence[Case], *, examples: Path | None = None, quick: boo
         if workers == 1:
             for c in order:
                 bar.set_postfix_str(c.name)
-                results[c.name] = run_case(c, examples, quick, out, plots)
+                results[c.name] = o = run_case(c, examples, quick, out, plots)
                 bar.update()
+                if on_outcome is not None:
+                    on_outcome(o)
         else:
             with ProcessPoolExecutor(workers, initializer=_worker_init) as pool:
                 futures = {pool.submit(run_case, c, examples, quick, out, plots): c
@@ -228,26 +233,48 @@ def run_cases(cases: Sequence[Case], *, examples: Path | None = None, quick: boo
                     results[o.name] = o
                     bar.set_postfix_str(f"{o.name} {o.status} {o.elapsed:.0f} s")
                     bar.update()
+                    if on_outcome is not None:
+                        on_outcome(o)
     finally:
         bar.close()
     return {c.name: results[c.name] for c in cases}
 
 
-#: Rough cost per kind [CPU s] (longest first keeps both workers busy) ...
+#: Rough cost per kind [CPU s] of a case not in :data:`CASE_COST` (a calibrated case about
+#: twice its literal one: the dense modal damping takes the dense LU path) ...
 COST = {"isola": 15, "chart": 7, "width-sweep": 8, "simulate": 1.5, "fold-curve": 3,
         "response": 1.5, "modal": 1.4}
-#: ... and of the cases that cost more than their kind [CPU s, measured 2026-12-02]; a
-#: calibrated case costs about twice its literal one (dense modal damping).
-CASE_COST = {"fig21-cr0.61": 12.5, "fig21-cr0.728": 7, "fig21-cr0.485": 5.3,
-             "fig24-u144": 5.2, "fig24-u360": 4.1, "fig19-u252": 5.3, "fig19-u144": 3.4,
-             "fig17-u252-w9": 3.9, "fig17-u252-w7": 3.1, "fig17-u360-w9": 3.0,
-             "fig17-u360-w7": 2.7, "fig12-w9": 2.3, "fig12-w10": 2.3}
+#: ... and of every case of the full run [CPU s]: each case's wall time in the full run of
+#: 2026-12-03 (2 workers at load 5-8, before max_multiplier_outside was turned off) times
+#: that run's CPU / wall (682 s / 2086 s); only their order matters (longest first keeps
+#: both workers busy to the end).
+CASE_COST: dict[str, float] = {"fig23-isola": 60.6, "cal-fig24-u360": 42.9, "fig21-cr0.61":
+    34.4, "cal-fig24-u144": 22.4, "cal-fig21-cr0.61": 21.9, "fig19-u360": 18.7,
+    "fig17-u252-w6": 16.1, "fig6": 15.9, "cal-fig21-cr0.728": 15.6, "cal-fig17-u360-w9":
+    15.3, "fig21-cr0.728": 14.7, "cal-fig21-cr0.485": 14, "cal-fig17-u252-w7": 13.7,
+    "fig16-w9": 12.5, "fig17-u360-w6": 11.7, "cal-fig19-u360": 11.4, "fig24-u144": 10.8,
+    "cal-fig19-u252": 10.8, "cal-fig17-u252-w6": 10.2, "fig21-cr0.485": 10.1, "fig12-w8":
+    10.1, "fig17-u360-w0": 10, "cal-fig19-u144": 9.9, "fig16-w6": 9.3, "fig17-u252-w7": 9.2,
+    "fig16-w4": 8.8, "fig23-s1.1": 8.7, "fig23-s1.075": 8.5, "fig23-s1.05": 8.5,
+    "fig23-s1.04": 8.5, "fig23-s1.025": 8.2, "fig17-u252-w9": 8.1, "fig17-u252-w0": 7.9,
+    "fig24-u360": 7.6, "fig19-u252": 7.6, "fig16-w2": 7.1, "fig12-w10": 6.6, "fig19-u144":
+    6.3, "fig17-u360-w7": 6.1, "fig12-w9": 6.1, "fig17-u360-w9": 5.9, "fig12-w6": 5.8,
+    "fig12-w4": 5.7, "cal-fig12-w9": 5.6, "cal-fig23-s1.1": 5.4, "cal-fig23-s1.075": 5.2,
+    "cal-fig23-s1.05": 5.1, "cal-fig12-w10": 5.1, "fig10-w20": 4.6, "sens-rightm": 4.4,
+    "sens-sfdp": 4.3, "fig12-w2": 4.3, "fig12-w0": 4.2, "fig10-w10": 4.2,
+    "fig19-u144-paper-h": 4, "fig19-u252-paper-h": 3.7, "cal-fig23-s1.04": 3.6,
+    "cal-fig12-w8": 3.5, "sens-sfdm": 3.4, "sens-rightp": 3.4, "modal": 3.2,
+    "cal-fig23-s1.025": 3.2, "fig7-u360": 3.1, "cal-fig7-u360": 3.1, "fig7-u72": 3,
+    "fig10-w5": 3, "cal-fig12-w4": 2.9, "cal-fig12-w2": 2.9, "fig10-w0": 2.8, "fig7-u144":
+    2.7, "cal-fig7-u144": 2.6, "fig23-t200-s1.1": 2.4, "fig23-t200-s1.075": 2.3,
+    "fig23-t200-s1.05": 2.3, "fig23-t200-s1.04": 2.1, "fig23-t200-s1.025": 2}
 
 
 def case_cost(case: Case) -> float:
     """The expected CPU time of a case (:data:`CASE_COST`, else :data:`COST`)."""
-    base = CASE_COST.get(literal_name(case.name), COST.get(case.kind, 1.0))
-    return base * (2.0 if case.reading == "calibrated" else 1.0)
+    if case.name in CASE_COST:
+        return CASE_COST[case.name]
+    return COST.get(case.kind, 1.0) * (2.0 if case.reading == "calibrated" else 1.0)
 
 
 @dataclass
@@ -271,6 +298,53 @@ class PaperResult:
         return "\n".join(lines)
 
 
+class FigureQueue:
+    """The paper's figures drawn as their cases end: :meth:`add` each outcome; a figure
+    is drawn (PNG, 110 dpi) once every case it shows that runs has ended, with exactly
+    the outcomes it would be drawn from after the run (:func:`rotorsfd.paper.figures.draw`
+    reads only its own cases). :meth:`pngs`: the PNGs in the order of ``specs``."""
+
+    def __init__(self, specs: Sequence[Any], names: Sequence[str]) -> None:
+        from rotorsfd.paper.cases import CAL
+
+        ran = set(names)
+        self.specs = list(specs)
+        self.needs = {s.number: {n for c in s.cases for n in (c, CAL + c) if n in ran}
+                      for s in self.specs}
+        self.outcomes: dict[str, Outcome] = {}
+        self.done: dict[str, bytes | None] = {}
+
+    def add(self, outcome: Outcome) -> None:
+        """Record an outcome; draw the figures it completes."""
+        self.outcomes[outcome.name] = outcome
+        for spec in self.specs:
+            if spec.number not in self.done and self.needs[spec.number] <= set(self.outcomes):
+                self.done[spec.number] = self._png(spec)
+
+    def _png(self, spec: Any) -> bytes | None:
+        import io
+
+        from rotorsfd.paper.figures import draw
+
+        fig = draw(spec, self.outcomes)
+        if fig is None:
+            return None
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=110)
+        return buf.getvalue()
+
+    def pngs(self) -> dict[str, bytes]:
+        """Every figure (those not drawn yet now), in the order of the specs."""
+        out: dict[str, bytes] = {}
+        for spec in self.specs:
+            if spec.number not in self.done:
+                self.done[spec.number] = self._png(spec)
+            png = self.done[spec.number]
+            if png is not None:
+                out[spec.number] = png
+        return out
+
+
 def run_paper(output: str | Path, figures: Sequence[str] | None = None, *,
               quick: bool = False, workers: int | None = None, progress: bool = True,
               examples: Path | None = None, case_plots: bool = False,
@@ -279,25 +353,19 @@ def run_paper(output: str | Path, figures: Sequence[str] | None = None, *,
     settings) in the ``readings`` (literal and calibrated; see
     :mod:`rotorsfd.paper.cases`), draw the figures and write the report into ``output``;
     the cases' results files go to ``output/cases/<case>``, with each analysis' own
-    figures only if ``case_plots``."""
-    import io
-
+    figures only if ``case_plots``. Each figure is drawn as soon as its cases have ended,
+    while the workers run the others (:class:`FigureQueue`)."""
     from rotorsfd.paper.cases import select
-    from rotorsfd.paper.figures import draw
     from rotorsfd.paper.report import DIAGNOSES, write_report
 
     t0 = time.perf_counter()
     out = Path(output)
     specs, cases = select(list(figures or []), quick, tuple(readings))
+    queue = FigureQueue(specs, [c.name for c in cases])
     outcomes = run_cases(cases, examples=examples, quick=quick, out=out / "cases",
-                         workers=workers, progress=progress, plots=case_plots)
-    pngs: dict[str, bytes] = {}
-    for spec in specs:
-        fig = draw(spec, outcomes)
-        if fig is not None:
-            buf = io.BytesIO()
-            fig.savefig(buf, format="png", dpi=110)
-            pngs[spec.number] = buf.getvalue()
+                         workers=workers, progress=progress, plots=case_plots,
+                         on_outcome=queue.add)
+    pngs = queue.pngs()
     elapsed = time.perf_counter() - t0
     paths = write_report(out, outcomes, pngs, elapsed=elapsed, diagnoses=DIAGNOSES)
     return PaperResult(outcomes, paths, elapsed)
