@@ -7,7 +7,8 @@ e.g. ``git archive 862686d src examples | tar -x -C /tmp/base`` then ``--before
 /tmp/base/src``); without it the rows carry the figures recorded below as the reference.
 
 Recorded 2026-12-03 on the shared 2-core machine (load 5-8 from the other agents, so
-wall is about 1.6 x CPU): before (862686d) full 1107 s wall / 682 s CPU; the changes:
+wall is about 1.6 x CPU): before (862686d) full 1107 s wall / 682 s CPU, ``--quick``
+21.2 s / 33.5 s (nothing else running; ours then 16.8 s / 26.4 s); the changes:
 no ``max_multiplier_outside`` eigenproblem per branch point (Floquet per point -30 %: a
 literal and a calibrated response branch 5.38 -> 3.53 and 3.87 -> 2.84 s CPU), every case
 ordered by its measured cost, each figure drawn as soon as its cases end (overlapping the
@@ -32,7 +33,7 @@ from pathlib import Path
 from benchmarks.common import ROOT, Row
 
 #: The code before (862686d), recorded as above: mode -> (wall s, CPU s, load).
-RECORDED_BEFORE = {"full": (1107.0, 682.0, "5-8")}
+RECORDED_BEFORE = {"full": (1107.0, 682.0, "5-8"), "quick": (21.2, 33.5, "0.6-1.1")}
 
 
 def paper_time(src: Path, quick: bool) -> tuple[float, float]:
