@@ -69,6 +69,8 @@ REGISTRY: dict[str, tuple[str, str]] = {
                    "settled, vs 2000 periods each", "bench_attractors:run"),
     "ns-curve": ("Neimark-Sacker curve: one evaluation of the augmented system, batched "
                  "shifted Hill operator vs the previous loops", "bench_ns_curve:run"),
+    "paper": ("rotorsfd paper: the full reproduction and --quick, wall and CPU (not in "
+              "--quick)", "bench_paper:run"),
 }
 
 

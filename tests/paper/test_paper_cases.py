@@ -19,7 +19,6 @@ from rotorsfd.io.config import dump_config, load_config, parse_override, read_to
 from rotorsfd.io.schema import axis_values, parameter_values
 from rotorsfd.paper.cases import (
     CASES,
-    CLAIMS,
     EXTRA_CASES,
     FIGURES,
     KINDS,
@@ -28,6 +27,7 @@ from rotorsfd.paper.cases import (
     literal_name,
     select,
 )
+from rotorsfd.paper.claims import CLAIMS
 
 EXAMPLES = examples_dir()
 REPO = Path(__file__).resolve().parents[2]

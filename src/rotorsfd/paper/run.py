@@ -1,5 +1,7 @@
 """Run the paper's cases (:mod:`rotorsfd.paper.cases`) and collect their numbers.
 
+One runner per kind of case (the isola's in :mod:`rotorsfd.paper.isola`; the numbers from
+:mod:`rotorsfd.paper.numbers`, the config from :mod:`rotorsfd.paper.case_config`).
 :func:`run_case` runs one case and returns an :class:`Outcome`: ``numbers`` (what the
 report compares with the paper) and ``data`` (plain arrays for the figures); it never
 raises for a numerical failure (the outcome says ``failed`` and why). :func:`run_cases`
@@ -9,7 +11,6 @@ runs several in a process pool with a progress bar.
 from __future__ import annotations
 
 import os
-import re
 import sys
 import time
 import traceback
@@ -21,147 +22,38 @@ from typing import Any
 
 import numpy as np
 
-from rotorsfd.paper.cases import (
-    READINGS,
-    Case,
-    Outcome,
-    calibration_overrides,
-    examples_dir,
-    literal_name,
+from rotorsfd.paper.case_config import case_title, load_case_config, paper_stability
+from rotorsfd.paper.cases import READINGS, Case, Outcome, examples_dir
+from rotorsfd.paper.isola import run_isola
+from rotorsfd.paper.numbers import (
+    local_peaks,
+    response_numbers,
+    td_data,
+    td_numbers,
+    turning_points,
 )
-from rotorsfd.plots.labels import mathtext, setting
 
-# ---- response -------------------------------------------------------------------------------
-
-
-#: A disk peak stands out from the troughs on both sides by this fraction of the largest
-#: value (2 %: Figure 15's second peak at 9 rad/s, Omega~ 1.392, rises 3 % of the main
-#: peak above its trough, plainly a local maximum in the figure; the earlier 5 % missed it,
-#: and a smooth branch has no wiggles at that level).
-PEAK_PROMINENCE = 0.02
-
-
-def local_peaks(x: np.ndarray, y: np.ndarray, rel: float = PEAK_PROMINENCE) -> list[float]:
-    """x of the local maxima of y(x) along the branch (arc order) that stand out by ``rel``
-    of the largest value from the lowest point on both sides up to a higher value."""
-    x, y = np.asarray(x, float), np.asarray(y, float)
-    out = []
-    top = float(np.max(y)) if y.size else 0.0
-    for i in range(1, y.size - 1):
-        if y[i] >= y[i - 1] and y[i] > y[i + 1]:
-            left = y[:i][::-1]
-            right = y[i + 1:]
-            lmin = min(left[: np.argmax(left > y[i])].min(initial=y[i]) if np.any(left > y[i])
-                       else left.min(), y[i])
-            rmin = min(right[: np.argmax(right > y[i])].min(initial=y[i])
-                       if np.any(right > y[i]) else right.min(), y[i])
-            if y[i] - max(lmin, rmin) > rel * top:
-                out.append(float(x[i]))
-    return out
-
-
-def _wave(X: np.ndarray, n: int = 256) -> np.ndarray:
-    """y(theta) on n phases from coefficients X_k (k = 0..H)."""
-    k = np.arange(X.shape[-1])
-    th = 2 * np.pi * np.arange(n + 1) / n
-    return (X @ np.exp(1j * np.outer(k, th))).real
-
-
-def response_numbers(result: Any, orbits: Sequence[float] = ()) -> tuple[dict, dict]:
-    """Numbers and plot data of a :class:`~rotorsfd.analyses.response.ResponseResult`."""
-    from rotorsfd.model import dofs
-
-    table = result.table()
-    s = np.asarray(table["speed_ratio"], float)
-    C = result.clearance
-    rows = [{k: (float(v) if isinstance(v, (int, float, np.number))
-                 and not isinstance(v, bool) else v) for k, v in b.items()}
-            for b in (result.bifurcations or [])]
-    sn = sorted((b for b in rows if b["type"] == "saddle-node"), key=lambda b: b["speed_ratio"])
-    n: dict[str, Any] = {"bifurcations": [(b["type"], b["speed_ratio"], b["max_multiplier"],
-                                           b["multiplier_re"], b["multiplier_im"])
-                                          for b in rows],
-                         "success": result.success, "n_points": int(s.size),
-                         "H": int(result.branch.H)}
-    if sn:
-        n.update(sn_hi=sn[-1]["speed_ratio"], sn_hi_mu=sn[-1]["max_multiplier"],
-                 sn_lo=sn[0]["speed_ratio"], sn_lo_mu=sn[0]["max_multiplier"])
-    if len(sn) >= 2:
-        n["width"] = sn[-1]["speed_ratio"] - sn[0]["speed_ratio"]
-    ecc = np.asarray(table[f"defl_{result.system.primary_node}"], float)
-    n["ended"] = getattr(result, "ended", "range" if result.success else "failed")
-    n["end"] = (f"reached Omega~ = {s[-1]:.4f}" if result.success else
-                f"ended at Omega~ = {s[-1]:.4f} where the journal reached eps = "
-                f"{ecc[-1]:.3f} (the film's limit, max_eccentricity)" if n["ended"] == "limit"
-                else f"stopped at Omega~ = {s[-1]:.4f}, eps = {ecc[-1]:.3f}")
-    n["message"] = result.message
-    sfd = result.system.primary_node
-    d1 = np.asarray(table[f"defl_{sfd}"])
-    i = int(np.argmax(d1))
-    n["peak_ratio"], n["peak_defl"] = float(s[i]), float(d1[i])
-    h = [np.asarray(table[f"amp_{sfd}_y_h{k}"])[i] for k in range(1, result.branch.H + 1)]
-    n["dominant"] = ("1X" if h[0] > 5 * max(h[1:], default=0.0)
-                     else f"mixed (h1/h2 = {h[0] / max(h[1], 1e-30):.2f})")
-    disk = [d.node for d in result.system.rotor.disks]
-    if disk and f"amp_{disk[0]}_y_h1" in table:
-        n["disk_peaks"] = local_peaks(s, np.asarray(table[f"amp_{disk[0]}_y_h1"]))
-    data: dict[str, Any] = {k: np.asarray(v) for k, v in table.items()}
-    data["bifurcations"] = rows
-    data["nodes"] = list(result.nodes)
-    data["H"] = int(result.branch.H)
-    data["clearance"] = C
-    X = result.branch.X
-    for node in result.nodes:
-        for d in ("y", "z"):
-            w = _wave(X[:, :, dofs.dof_index(node, d)], 128) / C
-            data[f"max_{node}_{d}"] = w.max(axis=1)
-            data[f"min_{node}_{d}"] = w.min(axis=1)
-    orb = []
-    for target in orbits:
-        j = int(np.argmin(np.abs(s - target)))
-        orb.append((float(s[j]), _wave(X[j, :, dofs.dof_index(sfd, "y")]) / C,
-                    _wave(X[j, :, dofs.dof_index(sfd, "z")]) / C))
-    data["orbits"] = orb
-    return n, data
+#: Names of the split-out modules, importable from here as before the split.
+__all__ = [
+    "CASE_COST",
+    "COST",
+    "RUNNERS",
+    "Outcome",
+    "PaperResult",
+    "case_cost",
+    "case_title",
+    "load_case_config",
+    "local_peaks",
+    "paper_stability",
+    "response_numbers",
+    "run_case",
+    "run_cases",
+    "run_paper",
+    "turning_points",
+]
 
 
 # ---- the kinds -------------------------------------------------------------------------------
-
-
-def case_title(case: Case, config_title: str) -> str:
-    """The title of a case's own result figures: its config's title with the list of every
-    variant ("U = 72.008 / 144.02 / 360.04 g mm") and the settings the case changes
-    replaced by the case's settings in words ("U = 144.02 g mm"), its note after; the
-    config's title as it is when the case sets nothing."""
-    words = [w for w in (setting(o) for o in case.overrides) if w]
-    if not words:
-        return config_title + (f"; {case.note}" if case.reading != "literal" else "")
-    head, sep, rest = config_title.partition(":")
-    if not sep:
-        head, rest = "", config_title
-    m = re.search(r"\s*(\([^()]*\))\s*$", rest)        # "(Zhang et al. 2025)" kept last
-    source = m.group(1) if m else ""
-    rest = rest[:m.start()] if m else rest
-    names = {w.split(" = ")[0] for w in words}
-    kept = [p.strip() for p in rest.split(",") if p.strip() and " / " not in p
-            and mathtext(p.split(" = ")[0].strip()) not in names]
-    text = ", ".join([*kept, *words])
-    note = f"; {case.note}" if case.note else ""
-    return (f"{head.strip()}: " if head else "") + text + note + \
-        (f" {source}" if source else "")
-
-
-def load_case_config(case: Case, examples: Path | None = None, quick: bool = False,
-                     extra: Sequence[str] = ()) -> Any:
-    """The validated config of ``case`` (a calibrated case: :func:`calibration_overrides`
-    first; then its overrides, ``--quick`` ones, ``extra``), titled by :func:`case_title`."""
-    from rotorsfd.io.config import load_config
-
-    folder = examples or examples_dir()
-    reading = calibration_overrides(folder) if case.reading == "calibrated" else ()
-    config = load_config(folder / case.config,
-                         [*reading, *case.overrides, *(case.quick if quick else ()), *extra])
-    return config.model_copy(update={"title": case_title(case, config.title)})
 
 
 def _modal(case: Case, config: Any, out: Path | None,
@@ -179,7 +71,7 @@ def _response(case: Case, config: Any, out: Path | None,
               plots: bool = False) -> tuple[dict, dict]:
     from rotorsfd.analyses.response import run_response
 
-    r = run_response(config, progress=False)
+    r = run_response(config, progress=False, stability_options=paper_stability(config))
     if out is not None:
         r.write(out, plots=plots)
     return response_numbers(r, case.options.get("orbits", ()))
@@ -195,127 +87,8 @@ def _simulate(case: Case, config: Any, out: Path | None,
         r.write(out, plots=plots)
     ev = r.motion.evidence if r.motion is not None else {}
     n = {"motion": r.motion_name, "n_distinct_poincare": ev.get("n_distinct_poincare"),
-         "max_eccentricity": r.max_eccentricity, **_td_numbers(r)}
-    return n, _td_data(r)
-
-
-def _td_numbers(r: Any, prefix: str = "") -> dict[str, Any]:
-    """Step, journal Poincare point (last, in C), the eccentricity there and the orbit's
-    maximum, and the step check of a SimulationResult (keys ``prefix + ...``)."""
-    j = r.column(r.element_node if r.element_node in r.nodes else r.plot_node)
-    scale = r.clearance or 1.0
-    y, z = (float(r.poincare_q[-1, j, k] / scale) for k in (0, 1))
-    chk = r.step_check.as_dict() if r.step_check is not None else {}
-    return {prefix + k: v for k, v in {
-        "steps_per_period": int(r.settings["steps_per_period"]), "poincare_y": y,
-        "poincare_z": z, "eps_poincare": float(np.hypot(y, z)),
-        "eps_max": r.max_eccentricity, "step_check": chk.get("difference")}.items()}
-
-
-def _td_data(r: Any, keep_periods: int = 20) -> dict[str, Any]:
-    """Orbit, phase and Poincare arrays of a SimulationResult at its journal, in C."""
-    c = r.column(r.plot_node)
-    scale = r.clearance or 1.0
-    keep = keep_periods * int(r.settings["steps_per_period"])
-    return {"y": r.q[-keep:, c, 0] / scale, "z": r.q[-keep:, c, 1] / scale,
-            "vy": r.v[-keep:, c, 0] / (scale * r.speed),
-            "py": r.poincare_q[:, c, 0] / scale, "pz": r.poincare_q[:, c, 1] / scale,
-            "pvy": r.poincare_v[:, c, 0] / (scale * r.speed),
-            "speed_ratio": r.speed_ratio, "motion": r.motion_name,
-            "steps": int(r.settings["steps_per_period"])}
-
-
-def _isola(case: Case, config: Any, out: Path | None,
-           plots: bool = False) -> tuple[dict, dict]:
-    """A coexisting attractor and its isola (Figure 23 / Table 3 diagnosis):
-    (a) the time domain at ``find_steps`` steps per period (the paper's T/200) from the HB
-    orbit shifted by ``hb_phase`` of the period, which at that step lands near a second
-    attractor; (b) the branch through that orbit (``harmonics``; HB-corrected, so it
-    does not depend on the step of (a)), continued until it closes, with its
-    bifurcations; (c) the time domain at the config's step started on the isola's HB
-    orbit at the case's speed: the second attractor at a converged step, and how far the
-    HB orbit is from it; (d) the time domain at ``speeds``, each from the previous run's
-    final state, at the config's step; (e) the same at ``find_steps`` from (a) at
-    ``paper_speeds`` (what the paper's step shows); (d) and (e) with the Lyapunov
-    exponent (``lyapunov_periods``)."""
-    from rotorsfd.analyses.response import run_response
-    from rotorsfd.analyses.simulate import SavedState, hb_state, run_simulation
-    from rotorsfd.harmonic.periodic import solve_periodic
-    from rotorsfd.io.config import with_values
-    from rotorsfd.model import dofs
-
-    o = case.options
-    H = int(o.get("harmonics", 16))
-    n_ly = int(o.get("lyapunov_periods", 200))
-    coarse = int(o.get("find_steps", 200))
-    cfg = with_values(config, {"analysis.response.harmonics": H})
-    a = run_simulation(cfg, progress=False, from_hb=True, hb_phase=float(o["hb_phase"]),
-                       steps_per_period=coarse, lyapunov_periods=0)
-    if out is not None:
-        a.write(out / "a-find", plots=False)
-    n: dict[str, Any] = {"find_motion": a.motion_name, **_td_numbers(a, "find_")}
-    iso = run_response(cfg, from_orbit=a, progress=False)
-    if out is not None:
-        iso.write(out / "b-isola", plots=False)
-    num, data = response_numbers(iso)
-    ref = iso.reference_speed
-    rows = sorted(data["bifurcations"], key=lambda b: b["speed_ratio"])
-    lam = iso.branch.lam / ref
-    folds = sorted(float(lam[i]) for i in iso.branch.folds())
-    sh = [b for b in rows if b["type"] == "secondary-hopf"]
-    n.update({"iso_closed": iso.info.get("closed"), "iso_orbit_difference":
-              iso.info.get("orbit_difference"), "bifurcations": num["bifurcations"],
-              "success": iso.success, "end": iso.message,
-              "iso_fold_lo": folds[0] if folds else None,
-              "iso_fold_hi": folds[-1] if folds else None,
-              "iso_range": [float(lam.min()), float(lam.max())],
-              "iso_pd": [b["speed_ratio"] for b in rows if b["type"] == "period-doubling"]})
-    if sh:
-        n["iso_sh"] = sh[0]["speed_ratio"]
-        n["iso_sh_mu"] = [sh[0]["multiplier_re"], sh[0]["multiplier_im"]]
-    if iso.stable is not None:
-        st = lam[iso.stable]
-        n["iso_stable"] = [float(st.min()), float(st.max())] if st.size else None
-    # (c) on the isola's HB orbit at the case's speed (nearest stable point, re-solved)
-    speed = a.speed
-    pick = np.flatnonzero(iso.stable) if iso.stable is not None and iso.stable.any() \
-        else np.arange(lam.size)
-    k = int(pick[np.argmin(np.abs(iso.branch.lam[pick] - speed))])
-    X = solve_periodic(iso.system.periodic_problem(), speed, H, iso.branch.X[k]).X
-    q0, v0 = hb_state(X, speed)
-    b = run_simulation(cfg, progress=False, q0=q0, v0=v0, lyapunov_periods=0)
-    if out is not None:
-        b.write(out / "c-second-attractor", plots=False)
-    n.update({"second_motion": b.motion_name, **_td_numbers(b, "second_")})
-    j = b.column(b.element_node)
-    w = np.exp(1j * np.outer(b.t[-int(b.settings["steps_per_period"]):] * speed,
-                             np.arange(X.shape[0])))
-    hb = np.stack([(w @ X[:, dofs.dof_index(b.element_node, d)]).real for d in ("y", "z")], -1)
-    n["second_hb_difference"] = float(np.max(np.hypot(*(
-        hb - b.q[-hb.shape[0]:, j, :]).T)) / b.clearance)
-    runs, t200 = [], []
-    for seq, start, steps, speeds, ly in (
-            (runs, b, None, o.get("speeds", ()), n_ly),
-            (t200, a, coarse, o.get("paper_speeds", ()), n_ly)):
-        state: Any = start
-        for s_ in speeds:
-            saved = SavedState(state.q_final, state.v_final, state.t_final, state.speed)
-            r = run_simulation(config, speed_ratio=float(s_), progress=False,
-                               initial_state=saved, steps_per_period=steps,
-                               lyapunov_periods=ly)
-            tag = f"{s_:g}" if steps is None else f"{s_:g}_T{steps}"
-            if out is not None:
-                r.write(out / f"d-{tag}", plots=False)
-            n[f"motion_{tag}"] = r.motion_name
-            n[f"n_distinct_{tag}"] = (r.motion.evidence.get("n_distinct_poincare")
-                                      if r.motion is not None else None)
-            if ly:
-                n[f"lyapunov_{tag}"] = r.lyapunov.per_period if r.lyapunov else None
-            n.update(_td_numbers(r, f"td_{tag}_"))
-            seq.append(_td_data(r))
-            state = r
-    data.update(second=_td_data(b), find=_td_data(a), runs=runs, runs_t200=t200)
-    return n, data
+         "max_eccentricity": r.max_eccentricity, **td_numbers(r)}
+    return n, td_data(r)
 
 
 def _fold_curve(case: Case, config: Any, out: Path | None,
@@ -340,17 +113,6 @@ def _fold_curve(case: Case, config: Any, out: Path | None,
     for rate in case.options.get("widths_at", ()):   # widths at the paper's named rates
         n[f"width{rate:g}"] = float(f.unstable_width([rate])[0])
     return n, {"rate": grid, "width": w}
-
-
-def turning_points(result: Any) -> list[float]:
-    """Omega~ of the turning points of a response branch (``dlam/ds = 0``, located on the
-    HB equations alone, relative 1e-6 of the bracket in s, as the response's stability
-    locates its tangent saddle-nodes), in increasing order."""
-    from rotorsfd.continuation.folds import locate_branch_fold
-
-    b = result.branch
-    return sorted(locate_branch_fold(b, int(i), rtol=1e-6).lam / result.reference_speed
-                  for i in b.folds())
 
 
 def _width_sweep(case: Case, config: Any, out: Path | None,
@@ -406,7 +168,7 @@ def _chart(case: Case, config: Any, out: Path | None,
 RUNNERS: dict[str, Callable[..., tuple[dict, dict]]] = {
     "modal": _modal, "response": _response, "simulate": _simulate,
     "fold-curve": _fold_curve, "width-sweep": _width_sweep, "chart": _chart,
-    "isola": _isola}
+    "isola": run_isola}
 
 
 def run_case(case: Case, examples: Path | None = None, quick: bool = False,
@@ -440,9 +202,12 @@ def _worker_init() -> None:
 
 def run_cases(cases: Sequence[Case], *, examples: Path | None = None, quick: bool = False,
               out: Path | None = None, workers: int | None = None,
-              progress: bool = True, plots: bool = False) -> dict[str, Outcome]:
+              progress: bool = True, plots: bool = False,
+              on_outcome: Callable[[Outcome], None] | None = None) -> dict[str, Outcome]:
     """Run ``cases`` (longest first) in ``workers`` processes (default: the CPUs, at most
-    2; 1: in this process) with a tqdm bar on stderr; ``plots``: see :func:`run_case`."""
+    2; 1: in this process) with a tqdm bar on stderr; ``plots``: see :func:`run_case`;
+    ``on_outcome(outcome)`` is called in this process as each case ends (the workers
+    keep running meanwhile)."""
     from tqdm import tqdm
 
     examples = examples or examples_dir()
@@ -455,8 +220,10 @@ def run_cases(cases: Sequence[Case], *, examples: Path | None = None, quick: boo
         if workers == 1:
             for c in order:
                 bar.set_postfix_str(c.name)
-                results[c.name] = run_case(c, examples, quick, out, plots)
+                results[c.name] = o = run_case(c, examples, quick, out, plots)
                 bar.update()
+                if on_outcome is not None:
+                    on_outcome(o)
         else:
             with ProcessPoolExecutor(workers, initializer=_worker_init) as pool:
                 futures = {pool.submit(run_case, c, examples, quick, out, plots): c
@@ -466,26 +233,48 @@ def run_cases(cases: Sequence[Case], *, examples: Path | None = None, quick: boo
                     results[o.name] = o
                     bar.set_postfix_str(f"{o.name} {o.status} {o.elapsed:.0f} s")
                     bar.update()
+                    if on_outcome is not None:
+                        on_outcome(o)
     finally:
         bar.close()
     return {c.name: results[c.name] for c in cases}
 
 
-#: Rough cost per kind [CPU s] (longest first keeps both workers busy) ...
+#: Rough cost per kind [CPU s] of a case not in :data:`CASE_COST` (a calibrated case about
+#: twice its literal one: the dense modal damping takes the dense LU path) ...
 COST = {"isola": 15, "chart": 7, "width-sweep": 8, "simulate": 1.5, "fold-curve": 3,
         "response": 1.5, "modal": 1.4}
-#: ... and of the cases that cost more than their kind [CPU s, measured 2026-12-02]; a
-#: calibrated case costs about twice its literal one (dense modal damping).
-CASE_COST = {"fig21-cr0.61": 12.5, "fig21-cr0.728": 7, "fig21-cr0.485": 5.3,
-             "fig24-u144": 5.2, "fig24-u360": 4.1, "fig19-u252": 5.3, "fig19-u144": 3.4,
-             "fig17-u252-w9": 3.9, "fig17-u252-w7": 3.1, "fig17-u360-w9": 3.0,
-             "fig17-u360-w7": 2.7, "fig12-w9": 2.3, "fig12-w10": 2.3}
+#: ... and of every case of the full run [CPU s]: each case's wall time in the full run of
+#: 2026-12-03 (2 workers at load 5-8, before max_multiplier_outside was turned off) times
+#: that run's CPU / wall (682 s / 2086 s); only their order matters (longest first keeps
+#: both workers busy to the end).
+CASE_COST: dict[str, float] = {"fig23-isola": 60.6, "cal-fig24-u360": 42.9, "fig21-cr0.61":
+    34.4, "cal-fig24-u144": 22.4, "cal-fig21-cr0.61": 21.9, "fig19-u360": 18.7,
+    "fig17-u252-w6": 16.1, "fig6": 15.9, "cal-fig21-cr0.728": 15.6, "cal-fig17-u360-w9":
+    15.3, "fig21-cr0.728": 14.7, "cal-fig21-cr0.485": 14, "cal-fig17-u252-w7": 13.7,
+    "fig16-w9": 12.5, "fig17-u360-w6": 11.7, "cal-fig19-u360": 11.4, "fig24-u144": 10.8,
+    "cal-fig19-u252": 10.8, "cal-fig17-u252-w6": 10.2, "fig21-cr0.485": 10.1, "fig12-w8":
+    10.1, "fig17-u360-w0": 10, "cal-fig19-u144": 9.9, "fig16-w6": 9.3, "fig17-u252-w7": 9.2,
+    "fig16-w4": 8.8, "fig23-s1.1": 8.7, "fig23-s1.075": 8.5, "fig23-s1.05": 8.5,
+    "fig23-s1.04": 8.5, "fig23-s1.025": 8.2, "fig17-u252-w9": 8.1, "fig17-u252-w0": 7.9,
+    "fig24-u360": 7.6, "fig19-u252": 7.6, "fig16-w2": 7.1, "fig12-w10": 6.6, "fig19-u144":
+    6.3, "fig17-u360-w7": 6.1, "fig12-w9": 6.1, "fig17-u360-w9": 5.9, "fig12-w6": 5.8,
+    "fig12-w4": 5.7, "cal-fig12-w9": 5.6, "cal-fig23-s1.1": 5.4, "cal-fig23-s1.075": 5.2,
+    "cal-fig23-s1.05": 5.1, "cal-fig12-w10": 5.1, "fig10-w20": 4.6, "sens-rightm": 4.4,
+    "sens-sfdp": 4.3, "fig12-w2": 4.3, "fig12-w0": 4.2, "fig10-w10": 4.2,
+    "fig19-u144-paper-h": 4, "fig19-u252-paper-h": 3.7, "cal-fig23-s1.04": 3.6,
+    "cal-fig12-w8": 3.5, "sens-sfdm": 3.4, "sens-rightp": 3.4, "modal": 3.2,
+    "cal-fig23-s1.025": 3.2, "fig7-u360": 3.1, "cal-fig7-u360": 3.1, "fig7-u72": 3,
+    "fig10-w5": 3, "cal-fig12-w4": 2.9, "cal-fig12-w2": 2.9, "fig10-w0": 2.8, "fig7-u144":
+    2.7, "cal-fig7-u144": 2.6, "fig23-t200-s1.1": 2.4, "fig23-t200-s1.075": 2.3,
+    "fig23-t200-s1.05": 2.3, "fig23-t200-s1.04": 2.1, "fig23-t200-s1.025": 2}
 
 
 def case_cost(case: Case) -> float:
     """The expected CPU time of a case (:data:`CASE_COST`, else :data:`COST`)."""
-    base = CASE_COST.get(literal_name(case.name), COST.get(case.kind, 1.0))
-    return base * (2.0 if case.reading == "calibrated" else 1.0)
+    if case.name in CASE_COST:
+        return CASE_COST[case.name]
+    return COST.get(case.kind, 1.0) * (2.0 if case.reading == "calibrated" else 1.0)
 
 
 @dataclass
@@ -509,6 +298,53 @@ class PaperResult:
         return "\n".join(lines)
 
 
+class FigureQueue:
+    """The paper's figures drawn as their cases end: :meth:`add` each outcome; a figure
+    is drawn (PNG, 110 dpi) once every case it shows that runs has ended, with exactly
+    the outcomes it would be drawn from after the run (:func:`rotorsfd.paper.figures.draw`
+    reads only its own cases). :meth:`pngs`: the PNGs in the order of ``specs``."""
+
+    def __init__(self, specs: Sequence[Any], names: Sequence[str]) -> None:
+        from rotorsfd.paper.cases import CAL
+
+        ran = set(names)
+        self.specs = list(specs)
+        self.needs = {s.number: {n for c in s.cases for n in (c, CAL + c) if n in ran}
+                      for s in self.specs}
+        self.outcomes: dict[str, Outcome] = {}
+        self.done: dict[str, bytes | None] = {}
+
+    def add(self, outcome: Outcome) -> None:
+        """Record an outcome; draw the figures it completes."""
+        self.outcomes[outcome.name] = outcome
+        for spec in self.specs:
+            if spec.number not in self.done and self.needs[spec.number] <= set(self.outcomes):
+                self.done[spec.number] = self._png(spec)
+
+    def _png(self, spec: Any) -> bytes | None:
+        import io
+
+        from rotorsfd.paper.figures import draw
+
+        fig = draw(spec, self.outcomes)
+        if fig is None:
+            return None
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=110)
+        return buf.getvalue()
+
+    def pngs(self) -> dict[str, bytes]:
+        """Every figure (those not drawn yet now), in the order of the specs."""
+        out: dict[str, bytes] = {}
+        for spec in self.specs:
+            if spec.number not in self.done:
+                self.done[spec.number] = self._png(spec)
+            png = self.done[spec.number]
+            if png is not None:
+                out[spec.number] = png
+        return out
+
+
 def run_paper(output: str | Path, figures: Sequence[str] | None = None, *,
               quick: bool = False, workers: int | None = None, progress: bool = True,
               examples: Path | None = None, case_plots: bool = False,
@@ -517,25 +353,19 @@ def run_paper(output: str | Path, figures: Sequence[str] | None = None, *,
     settings) in the ``readings`` (literal and calibrated; see
     :mod:`rotorsfd.paper.cases`), draw the figures and write the report into ``output``;
     the cases' results files go to ``output/cases/<case>``, with each analysis' own
-    figures only if ``case_plots``."""
-    import io
-
+    figures only if ``case_plots``. Each figure is drawn as soon as its cases have ended,
+    while the workers run the others (:class:`FigureQueue`)."""
     from rotorsfd.paper.cases import select
-    from rotorsfd.paper.figures import draw
     from rotorsfd.paper.report import DIAGNOSES, write_report
 
     t0 = time.perf_counter()
     out = Path(output)
     specs, cases = select(list(figures or []), quick, tuple(readings))
+    queue = FigureQueue(specs, [c.name for c in cases])
     outcomes = run_cases(cases, examples=examples, quick=quick, out=out / "cases",
-                         workers=workers, progress=progress, plots=case_plots)
-    pngs: dict[str, bytes] = {}
-    for spec in specs:
-        fig = draw(spec, outcomes)
-        if fig is not None:
-            buf = io.BytesIO()
-            fig.savefig(buf, format="png", dpi=110)
-            pngs[spec.number] = buf.getvalue()
+                         workers=workers, progress=progress, plots=case_plots,
+                         on_outcome=queue.add)
+    pngs = queue.pngs()
     elapsed = time.perf_counter() - t0
     paths = write_report(out, outcomes, pngs, elapsed=elapsed, diagnoses=DIAGNOSES)
     return PaperResult(outcomes, paths, elapsed)

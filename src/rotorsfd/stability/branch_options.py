@@ -5,6 +5,7 @@ bifurcations."""
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 from rotorsfd.errors import ConfigError
 from rotorsfd.stability.floquet import STABILITY_TOL
@@ -51,9 +52,10 @@ class StabilityOptions:
     of the whole model for a check: ``newmark-cb`` becomes ``newmark``,
     ``generalized-alpha-cb`` ``generalized-alpha``; Hill has no full form).
     ``outside``: compute ``max_multiplier_outside`` (the modes above the Craig-Bampton
-    cut-off, one dense eigenproblem per point) at every point of the branch; the
-    bifurcation check's pieces and the located re-solves never report it and run with
-    it off (the multipliers and bifurcations are the same).
+    cut-off, one dense eigenproblem per point) at every point of the branch; off, the
+    branch has no ``max_multiplier_outside`` (None, no column written). The bifurcation
+    check's pieces and the located re-solves never report it and run with it off (the
+    multipliers and bifurcations are the same).
     """
 
     method: str = "newmark-cb"
@@ -88,6 +90,9 @@ class StabilityOptions:
                                   "'full' needs a Newmark or generalized-alpha method, not "
                                   f"{self.method!r}")
             object.__setattr__(self, "method", FULL_METHODS[self.method])
+        if self.interval_tol is not None and not self.interval_tol > 0:
+            raise ConfigError("analysis.stability.interval_tolerance", self.interval_tol,
+                              "must be > 0")
 
     @property
     def basis_label(self) -> str:
@@ -99,6 +104,16 @@ class StabilityOptions:
             return ("craig-bampton: the nonlinear DOFs plus the fixed-interface modes with "
                     + cut)
         return "full: every DOF of the model"
-        if self.interval_tol is not None and not self.interval_tol > 0:
-            raise ConfigError("analysis.stability.interval_tolerance", self.interval_tol,
-                              "must be > 0")
+
+    @classmethod
+    def from_section(cls, section: Any, **changes: Any) -> StabilityOptions:
+        """The options of an ``[analysis.stability]`` section
+        (:class:`~rotorsfd.io.schema.StabilityAnalysis`; ``interval_tol`` only with
+        ``adaptive_intervals``), ``changes`` (fields of this class) applied last."""
+        st = section
+        return cls(**{"method": st.method, "n_intervals": st.intervals, "n_modes": st.n_modes,
+                      "tol": st.tolerance, "rtol": st.locate_tolerance,
+                      "interval_tol": st.interval_tolerance if st.adaptive_intervals
+                      else None, "max_intervals": st.max_intervals,
+                      "check": st.check_bifurcations, "check_rtol": st.check_tolerance,
+                      "basis": st.basis, **changes})

@@ -46,7 +46,8 @@ class BranchStability:
     basis : what ``max_multiplier`` covers (``StabilityOptions.basis_label``).
     max_multiplier_outside : (n_points,) ``max |exp(lambda_j T)|`` of the structural modes
         above the reduced basis' cut-off, from the averaged model
-        (:mod:`rotorsfd.stability.outside`; 0 for the full basis); n_modes : (n_points,)
+        (:mod:`rotorsfd.stability.outside`; 0 for the full basis; None when not computed,
+        ``StabilityOptions(outside=False)``); n_modes : (n_points,)
         the fixed-interface modes kept (the interior DOFs for the full basis).
     """
 

@@ -332,7 +332,8 @@ def branch_stability(branch: Branch, problem: PeriodicProblem,
         multiplier_error=np.array([r.info["multiplier_error"] for r in results], float)
         if results and all("multiplier_error" in r.info for r in results) else None,
         basis=o.basis_label,
-        max_multiplier_outside=np.array([r.info.get("max_multiplier_outside", 0.0)
-                                         for r in results], dtype=float),
+        max_multiplier_outside=np.array([r.info["max_multiplier_outside"] for r in results],
+                                        dtype=float)
+        if results and all("max_multiplier_outside" in r.info for r in results) else None,
         n_modes=np.array([r.info.get("n_modes", 0) for r in results], dtype=np.int64))
 

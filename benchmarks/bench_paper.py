@@ -1,0 +1,114 @@
+"""``rotorsfd paper``: the full reproduction (76 cases, both readings) and ``--quick``,
+wall and CPU time (the command in a fresh interpreter, 2 workers, BLAS one thread).
+
+Before / after (issue 17 item 5): the code before is any other source tree, run the same
+way in turn with this one (A B A B ..., ``--before SRC``: a folder holding the package,
+e.g. ``git archive 862686d src examples | tar -x -C /tmp/base`` then ``--before
+/tmp/base/src``); without it the rows carry the figures recorded below as the reference.
+
+Recorded 2026-12-03 on the shared 2-core machine (load 5-8 from the other agents, so
+wall is about 1.6 x CPU): before (862686d) full 1107 s wall / 682 s CPU, ``--quick``
+21.2 s / 33.5 s (nothing else running; ours then 16.8 s / 26.4 s); the changes:
+no ``max_multiplier_outside`` eigenproblem per branch point (Floquet per point -30 %: a
+literal and a calibrated response branch 5.38 -> 3.53 and 3.87 -> 2.84 s CPU), every case
+ordered by its measured cost, each figure drawn as soon as its cases end (overlapping the
+pool's last cases). The after figures are in the README's "Speed" section.
+
+Not in ``python -m benchmarks --quick`` (the suite's smoke run stays under 75 s): the
+quick row needs ~10-15 s, the full one minutes. Run: ``python -m benchmarks --only paper``
+(full and quick) or ``python -m benchmarks.bench_paper [--quick] [--before SRC]``.
+"""
+
+from __future__ import annotations
+
+import os
+import resource
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from benchmarks.common import ROOT, Row
+
+#: The code before (862686d), recorded as above: mode -> (wall s, CPU s, load).
+RECORDED_BEFORE = {"full": (1107.0, 682.0, "5-8"), "quick": (21.2, 33.5, "0.6-1.1")}
+
+
+def paper_time(src: Path, quick: bool) -> tuple[float, float]:
+    """(wall, CPU of the command and its workers) [s] of ``rotorsfd paper`` run from the
+    package in ``src`` into a scratch folder."""
+    out = Path(tempfile.mkdtemp(prefix="bench_paper_"))
+    env = {**os.environ, "PYTHONPATH": str(src), "OPENBLAS_NUM_THREADS": "1"}
+    cmd = [sys.executable, "-m", "rotorsfd", "paper", "-o", str(out / "paper"), "--quiet",
+           "--workers", "2", *(["--quick"] if quick else [])]
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    try:
+        subprocess.run(cmd, cwd=ROOT, env=env, check=True, capture_output=True, text=True,
+                       timeout=3600)
+    finally:
+        shutil.rmtree(out, ignore_errors=True)
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return wall, cpu
+
+
+def run(quick: bool = False, repeat: int = 1, before: Path | None = None) -> list[Row]:
+    """Rows of ``rotorsfd paper --quick`` and of the full run, ours and (``before``) the
+    other source tree's in turn; none in the suite's smoke run (``quick``: module
+    docstring)."""
+    if quick:              # the benchmark suite's smoke run: too long for it
+        print("   paper: skipped in --quick (see benchmarks/bench_paper.py)", flush=True)
+        return []
+    rows: list[Row] = []
+    ours = ROOT / "src"
+    load = os.getloadavg()[0]
+    for mode in ("quick", "full"):
+        runs: dict[str, list[tuple[float, float]]] = {"ours": [], "before": []}
+        for _ in range(max(1, repeat)):        # interleaved: load hits both alike
+            runs["ours"].append(paper_time(ours, mode == "quick"))
+            if before is not None:
+                runs["before"].append(paper_time(before, mode == "quick"))
+        wall, cpu = (sorted(x[i] for x in runs["ours"])[len(runs["ours"]) // 2]
+                     for i in (0, 1))
+        case = f"rotorsfd paper{' --quick' if mode == 'quick' else ''}, 2 workers"
+        ref, ref_note = None, ""
+        if runs["before"]:
+            bw, bc = (sorted(x[i] for x in runs["before"])[len(runs["before"]) // 2]
+                      for i in (0, 1))
+            rows.append(Row("paper", case, "before (wall)", bw, unit="s", repeat=repeat,
+                            note=f"CPU {bc:.0f} s; {before}"))
+            ref = bw
+        elif mode in RECORDED_BEFORE:
+            bw, bc, bload = RECORDED_BEFORE[mode]
+            ref, ref_note = bw, f"; before recorded at load {bload}: {bw:.0f} s wall, " \
+                                f"{bc:.0f} s CPU"
+        rows.append(Row("paper", case, "ours (wall)", wall, unit="s", repeat=repeat,
+                        ratio=None if ref is None else wall / ref, ref="before",
+                        note=f"CPU {cpu:.0f} s, load {load:.1f} at start{ref_note}",
+                        extra={"cpu_s": cpu}))
+    return rows
+
+
+def main(argv: list[str]) -> int:
+    quick_only = "--quick" in argv
+    before = Path(argv[argv.index("--before") + 1]) if "--before" in argv else None
+    if quick_only:
+        rows = []
+        wall, cpu = paper_time(ROOT / "src", True)
+        rows.append(Row("paper", "rotorsfd paper --quick, 2 workers", "ours (wall)", wall,
+                        note=f"CPU {cpu:.0f} s"))
+    else:
+        rows = run(False, 1, before)
+    print("| case | method | wall | ratio | note |\n|---|---|---:|---:|---|")
+    for r in rows:
+        ratio = "" if r.ratio is None else f"{r.ratio:.3g}x"
+        print(f"| {r.case} | {r.method} | {r.value:.1f} s | {ratio} | {r.note} |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
