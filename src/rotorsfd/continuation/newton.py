@@ -55,7 +55,10 @@ class NewtonResult:
 def _bordered_solve(J: FloatArray, a: FloatArray, rhs: FloatArray) -> FloatArray:
     """Solve ``[J; a^T] x = rhs`` (LAPACK gesv without numpy's per-call overhead, which
     dominates for the small condensed systems; SuperLU for a scipy.sparse J, the full
-    HB of a large model); LinAlgError if exactly singular."""
+    HB of a large model; Woodbury for a sparse + low-rank J that has ``bordered_solve``,
+    :class:`rotorsfd.model.lowrank.SparseLowRank`); LinAlgError if exactly singular."""
+    if hasattr(J, "bordered_solve"):
+        return J.bordered_solve(a, rhs)
     if sp.issparse(J):
         A = sp.vstack([J, sp.csr_matrix(np.asarray(a, dtype=float)[None, :])], format="csc")
         try:
@@ -82,7 +85,9 @@ def _safe_evaluate(system: ContinuationSystem, z: FloatArray
         R, J = system.evaluate(z)
     except (FloatingPointError, np.linalg.LinAlgError, ZeroDivisionError) as err:
         return f"evaluation failed: {err}"
-    if not (np.all(np.isfinite(R)) and np.all(np.isfinite(J.data if sp.issparse(J) else J))):
+    finite = J.is_finite() if hasattr(J, "is_finite") else np.all(
+        np.isfinite(J.data if sp.issparse(J) else J))
+    if not (np.all(np.isfinite(R)) and finite):
         return "non-finite residual or Jacobian"
     return R, J
 
@@ -151,7 +156,7 @@ def tangent(J: FloatArray, t_prev: FloatArray, weights: FloatArray | None = None
         if not np.all(np.isfinite(t)):
             raise np.linalg.LinAlgError
     except np.linalg.LinAlgError:
-        if sp.issparse(J):
+        if sp.issparse(J) or hasattr(J, "bordered_solve"):
             raise
         t = np.linalg.svd(J)[2][-1]
     t = t / np.sqrt(t @ (w * t))

@@ -23,14 +23,26 @@ from rotorsfd.harmonic.fourier import (
     smallest_n_samples,
     to_real,
 )
-from rotorsfd.harmonic.full_sparse import SparseFullHB, full_hb
+from rotorsfd.harmonic.full_sparse import full_hb
 from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.harmonic.residual import FullHB, nonlinear_coefficients
+from rotorsfd.model.lowrank import SparseLowRank
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
 
-__all__ = ["HBSystem", "hb_system", "initial_guess"]
+__all__ = ["HBSystem", "hb_system", "initial_guess", "stiffness_diagonal"]
+
+
+def stiffness_diagonal(problem: PeriodicProblem, lam: float) -> FloatArray:
+    """``K_ii(lam)`` of the problem's linear part: from band storage when the part has
+    ``stiffness_diagonal`` (:class:`~rotorsfd.model.sparse.BandedLinearPart`: no n x n
+    array), else the diagonal of its (dense) K."""
+    part = problem.matrices
+    if hasattr(part, "stiffness_diagonal"):
+        return np.asarray(part.stiffness_diagonal(lam), dtype=float)
+    K = part(lam)[2]
+    return np.asarray(K.diagonal() if sp.issparse(K) else np.diag(K), dtype=float)
 
 
 class HBSystem:
@@ -48,9 +60,7 @@ class HBSystem:
             self.cx = np.tile(c[problem.nl_dofs], 2 * H + 1)
             self.cr = self.cx
         else:
-            kappa = np.abs(problem.matrices.sparse(lam_ref)[2].diagonal()
-                           if isinstance(self.hb, SparseFullHB)
-                           else np.diag(problem.matrices(lam_ref)[2]))
+            kappa = np.abs(stiffness_diagonal(problem, lam_ref))
             pos = kappa[kappa > 0]
             kappa = np.where(kappa > 0, kappa, pos.mean() if pos.size else 1.0)
             self.cx = np.tile(c, 2 * H + 1)
@@ -73,6 +83,9 @@ class HBSystem:
     def evaluate(self, z: FloatArray) -> tuple[FloatArray, FloatArray]:
         x, lam = self.from_z(z)
         R, J, dR = self.hb.residual(x, lam, jac=True)
+        if isinstance(J, SparseLowRank):   # the sparse full HB with a low-rank damping
+            return R.ravel() / self.cr, J.scaled(1.0 / self.cr, self.cx).with_column(
+                dR * (self.lam_scale / self.cr))
         if sp.issparse(J):     # the sparse full HB: CSR [dR/dx, dR/dlam] scaled
             Jx = sp.diags(1.0 / self.cr) @ J @ sp.diags(self.cx)
             col = sp.csr_matrix((dR * (self.lam_scale / self.cr))[:, None])
@@ -92,6 +105,10 @@ class HBSystem:
     # results -------------------------------------------------------------------------------
     def physical_jacobian(self, z: FloatArray, Jz: FloatArray) -> FloatArray:
         """[dR/dx, dR/dlam] in physical units (condensed: Schur form) at a solution z."""
+        if isinstance(Jz, SparseLowRank):
+            J, dR = Jz.without_last_column()
+            return J.scaled(self.cr, 1.0 / self.cx).with_column(
+                dR * (self.cr / self.lam_scale))
         if sp.issparse(Jz):
             Jz = sp.csr_matrix(Jz)
             J = sp.diags(self.cr) @ Jz[:, :-1] @ sp.diags(1.0 / self.cx)

@@ -72,12 +72,15 @@ class ModalDamping:
         else:
             import scipy.sparse.linalg as spla
 
+            from rotorsfd.model.sparse import lanczos_start
+
             m = sp.csc_matrix(mass, dtype=float)
             k = sp.csc_matrix(0.5 * (stiffness + stiffness.T), dtype=float)
             # shift below zero: a free rotor's rigid-body modes keep K singular
             scale = float(abs(k.diagonal()).max() / max(abs(m.diagonal()).max(), 1e-300))
             r = min(self.modes, n - 2)
-            w2, phi = spla.eigsh(k, k=r, M=m, sigma=-1e-9 * scale, which="LM")
+            w2, phi = spla.eigsh(k, k=r, M=m, sigma=-1e-9 * scale, which="LM",
+                                 v0=lanczos_start(n))     # the same factors every call
             order = np.argsort(w2)
             w2, phi = w2[order], phi[:, order]
             u = m @ phi

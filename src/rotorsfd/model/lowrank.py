@@ -101,6 +101,88 @@ class BandedLowRank:
         return self.band.diagonal() + np.einsum("ij,j,ij->i", self.U, self.c, self.U)
 
 
+class SparseLowRank:
+    """A (p, q) matrix ``A = S + L R^T``: ``S`` CSR, ``L`` (p, r), ``R`` (q, r) dense, r
+    small. The Jacobian of the full-model HB residual with a low-rank damping term
+    (:class:`rotorsfd.harmonic.full_sparse.SparseFullHB`): S keeps the band, the modal term
+    stays in the factors. The bordered Newton system ``[A; a^T] x = b`` is solved by
+    Woodbury from one sparse LU of ``A_b = [S; a^T]``::
+
+        Y = A_b^-1 [L; 0],  y = A_b^-1 b,  x = y - Y (I + R^T Y)^-1 (R^T y)
+    """
+
+    def __init__(self, S: Any, L: np.ndarray, R: np.ndarray) -> None:
+        self.S = sp.csr_matrix(S, dtype=float)
+        self.L = np.asarray(L, dtype=float)
+        self.R = np.asarray(R, dtype=float)
+        p, q = self.S.shape
+        if self.L.shape[0] != p or self.R.shape[0] != q or self.L.shape[1] != self.R.shape[1]:
+            raise ValueError(f"L {self.L.shape} and R {self.R.shape} do not match S "
+                             f"{self.S.shape}")
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return self.S.shape
+
+    @property
+    def ndim(self) -> int:
+        return 2
+
+    def is_finite(self) -> bool:
+        """Whether every stored entry is finite."""
+        return bool(np.all(np.isfinite(self.S.data)) and np.all(np.isfinite(self.L))
+                    and np.all(np.isfinite(self.R)))
+
+    def __matmul__(self, x: Any) -> np.ndarray:
+        x = np.asarray(x)
+        return self.S @ x + self.L @ (self.R.T @ x)
+
+    def toarray(self) -> np.ndarray:
+        """The dense matrix (small problems and the tests only)."""
+        return self.S.toarray() + self.L @ self.R.T
+
+    def __array__(self, dtype: Any = None, copy: Any = None) -> np.ndarray:
+        out = self.toarray()
+        return out if dtype is None else out.astype(dtype)
+
+    def scaled(self, rows: np.ndarray, cols: np.ndarray) -> SparseLowRank:
+        """``diag(rows) A diag(cols)``."""
+        rows, cols = np.asarray(rows, float), np.asarray(cols, float)
+        return SparseLowRank(sp.diags(rows) @ self.S @ sp.diags(cols),
+                             rows[:, None] * self.L, cols[:, None] * self.R)
+
+    def with_column(self, col: np.ndarray) -> SparseLowRank:
+        """``[A, col]`` (p, q + 1): the column beside S, a zero row under R."""
+        col = np.asarray(col, dtype=float).reshape(-1, 1)
+        return SparseLowRank(sp.hstack([self.S, sp.csr_matrix(col)], format="csr"), self.L,
+                             np.vstack([self.R, np.zeros((1, self.R.shape[1]))]))
+
+    def without_last_column(self) -> tuple[SparseLowRank, np.ndarray]:
+        """(A[:, :-1], A[:, -1] dense)."""
+        last = self.S[:, -1].toarray().ravel() + self.L @ self.R[-1]
+        return SparseLowRank(self.S[:, :-1], self.L, self.R[:-1]), last
+
+    def bordered_solve(self, a: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+        """``x`` of ``[A; a^T] x = rhs`` (A square plus one column; class docstring);
+        LinAlgError if the sparse part's bordered matrix is exactly singular."""
+        import scipy.sparse.linalg as spla
+
+        Ab = sp.vstack([self.S, sp.csr_matrix(np.asarray(a, dtype=float)[None, :])],
+                       format="csc")
+        try:
+            lu = spla.splu(Ab)
+        except RuntimeError as err:          # SuperLU: "Factor is exactly singular"
+            raise np.linalg.LinAlgError(str(err)) from err
+        rhs = np.asarray(rhs, dtype=float)
+        r = self.L.shape[1]
+        Lp = np.vstack([self.L, np.zeros((1, r))])
+        sol = lu.solve(np.column_stack([Lp, rhs.reshape(rhs.shape[0], -1)]))
+        Y, y = sol[:, :r], sol[:, r:]
+        cap = np.eye(r) + self.R.T @ Y
+        x = y - Y @ np.linalg.solve(cap, self.R.T @ y)
+        return x.reshape(rhs.shape)
+
+
 def with_lowrank(band: Any, lowrank: tuple[np.ndarray, np.ndarray] | None) -> Any:
     """``band`` itself without a low-rank term, else :class:`BandedLowRank`."""
     return band if lowrank is None else BandedLowRank(band, *lowrank)
@@ -118,10 +200,11 @@ def project(D: Any, psi: np.ndarray) -> np.ndarray:
 
 
 def dense(a: Any) -> np.ndarray:
-    """``a`` (dense, sparse or :class:`BandedLowRank`) as a dense float array."""
-    if isinstance(a, BandedLowRank) or sp.issparse(a):
+    """``a`` (dense, sparse, :class:`BandedLowRank` or :class:`SparseLowRank`) as a dense
+    float array."""
+    if isinstance(a, BandedLowRank | SparseLowRank) or sp.issparse(a):
         return a.toarray()
     return np.asarray(a, dtype=float)
 
 
-__all__ = ["BandedLowRank", "dense", "project", "with_lowrank"]
+__all__ = ["BandedLowRank", "SparseLowRank", "dense", "project", "with_lowrank"]

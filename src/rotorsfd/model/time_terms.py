@@ -6,8 +6,9 @@ SecondOrderSystem` (what :meth:`rotorsfd.model.system.RotorSystem.second_order` 
 A constant base (and no unbalance that starts later: a sudden unbalance is a series load)
 gives constant matrices ``matrices(speed)`` (above
 :data:`~rotorsfd.model.sparse.DENSE_MAX_DOF` DOFs ``split_matrices(speed)``: CSR, a modal
-damping of a few modes as :class:`~rotorsfd.model.lowrank.BandedLowRank`, no dense n x n
-array; the full step densifies them, the reduced step projects them), the constant load
+damping of a few modes as :class:`~rotorsfd.model.lowrank.BandedLowRank`, the record's
+``gyroscopic`` G as CSR, no dense n x n array; the full step densifies them, the reduced
+step projects them), the constant load
 ``static_force(speed)`` and the unbalance harmonics at Omega; a harmonic, callable, pulse
 or recorded base gives the base terms as time-varying matrices and series loads
 (:func:`~rotorsfd.model.base_terms.time_varying_terms`,
@@ -90,17 +91,17 @@ def second_order_system(system: Any, speed: float, *,
         split = getattr(system, "split_matrices", None)
         if split is not None and system.n_dof > DENSE_MAX_DOF:
             M, D, K = split(speed)       # CSR, a modal damping as banded + low-rank
+            G = r.G_csr if hasattr(r, "G_csr") else r.G   # dD/dOmega CSR too: no n x n
         else:
             M, D, K = system.matrices(speed)
+            G = r.G
         Fc, Fs = unbalance_harmonics(own, r, speed, system.constant_base_state())
         harm = ([HarmonicLoad(1.0, Fc, Fs)] if own else []) + [
             HarmonicLoad(k, fc, fs) for k, fc, fs in other_spool_harmonics(
                 r, system.unbalances, speed)]
         forcing = Forcing(omega=speed, constant=system.static_force(speed), harmonics=harm)
-        banded = banded_rotor_terms(r)
         return SecondOrderSystem(M, D.copy(), K.copy(), nl, kernel, params, forcing, None,
-                                 float(speed), el,
-                                 gyroscopic=r.G if banded is None else banded[3])
+                                 float(speed), el, gyroscopic=G)
     from rotorsfd.model.base_terms import time_varying_terms
     from rotorsfd.model.unbalance import unbalance_series
 

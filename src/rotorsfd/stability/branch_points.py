@@ -99,7 +99,7 @@ def bordered_test(system: Any, z: FloatArray, t: FloatArray, sign_only: bool = F
     """``sign(det A) sigma_min(A)``, ``A = [J(z); (W t)^T]`` (module docstring): changes
     sign at a branch point, not at a fold; ``sign_only``: ``sign(det A)`` (no SVD)."""
     _, J = system.evaluate(z)
-    if sp.issparse(J):
+    if sp.issparse(J) or hasattr(J, "toarray"):   # CSR or sparse + low-rank
         if J.shape[0] > MAX_DENSE:
             raise ValueError(f"bordered test: {J.shape[0]} unknowns, more than {MAX_DENSE}")
         J = J.toarray()
@@ -172,17 +172,16 @@ def second_tangent(system: HBSystem, z: FloatArray, t1: FloatArray, h: float = F
     the branching coefficients (a11, a12, a22) (module docstring)."""
     W = metric(system)
     _, J = system.evaluate(z)
-    J = J.toarray() if sp.issparse(J) else J
+    J = J.toarray() if hasattr(J, "toarray") else J
     U, _, Vt = np.linalg.svd(J[:, :-1])
     psi, v = U[:, -1], Vt[-1]
     e = np.append(v, 0.0)
     t1 = t1 / np.sqrt(t1 @ (W * t1))
 
     def d2(u: FloatArray) -> FloatArray:     # R''[u, .] as a matrix (n, n+1)
-        Jp = system.evaluate(z + h * u)[1]
-        Jm = system.evaluate(z - h * u)[1]
-        D = (Jp - Jm) / (2 * h)
-        return D.toarray() if sp.issparse(D) else D
+        Jp, Jm = (system.evaluate(z + sgn * h * u)[1] for sgn in (1.0, -1.0))
+        Jp, Jm = (a.toarray() if hasattr(a, "toarray") else a for a in (Jp, Jm))
+        return (Jp - Jm) / (2 * h)
 
     D1, De = d2(t1), d2(e)
     a11 = float(psi @ (D1 @ t1))

@@ -130,8 +130,11 @@ class FixedInterfaceBasis:
         return same(M, self.M) and same(K, self.K)
 
     def _lowest(self, n_modes: int | None, omega_max: float | None) -> None:
-        """Sparse: make sure the modes asked for are computed (module docstring)."""
+        """Sparse: make sure the modes asked for are computed (module docstring; a fixed
+        start vector, so the same modes bit for bit on every call)."""
         import scipy.sparse.linalg as spla
+
+        from rotorsfd.model.sparse import lanczos_start
 
         ni = self.i.size
         while not self._complete:
@@ -145,7 +148,8 @@ class FixedInterfaceBasis:
                 w2, modes = sla.eigh(self._Ks.toarray(), self._Ms.toarray())
                 self._complete = True
             else:
-                w2, modes = spla.eigsh(self._Ks, k=k, M=self._Ms, sigma=0.0, which="LM")
+                w2, modes = spla.eigsh(self._Ks, k=k, M=self._Ms, sigma=0.0, which="LM",
+                                       v0=lanczos_start(ni))
                 order = np.argsort(w2)
                 w2, modes = w2[order], modes[:, order]
             self.omegas = np.sqrt(np.clip(w2, 0.0, None))
