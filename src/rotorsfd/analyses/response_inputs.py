@@ -84,13 +84,7 @@ def stability_settings(section: StabilityAnalysis,
         return given
     if given is False or (given is None and not section.enabled):
         return None
-    st = section
-    return StabilityOptions(method=st.method, n_intervals=st.intervals, n_modes=st.n_modes,
-                            tol=st.tolerance, rtol=st.locate_tolerance,
-                            interval_tol=st.interval_tolerance if st.adaptive_intervals
-                            else None, max_intervals=st.max_intervals,
-                            check=st.check_bifurcations, check_rtol=st.check_tolerance,
-                            basis=st.basis)
+    return StabilityOptions.from_section(section)
 
 
 @dataclass(frozen=True)
