@@ -11,11 +11,11 @@ levels per coordinate) over the ``m`` nonlinear DOFs' states:
 The other DOFs follow quasi-statically, ``q_o = -K_oo^-1 K_on q_n`` (same for ``v``), so
 a start does not load the shaft with an arbitrary elastic strain.
 
-Each start is integrated in chunks of ``check_periods`` rotor periods
-(:func:`~rotorsfd.analyses.td_integration.integrate_periods`, one fixed step
-``T / steps_per_period``); after each chunk the Poincare points ``P_k`` (the nonlinear
-DOFs' displacements at ``t = t0 + k T`` over ``c_i``) are tested for a period-n orbit,
-the smallest ``n <= n_max`` with
+Each start is integrated in chunks of ``check_periods`` rotor periods (one fixed step
+``T / steps_per_period``, prepared once per batch of starts and its state carried from
+chunk to chunk: :mod:`~rotorsfd.analyses.attractors_step`); after each chunk the
+Poincare points ``P_k`` (the nonlinear DOFs' displacements at ``t = k T`` over ``c_i``)
+are tested for a period-n orbit, the smallest ``n <= n_max`` with
 
     max_{k in last repeats * n} |P_{k+n} - P_k|_inf <= settle_tol,
 
