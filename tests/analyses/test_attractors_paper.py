@@ -49,3 +49,49 @@ def test_bad_option_is_one_line_exit_2(tmp_path, capsys):
     assert status == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--sampling" in err[0] and "lhs or grid" in err[0]
+
+
+def test_prepared_step_against_integrate_periods():
+    """The census's stepping (prepared once, the reduced state carried over check chunks
+    of 10 periods) against one integrate_periods run of the same 30 periods from the same
+    start (chunks of one period, restarted from the projected physical state): the same
+    scheme and step, so the Poincare points, the recorded last periods and the final state
+    agree to rounding (1e-9 C), far below settle_tol (1e-4 C)."""
+    from rotorsfd.analyses.attractors import (
+        CensusOptions,
+        start_states,
+        stepper_of,
+        unit_samples,
+    )
+    from rotorsfd.analyses.attractors_config import census_model
+    from rotorsfd.analyses.context import build, config_context
+    from rotorsfd.analyses.td_integration import integrate_periods
+    from rotorsfd.io.config import load_config
+
+    config = load_config(CONFIG)
+    system = build(config, CONFIG.parent)
+    ref = config_context(config, system, "simulate", search_path=CONFIG.parent
+                         ).reference(system)
+    model = census_model(system, 1.075 * ref, reduction="auto", reference_speed=ref)
+    assert model.inputs.reduction is not None      # the reduced step is what is checked
+    o = CensusOptions(n_starts=4, steps_per_period=800).validate().resolved()
+    _, q0, v0 = start_states(model, unit_samples(4, 2 * model.nl_dofs.size), o)
+    st = stepper_of(model, o)
+    state = st.start(q0[1], v0[1])
+    chunks = [st.advance(state, 10, 8) for _ in range(3)]
+    P = np.concatenate([c.pq for c in chunks]) / model.scale
+    traj = integrate_periods(model.inputs, q0[1], v0[1], steps_per_period=800, periods=30,
+                             record_dofs=model.nl_dofs, record_periods=8,
+                             poincare_periods=30, chunk_periods=1)
+    P_ref = traj.poincare_q[traj.poincare_t > 0.5 * model.inputs.period] / model.scale
+    assert P.shape == P_ref.shape == (30, 2)
+    assert np.max(np.abs(P - P_ref)) < 1e-9
+    # the transient still moves by far more than that: the comparison could fail
+    assert np.max(np.abs(P[-1] - P[0])) > 1e-3
+    assert chunks[-1].t == pytest.approx(traj.t, abs=1e-12)
+    assert np.max(np.abs(chunks[-1].q - traj.q) / model.scale) < 1e-9
+    q, v, t = st.final(state)
+    assert t == pytest.approx(traj.t_final, rel=1e-14)
+    nl = model.nl_dofs
+    assert np.max(np.abs(q[nl] - traj.q_final[nl]) / model.scale) < 1e-9
+    assert np.max(np.abs(v[nl] - traj.v_final[nl]) / (model.scale * model.speed)) < 1e-9

@@ -11,11 +11,11 @@ levels per coordinate) over the ``m`` nonlinear DOFs' states:
 The other DOFs follow quasi-statically, ``q_o = -K_oo^-1 K_on q_n`` (same for ``v``), so
 a start does not load the shaft with an arbitrary elastic strain.
 
-Each start is integrated in chunks of ``check_periods`` rotor periods
-(:func:`~rotorsfd.analyses.td_integration.integrate_periods`, one fixed step
-``T / steps_per_period``); after each chunk the Poincare points ``P_k`` (the nonlinear
-DOFs' displacements at ``t = t0 + k T`` over ``c_i``) are tested for a period-n orbit,
-the smallest ``n <= n_max`` with
+Each start is integrated in chunks of ``check_periods`` rotor periods (one fixed step
+``T / steps_per_period``, prepared once per batch of starts and its state carried from
+chunk to chunk: :mod:`~rotorsfd.analyses.attractors_step`); after each chunk the
+Poincare points ``P_k`` (the nonlinear DOFs' displacements at ``t = k T`` over ``c_i``)
+are tested for a period-n orbit, the smallest ``n <= n_max`` with
 
     max_{k in last repeats * n} |P_{k+n} - P_k|_inf <= settle_tol,
 
@@ -47,6 +47,7 @@ from typing import Any
 
 import numpy as np
 
+from rotorsfd.analyses.attractors_step import StartStepper
 from rotorsfd.analyses.td_integration import TimeDomainInputs, integrate_periods
 from rotorsfd.errors import ConfigError, ConvergenceError, ElementDomainError
 from rotorsfd.model.lowrank import dense
@@ -281,43 +282,49 @@ def _chunk(inputs: TimeDomainInputs, q: np.ndarray, v: np.ndarray, t0: float, sp
                              poincare_periods=periods, t0=t0, chunk_periods=periods)
 
 
-def _ecc(traj: Any) -> dict[str, float]:
+def _ecc(chunk: Any) -> dict[str, float]:
     return {k.removeprefix("eps_max_"): float(v) for k, v in
-            traj.element_diagnostics.items() if k.startswith("eps_max")}
+            chunk.element_diagnostics.items() if k.startswith("eps_max")}
+
+
+def stepper_of(model: CensusModel, options: CensusOptions) -> StartStepper:
+    """The step of the census starts, prepared once (:mod:`.attractors_step`)."""
+    o = options
+    return StartStepper(model.inputs, o.steps_per_period or DEFAULT_STEPS,
+                        o.max_periods + o.classify_periods)
 
 
 def run_start(model: CensusModel, index: int, q0: np.ndarray, v0: np.ndarray,
               options: CensusOptions,
-              known: Sequence[tuple[int, int, np.ndarray]] = ()) -> StartOutcome:
+              known: Sequence[tuple[int, int, np.ndarray]] = (),
+              stepper: StartStepper | None = None) -> StartOutcome:
     """Integrate one start until it settles or is captured by a ``known`` orbit
-    (``(start, n, cycle points)``, module docstring)."""
+    (``(start, n, cycle points)``, module docstring); ``stepper``: the prepared step
+    (:func:`stepper_of`, built here if None)."""
     o = options
-    inputs, spp, T = model.inputs, o.steps_per_period, model.inputs.period
-    q, v, t = np.asarray(q0, float), np.asarray(v0, float), 0.0
+    st = stepper if stepper is not None else stepper_of(model, o)
+    T = model.inputs.period
     pts: list[np.ndarray] = []
     done = 0
     try:
+        state = st.start(np.asarray(q0, float), np.asarray(v0, float))
         while done < o.max_periods:
             k = min(o.check_periods, o.max_periods - done)
-            traj = _chunk(inputs, q, v, t, spp, k, min(k, o.n_max))
-            keep = traj.poincare_t > t + 0.5 * T
-            pts.append(traj.poincare_q[keep] / model.scale)
-            q, v, t = traj.q_final, traj.v_final, traj.t_final
+            ch = st.advance(state, k, min(k, o.n_max))
+            pts.append(ch.pq / model.scale)
+            t = st.time(state)
             done += k
             P = np.concatenate(pts)
             n = settled(P, o)
-            if n is not None:
-                sel = traj.t > t - n * T * (1 + 1e-9)
-                return StartOutcome(index, f"period-{n}", n, done, P[-n:], traj.t[sel],
-                                    traj.q[sel], _ecc(traj), final=(q, v, t))
-            j = captured(P, known, o) if known else None
+            j = None if n is not None or not known else captured(P, known, o)
             if j is not None:
                 n = next(k for i, k, _ in known if i == j)
-                sel = traj.t > t - n * T * (1 + 1e-9)
-                return StartOutcome(index, f"period-{n}", n, done, P[-n:], traj.t[sel],
-                                    traj.q[sel], _ecc(traj),
-                                    f"captured by the orbit of start {j}", (q, v, t))
-        traj = _chunk(inputs, q, v, t, spp, o.classify_periods, o.classify_periods)
+            if n is not None:
+                sel = ch.t > t - n * T * (1 + 1e-9)
+                return StartOutcome(index, f"period-{n}", n, done, P[-n:], ch.t[sel],
+                                    ch.q[sel], _ecc(ch), "" if j is None else
+                                    f"captured by the orbit of start {j}", st.final(state))
+        ch = st.advance(state, o.classify_periods, o.classify_periods)
     except ElementDomainError as exc:
         P = np.concatenate(pts) if pts else np.zeros((0, model.nl_dofs.size))
         return StartOutcome(index, "contact", None, done, P[-1:], note=" ".join(
@@ -328,20 +335,17 @@ def run_start(model: CensusModel, index: int, q0: np.ndarray, v0: np.ndarray,
                             note=" ".join(str(exc).split())[:200])
     from rotorsfd.analyses.simulate import classify
 
-    keep = traj.poincare_t > t + 0.5 * T
-    P = traj.poincare_q[keep] / model.scale
-    mc = classify(traj.poincare_q[keep], traj.poincare_v[keep], traj.q, traj.v, T / spp,
-                  model.speed)
+    P = ch.pq / model.scale
+    mc = classify(ch.pq, ch.pv, ch.q, ch.v, T / st.spp, model.speed)
     motion = mc.motion if mc is not None else "chaotic"
     n = mc.period if mc is not None else None
     done += o.classify_periods
+    final = st.final(state)
     if n is not None:
-        sel = traj.t > traj.t_final - n * T * (1 + 1e-9)
-        return StartOutcome(index, motion, n, done, P[-n:], traj.t[sel], traj.q[sel],
-                            _ecc(traj), "settled only by the classifier's tolerance",
-                            (traj.q_final, traj.v_final, traj.t_final))
-    return StartOutcome(index, motion, None, done, P, eccentricity=_ecc(traj),
-                        final=(traj.q_final, traj.v_final, traj.t_final))
+        sel = ch.t > final[2] - n * T * (1 + 1e-9)
+        return StartOutcome(index, motion, n, done, P[-n:], ch.t[sel], ch.q[sel],
+                            _ecc(ch), "settled only by the classifier's tolerance", final)
+    return StartOutcome(index, motion, None, done, P, eccentricity=_ecc(ch), final=final)
 
 
 def step_check(model: CensusModel, outcome: StartOutcome, options: CensusOptions
@@ -369,9 +373,10 @@ def run_batch(model: CensusModel, indices: np.ndarray, q0: np.ndarray, v0: np.nd
     each captured by the orbits the earlier ones settled on (module docstring)."""
     known: list[tuple[int, int, np.ndarray]] = []
     out = []
+    stepper = stepper_of(model, options)
     for i, q, v in zip(indices, q0, v0, strict=True):
         tic = time.process_time()
-        r = run_start(model, int(i), q, v, options, known)
+        r = run_start(model, int(i), q, v, options, known, stepper)
         r.cpu = time.process_time() - tic
         if r.period is not None and not r.note:        # settled by the test itself
             if not any(_near(r.points, c, options.cluster_tol) for _, _, c in known):
@@ -388,14 +393,26 @@ def _near(points: np.ndarray, cycle: np.ndarray, tol: float) -> bool:
         float(np.min(np.max(np.abs(cycle - p), axis=1))) <= tol for p in points)
 
 
+def preload_workers() -> None:
+    """Have the forkserver import this module before it forks a process pool's workers:
+    each then starts with numpy, numba and the step loaded (about 1.5 s CPU per worker
+    otherwise). No effect once the forkserver runs, or without one."""
+    import multiprocessing
+
+    if "forkserver" in multiprocessing.get_all_start_methods():
+        multiprocessing.get_context("forkserver").set_forkserver_preload(
+            ["__main__", __name__])
+
+
 def run_starts(model: CensusModel, q0: np.ndarray, v0: np.ndarray, options: CensusOptions,
                executor: Any = None, progress: Any = None) -> list[StartOutcome]:
     """:func:`run_start` of every row, on ``executor`` (a
     :func:`~rotorsfd.studies.executors.make_executor`; None: in this process)."""
     if executor is None:
         return run_batch(model, np.arange(q0.shape[0]), q0, v0, options, progress)
-    # the workers get the integrator inputs only (the HB problem holds closures), in
-    # batches of starts (four per worker), so each pickles the inputs a few times
+    # the workers get the integrator inputs only (the HB problem holds closures, 0.3 MB
+    # pickled in 4 ms), in batches of starts (four per worker)
+    preload_workers()
     lite = executor.share(replace(model, problem=None))
     n = q0.shape[0]
     batches = np.array_split(np.arange(n), min(n, 4 * max(1, executor.workers)))
