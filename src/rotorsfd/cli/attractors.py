@@ -36,6 +36,27 @@ def check_attractors(args: argparse.Namespace, config: Any) -> None:
     if args.sampling not in ("lhs", "grid"):
         raise ConfigError("--sampling", args.sampling, "lhs or grid")
     census_options(args)
+    if args.branches:
+        check_branch_range(args, config)
+
+
+def check_branch_range(args: argparse.Namespace, config: Any) -> None:
+    """``--branches``: the census speeds inside ``[analysis.response] speed_range`` where
+    both are in one form (ratios, or rad/s) before the work."""
+    rng = config.analysis.response.speed_range
+    if args.speed_ratio is not None and rng.start_ratio is not None:
+        lo, hi, first = rng.start_ratio, rng.stop_ratio, [args.speed_ratio]
+    elif args.speed is not None and rng.start is not None:
+        lo, hi, first = rng.start, rng.stop, [args.speed]
+    else:
+        return
+    speeds = first + ([args.to] if args.to is not None else [])
+    lo, hi = sorted((lo, hi))
+    for x in speeds:
+        if not lo < x < hi:
+            raise ConfigError("--branches", x, f"the census speeds must lie inside "
+                              f"analysis.response.speed_range ({lo:g}, {hi:g}), where "
+                              f"the branches are traced")
 
 
 OPTION_OF = {"n_starts": "--starts", "displacement_fraction": "--fraction",
@@ -63,7 +84,9 @@ def census_options(args: argparse.Namespace) -> Any:
          "initial states of the nonlinear elements (stopped once settled), classified, "
          "grouped into attractors by their Poincare points, each periodic one corrected "
          "by HB with its Floquet stability: attractors.csv (basin fractions), starts.csv, "
-         "summary.json, basins.png; over --speed-ratio A --to B --stride S one table "
+         "summary.json, basins.png; with --branches each period-1 attractor's branch "
+         "continued both ways in the speed (attractor_branches.csv, branch_motion<k>.csv, "
+         "attractor_branches.png); over --speed-ratio A --to B --stride S one table "
          "with a speed column", output=True, quiet=True,
          arguments=[arg("--speed", type=options.positive_speed, metavar="SPEED",
                         help="rotor speed, e.g. 850 or '8000 rpm' (rad/s if no unit)"),
@@ -96,6 +119,10 @@ def census_options(args: argparse.Namespace) -> Any:
                              "harmonics if an integer, else 8; doubled if Newton fails)"),
                     arg("--seed", type=options.integer(0), default=0, metavar="N",
                         help="seed of the Latin hypercube"),
+                    arg("--branches", action="store_true",
+                        help="trace each period-1 attractor's branch both ways within "
+                             "[analysis.response] speed_range, with the stability of "
+                             "[analysis.stability] (the isolas among them)"),
                     arg("--workers", type=options.integer(1), metavar="N",
                         help="processes (default: the available CPUs)")],
          check=check_attractors)
@@ -112,4 +139,9 @@ def attractors(args: argparse.Namespace, config: Any) -> int:
                             search_path=Path(args.config).parent, options=opts,
                             executor=ex)
     print_written(result, result.write(args.output), args.quiet, args.verbose)
+    if args.branches:
+        from rotorsfd.analyses.attractor_branches import run_attractor_branches
+
+        traced = run_attractor_branches(config, result, search_path=Path(args.config).parent)
+        print_written(traced, traced.write(args.output), args.quiet, args.verbose)
     return 0

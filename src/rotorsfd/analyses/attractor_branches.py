@@ -1,0 +1,255 @@
+"""The branches of a census' periodic attractors: each period-1 attractor's HB-corrected
+orbit continued both ways in the rotor speed (the ``--from-orbit`` algorithm,
+:func:`~rotorsfd.harmonic.orbit_branch.continue_both_ways`: it stops when the branch
+closes on itself, an isola), with its Floquet stability.
+
+Attractors on one branch (two stable parts of an S-curve between its folds) are traced
+once: the branch of attractor ``i`` is crossed at the census speed ``Omega_c`` between
+points ``j, j + 1`` (``lam_j <= Omega_c <= lam_{j+1}`` or reverse); there the HB
+equations are solved at ``Omega_c`` from the coefficients interpolated linearly in lam,
+and the solution compared with attractor ``k``'s on the nonlinear DOFs,
+``max |X_i(Omega_c) - X_k| / c <`` :data:`SAME_TOL` on the length scales ``c``: then
+``k`` is ``on_branch_of`` ``i``. Period-n attractors (n > 1) are not traced (the branch of
+a period-n orbit in the speed needs the subharmonic problem's continuation: not yet).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from rotorsfd.analyses.attractors_result import AttractorCensus
+from rotorsfd.continuation.branch import Branch
+from rotorsfd.errors import ConfigError, ConvergenceError
+from rotorsfd.harmonic.problem import PeriodicProblem
+
+__all__ = ["SAME_TOL", "AttractorBranch", "trace_attractor_branches"]
+
+SAME_TOL = 1e-3
+"""Largest coefficient difference (length scales) of one orbit seen on another's branch:
+two Newton solutions of one orbit differ by the solver's tolerance (1e-6 scaled, more at a
+poorly conditioned unstable orbit), distinct orbits at one speed by O(0.1)."""
+
+
+@dataclass
+class AttractorBranch:
+    """The branch of census attractor ``attractor`` (None and ``note`` if not traced),
+    ``closed`` an isola, ``stable`` per point (None: stability off), ``on_branch_of`` the
+    attractor whose branch it lies on (itself when traced)."""
+
+    attractor: int
+    on_branch_of: int
+    branch: Branch | None = None
+    closed: bool = False
+    stable: np.ndarray | None = None
+    max_multiplier: np.ndarray | None = None
+    note: str = ""
+    info: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def traced(self) -> bool:
+        return self.branch is not None and self.on_branch_of == self.attractor
+
+    def speed_range(self) -> tuple[float, float] | None:
+        if self.branch is None:
+            return None
+        return float(self.branch.lam.min()), float(self.branch.lam.max())
+
+
+def crossings(problem: PeriodicProblem, branch: Branch, speed: float) -> list[np.ndarray]:
+    """The HB solutions ``X`` (H+1, n_dof) where ``branch`` crosses ``speed``: Newton at
+    that speed from the coefficients interpolated linearly in lam between the two points
+    around each crossing (module docstring); a crossing whose Newton fails is left out."""
+    from rotorsfd.harmonic.periodic import solve_periodic
+
+    lam = branch.lam
+    out = []
+    for j in range(lam.size - 1):
+        a, b = lam[j] - speed, lam[j + 1] - speed
+        if a == 0.0 or a * b < 0.0:
+            w = 0.0 if a == 0.0 else a / (a - b)
+            X0 = (1 - w) * branch.X[j] + w * branch.X[j + 1]
+            try:
+                out.append(solve_periodic(problem, speed, branch.H, X0,
+                                          condensed=branch.condensed).X)
+            except ConvergenceError:
+                continue
+    return out
+
+
+def on_branch(problem: PeriodicProblem, branch: Branch, speed: float, X: np.ndarray,
+              tol: float = SAME_TOL) -> bool:
+    """Whether the orbit ``X`` (H+1, n_dof) at ``speed`` lies on ``branch``: one of its
+    :func:`crossings` within ``tol`` length scales on the nonlinear DOFs."""
+    dofs = np.asarray(problem.nl_dofs, dtype=np.int64)
+    scale = np.asarray(problem.dof_scale, float)[dofs]
+    H = min(branch.H, X.shape[0] - 1)
+    target = X[: H + 1][:, dofs] / scale
+    return any(np.max(np.abs(Xc[: H + 1][:, dofs] / scale - target)) < tol
+               for Xc in crossings(problem, branch, speed))
+
+
+def trace_attractor_branches(problem: PeriodicProblem | None, census: AttractorCensus,
+                             lo: float, hi: float, *, stability: Any = True,
+                             **continue_kw: Any) -> list[AttractorBranch]:
+    """One :class:`AttractorBranch` per attractor of ``census`` (the HB ``problem`` of its
+    model, speed-parameter; None: nothing traced): each period-1 attractor with an HB
+    correction continued within ``(lo, hi)`` rad/s,
+    unless it lies on an earlier attractor's branch (module docstring); ``stability``
+    True (default options), a :class:`~rotorsfd.stability.branch_options.StabilityOptions`
+    or False; ``continue_kw`` go to ``continue_both_ways``."""
+    from rotorsfd.harmonic.orbit_branch import continue_both_ways
+
+    speed = census.speed
+    if not lo < speed < hi:
+        raise ConfigError("branches", (lo, hi), f"the speed range must contain the census "
+                          f"speed {speed:.6g} rad/s")
+    out: list[AttractorBranch] = []
+    for i, a in enumerate(census.attractors):
+        X = a.hb.get("hb_X")
+        if a.period != 1 or X is None or problem is None:
+            why = (f"a period-{a.period} attractor: its branch is not traced"
+                   if a.period not in (None, 1) else a.hb.get("hb_note")
+                   or f"a {a.motion} attractor has no periodic branch")
+            out.append(AttractorBranch(i, i, note=why))
+            continue
+        home = next((b.attractor for b in out if b.traced
+                     and on_branch(problem, b.branch, speed, X)), None)
+        if home is not None:
+            first = out[home]
+            out.append(AttractorBranch(i, home, first.branch, first.closed, first.stable,
+                                       first.max_multiplier,
+                                       note=f"on the branch of attractor {home}"))
+            continue
+        try:
+            branch = continue_both_ways(problem, speed, X, X.shape[0] - 1, lo, hi,
+                                        **continue_kw)
+        except ConvergenceError as exc:
+            out.append(AttractorBranch(i, i, note=" ".join(str(exc).split())[:200]))
+            continue
+        item = AttractorBranch(i, i, branch, bool(branch.info.get("closed")))
+        if stability is not False:
+            from rotorsfd.stability.branch_options import StabilityOptions
+            from rotorsfd.stability.branch_stability import branch_stability
+
+            options = stability if isinstance(stability, StabilityOptions) else None
+            st = branch_stability(branch, problem, options)
+            item.stable, item.max_multiplier = st.stable, st.max_multiplier
+        item.note = ("an isola (closed on itself)" if item.closed
+                     else f"open: {branch.message}")
+        out.append(item)
+    return out
+
+
+@dataclass
+class AttractorBranches:
+    """The traced branches of every census of a :class:`CensusResult` (``censuses[k]``
+    with ``branches[k]``); ``reference_speed`` for the speed ratios."""
+
+    censuses: list[AttractorCensus]
+    branches: list[list[AttractorBranch]]
+    nl_dofs: np.ndarray
+    dof_scale: np.ndarray
+    reference_speed: float | None = None
+    title: str = ""
+
+    def rows(self) -> list[list[Any]]:
+        """attractor_branches.csv: one row per attractor and census speed."""
+        out = []
+        for c, bs in zip(self.censuses, self.branches, strict=True):
+            for b in bs:
+                rng = b.speed_range() or ("", "")
+                n = b.branch.n_points if b.branch is not None else 0
+                folds = b.branch.folds().size if b.branch is not None else ""
+                out.append([c.speed, b.attractor, b.on_branch_of,
+                            "isola" if b.closed else "open" if b.branch is not None
+                            else "", *rng, n, folds, b.note])
+        return out
+
+    def summary(self) -> str:
+        """One line per attractor, in words."""
+        lines = []
+        ref = self.reference_speed
+        for c, bs in zip(self.censuses, self.branches, strict=True):
+            for b in bs:
+                head = f"motion {b.attractor + 1} at {c.speed:.6g} rad/s"
+                if b.branch is None:
+                    lines.append(f"{head}: no branch ({b.note})")
+                elif not b.traced:
+                    lines.append(f"{head}: on the branch of motion {b.on_branch_of + 1}")
+                else:
+                    lo, hi = b.speed_range()
+                    span = (f"Omega~ {lo / ref:.4g}-{hi / ref:.4g}" if ref
+                            else f"{lo:.6g}-{hi:.6g} rad/s")
+                    kind = "an isola" if b.closed else "an open branch"
+                    lines.append(f"{head}: {kind} over {span}, {b.branch.n_points} points, "
+                                 f"{b.branch.folds().size} folds")
+        return "\n".join(lines)
+
+    def plot(self) -> dict[str, Any]:
+        """``attractor_branches.png``
+        (:func:`rotorsfd.plots.attractor_branches.branches_figure`)."""
+        from rotorsfd.plots.attractor_branches import branches_figure
+
+        return {"attractor_branches.png": branches_figure(self)}
+
+    def write(self, directory: Any, plots: bool = True) -> dict[str, Any]:
+        """attractor_branches.csv, one ``branch_motion<k>.csv`` per traced branch (speed,
+        the 1X amplitude of each nonlinear DOF over its length scale, ``|mu|max``,
+        stable) and (``plots``) attractor_branches.png in ``directory``."""
+        from pathlib import Path
+
+        from rotorsfd.io.atomic import save_figures, write_csv
+
+        out = Path(directory)
+        out.mkdir(parents=True, exist_ok=True)
+        paths = {"attractor_branches.csv": write_csv(
+            out / "attractor_branches.csv",
+            ["speed_rad_s", "attractor", "on_branch_of", "branch", "speed_min_rad_s",
+             "speed_max_rad_s", "points", "folds", "note"], self.rows())}
+        for k, bs in enumerate(self.branches):
+            for b in bs:
+                if not b.traced:
+                    continue
+                amp = [b.branch.amplitude(int(d)) / s
+                       for d, s in zip(self.nl_dofs, self.dof_scale, strict=True)]
+                mu = b.max_multiplier if b.max_multiplier is not None else [""] * len(amp[0])
+                st = b.stable if b.stable is not None else [""] * len(amp[0])
+                tag = f"branch_motion{b.attractor + 1}" + (f"_speed{k}"
+                                                           if len(self.censuses) > 1 else "")
+                paths[f"{tag}.csv"] = write_csv(
+                    out / f"{tag}.csv",
+                    ["speed_rad_s", *[f"amplitude_1x_dof{int(d)}" for d in self.nl_dofs],
+                     "max_multiplier", "stable"],
+                    [[float(x), *[float(a[i]) for a in amp],
+                      "" if mu[i] == "" else float(mu[i]),
+                      "" if st[i] == "" else bool(st[i])]
+                     for i, x in enumerate(b.branch.lam)])
+        if plots:
+            paths.update(save_figures(self.plot(), out))
+        return paths
+
+
+def run_attractor_branches(config: Any, result: Any, *, search_path: Any = None,
+                           progress: bool = False) -> AttractorBranches:
+    """:class:`AttractorBranches` of a :class:`CensusResult` run from ``config``: the
+    branches within ``[analysis.response] speed_range`` with ``[analysis.stability]``'s
+    options (off when it is off)."""
+    from rotorsfd.analyses.context import build
+    from rotorsfd.stability.branch_options import StabilityOptions
+
+    system = build(config, search_path)
+    problem = system.periodic_problem() if system.base.is_constant else None
+    ref = result.censuses[0].reference_speed if result.censuses else None
+    lo, hi = config.analysis.response.speed_range.bounds(ref or 0.0)
+    st = config.analysis.stability
+    stability = StabilityOptions.from_section(st) if st.enabled else False
+    branches = [trace_attractor_branches(problem, c, lo, hi, stability=stability)
+                for c in result.censuses]
+    dofs = np.asarray(problem.nl_dofs if problem is not None else [], dtype=np.int64)
+    scale = (np.asarray(problem.dof_scale, float)[dofs] if problem is not None
+             else np.zeros(0))
+    return AttractorBranches(list(result.censuses), branches, dofs, scale, ref,
+                             getattr(result, "title", ""))
