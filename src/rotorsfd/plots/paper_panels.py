@@ -122,6 +122,7 @@ def orbits(ax: Axes, c: Curve) -> None:
         ax.plot(y, z, lw=1.1, label=rf"$\tilde\Omega$ = {s:.2f}")
         ax.plot([y.mean()], [z.mean()], "k.", ms=3)
     ax.set_aspect("equal")
+    ax.xaxis.set_major_locator(MaxNLocator(5))   # tick labels apart on a 3.8 in circle
     ax.set_xlabel("y / C")
     ax.set_ylabel("z / C")
     ax.set_title(f"{c.title}: SFD orbits (dot: orbit centre)", fontsize=9)
