@@ -26,6 +26,7 @@ DRAW: dict[str, Draw] = {
 HEADING = 0.32            # a reading's heading, inches
 RIGHT_PAD = 0.25          # right of the last column's legend, inches
 COLOUR_BAR = 0.75         # the chart's colour bar label and ticks right of its cell, inches
+TICK_OVERHANG = 0.2       # half the last x tick label ("-0.165") right of the axes, inches
 
 
 def shape(kind: str, curves: Sequence[Curve], options: Mapping[str, Any]
@@ -87,7 +88,7 @@ def paper_figure(kind: str, readings: Sequence[tuple[str, Sequence[Curve]]], tit
     for heading, gs, rows, cols, titles in blocks:
         extra = _right_of_panels(fig, gs, cols)
         gap = LEFT + max(extra[:-1], default=0.0)
-        right = max(extra[-1], COLOUR_BAR if kind == "chart" else 0.0) + RIGHT_PAD
+        right = max(extra[-1], COLOUR_BAR if kind == "chart" else TICK_OVERHANG) + RIGHT_PAD
         above = [ABOVE + TITLE_LINE * n for n in titles]
         vgap = BELOW + max(above[1:], default=0.0)
         head = HEADING if heading else 0.0
