@@ -179,9 +179,17 @@ def _isola() -> dict:
     return {"fig23-isola": iso, "fig21-cr0.728": _response("fig21-cr0.728")}
 
 
+def _calibrated_alone(number: str) -> dict:
+    """The calibrated reading alone: a narrow figure under a three-line title."""
+    from rotorsfd.paper.cases import CAL
+
+    return {n: o for n, o in _both_readings(number).items() if n.startswith(CAL)}
+
+
 LAYOUT_CASES = {
     "7": lambda: _both_readings("7"), "12": lambda: _both_readings("12"),
     "15": lambda: _both_readings("15"), "23b": _isola,
+    "23b (calibrated alone)": lambda: _calibrated_alone("23b"),
     "23t": lambda: {c: Outcome(c, "ok", "", 1.0, {}, _run(1.07, "quasi-periodic", True))
                     for c in FIGURES["23t"].cases},
     "6": lambda: {"fig6": Outcome("fig6", "ok", "", 1.0, {}, _chart_data())}}
@@ -189,7 +197,7 @@ LAYOUT_CASES = {
 
 def test_fixed_layout_keeps_every_text_inside_and_panels_apart():
     for number, outcomes in LAYOUT_CASES.items():
-        fig = draw(FIGURES[number], outcomes())
+        fig = draw(FIGURES[number.split()[0]], outcomes())
         assert fig.get_layout_engine() is None, number        # no constrained layout
         assert not _fixed_layout_faults(fig), (number, _fixed_layout_faults(fig))
         assert not legends_over_panels(fig), number

@@ -82,10 +82,15 @@ def paper_figure(kind: str, readings: Sequence[tuple[str, Sequence[Curve]]], tit
                 r = ss.get_topmost_subplotspec().rowspan.start
                 titles[r] = max(titles[r], _lines(ax.get_title()))
         blocks.append((heading, gs, rows, cols, titles))
-    sup = wrap(title, 110)
-    top_in = 0.14 + 0.2 * _lines(sup)
-    plan, width = [], 0.0
-    for heading, gs, rows, cols, titles in blocks:
+    sup = fig.suptitle(wrap(title, 110), fontsize=10, va="top")
+    heads = [fig.text(0.5, 0.0, b[0], ha="center", va="top", fontsize=9, fontweight="bold")
+             if b[0] else None for b in blocks]
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    width = max(1.05 * t.get_window_extent(renderer).width / fig.dpi + 2 * RIGHT_PAD
+                for t in [sup, *filter(None, heads)])   # the titles whole (5 %: small dpi)
+    top_in = 0.14 + 0.2 * _lines(sup.get_text())
+    plan = []
+    for (heading, gs, rows, cols, titles), text in zip(blocks, heads, strict=True):
         extra = _right_of_panels(fig, gs, cols)
         gap = LEFT + max(extra[:-1], default=0.0)
         right = max(extra[-1], COLOUR_BAR if kind == "chart" else TICK_OVERHANG) + RIGHT_PAD
@@ -94,14 +99,13 @@ def paper_figure(kind: str, readings: Sequence[tuple[str, Sequence[Curve]]], tit
         head = HEADING if heading else 0.0
         height = head + above[0] + rows * h + (rows - 1) * vgap + BELOW
         width = max(width, LEFT + cols * w + (cols - 1) * gap + right)
-        plan.append((heading, gs, cols, gap, vgap, head + above[0], top_in, height))
+        plan.append((text, gs, cols, gap, vgap, head + above[0], top_in, height))
         top_in += height
     fig.set_size_inches(width, top_in + 0.05)
     W, H = fig.get_size_inches()
-    for heading, gs, cols, gap, vgap, above, y0, height in plan:
-        if heading:
-            fig.text(0.5, 1 - (y0 + 0.06) / H, heading, ha="center", va="top", fontsize=9,
-                     fontweight="bold")
+    for text, gs, cols, gap, vgap, above, y0, height in plan:
+        if text is not None:
+            text.set_y(1 - (y0 + 0.06) / H)
         gs.update(left=LEFT / W, right=(LEFT + cols * w + (cols - 1) * gap) / W,
                   top=1 - (y0 + above) / H, bottom=1 - (y0 + height - BELOW) / H,
                   wspace=gap / w, hspace=vgap / h)
@@ -109,5 +113,5 @@ def paper_figure(kind: str, readings: Sequence[tuple[str, Sequence[Curve]]], tit
         ss = ax.get_subplotspec()
         if ss is not None:
             ax.set_position(ss.get_position(fig))
-    fig.suptitle(sup, fontsize=10, y=1 - 0.07 / H, va="top")
+    sup.set_y(1 - 0.07 / H)
     return fig
