@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from rotorsfd.analyses.response_switch import OPTION, draw_over, where_words
+from rotorsfd.analyses.response_switch import OPTION, where_words
 from rotorsfd.analyses.response_words import system_parameter
 from rotorsfd.continuation.branch import Branch
 from rotorsfd.errors import ConfigError
@@ -176,16 +176,20 @@ class SecondBranchResult:
     def draw(self, figures: dict[str, Figure]) -> None:
         """Draw the second branch over the main branch's response figures (r~ and the
         first harmonic |X_1|/C, each leg on its own line, dashed where unstable)."""
+        from rotorsfd.plots.second_branch import draw_second_branch  # deferred: matplotlib
+
         m = self.main
         tab = self.table()
         x = tab["speed_ratio"] if m.is_speed else tab[m.parameter_column]
         legend = f"second branch, from the {self.kind} at {self.where(True)}"
         pieces = [tab["leg"] == k for k in range(len(self.switch.legs))]
-        draw_over(figures, m, x, tab.get("stable"),
-                  {n: tab[f"defl_{n}"] for n in m.nodes},
-                  {(n, d): tab[f"amp_{n}_{d}_h1"] / m.clearance for n in m.nodes
-                   for d in m.directions},
-                  legend, legend.replace("second branch", "second branch: its 1X"), pieces)
+        draw_second_branch(
+            figures, x, tab.get("stable"), {n: tab[f"defl_{n}"] for n in m.nodes},
+            {(n, d): tab[f"amp_{n}_{d}_h1"] / m.clearance for n in m.nodes
+             for d in m.directions},
+            nodes=m.nodes, directions=m.directions, legend=legend,
+            amplitude_legend=legend.replace("second branch", "second branch: its 1X"),
+            main_stable=m.stable, bifurcations=m.bifurcations or (), pieces=pieces)
 
     def summary(self) -> str:
         """A few lines: where it starts, its points and range, the legs' outcome."""

@@ -192,15 +192,19 @@ class Period2Result:
         """Draw the period-2 branch over the main branch's response figures: r~ in
         ``response_deflection.png``, the Omega/2 subharmonic |X_1|/C in each
         ``response_node<n>.png`` panel (dashed where unstable), and the legends redone."""
+        from rotorsfd.plots.second_branch import draw_second_branch  # deferred: matplotlib
+
         m = self.main
         tab = self.table()
         x = tab["speed_ratio"] if m.is_speed else tab[m.parameter_column]
-        draw_over(figures, m, x, tab.get("stable"),
-                  {n: tab[f"defl_{n}"] for n in m.nodes},
-                  {(n, d): tab[f"amp_{n}_{d}_h1_2"] / m.clearance for n in m.nodes
-                   for d in m.directions},
-                  self.legend, self.legend.replace("period-2 branch",
-                                                   "period-2 branch: its 1/2X"))
+        draw_second_branch(
+            figures, x, tab.get("stable"), {n: tab[f"defl_{n}"] for n in m.nodes},
+            {(n, d): tab[f"amp_{n}_{d}_h1_2"] / m.clearance for n in m.nodes
+             for d in m.directions},
+            nodes=m.nodes, directions=m.directions, legend=self.legend,
+            amplitude_legend=self.legend.replace("period-2 branch",
+                                                 "period-2 branch: its 1/2X"),
+            main_stable=m.stable, bifurcations=m.bifurcations or ())
 
     def summary(self) -> str:
         sw, m = self.switch, self.main
@@ -221,47 +225,6 @@ class Period2Result:
             lines.append(f"period-2 unstable points: {int(np.sum(~self.stable))} of "
                          f"{self.stable.size}")
         return "\n".join(lines)
-
-
-def draw_over(figures: dict[str, Figure], main: ResponseResult, x: NDArray[np.float64],
-              stable: NDArray[np.bool_] | None, deflection: dict[int, NDArray[np.float64]],
-              amplitude: dict[tuple[int, str], NDArray[np.float64]], legend: str,
-              amplitude_legend: str, pieces: list[NDArray[np.bool_]] | None = None
-              ) -> None:
-    """Draw a second branch (period-2 or at a branch point) over ``main``'s response
-    figures: ``deflection[n]`` (r~) in ``response_deflection.png``, ``amplitude[n, d]``
-    (/C) in each ``response_node<n>.png`` panel, dashed where not ``stable``, each of
-    ``pieces`` (masks of the points, default all) its own line; the legends redone."""
-    from matplotlib.lines import Line2D
-
-    from rotorsfd.plots.response import key_handles, outside_legend, styled_line
-
-    m = main
-    masks = pieces or [np.ones(len(x), dtype=bool)]
-    both = [a for a in (m.stable, stable) if a is not None]
-    key = key_handles(np.concatenate(both) if both else None, m.bifurcations)
-    key.insert(0, Line2D([], [], color="k", lw=1.1, label=legend))
-
-    def lines(ax: Any, y: NDArray[np.float64]) -> None:
-        for p in masks:
-            styled_line(ax, x[p], y[p], None if stable is None else stable[p],
-                        color="k", lw=1.1)
-
-    fig = figures.get("response_deflection.png")
-    if fig is not None:
-        axes = fig.axes[: len(m.nodes)] if len(fig.axes) >= len(m.nodes) else fig.axes
-        for k, n in enumerate(m.nodes):
-            lines(axes[k] if len(axes) == len(m.nodes) else axes[0], deflection[n])
-        outside_legend(fig, axes, key)
-    for n in m.nodes:
-        fig = figures.get(f"response_node{n}.png")
-        if fig is None:
-            continue
-        axes = [a for a in fig.axes if a.get_title()]
-        for ax, d in zip(axes, m.directions, strict=False):
-            lines(ax, amplitude[(n, d)])
-        sub = Line2D([], [], color="k", lw=1.1, label=amplitude_legend)
-        outside_legend(fig, axes, [sub, *key[1:]])
 
 
 def _ratio(result: ResponseResult, lam: float) -> float:
