@@ -130,6 +130,7 @@ class CondensedHB:
         self.delta = np.zeros((H + 1, m, m), dtype=complex)
         self._delta_real = np.zeros((self.n_unknowns, self.n_unknowns))
         self._delta_seen: tuple | None = None  # (delta object, its diagonal or None)
+        self._shift_parts: tuple | None = None  # (K_r, C_r, w_r) of the last set_shift
         self._cache: Condensed | None = None
         self._band: tuple[int, int] | None = None  # (kl, ku); (-1, -1): dense
         self._scanned: tuple = (None,) * 6   # matrices known to lie inside the band
@@ -151,11 +152,44 @@ class CondensedHB:
         Cr = _positive_diagonal(-np.mean(dfv, axis=0))
         if not (np.all(np.isfinite(Kr)) and np.all(np.isfinite(Cr))):
             return
+        self._shift_parts = (Kr, Cr, w)
+        self._apply_shift()
+
+    def _apply_shift(self) -> None:
+        """delta (H+1, m, m) = K_r + i k w_r C_r from the stored (K_r, C_r, w_r)."""
+        Kr, Cr, w = self._shift_parts
         k = np.arange(self.H + 1)[:, None, None]
         self.delta = Kr[None] + 1j * k * w * Cr[None]
         self._delta_real = real_blocks(self.delta)
         self._cache = None
         self._last = None
+
+    def adopt_shift(self, other: CondensedHB) -> bool:
+        """Take the shift (K_r, C_r, w_r) of ``other`` (the same problem at fewer or
+        equally many harmonics), extended to this H by ``Delta_k = K_r + i k w_r C_r``: its
+        harmonics ``k <= other.H`` are then the same numbers as other's, so
+        :meth:`condense` with ``reuse=other`` copies them instead of factorising them
+        again. False (nothing changed) if other has no such shift."""
+        parts = other._shift_parts
+        if parts is None or other.problem is not self.problem or other.H > self.H:
+            return False
+        if self._shift_parts is not parts:
+            self._shift_parts = parts
+            self._apply_shift()
+        return True
+
+    def _reusable(self, other: CondensedHB | None, lam: float, deriv: bool
+                  ) -> Condensed | None:
+        """other's condensation at lam if its harmonics can stand for this one's
+        ``k <= other.H`` (same problem, same shift values, the derivatives if needed)."""
+        if other is None or other.problem is not self.problem or other.H > self.H:
+            return None
+        c = other._cache
+        if c is None or c.lam != lam or (deriv and c.dHt is None):
+            return None
+        if not np.array_equal(other.delta, self.delta[: other.H + 1]):
+            return None
+        return c
 
     def with_problem(self, problem: PeriodicProblem) -> CondensedHB:
         """A condenser of another problem on the same nonlinear DOFs (the same system at
@@ -178,9 +212,13 @@ class CondensedHB:
         return seen[1]
 
     # -- condensation -------------------------------------------------------------------
-    def condense(self, lam: float, deriv: bool = True) -> Condensed:
+    def condense(self, lam: float, deriv: bool = True, reuse: CondensedHB | None = None
+                 ) -> Condensed:
         """Receptances and particular responses at lam (one complex LU per harmonic;
-        :mod:`rotorsfd.harmonic.banded` for banded matrices, LAPACK for dense ones)."""
+        :mod:`rotorsfd.harmonic.banded` for banded matrices, LAPACK for dense ones).
+        ``reuse``: a condenser of the same problem at fewer harmonics whose cached
+        condensation at lam has this one's shift (:meth:`adopt_shift`): on the banded
+        path its harmonics are copied, only the higher ones factorised."""
         c = self._cache
         if c is not None and c.lam == lam and (c.dHt is not None or not deriv):
             return c
@@ -203,14 +241,15 @@ class CondensedHB:
             mb = p.matrices.banded(lam)
             dmb = p.matrices.dbanded(lam) if deriv else mb
             lowrank = getattr(p.matrices, "lowrank", None)   # U diag(c) U^T beside D
+            k_first = self._copy_harmonics(self._reusable(reuse, lam, deriv), sol, dsol)
             if lowrank is None:
                 status = banded.condense_bands(*mb, *dmb, w, dw, kl, ku, s, diag, F, dF,
                                                deriv, sol, dsol, Ht, Pt, dHt, dPt,
-                                               banded.refinement_steps(n))
+                                               banded.refinement_steps(n), k_first)
             else:
                 status = condense_bands_lowrank(*mb, *dmb, *lowrank, w, dw, kl, ku, s, diag,
                                                 F, dF, deriv, sol, dsol, Ht, Pt, dHt, dPt,
-                                                banded.refinement_steps(n))
+                                                banded.refinement_steps(n), k_first)
         else:
             status = self._dense_condense(lam, deriv, w, dw, F, dF, diag, sol, dsol, Ht,
                                           Pt, dHt, dPt)
@@ -223,6 +262,21 @@ class CondensedHB:
                         dHt if deriv else None, dPt if deriv else None)
         self._cache = out
         return out
+
+    @staticmethod
+    def _copy_harmonics(known: Condensed | None, sol: ComplexArray, dsol: ComplexArray
+                        ) -> int:
+        """Harmonics 0..h of a known condensation into sol (and dsol); returns h + 1 (0
+        without one): the first harmonic left to the kernel."""
+        if known is None:
+            return 0
+        h1, m = known.Ht.shape[0], known.Ht.shape[1]
+        sol[:h1, :, :m] = known.C
+        sol[:h1, :, m] = known.u
+        if known.dHt is not None:
+            dsol[:h1, :, :m] = known.dHt
+            dsol[:h1, :, m] = known.dPt
+        return h1
 
     def _dense_condense(self, lam, deriv, w, dw, F, dF, diag, sol, dsol, Ht, Pt, dHt, dPt
                         ) -> int:
