@@ -151,3 +151,30 @@ def test_truncation_estimate_with_the_point_condenser_is_unchanged():
     assert abs(reuse.error - own.error) <= 1e-10 * own.error
     assert _rel(reuse.delta, own.delta) <= 1e-10
     assert abs(reuse.delta_lam - own.delta_lam) <= 1e-10 * abs(own.delta_lam) + 1e-300
+
+
+@pytest.mark.parametrize("modal", [False, True])
+def test_point_from_the_linear_guess_keeps_its_condensation(modal, monkeypatch):
+    """``solve_periodic`` from the linearised response takes over the guess's condensation
+    (shift at rest) instead of condensing again at the guess's shift: one condensation
+    per point instead of two, the same solution as the previous path (a fresh shift at the
+    guess) to 1e-10, near the resonance where the nonlinearity matters."""
+    p = _problem(modal)
+    calls = []
+    condense = CondensedHB.condense
+
+    def counted(self, lam, deriv=True, reuse=None):
+        c = self._cache
+        if c is None or c.lam != lam or (deriv and c.dHt is None):
+            calls.append(self.H)
+        return condense(self, lam, deriv, reuse)
+
+    monkeypatch.setattr(CondensedHB, "condense", counted)
+    lam = 1.3 * LAM
+    new = solve_periodic(p, lam, 3, tol=1e-12, condensed=True)
+    n_new, calls[:] = len(calls), []
+    monkeypatch.setattr(CondensedHB, "adopt_condensation", lambda self, other: False)
+    old = solve_periodic(p, lam, 3, tol=1e-12, condensed=True)
+    assert (n_new, len(calls)) == (1, 2)
+    assert new.iterations >= 2                     # a nonlinear case, not one linear step
+    assert _rel(new.X, old.X) <= 1e-10

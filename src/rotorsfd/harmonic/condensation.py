@@ -178,6 +178,18 @@ class CondensedHB:
             self._apply_shift()
         return True
 
+    def adopt_condensation(self, other: CondensedHB) -> bool:
+        """Take other's shift and cached condensation (the same problem and H; the AFT
+        samples may differ: the condensation does not depend on them). False (nothing
+        changed) otherwise."""
+        if other.problem is not self.problem or other.H != self.H \
+                or other._shift_parts is None:
+            return False
+        self._shift_parts = other._shift_parts
+        self._apply_shift()
+        self._cache = other._cache
+        return True
+
     def _reusable(self, other: CondensedHB | None, lam: float, deriv: bool
                   ) -> Condensed | None:
         """other's condensation at lam if its harmonics can stand for this one's
