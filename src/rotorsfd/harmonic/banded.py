@@ -236,22 +236,45 @@ def band_residual(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray, kl: int, ku: i
                   kw: float, kw2: float, s: np.ndarray, delta_k: np.ndarray,
                   F_k: np.ndarray, x: np.ndarray, r: np.ndarray) -> None:
     """``r = [S^T, F_k] - Zt_k x`` (n, m + 1) with the stiffness part ``K x`` in doubled
-    precision (:func:`_exact_dot_row`) and the mass, damping and shift terms in working
-    precision: the residual of :func:`_refine`."""
+    precision (Dot2 of :func:`_exact_dot_row`) and the mass, damping and shift terms in
+    working precision: the residual of :func:`_refine`.
+
+    The 2 (m + 1) Dot2 sums of a row (real and imaginary part of every column) run side by
+    side in one pass over the row's band: each sum sees the same operations in the same
+    order as :func:`_exact_dot_row` (the same bits), but the independent chains overlap
+    in the CPU instead of waiting on each other's latency."""
     n = Kb.shape[0]
     m = s.shape[0]
     nc = m + 1
-    xr = np.empty((n, 2 * nc))          # columns: Re x_c, Im x_c
+    nr = 2 * nc
+    xr = np.empty((n, nr))          # columns: Re x_c, Im x_c
     for j in range(n):
         for c in range(nc):
             xr[j, 2 * c] = x[j, c].real
             xr[j, 2 * c + 1] = x[j, c].imag
+    hi = np.empty(nr)
+    lo = np.empty(nr)
     for i in range(n):
+        for q in range(nr):
+            hi[q] = 0.0
+            lo[q] = 0.0
+        for j in range(max(0, i - kl), min(n, i + ku + 1)):
+            a = Kb[j, ku + i - j]
+            if a == 0.0:
+                continue
+            for q in range(nr):
+                b = xr[j, q]
+                p = a * b
+                e = _fma(a, b, -p)
+                sq = hi[q]
+                t = sq + p
+                bp = t - sq
+                lo[q] += ((sq - (t - bp)) + (p - bp)) + e
+                hi[q] = t
         for c in range(nc):
             rhs = F_k[i] if c == m else 0.0j
-            re_hi, re_lo = _exact_dot_row(Kb, kl, ku, i, xr, 2 * c)
-            im_hi, im_lo = _exact_dot_row(Kb, kl, ku, i, xr, 2 * c + 1)
-            r[i, c] = complex((rhs.real - re_hi) - re_lo, (rhs.imag - im_hi) - im_lo)
+            r[i, c] = complex((rhs.real - hi[2 * c]) - lo[2 * c],
+                              (rhs.imag - hi[2 * c + 1]) - lo[2 * c + 1])
         for j in range(max(0, i - kl), min(n, i + ku + 1)):
             o = ku + i - j
             e = complex(-kw2 * Mb[j, o], kw * Db[j, o])
@@ -367,7 +390,8 @@ def condense_bands(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray, dMb: np.ndarr
                    dDb: np.ndarray, dKb: np.ndarray, w: float, dw: float, kl: int, ku: int,
                    s: np.ndarray, delta: np.ndarray, F: np.ndarray, dF: np.ndarray,
                    deriv: bool, sol: np.ndarray, dsol: np.ndarray, Ht: np.ndarray,
-                   Pt: np.ndarray, dHt: np.ndarray, dPt: np.ndarray, refine: int = 0) -> int:
+                   Pt: np.ndarray, dHt: np.ndarray, dPt: np.ndarray, refine: int = 0,
+                   k_first: int = 0) -> int:
     """Condensation of all harmonics (module docstring) from band storage.
 
     Inputs: Mb, Db, Kb, dMb, dDb, dKb (n, kl + ku + 1) the band storage
@@ -379,6 +403,9 @@ def condense_bands(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray, dMb: np.ndarr
     receptance Ht (H+1, m, m), particular response Pt (H+1, m) and, with ``deriv``, their
     derivatives dHt, dPt. ``refine``: steps of iterative refinement of sol for k >= 1
     with the residual's stiffness part in doubled precision (:func:`_refine`).
+    ``k_first``: harmonics ``k < k_first`` are taken as already in sol (and dsol), e.g.
+    copied from a condensation at fewer harmonics with the same lam and shift, and only
+    ``k >= k_first`` are factorised (the same numbers as computing all).
     Returns OK (0); k + 1 if Zt_k is exactly singular; NOT_FINITE (-2) if an output is not
     finite.
     """
@@ -388,8 +415,8 @@ def condense_bands(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray, dMb: np.ndarr
     ab = np.zeros((n, 2 * kl + ku + 1), dtype=np.complex128)
     ipiv = np.empty(n, dtype=np.int64)
     rhs = np.empty((n, m + 1), dtype=np.complex128)
-    k0 = 0
-    if _real_harmonic0(delta, F, dF, deriv):
+    k0 = k_first
+    if k0 == 0 and _real_harmonic0(delta, F, dF, deriv):
         status = _static_harmonic(Mb, Kb, dKb, kl, ku, s, delta, F, dF, deriv, sol, dsol)
         if status != 0:
             return status

@@ -93,10 +93,11 @@ def condense_bands_lowrank(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray,
                            ku: int, s: np.ndarray, delta: np.ndarray, F: np.ndarray,
                            dF: np.ndarray, deriv: bool, sol: np.ndarray, dsol: np.ndarray,
                            Ht: np.ndarray, Pt: np.ndarray, dHt: np.ndarray,
-                           dPt: np.ndarray, refine: int) -> int:
+                           dPt: np.ndarray, refine: int, k_first: int = 0) -> int:
     """:func:`rotorsfd.harmonic.banded.condense_bands` (the same inputs, outputs and
     return codes) with the damping ``D = D_band + U diag(coef) U^T``: Mb, Db, Kb and the
-    derivatives in band storage (Db without the low-rank term), U (n, r), coef (r,)."""
+    derivatives in band storage (Db without the low-rank term), U (n, r), coef (r,);
+    ``k_first`` as there (harmonics below it already in sol, dsol)."""
     n = Kb.shape[0]
     m = s.shape[0]
     nh = F.shape[0]
@@ -106,8 +107,8 @@ def condense_bands_lowrank(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray,
     rhs = np.empty((n, m + 1), dtype=np.complex128)
     Y = np.empty((n, r), dtype=np.complex128)
     cap = np.empty((r, r), dtype=np.complex128)
-    k0 = 0
-    if real_harmonic0(delta, F, dF, deriv):
+    k0 = k_first
+    if k0 == 0 and real_harmonic0(delta, F, dF, deriv):
         status = static_harmonic(Mb, Kb, dKb, kl, ku, s, delta, F, dF, deriv, sol, dsol)
         if status != 0:
             return status

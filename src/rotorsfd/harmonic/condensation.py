@@ -30,22 +30,18 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.linalg import lapack
 
 from rotorsfd.harmonic import banded
 from rotorsfd.harmonic.aft_inertia import condensed_residual, force_coefficients, hb_kernel
 from rotorsfd.harmonic.aft_kernels import condensed_assembly, project
 from rotorsfd.harmonic.banded_lowrank import condense_bands_lowrank
+from rotorsfd.harmonic.dense_condensation import dense_solves
 from rotorsfd.harmonic.fourier import aft_matrices, aliasing_error, to_complex, to_real
 from rotorsfd.harmonic.problem import NonlinearLaw, PeriodicProblem
 from rotorsfd.harmonic.residual import nonlinear_coefficients, nonlinear_samples, real_blocks
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
-
-#: Entries of the dense Zt_k formed at once by the dense path (a chunk of harmonics, at
-#: least one; 128 kB of complex: small models form all harmonics in a few numpy calls).
-DENSE_CHUNK = 1 << 13
 
 
 @dataclass
@@ -130,6 +126,7 @@ class CondensedHB:
         self.delta = np.zeros((H + 1, m, m), dtype=complex)
         self._delta_real = np.zeros((self.n_unknowns, self.n_unknowns))
         self._delta_seen: tuple | None = None  # (delta object, its diagonal or None)
+        self._shift_parts: tuple | None = None  # (K_r, C_r, w_r) of the last set_shift
         self._cache: Condensed | None = None
         self._band: tuple[int, int] | None = None  # (kl, ku); (-1, -1): dense
         self._scanned: tuple = (None,) * 6   # matrices known to lie inside the band
@@ -151,11 +148,56 @@ class CondensedHB:
         Cr = _positive_diagonal(-np.mean(dfv, axis=0))
         if not (np.all(np.isfinite(Kr)) and np.all(np.isfinite(Cr))):
             return
+        self._shift_parts = (Kr, Cr, w)
+        self._apply_shift()
+
+    def _apply_shift(self) -> None:
+        """delta (H+1, m, m) = K_r + i k w_r C_r from the stored (K_r, C_r, w_r)."""
+        Kr, Cr, w = self._shift_parts
         k = np.arange(self.H + 1)[:, None, None]
         self.delta = Kr[None] + 1j * k * w * Cr[None]
         self._delta_real = real_blocks(self.delta)
         self._cache = None
         self._last = None
+
+    def adopt_shift(self, other: CondensedHB) -> bool:
+        """Take the shift (K_r, C_r, w_r) of ``other`` (the same problem at fewer or
+        equally many harmonics), extended to this H by ``Delta_k = K_r + i k w_r C_r``: its
+        harmonics ``k <= other.H`` are then the same numbers as other's, so
+        :meth:`condense` with ``reuse=other`` copies them instead of factorising them
+        again. False (nothing changed) if other has no such shift."""
+        parts = other._shift_parts
+        if parts is None or other.problem is not self.problem or other.H > self.H:
+            return False
+        if self._shift_parts is not parts:
+            self._shift_parts = parts
+            self._apply_shift()
+        return True
+
+    def adopt_condensation(self, other: CondensedHB) -> bool:
+        """Take other's shift and cached condensation (the same problem and H; the AFT
+        samples may differ: the condensation does not depend on them). False (nothing
+        changed) otherwise."""
+        if other.problem is not self.problem or other.H != self.H \
+                or other._shift_parts is None:
+            return False
+        self._shift_parts = other._shift_parts
+        self._apply_shift()
+        self._cache = other._cache
+        return True
+
+    def _reusable(self, other: CondensedHB | None, lam: float, deriv: bool
+                  ) -> Condensed | None:
+        """other's condensation at lam if its harmonics can stand for this one's
+        ``k <= other.H`` (same problem, same shift values, the derivatives if needed)."""
+        if other is None or other.problem is not self.problem or other.H > self.H:
+            return None
+        c = other._cache
+        if c is None or c.lam != lam or (deriv and c.dHt is None):
+            return None
+        if not np.array_equal(other.delta, self.delta[: other.H + 1]):
+            return None
+        return c
 
     def with_problem(self, problem: PeriodicProblem) -> CondensedHB:
         """A condenser of another problem on the same nonlinear DOFs (the same system at
@@ -178,9 +220,13 @@ class CondensedHB:
         return seen[1]
 
     # -- condensation -------------------------------------------------------------------
-    def condense(self, lam: float, deriv: bool = True) -> Condensed:
+    def condense(self, lam: float, deriv: bool = True, reuse: CondensedHB | None = None
+                 ) -> Condensed:
         """Receptances and particular responses at lam (one complex LU per harmonic;
-        :mod:`rotorsfd.harmonic.banded` for banded matrices, LAPACK for dense ones)."""
+        :mod:`rotorsfd.harmonic.banded` for banded matrices, LAPACK for dense ones).
+        ``reuse``: a condenser of the same problem at fewer harmonics whose cached
+        condensation at lam has this one's shift (:meth:`adopt_shift`): on the banded
+        path its harmonics are copied, only the higher ones factorised."""
         c = self._cache
         if c is not None and c.lam == lam and (c.dHt is not None or not deriv):
             return c
@@ -203,14 +249,15 @@ class CondensedHB:
             mb = p.matrices.banded(lam)
             dmb = p.matrices.dbanded(lam) if deriv else mb
             lowrank = getattr(p.matrices, "lowrank", None)   # U diag(c) U^T beside D
+            k_first = self._copy_harmonics(self._reusable(reuse, lam, deriv), sol, dsol)
             if lowrank is None:
                 status = banded.condense_bands(*mb, *dmb, w, dw, kl, ku, s, diag, F, dF,
                                                deriv, sol, dsol, Ht, Pt, dHt, dPt,
-                                               banded.refinement_steps(n))
+                                               banded.refinement_steps(n), k_first)
             else:
                 status = condense_bands_lowrank(*mb, *dmb, *lowrank, w, dw, kl, ku, s, diag,
                                                 F, dF, deriv, sol, dsol, Ht, Pt, dHt, dPt,
-                                                banded.refinement_steps(n))
+                                                banded.refinement_steps(n), k_first)
         else:
             status = self._dense_condense(lam, deriv, w, dw, F, dF, diag, sol, dsol, Ht,
                                           Pt, dHt, dPt)
@@ -223,6 +270,21 @@ class CondensedHB:
                         dHt if deriv else None, dPt if deriv else None)
         self._cache = out
         return out
+
+    @staticmethod
+    def _copy_harmonics(known: Condensed | None, sol: ComplexArray, dsol: ComplexArray
+                        ) -> int:
+        """Harmonics 0..h of a known condensation into sol (and dsol); returns h + 1 (0
+        without one): the first harmonic left to the kernel."""
+        if known is None:
+            return 0
+        h1, m = known.Ht.shape[0], known.Ht.shape[1]
+        sol[:h1, :, :m] = known.C
+        sol[:h1, :, m] = known.u
+        if known.dHt is not None:
+            dsol[:h1, :, :m] = known.dHt
+            dsol[:h1, :, m] = known.dPt
+        return h1
 
     def _dense_condense(self, lam, deriv, w, dw, F, dF, diag, sol, dsol, Ht, Pt, dHt, dPt
                         ) -> int:
@@ -241,7 +303,8 @@ class CondensedHB:
         while status == banded.OUTSIDE_BAND:
             kl, ku = self._bandwidths(mats)
             if kl < 0 or diag is None:
-                self._dense_solves(*mats, w, dw, F, dF, deriv, sol, dsol)
+                dense_solves(p, self.H, self.delta, *mats, w, dw, F, dF, deriv, sol,
+                             dsol)
                 return banded._split(s, deriv, sol, dsol, Ht, Pt, dHt, dPt)
             status = banded.condense_banded(*mats, w, dw, kl, ku, s, diag, F, dF, deriv,
                                             check, sol, dsol, Ht, Pt, dHt, dPt)
@@ -262,50 +325,6 @@ class CondensedHB:
         if kl >= 0 and 3 * (kl + ku + 1) >= self.problem.n_dof:
             self._band = (kl, ku) = (-1, -1)
         return kl, ku
-
-    def _dense_solves(self, M, D, K, dM, dD, dK, w, dw, F, dF, deriv, sol, dsol) -> None:
-        """Dense complex LU (LAPACK) of Zt_k per harmonic; the same outputs as
-        :func:`rotorsfd.harmonic.banded.condense_banded`.
-
-        The Zt_k are formed a chunk of harmonics at a time (:data:`DENSE_CHUNK` entries:
-        all of them for a small model, where the per-harmonic numpy calls cost more than
-        the LU). With deriv, the LU of Zt_k^T also gives the rows ``S Zt_k^-1`` (Zt_k^T
-        y = S^T), so ``dsol_k = S Zt_k^-1 (dF_k e - dZ_k sol_k)`` after the loop, with the
-        products ``dZ_k sol_k`` for all k at once (no dZ_k formed)."""
-        s, m, n, H = self.problem.nl_dofs, self.problem.m, self.problem.n_dof, self.H
-        getrf, getrs = lapack.zgetrf, lapack.zgetrs
-        rhs = np.zeros((m + 1, n), dtype=complex)   # rhs.T: [S^T, F_k], Fortran (n, m+1)
-        rhs[np.arange(m), s] = 1.0
-        unit = np.asfortranarray(rhs[:m].T)        # S^T
-        rows = np.empty((H + 1, n, m), dtype=complex) if deriv else None
-        block = (slice(None), s[:, None], s[None, :])
-        step = max(1, min(H + 1, DENSE_CHUNK // (n * n)))
-        Zbuf = np.empty((step, n, n), dtype=complex)
-        for k0 in range(0, H + 1, step):
-            ks = np.arange(k0, min(H + 1, k0 + step))
-            kw = (ks * w)[:, None, None]
-            # C-ordered Z[i], so Z[i].T is Fortran-contiguous: LAPACK factors Z_k^T in place
-            Z = Zbuf[: ks.size]
-            Z.real = K - kw**2 * M
-            Z.imag = kw * D
-            Z[block] += self.delta[ks]
-            for i, k in enumerate(ks):
-                lu, piv, info = getrf(Z[i].T, overwrite_a=True)
-                if info != 0:
-                    raise FloatingPointError(f"singular dynamic stiffness Z_{k} "
-                                             f"(w={w:.6g})")
-                rhs[m] = F[k]
-                sol[k] = getrs(lu, piv, rhs.T, trans=1)[0]          # Z_k x = rhs
-                if deriv:
-                    rows[k] = getrs(lu, piv, unit, trans=0)[0]      # Z_k^T y = S^T
-        if deriv:
-            # dZ_k = dK - (k w)^2 dM - 2 k^2 w w' M + i k (w' D + w dD), applied to sol_k
-            k = np.arange(H + 1)[:, None, None]
-            kw = k * w
-            r2 = (kw**2 * (dM @ sol) + (2 * dw) * (k * kw) * (M @ sol) - dK @ sol
-                  - 1j * k * ((dw * D + w * dD) @ sol))
-            r2[:, :, m] += dF
-            np.matmul(rows.transpose(0, 2, 1), r2, out=dsol)
 
     # -- residual -----------------------------------------------------------------------
     def _work_arrays(self) -> tuple:

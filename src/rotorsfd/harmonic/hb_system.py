@@ -205,9 +205,12 @@ class HBSystem:
 
 
 def initial_guess(problem: PeriodicProblem, H: int, lam: float,
-                   X0: ComplexArray | None) -> ComplexArray:
+                  X0: ComplexArray | None, condenser: CondensedHB | None = None
+                  ) -> ComplexArray:
     """All-DOF start (H+1, n): X0, or the linear response with the nonlinearity replaced by
-    its linearisation at rest (``u = Zt^-1 F``), shrunk until nl_limit < 1."""
+    its linearisation at rest (``u = Zt^-1 F``), shrunk until nl_limit < 1. ``condenser``
+    (H harmonics): the one to condense with, with the lam-derivatives, so that a condensed
+    solve at this lam can take it over (:meth:`CondensedHB.adopt_condensation`)."""
     if X0 is not None:
         X0 = np.asarray(X0, dtype=complex)
         if X0.shape == (H + 1, problem.n_dof):
@@ -219,9 +222,9 @@ def initial_guess(problem: PeriodicProblem, H: int, lam: float,
             return X
         raise ValueError(f"X0 must have shape (H+1, n_dof)=({H + 1}, {problem.n_dof}); "
                          f"got {X0.shape}")
-    cond = CondensedHB(problem, H, 4 * H + 4)
+    cond = condenser if condenser is not None else CondensedHB(problem, H, 4 * H + 4)
     cond.set_shift(np.zeros((2 * H + 1, problem.m)), lam)
-    X = cond.condense(lam, deriv=False).u.copy()
+    X = cond.condense(lam, deriv=condenser is not None).u.copy()
     if problem.nl_limit is not None:
         E = cond.aft.E
         for i in range(120):   # the harmonics first, then (an element carrying the static
@@ -236,13 +239,19 @@ def hb_system(problem: PeriodicProblem, H: int, lam: float, X0: ComplexArray | N
               ) -> tuple[HBSystem, FloatArray]:
     """The extended HB system of ``problem`` at ``lam`` and its first unknowns ``z0``
     (from ``X0``, or the linearised response; N_f by the sampling rule if not given)."""
-    Xg = initial_guess(problem, H, lam, X0)
+    # from the linear response: its condensation (shift of the linearisation at rest) is
+    # the solver's first one; at fixed lam the Newton iterates of the receptance form do
+    # not depend on the shift (condensation module), so the solve keeps it (one
+    # condensation of H + 1 harmonics per point less; the solution the same to rounding)
+    guess = CondensedHB(problem, H, 4 * H + 4) if X0 is None and condensed else None
+    Xg = initial_guess(problem, H, lam, X0, guess)
     xg = to_real(Xg)
     N = n_samples or choose_n_samples(problem.law(lam).force, xg[:, problem.nl_dofs],
                                       problem.frequency(lam))
     system = HBSystem(problem, H, N, condensed, lam, lam_scale, limit_max)
     if isinstance(system.hb, CondensedHB):
-        system.hb.set_shift(xg[:, problem.nl_dofs], lam)
+        if guess is None or not system.hb.adopt_condensation(guess):
+            system.hb.set_shift(xg[:, problem.nl_dofs], lam)
         z0 = system.to_z(xg[:, problem.nl_dofs], lam)
     else:
         z0 = system.to_z(xg, lam)

@@ -247,7 +247,8 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
                     condensers[system.H] = estimate_condenser(problem, system.H)
                 est = truncation_error(problem, system.hb.nl_part(x), lam,
                                        tangent=system.nl_tangent(t), lam_scale=scale,
-                                       condenser=condensers[system.H])
+                                       condenser=condensers[system.H],
+                                       point=system.hb if condensed else None)
                 te = est.error
                 if adaptive_harmonics and te > harmonics_tol and system.H < H_max:
                     H_up = min(H_max, max(system.H + 1,

@@ -134,7 +134,8 @@ def estimate_condenser(problem: PeriodicProblem, H: int, H_check: int | None = N
 def truncation_error(problem: PeriodicProblem, xs: FloatArray, lam: float, *,
                      tangent: FloatArray | None = None, lam_scale: float = 1.0,
                      H_check: int | None = None, n_samples: int | None = None,
-                     condenser: CondensedHB | None = None) -> TruncationEstimate:
+                     condenser: CondensedHB | None = None,
+                     point: CondensedHB | None = None) -> TruncationEstimate:
     """Estimate of the change of the solution ``xs`` ((2H+1, m) real layout on the
     nonlinear DOFs, or the complex all-DOF coefficients (H+1, n_dof)) at lam if H_check
     harmonics were kept (module docstring).
@@ -147,6 +148,11 @@ def truncation_error(problem: PeriodicProblem, xs: FloatArray, lam: float, *,
     remainder) is left out, so only the dropped harmonics drive the step. ``n_samples``:
     AFT samples at H_check (:func:`estimate_condenser`); ``condenser``: that condensation,
     reused from the previous estimate of the branch (its H_check and N then apply).
+    ``point``: the H-harmonic condenser that solved xs (its cache at lam): the estimate
+    then uses its shift Delta (the step does not depend on Delta but through rounding and
+    the second-order term ``dHt_k R_k`` of the dropped harmonics' residual) and copies its
+    harmonics ``k <= H`` instead of factorising them again (about 40 % of the estimate
+    at H = 1 -> 3 on a large model).
     ``error`` includes the lam component ``dlam / lam_scale``.
 
     The force coefficients and their Jacobian at H_check come from the AFT in matrix form
@@ -165,9 +171,11 @@ def truncation_error(problem: PeriodicProblem, xs: FloatArray, lam: float, *,
     if He <= H:
         raise ValueError(f"H_check must exceed H = {H}, got {He}")
     x_pad = pad_harmonics(xs, He)
-    hb.set_shift(x_pad, lam)
+    if point is None or not hb.adopt_shift(point):
+        hb.set_shift(x_pad, lam)
+        point = None
     with_dlam = tangent is not None
-    cd = hb.condense(lam, deriv=with_dlam)
+    cd = hb.condense(lam, deriv=with_dlam, reuse=point)
     w = problem.frequency(lam)
     nl = nonlinear_coefficients(problem, hb.aft, x_pad, w, jac=True, lam=lam)
     if not (np.all(np.isfinite(nl.G)) and np.all(np.isfinite(nl.dG))):
