@@ -254,7 +254,7 @@ def _branch_from_orbit(problem: Any, sys_param: str, from_orbit: Any, H: int,
 def _with_branch_stability(result: ResponseResult, problem: Any,
                            options: StabilityOptions, progress: bool) -> ResponseResult:
     """The result with the multipliers of every point and the located bifurcations."""
-    # deferred: tqdm, stability.branch_stability (loads tqdm)
+    # deferred: tqdm is heavy; the Floquet stability modules load only when it is on
     from tqdm import tqdm
 
     from rotorsfd.stability.branch_stability import FloquetEvaluator, branch_stability

@@ -37,6 +37,7 @@ from __future__ import annotations
 import itertools
 import math
 import re
+import warnings
 from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
@@ -54,9 +55,6 @@ ROSS_EXTRA = 'pip install "rotorsfd[ross]" (ross-rotordynamics)'
 def require_ross() -> Any:
     """The ``ross`` module; ConfigError with the install line if it is missing."""
     try:
-        # optional dependency: warnings may be missing
-        import warnings
-
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             import ross  # the optional dependency (slow import: about 25 s)
