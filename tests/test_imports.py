@@ -98,3 +98,44 @@ def test_no_private_name_imported_across_modules():
              for path in MODULES.values() for module, names, line in _imports(path)
              for name in names if name.startswith("_") and not name.startswith("__")]
     assert found == []
+
+
+#: files another helper is changing, whose function-level imports still lack their comment:
+#: to do after the merge of helpers E and F
+EXCLUDED = {"analyses/modal.py", "analyses/response_branch_switch.py",
+            "analyses/response_switch.py", "linear/campbell.py", "linear/static.py"}
+
+
+def _uncommented_function_imports(source: str) -> list[int]:
+    """Lines of the imports inside a function (at any depth) without a comment on their
+    lines or within the 3 lines above (the reason an import is deferred: a heavy optional
+    dependency, start-up time, ...)."""
+    lines = source.splitlines()
+    found = []
+    for fn in ast.walk(ast.parse(source)):
+        if isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            for node in ast.walk(fn):
+                if isinstance(node, (ast.Import, ast.ImportFrom)) and "#" not in " ".join(
+                        lines[max(0, node.lineno - 4):node.end_lineno]):
+                    found.append(node.lineno)
+    return sorted(set(found))
+
+
+def test_the_comment_check_could_fail():
+    """A bare import in a nested block is found; a commented one, or one at the top, not."""
+    source = ("import os\n\n\ndef f():\n    x = 1\n    y = 2\n    if x:\n        for _ in ()"
+              ":\n            import json\n    # deferred: heavy\n    import math\n"
+              "    return y\n")
+    assert _uncommented_function_imports(source) == [9]
+
+
+def test_every_function_level_import_says_why():
+    found = [f"{path.relative_to(ROOT)}:{line}" for path in sorted(MODULES.values())
+             if path.relative_to(ROOT).as_posix() not in EXCLUDED
+             for line in _uncommented_function_imports(path.read_text())]
+    assert found == []
+
+
+def test_the_excluded_files_still_need_it():
+    """EXCLUDED shrinks as the files get their comments (no stale entry)."""
+    assert all(_uncommented_function_imports((ROOT / f).read_text()) for f in EXCLUDED)

@@ -7,6 +7,7 @@ def __getattr__(name: str):
     """``rotorsfd.from_ross`` / ``rotorsfd.to_ross`` (:mod:`rotorsfd.interop.ross`), loaded
     on first use: the package itself imports nothing."""
     if name in ("from_ross", "to_ross"):
+        # deferred: interop (keeps `import rotorsfd.api` and --help fast)
         from rotorsfd.interop import ross
 
         return getattr(ross, name)

@@ -130,9 +130,12 @@ def run_fit_supports(config: Config, fields: Sequence[str], targets: Sequence[fl
     ``elements.sfd.centring_stiffness``, ``rotor.supports[0].stiffness``) so that the lowest
     ``whirl`` critical speeds of the linear rotor are ``targets`` [rad/s] (as many fields as
     targets); the starting values are the configuration's."""
+    # deferred: analyses.modal, io.config, io.schema (loads numba, scipy, pydantic)
     from rotorsfd.analyses.modal import linear_system
     from rotorsfd.io.config import get_path, with_values
     from rotorsfd.io.schema import resolve_kind
+
+    # deferred: linear.fit (loads scipy)
     from rotorsfd.linear.fit import fit_support_stiffness
 
     if len(fields) != len(targets) or not fields:
@@ -160,6 +163,7 @@ def run_fit_supports(config: Config, fields: Sequence[str], targets: Sequence[fl
 def run_response(config: Any, **kwargs: Any) -> Any:
     """Periodic response branch (``[analysis.response]``): see
     :func:`rotorsfd.analyses.response.run_response`."""
+    # deferred: analyses.response (loads numba, scipy, pydantic)
     from rotorsfd.analyses.response import run_response as _run
 
     announce_compilation("response", kwargs)
@@ -169,6 +173,7 @@ def run_response(config: Any, **kwargs: Any) -> Any:
 def run_static(config: Any, **kwargs: Any) -> Any:
     """Static deflection of the linear rotor under constant base motion: see
     :func:`rotorsfd.analyses.static.run_static`."""
+    # deferred: analyses.static (loads numba, scipy, pydantic)
     from rotorsfd.analyses.static import run_static as _run
 
     return _run(config, **kwargs)
@@ -177,6 +182,7 @@ def run_static(config: Any, **kwargs: Any) -> Any:
 def run_simulation(config: Any, speed: float | None = None, **kwargs: Any) -> Any:
     """Time integration at one speed (``[analysis.simulate]``): see
     :func:`rotorsfd.analyses.simulate.run_simulation`."""
+    # deferred: analyses.simulate (loads numba, scipy, pydantic)
     from rotorsfd.analyses.simulate import run_simulation as _run
 
     announce_compilation("simulate", kwargs)
@@ -186,6 +192,7 @@ def run_simulation(config: Any, speed: float | None = None, **kwargs: Any) -> An
 def run_bifurcation_diagram(config: Any, **kwargs: Any) -> Any:
     """Speed swept up and down in the time domain (``[analysis.bifurcation_diagram]``): see
     :func:`rotorsfd.analyses.bifurcation_diagram.run_bifurcation_diagram`."""
+    # deferred: analyses.bifurcation_diagram (loads numba, scipy, pydantic)
     from rotorsfd.analyses.bifurcation_diagram import run_bifurcation_diagram as _run
 
     announce_compilation("bifurcation_diagram", kwargs)
@@ -196,6 +203,7 @@ def run_stability_chart(config: Any, **kwargs: Any) -> Any:
     """Stability chart of the linear rotor under harmonic base rotation
     (``[analysis.stability_chart]``): see
     :func:`rotorsfd.analyses.stability_chart.run_stability_chart`."""
+    # deferred: analyses.stability_chart (loads numba, scipy, pydantic)
     from rotorsfd.analyses.stability_chart import run_stability_chart as _run
 
     return _run(config, **kwargs)
@@ -205,6 +213,7 @@ def run_fold_curve(config: Any, parameter: str, start: Any, stop: Any, **kwargs:
     """Saddle-nodes of the speed response continued in a second parameter (the boundary
     of the bistable region and its cusp): see
     :func:`rotorsfd.analyses.fold_curve.run_fold_curve`."""
+    # deferred: analyses.fold_curve (loads numba, scipy, pydantic)
     from rotorsfd.analyses.fold_curve import run_fold_curve as _run
 
     return _run(config, parameter, start, stop, **kwargs)
@@ -215,6 +224,7 @@ def run_bifurcation_curves(config: Any, parameter: str, start: Any, stop: Any,
     """Saddle-nodes and period doublings of the speed response continued together in a
     second parameter (fold and period-doubling curves, their turning points): see
     :func:`rotorsfd.analyses.bifurcation_curves.run_bifurcation_curves`."""
+    # deferred: analyses.bifurcation_curves (loads numba, scipy, pydantic)
     from rotorsfd.analyses.bifurcation_curves import run_bifurcation_curves as _run
 
     return _run(config, parameter, start, stop, **kwargs)
@@ -223,6 +233,7 @@ def run_bifurcation_curves(config: Any, parameter: str, start: Any, stop: Any,
 def run_paper(output: Any, figures: Sequence[str] | None = None, **kwargs: Any) -> Any:
     """Reproduce the paper's case studies and write the comparison report: see
     :func:`rotorsfd.paper.run.run_paper`."""
+    # deferred: paper.cases, paper.run (loads multiprocessing)
     from rotorsfd.paper.cases import select
     from rotorsfd.paper.run import run_paper as _run
 

@@ -130,6 +130,7 @@ class SecondOrderSystem:
 
     def matrices_at(self, t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``(M, D(t), K(t))`` (callable coefficients only)."""
+        # deferred: model.lowrank (loads scipy)
         from rotorsfd.model.lowrank import dense
 
         D, K = dense(self.D).copy(), dense(self.K).copy()   # CSR above 400 DOFs

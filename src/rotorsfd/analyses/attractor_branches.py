@@ -16,6 +16,7 @@ a period-n orbit in the speed needs the subharmonic problem's continuation: not 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -23,7 +24,10 @@ import numpy as np
 from rotorsfd.analyses.attractors_result import AttractorCensus
 from rotorsfd.continuation.branch import Branch
 from rotorsfd.errors import ConfigError, ConvergenceError
+from rotorsfd.harmonic.orbit_branch import continue_both_ways
+from rotorsfd.harmonic.periodic import solve_periodic
 from rotorsfd.harmonic.problem import PeriodicProblem
+from rotorsfd.io.atomic import save_figures, write_csv
 
 __all__ = ["SAME_TOL", "AttractorBranch", "trace_attractor_branches"]
 
@@ -62,8 +66,6 @@ def crossings(problem: PeriodicProblem, branch: Branch, speed: float) -> list[np
     """The HB solutions ``X`` (H+1, n_dof) where ``branch`` crosses ``speed``: Newton at
     that speed from the coefficients interpolated linearly in lam between the two points
     around each crossing (module docstring); a crossing whose Newton fails is left out."""
-    from rotorsfd.harmonic.periodic import solve_periodic
-
     lam = branch.lam
     out = []
     for j in range(lam.size - 1):
@@ -100,8 +102,6 @@ def trace_attractor_branches(problem: PeriodicProblem | None, census: AttractorC
     unless it lies on an earlier attractor's branch (module docstring); ``stability``
     True (default options), a :class:`~rotorsfd.stability.branch_options.StabilityOptions`
     or False; ``continue_kw`` go to ``continue_both_ways``."""
-    from rotorsfd.harmonic.orbit_branch import continue_both_ways
-
     speed = census.speed
     if not lo < speed < hi:
         raise ConfigError("branches", (lo, hi), f"the speed range must contain the census "
@@ -131,6 +131,7 @@ def trace_attractor_branches(problem: PeriodicProblem | None, census: AttractorC
             continue
         item = AttractorBranch(i, i, branch, bool(branch.info.get("closed")))
         if stability is not False:
+            # deferred: stability.branch_options, stability.branch_stability (loads scipy)
             from rotorsfd.stability.branch_options import StabilityOptions
             from rotorsfd.stability.branch_stability import branch_stability
 
@@ -191,6 +192,7 @@ class AttractorBranches:
     def plot(self) -> dict[str, Any]:
         """``attractor_branches.png``
         (:func:`rotorsfd.plots.attractor_branches.branches_figure`)."""
+        # deferred: plots.attractor_branches (loads matplotlib)
         from rotorsfd.plots.attractor_branches import branches_figure
 
         return {"attractor_branches.png": branches_figure(self)}
@@ -199,10 +201,6 @@ class AttractorBranches:
         """attractor_branches.csv, one ``branch_motion<k>.csv`` per traced branch (speed,
         the 1X amplitude of each nonlinear DOF over its length scale, ``|mu|max``,
         stable) and (``plots``) attractor_branches.png in ``directory``."""
-        from pathlib import Path
-
-        from rotorsfd.io.atomic import save_figures, write_csv
-
         out = Path(directory)
         out.mkdir(parents=True, exist_ok=True)
         paths = {"attractor_branches.csv": write_csv(
@@ -237,6 +235,7 @@ def run_attractor_branches(config: Any, result: Any, *, search_path: Any = None,
     """:class:`AttractorBranches` of a :class:`CensusResult` run from ``config``: the
     branches within ``[analysis.response] speed_range`` with ``[analysis.stability]``'s
     options (off when it is off)."""
+    # deferred: analyses.context, stability.branch_options (loads scipy, pydantic)
     from rotorsfd.analyses.context import build
     from rotorsfd.stability.branch_options import StabilityOptions
 

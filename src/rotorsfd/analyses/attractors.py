@@ -46,10 +46,13 @@ from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
+from scipy.stats import qmc
 
+from rotorsfd.analyses.attractors_result import AttractorCensus, group
 from rotorsfd.analyses.attractors_step import StartStepper
 from rotorsfd.analyses.td_integration import TimeDomainInputs, integrate_periods
 from rotorsfd.errors import ConfigError, ConvergenceError, ElementDomainError
+from rotorsfd.harmonic.periodic import continue_periodic, solve_periodic
 from rotorsfd.model.lowrank import dense
 from rotorsfd.timedomain.poincare import converging_period
 
@@ -137,8 +140,6 @@ def unit_samples(n: int, dim: int, sampling: str = "lhs", seed: int = 0) -> np.n
     """``(n', dim)`` points of the unit cube: a Latin hypercube of n points, or the grid
     of ``ceil(n^(1/dim))`` cell centres per coordinate (``n'`` may exceed n)."""
     if sampling == "lhs":
-        from scipy.stats import qmc
-
         return qmc.LatinHypercube(d=dim, seed=seed).random(n)
     levels = max(2, math.ceil(n ** (1.0 / dim) - 1e-9))
     g = (np.arange(levels) + 0.5) / levels
@@ -169,6 +170,7 @@ def start_states(model: CensusModel, u: np.ndarray, options: CensusOptions
     q0[:, nl], v0[:, nl] = qn, vn
     q0[:, other], v0[:, other] = qn @ G.T, vn @ G.T
     if options.around == "orbit":
+        # deferred: analyses.simulate (loads 19 more rotorsfd modules, needed only here)
         from rotorsfd.analyses.simulate import hb_state, shift_phase
 
         X = orbit_coefficients(model, options)
@@ -185,8 +187,6 @@ def orbit_coefficients(model: CensusModel, options: CensusOptions) -> np.ndarray
     computed once (``model.orbit``)."""
     if model.orbit is not None:
         return model.orbit
-    from rotorsfd.harmonic.periodic import continue_periodic, solve_periodic
-
     if model.problem is None:
         raise ConfigError(f"{FIELD}.around", "orbit", "needs a constant base motion (an "
                           "HB problem at the speed)")
@@ -333,6 +333,7 @@ def run_start(model: CensusModel, index: int, q0: np.ndarray, v0: np.ndarray,
         return StartOutcome(index, "failed", None, done,
                             np.zeros((0, model.nl_dofs.size)),
                             note=" ".join(str(exc).split())[:200])
+    # deferred: analyses.simulate (loads 19 more rotorsfd modules, needed only here)
     from rotorsfd.analyses.simulate import classify
 
     P = ch.pq / model.scale
@@ -397,6 +398,7 @@ def preload_workers() -> None:
     """Have the forkserver import this module before it forks a process pool's workers:
     each then starts with numpy, numba and the step loaded (about 1.5 s CPU per worker
     otherwise). No effect once the forkserver runs, or without one."""
+    # deferred: multiprocessing is heavy (loaded only when this runs)
     import multiprocessing
 
     if "forkserver" in multiprocessing.get_all_start_methods():
@@ -430,8 +432,6 @@ def census(model: CensusModel, options: CensusOptions | None = None, *,
            executor: Any = None, progress: Any = None) -> Any:
     """The census at the model's speed: an
     :class:`~rotorsfd.analyses.attractors_result.AttractorCensus`."""
-    from rotorsfd.analyses.attractors_result import AttractorCensus, group
-
     o = (options or CensusOptions()).validate().resolved()
     tic = time.perf_counter()
     dim = 2 * model.nl_dofs.size + (o.around == "orbit")

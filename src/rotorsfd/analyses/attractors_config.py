@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import replace
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
@@ -22,19 +22,15 @@ from rotorsfd.analyses.attractors import (
 )
 from rotorsfd.analyses.attractors_result import CensusResult
 from rotorsfd.analyses.context import RunContext, build, config_context
+from rotorsfd.analyses.td_integration import time_domain_inputs, with_reduction
 from rotorsfd.errors import ConfigError
-from rotorsfd.io.schema import Config
-
-if TYPE_CHECKING:
-    from rotorsfd.io.schema import SimulateAnalysis
+from rotorsfd.io.schema import Config, SimulateAnalysis
 
 
 def census_model(system: Any, speed: float, *, reduction: str = "auto",
                  cutoff: float = 40.0, reference_speed: float | None = None) -> CensusModel:
     """:class:`CensusModel` of a :class:`~rotorsfd.model.system.RotorSystem` at ``speed``
     [rad/s] (the reduced step of ``reduction``, as ``simulate``)."""
-    from rotorsfd.analyses.td_integration import time_domain_inputs, with_reduction
-
     if not len(system.elements):
         raise ConfigError("elements", 0, "an attractor census needs a nonlinear element")
     inputs = with_reduction(time_domain_inputs(system, speed), reduction, cutoff)
@@ -61,8 +57,6 @@ def run_census(config_or_system: Any, speeds: Sequence[float] | None = None, *,
     ``harmonics``, else 8); defaults: an empty configuration's. ``run_census(config)`` is
     that call with ``build(config)``, ``config.analysis.simulate`` and
     :func:`~rotorsfd.analyses.context.config_context`: the two paths cannot disagree."""
-    from rotorsfd.io.schema import SimulateAnalysis
-
     if isinstance(config_or_system, Config):
         config = config_or_system
         system = build(config, search_path)

@@ -22,13 +22,14 @@ the Floquet multiplier of largest modulus over ``n T``
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from rotorsfd.errors import ConvergenceError, ElementDomainError
+from rotorsfd.io.atomic import save_figures, write_csv, write_json
 
 CLOUD_FACTOR = 5.0
 
@@ -74,6 +75,7 @@ def period_n_problem(problem: Any, n: int) -> Any:
     harmonic k n (the others unforced); ``n = 1``: ``problem`` itself."""
     if n == 1:
         return problem
+    # deferred: harmonic.problem (loads numba, scipy, threadpoolctl)
     from rotorsfd.harmonic.problem import PeriodicProblem
 
     m = problem.n_dof
@@ -101,6 +103,7 @@ def period_n_problem(problem: Any, n: int) -> Any:
 def hb_correction(model: Any, outcome: Any, harmonics: int) -> dict[str, Any]:
     """HB solution through a settled period-n outcome (module docstring): residual,
     orbit difference, largest multiplier and stability; ``{"hb_note": why}`` if none."""
+    # deferred: these (loads numba, scipy, pydantic)
     from rotorsfd.analyses.orbit_branch import fit_samples
     from rotorsfd.harmonic.periodic import solve_periodic
     from rotorsfd.stability.floquet_evaluator import FloquetEvaluator
@@ -223,8 +226,6 @@ class AttractorCensus:
 
     def summary_dict(self) -> dict[str, Any]:
         """summary.json's content."""
-        from dataclasses import asdict
-
         return {"speed_rad_s": self.speed, "speed_ratio": self.speed_ratio,
                 "reference_speed_rad_s": self.reference_speed,
                 "settings": asdict(self.options), "n_starts": self.n_starts,
@@ -326,8 +327,6 @@ class CensusResult(Sequence):
     def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
         """attractors.csv (every census, a speed column), starts.csv, summary.json and
         (``plots``) basins.png (the first census) in ``directory``."""
-        from rotorsfd.io.atomic import save_figures, write_csv, write_json
-
         censuses = self.censuses
         out = Path(directory)
         out.mkdir(parents=True, exist_ok=True)

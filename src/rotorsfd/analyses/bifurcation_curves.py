@@ -217,6 +217,7 @@ class BifurcationCurves:
         """``curves.png``: the curves in the (Omega~, parameter) plane, turning points
         marked, titled by :attr:`title`
         (:func:`rotorsfd.plots.bifurcation_curves.bifurcation_curves_figure`)."""
+        # deferred: plots.bifurcation_curves (loads matplotlib)
         from rotorsfd.plots.bifurcation_curves import bifurcation_curves_figure
 
         t = self.table

@@ -54,6 +54,8 @@ from rotorsfd.analyses.td_integration import (
 )
 from rotorsfd.analyses.td_start import displaced_state, hb_start
 from rotorsfd.errors import ConfigError, ConvergenceError, ElementDomainError, RotorsfdError
+from rotorsfd.io import atomic
+from rotorsfd.io.schema import BifurcationDiagramAnalysis, Config, SimulateAnalysis
 from rotorsfd.model import dofs
 from rotorsfd.model.node_names import NodeNames, node_words
 from rotorsfd.model.system import RotorSystem
@@ -61,8 +63,6 @@ from rotorsfd.model.system import RotorSystem
 if TYPE_CHECKING:
     import xarray as xr
     from matplotlib.figure import Figure
-
-    from rotorsfd.io.schema import BifurcationDiagramAnalysis, Config, SimulateAnalysis
 
 FIELD = "analysis.bifurcation_diagram"
 #: Fresh starts of a sweep (``run_bifurcation_diagram(start_state=...)``).
@@ -197,7 +197,7 @@ class BifurcationDiagramResult:
     def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
         """Write ``diagram.csv``, ``speeds.csv``, ``diagram.json`` (settings, contacts)
         and ``diagram.png`` atomically."""
-        from rotorsfd.io import atomic
+        # deferred: io.branch_files (loads xarray, pandas, multiprocessing)
         from rotorsfd.io.branch_files import write_table
 
         out = Path(directory)
@@ -218,6 +218,7 @@ class BifurcationDiagramResult:
     def to_dataset(self) -> xr.Dataset:
         """The Poincare points (dimension ``point``: the rows of :meth:`table`) and the
         speeds (dimension ``run``: the rows of :meth:`speeds_table`), SI units."""
+        # deferred: xarray is heavy (loaded only when this runs)
         import xarray as xr
 
         units = {"speed_rad_s": "rad/s", "y": "m", "z": "m", "vy": "m/s", "vz": "m/s",
@@ -231,6 +232,7 @@ class BifurcationDiagramResult:
     def plot(self) -> dict[str, Figure]:
         """``diagram.png``: Poincare y (in C) of every node against Omega~ (or the
         speed)."""
+        # deferred: plots.timedomain (loads matplotlib)
         from rotorsfd.plots.timedomain import bifurcation_figure
 
         table = self.table()
@@ -315,9 +317,8 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem,
     ``start_state`` the fresh start (module docstring): ``"hb"`` (default; the displaced
     state where no HB solution can be computed) or ``"displaced"``; ``from_hb=True`` is
     ``"hb"`` (kept for the command line)."""
+    # deferred: tqdm is heavy (loaded only when this runs)
     from tqdm import tqdm
-
-    from rotorsfd.io.schema import BifurcationDiagramAnalysis, SimulateAnalysis
 
     if isinstance(config_or_system, RotorSystem):
         system = config_or_system

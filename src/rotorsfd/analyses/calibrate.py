@@ -42,6 +42,8 @@ from typing import Any
 import numpy as np
 
 from rotorsfd.errors import ConfigError
+from rotorsfd.io import atomic
+from rotorsfd.io.units import UnitError, to_si
 
 __all__ = ["CalibrationResult", "FitField", "Target", "parse_fit", "parse_target",
            "run_calibration"]
@@ -81,9 +83,9 @@ class Target:
 
 def parse_fit(config: Any, text: str) -> FitField:
     """``PATH`` or ``PATH=LO:HI`` (values with units allowed) -> FitField."""
+    # deferred: io.config, io.schema (loads scipy, pydantic)
     from rotorsfd.io.config import get_path, with_values
     from rotorsfd.io.schema import resolve_kind
-    from rotorsfd.io.units import UnitError, to_si
 
     path, sep, rng = text.partition("=")
     path = path.strip()
@@ -125,8 +127,6 @@ TARGET_RE = re.compile(r"^\s*([a-z_]+)\[([^\]]+)\]\s*=\s*(.+?)\s*$")
 
 def parse_target(text: str) -> Target:
     """``KIND[SEL]=VALUE`` or ``KIND[SEL]=VALUE+-TOL`` (units allowed) -> Target."""
-    from rotorsfd.io.units import UnitError, to_si
-
     m = TARGET_RE.match(text)
     if m is None:
         raise ConfigError("--target", text, "expected KIND[SELECTOR]=VALUE[+-TOL], e.g. "
@@ -289,7 +289,7 @@ class CalibrationResult:
         """``calibration.json`` and ``calibrated.toml`` (the fitted config, resolved, SI,
         with :meth:`header`), atomically (``plots``: the protocol's flag; the fit draws
         nothing)."""
-        from rotorsfd.io import atomic
+        # deferred: io.config (loads scipy, pydantic)
         from rotorsfd.io.config import dump_config, to_toml
 
         out = Path(directory)
@@ -325,6 +325,7 @@ def run_calibration(config: Any, fields: Sequence[FitField], targets: Sequence[T
                     search_path: Path | None = None, max_nfev: int = 100
                     ) -> CalibrationResult:
     """Fit ``fields`` of ``config`` to ``targets`` (module docstring)."""
+    # deferred: scipy.optimize, analyses.calibrate_model (loads numba, scipy, pydantic)
     from scipy.optimize import least_squares
 
     from rotorsfd.analyses.calibrate_model import TargetModel

@@ -36,6 +36,7 @@ FINITE = "central finite differences"
 
 def continuation_parameter(path: str) -> str | None:
     """The registered continuation parameter of a config path, or None."""
+    # deferred: analyses.response_words (loads threadpoolctl)
     from rotorsfd.analyses.response_words import system_parameter
 
     try:
@@ -67,6 +68,7 @@ class TargetModel:
                            if self.targets[i].kind == "fold_speed" and name is not None}
 
     def config_at(self, p: Sequence[float]) -> Any:
+        # deferred: io.config (loads 1 more rotorsfd module, needed only here)
         from rotorsfd.io.config import with_values
 
         return with_values(self.config, {f.path: float(v)
@@ -95,6 +97,7 @@ class TargetModel:
         """The response targets at ``p`` from one branch (ConvergenceError if one of them
         is not on it); with ``derivatives`` (a dict) also the exact fold derivatives,
         ``derivatives[(i, j)]``, for the pairs in ``exact_fold``."""
+        # deferred: analyses.response (loads threadpoolctl)
         from rotorsfd.analyses.response import run_response
 
         result = run_response(self.config_at(p), search_path=self.search_path,

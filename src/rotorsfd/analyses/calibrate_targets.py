@@ -34,10 +34,13 @@ from typing import Any
 
 import numpy as np
 import scipy.linalg
+from scipy.optimize import minimize_scalar
 
+from rotorsfd.continuation.folds import locate_branch_fold
 from rotorsfd.errors import ConfigError, ConvergenceError
 from rotorsfd.linear.critical import critical_speeds
 from rotorsfd.linear.modal import DENSE_MAX_DOF, dense_eigen, state_matrix
+from rotorsfd.model import dofs
 
 Matrices = tuple[np.ndarray, np.ndarray, np.ndarray]
 
@@ -201,8 +204,6 @@ class CriticalSpeedTracker:
 
 def fold_speeds(result: Any) -> np.ndarray:
     """The located saddle-node speeds [rad/s] of a speed branch, ascending."""
-    from rotorsfd.continuation.folds import locate_branch_fold
-
     b = result.branch
     return np.sort([float(locate_branch_fold(b, int(i)).frequency) for i in b.folds()])
 
@@ -210,10 +211,8 @@ def fold_speeds(result: Any) -> np.ndarray:
 def peak_amplitude(result: Any, node: int) -> float:
     """max over the branch of r = max_t sqrt(y^2 + z^2) at ``node`` [m], located between
     the points around the largest computed one (bounded search in arc length)."""
-    from scipy.optimize import minimize_scalar
-
+    # deferred: harmonic.synthesis (loads numba, threadpoolctl)
     from rotorsfd.harmonic.synthesis import max_radius
-    from rotorsfd.model import dofs
 
     b = result.branch
     iy, iz = dofs.dof_index(node, "y"), dofs.dof_index(node, "z")
@@ -251,8 +250,6 @@ def bifurcation_speed(result: Any, selector: str) -> float:
 
 def fold_points(result: Any) -> list[tuple[Any, int]]:
     """(located saddle-node, index of the branch point before it), ascending in speed."""
-    from rotorsfd.continuation.folds import locate_branch_fold
-
     b = result.branch
     pts = [(locate_branch_fold(b, int(i)), int(i)) for i in b.folds()]
     return sorted(pts, key=lambda pi: float(pi[0].frequency))
@@ -271,6 +268,7 @@ def fold_speed_derivative(result: Any, point: Any, index: int, parameter: str,
     with R_Omega and R_p exact (:class:`~rotorsfd.harmonic.fold_curve.TwoParameterHB`, the
     residual of ``rotorsfd fold-curve``) at the fold's H and N_f; ``w`` from the SVD of R_x.
     """
+    # deferred: harmonic.fold_curve (loads numba, threadpoolctl)
     from rotorsfd.harmonic.fold_curve import TwoParameterHB
 
     family = result.system.two_parameter_problem(parameter)

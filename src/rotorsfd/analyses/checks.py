@@ -18,6 +18,7 @@ import numpy as np
 
 from rotorsfd.errors import RotorsfdError
 from rotorsfd.io.schema import Config
+from rotorsfd.model.build import build_system
 
 
 def config_warnings(config: Config, search_path: Path | None = None) -> list[str]:
@@ -51,8 +52,8 @@ def _supports_at_dampers(config: Config) -> list[str]:
 
 def _static_offset_at_elements(config: Config, search_path: Path | None) -> list[str]:
     """An element beyond its validity limit under the static load at rest."""
+    # deferred: analyses.static (loads numba, scipy)
     from rotorsfd.analyses.static import base_static_offset
-    from rotorsfd.model.build import build_system
 
     if config.base.is_fixed and not config.gravity.enabled:
         return []

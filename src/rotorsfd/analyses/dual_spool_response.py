@@ -20,6 +20,7 @@ spools' words, "1X LP", "1X HP", "2X LP - 1X HP", and the Lyapunov exponents).
 from __future__ import annotations
 
 import dataclasses
+import sys
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -101,6 +102,7 @@ class DualSpoolResponseResult(TorusResponseResult):
         """``dual_spool_response.png`` (none for an empty branch)."""
         if not self.branch.n_points:
             return {}
+        # deferred: plots.dual_spool (loads matplotlib)
         from rotorsfd.plots.dual_spool import plot_dual_spool_response
 
         return {"dual_spool_response.png": plot_dual_spool_response(self)}
@@ -166,8 +168,6 @@ def run_dual_spool_response(config_or_system: Config | RotorSystem,
 
     def hook(index: int, lam: float, X: Any) -> bool:
         if progress:
-            import sys
-
             print(f"\rdual-spool torus: {index + 1} points, at Omega_LP~ = {lam / ref:.4g}",
                   end="", file=sys.stderr, flush=True)
         return bool(callback(TorusPoint(index, lam, X))) if callback else False
@@ -180,8 +180,6 @@ def run_dual_spool_response(config_or_system: Config | RotorSystem,
                                f"{lo / ref:.4g}): {exc}") from None
     finally:
         if progress:
-            import sys
-
             print("\r\033[K", end="", file=sys.stderr, flush=True)
     enabled = ctx.stability.enabled if stability is None else stability
     lyap = {}

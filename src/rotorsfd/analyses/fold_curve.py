@@ -238,6 +238,7 @@ class FoldCurve:
         """``fold_curve.png``: Omega~ of the folds against the second parameter (bistable
         region shaded, cusps marked) and the unstable width (the paper's Figure 19),
         titled by :attr:`title`, through :func:`rotorsfd.plots.fold.fold_curve_figure`."""
+        # deferred: plots.fold (loads matplotlib)
         from rotorsfd.plots.fold import fold_curve_figure
 
         t = self.table
@@ -264,6 +265,7 @@ def curves_dataset(table: dict[str, NDArray], parameter: str, units: str,
                    value_column: str) -> xr.Dataset:
     """A curve table as a Dataset on ``point``, each column with its units and long
     name (:data:`COLUMNS`; the second parameter ``value_column`` in ``units``)."""
+    # deferred: xarray is heavy (loaded only when this runs)
     import xarray as xr
 
     ds = xr.Dataset(attrs={"parameter": parameter, "units": units})

@@ -38,6 +38,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rotorsfd.analyses.context import RunContext
+from rotorsfd.analyses.dual_spool_response import dual_spool, run_dual_spool_response
 from rotorsfd.analyses.response_inputs import ResponseInputs
 from rotorsfd.analyses.response_result import PointStability, ResponseResult, StabilityHook
 from rotorsfd.analyses.response_words import (
@@ -46,6 +47,7 @@ from rotorsfd.analyses.response_words import (
     start_failure,
     system_parameter,
 )
+from rotorsfd.analyses.torus_response import harmonic_base, run_torus_response
 from rotorsfd.continuation.branch import Branch, BranchPoint
 from rotorsfd.errors import ConfigError, ConvergenceError
 from rotorsfd.harmonic.periodic import continue_periodic
@@ -70,6 +72,7 @@ class _Progress:
 
     def __init__(self, start: float, stop: float, enabled: bool, label: str,
                  scale: float, unit: str) -> None:
+        # deferred: tqdm is heavy (loaded only when this runs)
         from tqdm import tqdm
 
         self.start, self.span = start, (stop - start) or 1.0
@@ -148,9 +151,6 @@ def run_response(config_or_system: Config | RotorSystem,
         if settings is not None or context is not None:
             raise TypeError("settings and context go with a RotorSystem; a Config gives "
                             "its own [analysis.response] and context")
-        from rotorsfd.analyses.dual_spool_response import dual_spool, run_dual_spool_response
-        from rotorsfd.analyses.torus_response import harmonic_base, run_torus_response
-
         if dual_spool(config_or_system):     # unbalances on two spools: two frequencies
             return run_dual_spool_response(config_or_system, search_path=search_path,
                                            progress=progress, from_orbit=from_orbit,
@@ -233,6 +233,7 @@ def _branch_from_orbit(problem: Any, sys_param: str, from_orbit: Any, H: int,
                        start: float, stop: float, hook: Any, closure_tol: float | None,
                        opts: dict[str, Any]) -> tuple[Branch, dict[str, Any]]:
     """The branch through a time-domain orbit (see :func:`run_response`) and its info."""
+    # deferred: analyses.orbit_branch (loads 18 more rotorsfd modules, needed only here)
     from rotorsfd.analyses.orbit_branch import CLOSURE_TOL, continue_both_ways, orbit_start
 
     if sys_param != "speed":
@@ -253,9 +254,12 @@ def _branch_from_orbit(problem: Any, sys_param: str, from_orbit: Any, H: int,
 def _with_branch_stability(result: ResponseResult, problem: Any,
                            options: StabilityOptions, progress: bool) -> ResponseResult:
     """The result with the multipliers of every point and the located bifurcations."""
+    # deferred: tqdm is heavy; the Floquet stability modules load only when it is on
     from tqdm import tqdm
 
     from rotorsfd.stability.branch_stability import FloquetEvaluator, branch_stability
+
+    # deferred: stability.fold_points (loads 17 more rotorsfd modules, needed only here)
     from rotorsfd.stability.fold_points import with_fold_points
 
     n = result.branch.n_points
@@ -268,6 +272,7 @@ def _with_branch_stability(result: ResponseResult, problem: Any,
     try:
         st = branch_stability(result.branch, problem, options, progress=step)
         if options.check and st.bifurcations:
+            # deferred: stability.bifurcation_check (loads 18 more modules)
             from rotorsfd.stability.bifurcation_check import CheckOptions, check_bifurcations
 
             bar.set_description_str("checking bifurcations", refresh=True)

@@ -36,6 +36,8 @@ if TYPE_CHECKING:
 
 
 from rotorsfd.harmonic.synthesis import max_radius, orbit_samples
+from rotorsfd.io import atomic
+from rotorsfd.io.provenance import netcdf_attrs
 
 FloatArray = NDArray[np.float64]
 
@@ -261,7 +263,6 @@ class ResponseResult:
     def to_dataset(self) -> xr.Dataset:
         """The branch as an xarray Dataset (layout: :mod:`rotorsfd.io.branch_files`)."""
         from rotorsfd.io.branch_files import branch_dataset
-        from rotorsfd.io.provenance import netcdf_attrs
 
         attrs = {"run_title": self.title, "clearance_m": self.clearance,
                  "elements": "; ".join(e.describe() for e in self.system.elements),
@@ -313,7 +314,7 @@ class ResponseResult:
         the multipliers are known: at the point nearest ``multipliers_at``, a speed ratio
         for a speed branch, else the parameter in SI; default the point of largest
         ``|mu|max``) atomically."""
-        from rotorsfd.io import atomic
+        # deferred: io.branch_files (loads xarray, pandas, multiprocessing)
         from rotorsfd.io.branch_files import bifurcation_columns, write_netcdf, write_table
 
         out = Path(directory)
@@ -374,6 +375,7 @@ class ResponseResult:
         """The multipliers of one point against the unit circle
         (:func:`rotorsfd.plots.response.plot_multipliers`): point ``index``, or the one
         chosen by :meth:`point_index`."""
+        # deferred: plots.response (loads matplotlib)
         from rotorsfd.plots.response import plot_multipliers
 
         if index is not None and (speed_ratio is not None or parameter is not None):
@@ -404,6 +406,7 @@ class ResponseResult:
 
     def response_figures(self) -> dict[str, Figure]:
         """The frequency-response figures by file name (:mod:`rotorsfd.plots.response`)."""
+        # deferred: plots.response (loads matplotlib)
         from rotorsfd.plots.response import response_figures
 
         x_name = "speed_ratio" if self.is_speed else self.parameter_column

@@ -32,10 +32,12 @@ from typing import Any
 
 import numpy as np
 
-from rotorsfd.analyses.td_integration import TimeDomainInputs, integrate_periods
+from rotorsfd.analyses.td_integration import TimeDomainInputs, integrate_periods, with_reduction
 from rotorsfd.errors import ConfigError
 from rotorsfd.model import dofs
+from rotorsfd.model.base_terms import base_basis, keeps_band, time_varying_terms
 from rotorsfd.model.system import RotorSystem
+from rotorsfd.model.time_terms import banded_rotor_terms
 from rotorsfd.model.unbalance import unbalance_series_law
 from rotorsfd.timedomain import Forcing, TimeVaryingMatrices
 from rotorsfd.timedomain.speed_law import FIELD, SpeedLaw, speed_range
@@ -50,9 +52,6 @@ def speed_law_inputs(system: RotorSystem, law: SpeedLaw, t_end: float) -> TimeDo
         raise ConfigError(FIELD, "an element whose law depends on the speed",
                           "a speed law needs elements independent of the speed "
                           "(a journal bearing needs a constant speed)")
-    from rotorsfd.model.base_terms import base_basis, keeps_band, time_varying_terms
-    from rotorsfd.model.time_terms import banded_rotor_terms
-
     _, w_max = speed_range(law, t_end)
     r = system.rotor
     el = system.elements_at(w_max)
@@ -124,8 +123,6 @@ def run_speed_law(system: RotorSystem | None, law: SpeedLaw, t_end: float, *,
                   reduction: str = "none") -> SpeedLawRun:
     """Integrate ``system`` (or the given ``inputs``) under ``law`` from ``(q0, v0)`` at
     t = 0 to ``t_end`` (rounded up to whole periods of the highest speed)."""
-    from rotorsfd.analyses.td_integration import with_reduction
-
     if inputs is None:
         if system is None:
             raise ValueError("run_speed_law needs a system or inputs")

@@ -25,14 +25,18 @@ from typing import Any
 
 import numpy as np
 
+from rotorsfd import __version__
 from rotorsfd.analyses.runup import SpeedLawRun, run_speed_law, speed_law_inputs
 from rotorsfd.analyses.runup_step import controlled_run
 from rotorsfd.analyses.td_integration import DIRECTIONS, FIELD, scheme_options
 from rotorsfd.errors import ConfigError
+from rotorsfd.io import atomic
+from rotorsfd.io.provenance import netcdf_attrs
 from rotorsfd.model import dofs
 from rotorsfd.model.node_names import NodeNames, node_words, with_shaft_coords
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.timedomain.speed_law import RampSpeed, SpeedLaw, TableSpeed
+from rotorsfd.timedomain.speed_law_config import parse_speed_law_text, speed_law_from_config
 from rotorsfd.timedomain.waterfall import Waterfall, default_window, waterfall
 
 
@@ -108,9 +112,8 @@ class RunUpResult:
 
     def to_dataset(self):
         """``timeseries.nc`` (module docstring)."""
+        # deferred: xarray is heavy (loaded only when this runs)
         import xarray as xr
-
-        from rotorsfd import __version__
 
         run = self.run
         q = np.stack([np.stack([run.q[:, self._col(n, d)] for d in DIRECTIONS], axis=-1)
@@ -147,8 +150,6 @@ class RunUpResult:
             data["natural_frequency"] = (("campbell_speed", "mode"), self.natural[1], {
                 "units": "rad/s", "long_name": "natural frequency of the linear rotor "
                                                "(forward whirl)"})
-        from rotorsfd.io.provenance import netcdf_attrs
-
         attrs = {**netcdf_attrs(), "title": self.title, "speed_law": self.settings["speed_law"],
                  "rotorsfd_version": __version__,
                  "steps_per_period": self.settings["steps_per_period"],
@@ -194,6 +195,7 @@ class RunUpResult:
 
     def plot(self) -> dict[str, Any]:
         """``envelope.png`` and ``waterfall_<node>.png`` (:mod:`rotorsfd.plots.transient`)."""
+        # deferred: plots.transient (loads matplotlib)
         from rotorsfd.plots.transient import envelope_figure, waterfall_figure
 
         run = self.run
@@ -214,8 +216,6 @@ class RunUpResult:
 
     def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
         """``timeseries.nc``, ``summary.json`` and (``plots``) the figures in ``directory``."""
-        from rotorsfd.io import atomic
-
         out = Path(directory)
         out.mkdir(parents=True, exist_ok=True)
         ds = self.to_dataset()
@@ -233,6 +233,7 @@ def branch_envelope(path: Path, nodes: Sequence[int]) -> dict[int, tuple[np.ndar
     """Per node of ``nodes`` in the branch file ``path`` (``rotorsfd response``'s
     branch.nc): (speed [rad/s], largest orbit radius over the period [m], stable (1/0)),
     the radius from the harmonics ``q(t) = Re sum_k X_k exp(i k w t)`` on 128 samples."""
+    # deferred: xarray is heavy (loaded only when this runs)
     import xarray as xr
 
     try:
@@ -264,8 +265,6 @@ def branch_envelope(path: Path, nodes: Sequence[int]) -> dict[int, tuple[np.ndar
 
 def law_of(law: Any, search_path: Path | None = None) -> SpeedLaw:
     """A law object as given, or the law of a config table / CLI text."""
-    from rotorsfd.timedomain.speed_law_config import parse_speed_law_text, speed_law_from_config
-
     if isinstance(law, str):
         law = parse_speed_law_text(law)
     if isinstance(law, dict):
@@ -345,6 +344,7 @@ def _natural_frequencies(system: RotorSystem, omega: np.ndarray, n_modes: int
     linear parts, no film) at 9 speeds over the run (None without modes)."""
     if n_modes <= 0:
         return None
+    # deferred: linear.campbell (loads 7 more rotorsfd modules, needed only here)
     from rotorsfd.linear.campbell import campbell
 
     lo, hi = float(np.min(omega)), float(np.max(omega))

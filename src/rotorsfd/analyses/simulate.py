@@ -40,7 +40,7 @@ import time
 from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
@@ -117,9 +117,7 @@ __all__ = [
     "timeseries_path",
 ]
 
-if TYPE_CHECKING:
-    from rotorsfd.io.schema import Config, SimulateAnalysis
-
+from rotorsfd.io.schema import Config, SimulateAnalysis
 
 REDUCTION_CHECK_PERIODS = 10
 """Periods of the reduction check (at most ``step_check_periods``; 0 turns it off too)."""
@@ -134,6 +132,7 @@ def system_from_config(config: Config, search_path: Path | None = None) -> Rotor
 
 
 def _progress_bar(enabled: bool, total: int, desc: str) -> Any:
+    # deferred: tqdm is heavy (loaded only when this runs)
     from tqdm import tqdm
 
     return tqdm(total=total, desc=desc, disable=not enabled, file=sys.stderr,
@@ -202,8 +201,6 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
     (issue 22): ``result.ended == "limit"``, the periods recorded up to there, the
     warning :attr:`SimulationResult.message`; a numerical failure raises.
     """
-    from rotorsfd.io.schema import SimulateAnalysis
-
     if isinstance(config_or_system, RotorSystem):
         system = config_or_system
         sim = settings if settings is not None else SimulateAnalysis()

@@ -16,6 +16,7 @@ from rotorsfd.analyses.step_control import StepControl
 from rotorsfd.analyses.td_integration import DIRECTIONS
 from rotorsfd.analyses.td_lyapunov import uncertainty_per_period
 from rotorsfd.io import atomic
+from rotorsfd.io.provenance import netcdf_attrs
 from rotorsfd.model.node_names import NodeNames, node_words, with_shaft_coords
 from rotorsfd.timedomain import LyapunovResult, MotionClass, amplitude_spectrum
 
@@ -133,9 +134,8 @@ class SimulationResult:
         (time, node, direction) for the last ``record_periods`` (both ends), every step up
         to :data:`FILE_SAMPLES_PER_PERIOD` samples a period, else every k-th step (attrs
         ``steps_per_period``, ``samples_per_period``); ``period`` = t / T along time."""
+        # deferred: xarray is heavy (loaded only when this runs)
         import xarray as xr
-
-        from rotorsfd.io.provenance import netcdf_attrs
 
         spp = int(self.settings["steps_per_period"])
         stride = file_stride(spp)
@@ -239,7 +239,7 @@ class SimulationResult:
     def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
         """Write ``timeseries.nc``, ``poincare.csv``, ``summary.json`` and the plots
         atomically (nothing is written if a value is not finite)."""
-        from rotorsfd.io import atomic
+        # deferred: io.branch_files (loads xarray, pandas, multiprocessing)
         from rotorsfd.io.branch_files import check_finite, write_table
 
         ds = self.to_dataset()
@@ -256,6 +256,7 @@ class SimulationResult:
     def plot(self, node: int | None = None) -> dict[str, Figure]:
         """Figures by file name: ``simulation.png`` (four panels like the paper's Fig. 23)
         and ``orbit.png``, ``phase.png``, ``poincare.png``, ``spectrum.png``."""
+        # deferred: plots.timedomain (loads matplotlib)
         from rotorsfd.plots.timedomain import simulation_figures
 
         node = self.plot_node if node is None else node

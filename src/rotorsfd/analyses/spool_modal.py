@@ -88,6 +88,7 @@ class SpoolModalResult:
 
     def plot_on(self, ax: Any) -> Any:
         """The Campbell diagram against the spool on ``ax``; returns ``ax``."""
+        # deferred: plots.campbell (loads matplotlib)
         from rotorsfd.plots.campbell import campbell_axes
 
         c = self.campbell
@@ -95,6 +96,7 @@ class SpoolModalResult:
 
     def plot(self) -> dict[str, Any]:
         """``campbell.png``: the Campbell diagram against the spool."""
+        # deferred: plots.campbell (loads matplotlib)
         from rotorsfd.plots.campbell import campbell_figure
 
         c = self.campbell

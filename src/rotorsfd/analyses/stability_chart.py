@@ -40,7 +40,7 @@ from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -58,14 +58,21 @@ from rotorsfd.analyses.stability_chart_rates import (
     rate_specs_from_motion,
 )
 from rotorsfd.analyses.stability_chart_result import ChartAxis, ChartResult
-from rotorsfd.errors import ConfigError
+from rotorsfd.errors import ConfigError, ConvergenceError
+from rotorsfd.io.config import show_config, with_values
+from rotorsfd.io.schema import (
+    Config,
+    ParameterAxis,
+    StabilityChartAnalysis,
+    axis_values,
+    resolve_kind,
+)
+from rotorsfd.io.units import KINDS, to_si
+from rotorsfd.linear.modal import eigen
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.model.time_terms import linear_part
 from rotorsfd.stability.chart import StabilityChart, stability_chart
 from rotorsfd.stability.floquet import STABILITY_TOL
-
-if TYPE_CHECKING:
-    from rotorsfd.io.schema import Config, ParameterAxis, StabilityChartAnalysis
 
 
 @dataclass(frozen=True)
@@ -83,38 +90,28 @@ class ConfigSource:
 
     def kind(self, path: str, where: str) -> str:
         """The ``KINDS`` key of the field at ``path``; ConfigError at ``where``."""
-        from rotorsfd.io.schema import resolve_kind
-
         try:
             return "angular_velocity" if path == "speed" else resolve_kind(self.config, path)
         except KeyError as exc:
             raise ConfigError(where, path, exc.args[0]) from None
 
     def values(self, axis: ParameterAxis) -> list[float]:
-        from rotorsfd.io.schema import axis_values
-
         return axis_values(self.config, axis)
 
     def check(self, axes: Sequence[ChartAxis]) -> None:
         """ConfigError unless the first and the last value pair of the axes make a valid
         configuration (ranges, the fields a law uses)."""
-        from rotorsfd.io.config import with_values
-
         for i in (0, -1):
             with_values(self.config, {a.path: float(a.values[i]) for a in axes
                                       if a.path != "speed"})
 
     def system_at(self, values: dict[str, float]) -> RotorSystem:
-        from rotorsfd.io.config import with_values
-
         return build(with_values(self.config, values), self.search_path)
 
 
 def chart_context(config: Config, search_path: Path | None = None) -> RunContext:
     """The context of a chart run from ``config``: its title, the resolved configuration
     and the folder of its files (the chart needs no reference speed and no nodes)."""
-    from rotorsfd.io.config import show_config
-
     return RunContext(title=config.title, config_toml=show_config(config),
                       search_path=search_path)
 
@@ -130,8 +127,6 @@ def chart_axis(axis: ParameterAxis | tuple[str, Sequence[float]] | None, name: s
     """A ChartAxis from a settings axis (values with units) or ``(path, SI values)``.
     Without a configuration only ``speed`` and the base-rate fields are axes (their units
     are known); ``source`` gives the kind of any other field."""
-    from rotorsfd.io.units import KINDS, to_si
-
     where = f"analysis.stability_chart.{name}"
     if axis is None:
         raise ConfigError(where, None, "a stability chart needs two axes x and y, e.g. "
@@ -200,8 +195,6 @@ def _natural_frequencies(system: RotorSystem, specs: Sequence[RateSpec],
     mean."""
     if speed is None:
         return np.zeros(0)
-    from rotorsfd.linear.modal import eigen
-
     mean = [s.value if s.law in ("constant", "harmonic") else 0.0 for s in specs]
     try:
         return np.asarray(eigen(linear_part(system, rates=mean), speed, n).frequencies,
@@ -235,8 +228,6 @@ def run_stability_chart(config_or_system: Config | RotorSystem,
     settings. ``n_modes``: size of the modal basis (default: see the module docstring).
     ``workers``: threads over grid rows. ``progress``: a tqdm bar on stderr.
     """
-    from rotorsfd.io.schema import StabilityChartAnalysis
-
     if not isinstance(config_or_system, RotorSystem):
         config = config_or_system
         source = ConfigSource(config, search_path)
@@ -314,6 +305,7 @@ def run_stability_chart(config_or_system: Config | RotorSystem,
     max_abs = np.empty((xa.values.size, ya.values.size))
     crit = np.empty(max_abs.shape, complex)
     info: dict[str, Any] = {}
+    # deferred: tqdm is heavy (loaded only when this runs)
     from tqdm import tqdm
 
     with ThreadPoolExecutor(max_workers=max(1, int(workers))) as ex, \
@@ -331,8 +323,6 @@ def run_stability_chart(config_or_system: Config | RotorSystem,
             ex.shutdown(wait=False, cancel_futures=True)
             raise
     if not np.all(np.isfinite(max_abs)):
-        from rotorsfd.errors import ConvergenceError
-
         raise ConvergenceError("non-finite Floquet multipliers in the stability chart")
     info = {**info, "speed_rad_s": speed, "mode_cutoff_rad_s": cutoff}
     chart = StabilityChart(xa.values, ya.values, max_abs, crit, tol,

@@ -10,6 +10,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsfd.io import atomic
+from rotorsfd.io.provenance import netcdf_attrs
 from rotorsfd.stability.chart import StabilityChart
 
 __all__ = ["ChartAxis", "ChartResult"]
@@ -26,6 +28,7 @@ class ChartAxis:
     @property
     def name(self) -> str:
         """Dimension name (the path with '.' and brackets as '_')."""
+        # deferred: studies.grid (loads pydantic, multiprocessing)
         from rotorsfd.studies.grid import slug
 
         return slug(self.path)
@@ -64,8 +67,6 @@ class ChartResult:
         ds["natural_frequency"].attrs.update(
             units="rad/s", long_name="damped natural frequencies of the constant part "
             "(base rates at their mean) at the chart speed")
-        from rotorsfd.io.provenance import netcdf_attrs
-
         ds.attrs.update(title=self.title, x=self.x.path, y=self.y.path,
                         speed_rad_s=float("nan") if self.speed is None else self.speed,
                         **netcdf_attrs())
@@ -101,8 +102,6 @@ class ChartResult:
     def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
         """``chart.nc`` and (if ``plots``) ``chart.png`` written atomically into
         ``directory``."""
-        from rotorsfd.io import atomic
-
         out = Path(directory)
         paths = {"chart.nc": atomic.write_netcdf(self.to_dataset(), out / "chart.nc")}
         if plots:

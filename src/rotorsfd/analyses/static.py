@@ -28,6 +28,7 @@ from numpy.typing import NDArray
 from rotorsfd.analyses.context import RunContext, build, config_context
 from rotorsfd.analyses.modal import modal_speeds
 from rotorsfd.errors import ConfigError
+from rotorsfd.io import atomic
 from rotorsfd.io.schema import Config, ModalAnalysis
 from rotorsfd.linear.static import static_deflection
 
@@ -92,8 +93,6 @@ class StaticResult:
     def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
         """``static_deflection.csv`` (long format, :data:`COLUMNS`) and (``plots``)
         ``static_deflection.png``, written atomically."""
-        from rotorsfd.io import atomic
-
         out = Path(directory)
         paths = {"static_deflection.csv": atomic.write_csv(
             out / "static_deflection.csv", COLUMNS, self.rows())}

@@ -104,6 +104,7 @@ def reduction_check(inputs: TimeDomainInputs, state: tuple[np.ndarray, np.ndarra
     value there). An upper estimate: the reference starts from a state without the
     dynamic part of the modes it adds and keeps their free vibration (paper rotor:
     1.3e-5 C, where the two settled orbits differ by 7e-7 C)."""
+    # read at call time, so that a patched reduced.DENSE_MAX (tests) applies
     from rotorsfd.timedomain.reduced import DENSE_MAX
 
     red = inputs.reduction

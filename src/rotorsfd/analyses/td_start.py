@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorsfd.errors import ConfigError, ConvergenceError
+from rotorsfd.harmonic.periodic import continue_periodic, solve_periodic
 from rotorsfd.model.system import RotorSystem
 
 __all__ = ["SavedState", "displaced_state", "hb_start", "hb_state", "load_state",
@@ -50,8 +51,6 @@ def hb_start(system: RotorSystem, speed: float, harmonics: int = 3,
     Newton from the linearised response; if that fails (strongly nonlinear points), the
     branch is continued from ``speed / 2`` and its first arrival at ``speed`` taken.
     """
-    from rotorsfd.harmonic.periodic import continue_periodic, solve_periodic
-
     problem = system.periodic_problem()
     try:
         sol = solve_periodic(problem, speed, harmonics, n_samples=n_samples)
@@ -98,6 +97,7 @@ def timeseries_path(path: str | Path) -> Path:
 
 def load_state(path: str | Path) -> SavedState:
     """The final state stored in a ``timeseries.nc`` (or a directory holding one)."""
+    # deferred: xarray is heavy (loaded only when this runs)
     import xarray as xr
 
     p = timeseries_path(path)

@@ -51,6 +51,7 @@ SPEED = TorusParameter("speed", "speed", "rad/s")
 def torus_parameter(config: Config, path: str) -> TorusParameter:
     """The torus parameter of ``analysis.response.parameter`` = ``path`` (module
     docstring); ConfigError naming that field for anything else."""
+    # deferred: io.schema, io.units (loads scipy, pydantic)
     from rotorsfd.io.schema import resolve_kind
     from rotorsfd.io.units import KINDS
 
@@ -89,6 +90,7 @@ def torus_parameter(config: Config, path: str) -> TorusParameter:
 
 def parameter_problem(system: RotorSystem, par: TorusParameter, speed: float | None):
     """The TorusProblem of ``system`` continued in ``par`` (at the fixed ``speed``)."""
+    # deferred: quasiperiodic (loads numba, scipy, pydantic)
     from rotorsfd.quasiperiodic import base_parameter_problem, torus_problem
 
     if par.name in ("speed", "unbalance"):
@@ -102,6 +104,7 @@ def system_at(system: RotorSystem, par: TorusParameter, lam: float) -> RotorSyst
         return system
     if par.name == "unbalance":
         return system.with_parameter("unbalance.magnitude", lam)
+    # deferred: quasiperiodic.torus_base_parameters (loads numba, scipy, pydantic)
     from rotorsfd.quasiperiodic.torus_base_parameters import with_base_value
 
     return with_base_value(system, par.name, lam, par.hold)

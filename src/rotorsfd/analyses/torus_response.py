@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import sys
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -59,6 +60,8 @@ from rotorsfd.analyses.torus_parameters import (
     torus_parameter,
 )
 from rotorsfd.errors import ConfigError, ConvergenceError
+from rotorsfd.harmonic.fourier import to_real
+from rotorsfd.io import atomic
 from rotorsfd.io.schema import Config, parameter_values
 from rotorsfd.model.node_names import (
     NodeNames,
@@ -201,7 +204,7 @@ class TorusResponseResult:
 
     def deflection(self, node: int) -> FloatArray:
         """max over the torus of sqrt(y^2 + z^2) / C at each point (a 64 x 64 grid)."""
-        from rotorsfd.harmonic.fourier import to_real
+        # deferred: quasiperiodic.torus_fourier (loads 8 more rotorsfd modules, needed only here)
         from rotorsfd.quasiperiodic.torus_fourier import TorusAFT
 
         aft = TorusAFT(self.branch.lattice, RADIUS_GRID, RADIUS_GRID)
@@ -312,6 +315,7 @@ class TorusResponseResult:
         branch: the parameter's value); none for an empty branch."""
         if not self.branch.n_points:
             return {}
+        # deferred: plots.torus (loads matplotlib)
         from rotorsfd.plots.torus import plot_torus_components, plot_torus_spectrum
 
         return {"torus_components.png": plot_torus_components(self),
@@ -321,7 +325,7 @@ class TorusResponseResult:
     def write(self, directory: str | Path, plots: bool = True,
               multipliers_at: float | None = None) -> dict[str, Path]:
         """Write torus.nc, torus.csv and the plots (:meth:`plot`) atomically."""
-        from rotorsfd.io import atomic
+        # deferred: io.branch_files, io.torus_files (loads xarray, pandas, multiprocessing)
         from rotorsfd.io.branch_files import write_table
         from rotorsfd.io.torus_files import write_torus_netcdf
 
@@ -432,8 +436,6 @@ def run_torus_response(config_or_system: Config | RotorSystem,
 
     def hook(index: int, lam: float, X: Any) -> bool:
         if progress:
-            import sys
-
             print(f"\rtorus: {index + 1} points, at {where(lam)}", end="",
                   file=sys.stderr, flush=True)
         return bool(callback(TorusPoint(index, lam, X))) if callback else False
@@ -447,8 +449,6 @@ def run_torus_response(config_or_system: Config | RotorSystem,
         raise ConvergenceError(f"no torus at the start of {where_start}: {exc}") from None
     finally:
         if progress:
-            import sys
-
             print("\r\033[K", end="", file=sys.stderr, flush=True)
     enabled = ctx.stability.enabled if stability is None else stability
     lyap = {}

@@ -114,6 +114,7 @@ def run_marked(spec: Command, args: argparse.Namespace, config: Any) -> int:
     any result, so that a folder of an earlier run keeps its own)."""
     if not spec.output:
         return int(spec.handler(args, config) or 0)
+    # deferred: io.marker (keeps `import rotorsfd.api` and --help fast)
     from rotorsfd.io.marker import MARKER, IncompleteMarker
 
     marker = IncompleteMarker.start(args.output, spec.name)
@@ -194,6 +195,7 @@ def print_config_warnings(config: Any, search_path: Path) -> None:
 def check_output(folder: Path | None) -> None:
     """ConfigError naming ``-o`` if results cannot be written in ``folder`` (checked after
     the config, before any work)."""
+    # deferred: io.atomic (keeps `import rotorsfd.api` and --help fast)
     from rotorsfd.io.atomic import folder_problem
 
     if folder is not None and (problem := folder_problem(folder)) is not None:

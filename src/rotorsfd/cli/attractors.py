@@ -140,6 +140,7 @@ def attractors(args: argparse.Namespace, config: Any) -> int:
                             executor=ex)
     print_written(result, result.write(args.output), args.quiet, args.verbose)
     if args.branches:
+        # deferred: analyses.attractor_branches (loads numba, scipy, threadpoolctl)
         from rotorsfd.analyses.attractor_branches import run_attractor_branches
 
         traced = run_attractor_branches(config, result, search_path=Path(args.config).parent)

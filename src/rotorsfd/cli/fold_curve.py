@@ -20,6 +20,8 @@ def fold_range(config: Any, parameter: str, start: str, stop: str) -> tuple[floa
     from rotorsfd.analyses.response_words import system_parameter
     from rotorsfd.io.schema import resolve_kind
     from rotorsfd.io.units import UnitError, describe, to_si
+
+    # deferred: model.parameters (loads scipy)
     from rotorsfd.model.parameters import find_parameter
 
     try:

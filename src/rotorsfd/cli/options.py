@@ -9,9 +9,12 @@ import math
 from collections.abc import Callable
 from pathlib import Path
 
+from rotorsfd.errors import ConfigError
+
 
 def speed(text: str) -> float:
     """An angular velocity in rad/s: a number (rad/s) or a string with units."""
+    # deferred: io.units (keeps `import rotorsfd.api` and --help fast)
     from rotorsfd.io.units import UnitError, to_si
 
     try:
@@ -50,8 +53,6 @@ def check_exists(option: str, path: Path | None) -> None:
     """ConfigError naming ``option`` if ``path`` (a simulate output folder or its
     timeseries.nc) is given and does not exist; called by a command before its work (not
     an argparse type: a command line that only parses needs no files)."""
-    from rotorsfd.errors import ConfigError
-
     if path is not None and not path.exists():
         raise ConfigError(option, str(path), "no such file or folder (give a simulate "
                           "output folder or its timeseries.nc)")

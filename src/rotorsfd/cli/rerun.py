@@ -16,6 +16,7 @@ import shlex
 from pathlib import Path
 from typing import Any
 
+from rotorsfd.cli.app import run_command
 from rotorsfd.cli.registry import COMMANDS, arg, build_parser, command
 from rotorsfd.errors import ConfigError
 from rotorsfd.io import provenance
@@ -63,6 +64,7 @@ def saved_config(record: dict[str, Any]) -> Any:
     text = record.get("config_toml")
     if not text:
         return None
+    # deferred: tomllib (keeps `import rotorsfd.api` and --help fast)
     import tomllib
 
     from rotorsfd.io.config import config_from_dict  # deferred: pydantic, numpy
@@ -81,8 +83,6 @@ def saved_config(record: dict[str, Any]) -> Any:
                         help="no progress or summary (also when the saved command had -q)")])
 def rerun(args: argparse.Namespace, config: Any) -> int:
     """Read DIR/run.json and run its command with the saved config; its exit status."""
-    from rotorsfd.cli.app import run_command
-
     record = read_run_file(args.folder)
     output = args.output if args.output is not None else args.folder
     spec = COMMANDS[record["command"]]

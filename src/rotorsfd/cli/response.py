@@ -10,6 +10,7 @@ from typing import Any, NamedTuple
 from rotorsfd.cli import options
 from rotorsfd.cli.output import print_error, print_summary, print_warning, print_written
 from rotorsfd.cli.registry import arg, command
+from rotorsfd.errors import ConfigError
 from rotorsfd.interrupt import Interrupted, StopRequest
 
 
@@ -117,8 +118,6 @@ def response(args: argparse.Namespace, config: Any) -> int:
 def check_switch_option(args: argparse.Namespace, config: Any) -> None:
     """``--switch-at`` before the work: the branch needs its Floquet stability (to find
     the period doublings) and a period-1 branch (not a torus)."""
-    from rotorsfd.errors import ConfigError
-
     if args.switch_at is None:
         return
     what = {"pd": "period doublings", "bp": "branch points"}[args.switch_at.kind]
@@ -126,6 +125,7 @@ def check_switch_option(args: argparse.Namespace, config: Any) -> None:
         raise ConfigError("--switch-at", args.switch_at.text, "needs the branch's Floquet "
                           f"stability to find its {what}: set "
                           "analysis.stability.enabled = true (--set)")
+    # deferred: analyses.dual_spool_response, analyses.torus_response (loads numba, scipy, pydantic)
     from rotorsfd.analyses.dual_spool_response import dual_spool
     from rotorsfd.analyses.torus_response import harmonic_base
 
@@ -141,16 +141,20 @@ def period_two(args: argparse.Namespace, result: Any) -> int:
     a bad N (no such bifurcation) is one line and exit 2."""
     if args.switch_at is None:
         return 0
-    from rotorsfd.errors import ConfigError
+    # deferred: io.atomic imports numpy (keeps --help fast)
     from rotorsfd.io import atomic
 
     sw = args.switch_at
     if sw.kind == "bp":
+        # deferred: analyses.response_branch_switch (loads numba, scipy, pydantic)
         from rotorsfd.analyses.response_branch_switch import (
             check_branch_switch as check,
         )
+
+        # deferred: analyses.response_branch_switch (loads numba, scipy, pydantic)
         from rotorsfd.analyses.response_branch_switch import run_branch_switch as run
     else:
+        # deferred: analyses.response_switch (loads numba, scipy, pydantic)
         from rotorsfd.analyses.response_switch import check_switch as check
         from rotorsfd.analyses.response_switch import run_switch as run
     try:

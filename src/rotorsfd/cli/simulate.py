@@ -28,6 +28,7 @@ def check_simulate(args: argparse.Namespace, config: Any) -> None:
                 raise ConfigError("--speed-law", args.speed_law,
                                   f"a run-up starts from the displaced state at its own "
                                   f"speeds: not with {flag}")
+        # deferred: timedomain.speed_law_config (loads numba, scipy)
         from rotorsfd.timedomain.speed_law_config import (
             parse_speed_law_text,
             speed_law_from_config,

@@ -27,6 +27,7 @@ from rotorsfd.elements.registry import register
 from rotorsfd.elements.sfd import SFDConfig, SFDElement
 from rotorsfd.io.fields import NODE, fail
 from rotorsfd.model.dofs import dof_index
+from rotorsfd.model.multishaft import IntershaftBearing
 from rotorsfd.model.supports import LinearSupport
 
 __all__ = ["IntershaftSFDConfig", "IntershaftSFDElement", "relative"]
@@ -154,8 +155,6 @@ class IntershaftSFDConfig(SFDConfig):
 
     def intershaft_bearings(self) -> list:
         """The centring spring as an intershaft bearing between the two nodes."""
-        from rotorsfd.model.multishaft import IntershaftBearing
-
         k, c = self.centring_stiffness, self.centring_damping
         if k > 0 or c > 0:
             return [IntershaftBearing(self.node, self.outer_node, k, k, cyy=c, czz=c)]

@@ -45,6 +45,7 @@ from rotorsfd.io.fields import (
     range_text,
 )
 from rotorsfd.model.dofs import dof_index
+from rotorsfd.model.film_diagnostics import film_diagnostics
 from rotorsfd.model.supports import LinearSupport
 
 if TYPE_CHECKING:
@@ -89,6 +90,7 @@ class SFDElement(NonlinearElement):
             raise ConfigError(f"elements.{name}.fluid_inertia", True, "the fluid inertia "
                               "force is implemented for film_length = 'short' only")
         if self.finite:
+            # deferred: model.film_finite_kernels (loads numba)
             from rotorsfd.model.film_finite_kernels import P_OFFSET_Y, P_OFFSET_Z
 
             self._params = film.kernel_params
@@ -189,8 +191,6 @@ class SFDElement(NonlinearElement):
         (:func:`rotorsfd.model.film_diagnostics.film_diagnostics`)."""
         out = {"eps_max": self.limit(q)}
         if len(self.diagnostic_info) > 1:
-            from rotorsfd.model.film_diagnostics import film_diagnostics
-
             q = np.asarray(q, dtype=float).reshape(-1, 2)
             film = film_diagnostics(self.film, q - self.offset,
                                     np.asarray(v, dtype=float).reshape(-1, 2), self.density)
@@ -433,6 +433,7 @@ class SFDConfig(Section):
         geometry = (self.viscosity, self.resolved_radius, self.resolved_length,
                     self.resolved_clearance)
         if self.film_length == "finite":
+            # deferred: model.film_finite (loads 2 more rotorsfd modules, needed only here)
             from rotorsfd.model.film_finite import FiniteSFD
 
             film = FiniteSFD(*geometry, cavitation=self.cavitation,

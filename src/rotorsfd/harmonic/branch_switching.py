@@ -20,7 +20,7 @@ on towards the other end of the range. Multipliers of the period-2 legs are over
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -136,8 +136,7 @@ class PeriodDoublingSwitch:
         """:func:`~rotorsfd.stability.branch_stability.branch_stability` of every leg, its
         multipliers over the period 2T, with ``n_intervals`` per 2T doubled (the same
         time step as the period-1 branch's ``n_intervals`` per T)."""
-        from dataclasses import replace
-
+        # deferred: stability.branch_stability (loads scipy)
         from rotorsfd.stability.branch_stability import StabilityOptions, branch_stability
 
         o = options or StabilityOptions()
@@ -204,6 +203,7 @@ def _locate_pd(p1: _PeriodOne, lam_z: float, lo_z: float, hi_z: float, step_z: f
                max_steps: int = 40) -> float | None:
     """The nearest sign change of ``p1.test`` around lam_z (steps of step_z outwards on
     both sides within [lo_z, hi_z]), located by Brent's method; None if there is none."""
+    # deferred: scipy.optimize is heavy (loaded only when this runs)
     from scipy.optimize import brentq
 
     f0 = p1.test(lam_z)

@@ -22,13 +22,14 @@ import numpy as np
 
 from rotorsfd.errors import ConfigError
 from rotorsfd.interop.matrices import DIRECTIONS
+from rotorsfd.io.atomic import write_bytes, write_text
 from rotorsfd.io.schema import Config, DampingConfig
+from rotorsfd.model.base_terms import base_basis
+from rotorsfd.model.build import build_rotor
 
 
 def element_rotor(config: Config, search_path: Path | None = None) -> Any:
     """The rotor of ``[rotor]`` alone: no structural damping, no elements' linear parts."""
-    from rotorsfd.model.build import build_rotor
-
     if config.rotor.matrices is not None:
         raise ConfigError("rotor.matrices", config.rotor.matrices.file or "Matrix Market",
                           "the rotor is given by matrices already; export a rotor of "
@@ -70,9 +71,6 @@ def export_matrices(config: Config, path: str | Path, fmt: str = "npz",
     """Write the linear rotor of ``config`` to ``path`` (``.npz``; with ``fmt="mtx"`` the
     folder ``path`` gets M.mtx, K.mtx, C.mtx, G.mtx and dof_map.csv) and return (the files
     written, the config dict that reads them, with paths relative to the files' folder)."""
-    from rotorsfd.io.atomic import write_bytes, write_text
-    from rotorsfd.model.base_terms import base_basis
-
     if fmt not in ("npz", "mtx"):
         raise ConfigError("format", fmt, "allowed: 'npz' or 'mtx'")
     rotor = element_rotor(config, search_path)
@@ -88,6 +86,7 @@ def export_matrices(config: Config, path: str | Path, fmt: str = "npz",
         written = [write_bytes(target, data)]
         table = {"file": target.name, "n_nodes": rotor.n_nodes}
         return written, matrices_config(config, table)
+    # deferred: scipy.io is heavy (loaded only when this runs)
     import scipy.io
 
     target.mkdir(parents=True, exist_ok=True)
@@ -113,7 +112,7 @@ def write_export(config: Config, path: str | Path, fmt: str = "npz",
                  search_path: Path | None = None) -> list[Path]:
     """:func:`export_matrices` plus the config that reads them, written beside them as
     ``<name>.toml`` (validated first)."""
-    from rotorsfd.io.atomic import write_text
+    # deferred: io.config (loads 1 more rotorsfd module, needed only here)
     from rotorsfd.io.config import to_toml, validate
 
     written, data = export_matrices(config, path, fmt, search_path)

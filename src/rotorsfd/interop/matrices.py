@@ -33,6 +33,7 @@ import scipy.sparse as sp
 
 from rotorsfd.errors import ConfigError
 from rotorsfd.model import dofs
+from rotorsfd.model.base_terms import BaseBasis, disk_basis
 from rotorsfd.model.rotor import LinearRotor
 
 if TYPE_CHECKING:
@@ -66,8 +67,8 @@ def _read_npz(path: Path) -> dict[str, np.ndarray]:
 
 
 def _read_mtx(path: Path, name: str) -> np.ndarray:
+    # deferred: scipy.io is heavy (loaded only when this runs)
     import scipy.io
-    import scipy.sparse
 
     try:
         a = scipy.io.mmread(path)
@@ -313,8 +314,6 @@ class MatrixRotor(LinearRotor):
         imported matrices, as given or only the translation loads ``f_y = M r_y``,
         ``f_z = M r_z`` (exact; the rest zero: no base rotation, which
         :func:`check_base_motion` enforces), plus the disks' and point masses' terms."""
-        from rotorsfd.model.base_terms import BaseBasis, disk_basis
-
         m = self.model
         if m.has_base_terms:
             mats, vecs = m.base_matrices.copy(), m.base_vectors.copy()

@@ -37,6 +37,7 @@ from __future__ import annotations
 import itertools
 import math
 import re
+import warnings
 from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
@@ -44,6 +45,7 @@ from typing import Any
 import numpy as np
 
 from rotorsfd.errors import ConfigError
+from rotorsfd.io.atomic import write_text
 
 #: ROSS's lateral DOFs of a node in rotorsfd's order [y, z, ty, tz], per DOFs per node.
 LATERAL = {6: (0, 1, 3, 4), 4: (0, 1, 2, 3)}
@@ -53,8 +55,6 @@ ROSS_EXTRA = 'pip install "rotorsfd[ross]" (ross-rotordynamics)'
 def require_ross() -> Any:
     """The ``ross`` module; ConfigError with the install line if it is missing."""
     try:
-        import warnings
-
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             import ross  # the optional dependency (slow import: about 25 s)
@@ -247,6 +247,7 @@ def from_ross(rotor: Any, *, speed: float | None = None, layers: str = "error",
     [rad/s] freezes speed-dependent coefficient tables at that speed; ``layers="merge"``
     merges concentric shaft layers. ConfigError naming the element for what has no
     counterpart. Add ``[elements.<name>]``, ``[[unbalance]]`` and analyses to it."""
+    # deferred: io.config (loads scipy, pydantic)
     from rotorsfd.io.config import validate
 
     if layers not in ("error", "merge"):
@@ -286,7 +287,7 @@ def import_ross(path: str | Path, output: str | Path | None = None, *,
                 speed: float | None = None, layers: str = "error") -> str:
     """TOML text of the rotorsfd config of the ROSS rotor file ``path`` (written atomically
     to ``output`` when given)."""
-    from rotorsfd.io.atomic import write_text
+    # deferred: io.config (loads scipy, pydantic)
     from rotorsfd.io.config import to_toml
 
     config = from_ross(load_ross(path), speed=speed, layers=layers,
@@ -305,6 +306,7 @@ def import_ross(path: str | Path, output: str | Path | None = None, *,
 
 def _rotorsfd_rotor(source: Any) -> Any:
     """The rotorsfd ``Rotor`` of a Config, a RotorSystem or a Rotor."""
+    # deferred: io.schema, model.build (loads scipy, pydantic)
     from rotorsfd.io.schema import Config
     from rotorsfd.model.build import build_rotor
 

@@ -25,6 +25,7 @@ from importlib import metadata
 from pathlib import Path
 from typing import Any
 
+import rotorsfd
 from rotorsfd import __version__
 
 #: the file every results folder carries
@@ -83,8 +84,6 @@ def command_line() -> str:
 
 def package_dir() -> Path:
     """The folder of the imported rotorsfd package."""
-    import rotorsfd
-
     return Path(rotorsfd.__file__).resolve().parent
 
 

@@ -28,6 +28,7 @@ from pydantic import (
 from pydantic_core import PydanticCustomError
 
 from rotorsfd.elements import KINDS
+from rotorsfd.errors import ConfigError
 from rotorsfd.io.fields import (
     CALLABLE,
     LABEL,
@@ -42,6 +43,7 @@ from rotorsfd.io.fields import (
     quantity,
 )
 from rotorsfd.io.units import UnitError, describe, to_si
+from rotorsfd.model.node_names import BadNodeName, resolve_shaft_nodes
 
 # ---- materials and rotor -----------------------------------------------------------------
 
@@ -908,7 +910,7 @@ class SimulateAnalysis(Section):
             raise fail("overlay", self.overlay, "an overlay needs a speed_law (a run-up or "
                        "coast-down)")
         if self.speed_law is not None and "file" not in self.speed_law:
-            from rotorsfd.errors import ConfigError
+            # deferred: timedomain.speed_law_config (loads numba, scipy)
             from rotorsfd.timedomain.speed_law_config import speed_law_from_config
 
             try:
@@ -983,8 +985,6 @@ class Config(Section):
     @classmethod
     def _shaft_node_names(cls, data: Any) -> Any:
         """Output nodes given as ``"hp:3"`` (:mod:`rotorsfd.model.node_names`)."""
-        from rotorsfd.model.node_names import BadNodeName, resolve_shaft_nodes
-
         try:
             return resolve_shaft_nodes(data)
         except BadNodeName as exc:

@@ -324,6 +324,7 @@ def base_static_deflection(rotor, state: BaseState, speed: float = 0.0,
     basis = base_basis(rotor) if basis is None else basis
     _, K_b, F_b = basis.combine_sparse(base_coefficients(state, speed))
     rhs = F_b if force is None else F_b + np.asarray(force, dtype=float)
+    # deferred: scipy.sparse.linalg is heavy (loaded only when this runs)
     from scipy.sparse.linalg import spsolve
 
     return spsolve(sp.csc_matrix(rotor.K_csr + K_b), rhs)

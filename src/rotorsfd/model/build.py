@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from rotorsfd.errors import ConfigError
+from rotorsfd.interop.matrices import matrix_rotor
 from rotorsfd.io.schema import Config, RotationComponent, TranslationComponent
 from rotorsfd.model import (
     Disk,
@@ -80,8 +81,6 @@ def build_rotor(config: Config, search_path: Path | None = None) -> Rotor:
 
         return multishaft_rotor(config, damping, build_supports(config))
     if r.matrices is not None:
-        from rotorsfd.interop.matrices import matrix_rotor
-
         return matrix_rotor(config, search_path, disks, point_masses, build_supports(config),
                             damping)
     return Rotor(elements, disks=disks,
@@ -96,6 +95,7 @@ def build_elements(config: Config) -> list[NonlinearElement]:
 
 def build_unbalances(config: Config) -> list[Unbalance]:
     """The ``[[unbalance]]`` entries."""
+    # deferred: model.unbalance (loads 3 more rotorsfd modules, needed only here)
     from rotorsfd.model.unbalance import Unbalance
 
     return [Unbalance(u.node, u.magnitude, u.phase, u.start, u.rise_time)
@@ -126,6 +126,7 @@ def resolve_callable(spec: str, field_name: str,
 
 def _law(c: RotationComponent | TranslationComponent, where: str,
          search_path: Path | None) -> TimeLaw | None:
+    # deferred: model.base_motion (loads 2 more rotorsfd modules, for a [base] law only)
     from rotorsfd.model import base_motion as bm
 
     if c.law == "off":
@@ -155,6 +156,7 @@ ORDER = {"rate": 0, "angle": -1, "displacement": 0, "velocity": 1, "acceleration
 def _recorded_law(c: RotationComponent | TranslationComponent, where: str,
                   search_path: Path | None) -> TimeLaw:
     """A recorded history or a shock pulse (:mod:`rotorsfd.model.recorded_motion`)."""
+    # deferred: model.recorded_motion (loads 3 more rotorsfd modules, for a record only)
     from rotorsfd.model import recorded_motion as rm
 
     rotation = isinstance(c, RotationComponent)
@@ -175,6 +177,7 @@ def _recorded_law(c: RotationComponent | TranslationComponent, where: str,
 
 def build_gravity(config: Config) -> Gravity | None:
     """Gravity of ``[gravity]`` (None when disabled)."""
+    # deferred: model.gravity (loads 1 more rotorsfd module, needed only here)
     from rotorsfd.model.gravity import Gravity
 
     g = config.gravity
@@ -186,6 +189,7 @@ def build_gravity(config: Config) -> Gravity | None:
 def build_base_motion(config: Config, search_path: Path | None = None) -> BaseMotion:
     """The six base-motion laws of ``[base]`` and gravity; callables are imported with the
     config file's folder ``search_path`` first on the module path."""
+    # deferred: model.base_motion (loads 2 more rotorsfd modules, needed only here)
     from rotorsfd.model.base_motion import BaseMotion
 
     b = config.base

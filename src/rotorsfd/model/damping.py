@@ -17,6 +17,7 @@ import scipy.linalg
 import scipy.sparse as sp
 
 from rotorsfd.errors import ConfigError
+from rotorsfd.model.sparse import lanczos_start
 
 #: Up to this many DOFs the modes of :class:`ModalDamping` come from a dense ``eigh``
 #: (every mode); above, with ``modes`` given, from shift-invert Lanczos (those modes only).
@@ -70,9 +71,8 @@ class ModalDamping:
                 w2, phi = w2[: self.modes], phi[:, : self.modes]
             u = m @ phi
         else:
+            # deferred: scipy.sparse.linalg is heavy (loaded only when this runs)
             import scipy.sparse.linalg as spla
-
-            from rotorsfd.model.sparse import lanczos_start
 
             m = sp.csc_matrix(mass, dtype=float)
             k = sp.csc_matrix(0.5 * (stiffness + stiffness.T), dtype=float)

@@ -125,6 +125,7 @@ class FiniteSFD(FilmLand):
                  cavitation: str = "pi", end_flow: float = math.inf,
                  n_theta: int = DEFAULT_N_THETA, n_axial: int = DEFAULT_N_AXIAL,
                  eps_max: float = DEFAULT_EPS_MAX, table: bool = True) -> None:
+        # deferred: model.film_finite_kernels (loads numba)
         from rotorsfd.model.film_finite_kernels import (
             CAVITATION_CODES,
             N_PARAMS,
@@ -171,6 +172,7 @@ class FiniteSFD(FilmLand):
     @property
     def tabulated(self) -> bool:
         """Whether the force comes from the eps table."""
+        # deferred: model.film_finite_kernels (loads numba)
         from rotorsfd.model.film_finite_kernels import P_TABLE_N
 
         return self._params[P_TABLE_N] > 0
@@ -210,12 +212,14 @@ class FiniteSFD(FilmLand):
     def numba_kernel(self) -> Any:
         """``kernel(q, v, params, F, dFdq, dFdv) -> int64`` of one sample (kernel contract);
         returns 1 on contact, outputs then untouched."""
+        # deferred: model.film_finite_kernels (loads numba)
         from rotorsfd.model.film_finite_kernels import finite_kernel
 
         return finite_kernel
 
     def samples(self, y: Any, z: Any, vy: Any, vz: Any, want_jac: bool = True
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, tuple[int, ...]]:
+        # deferred: model.film_finite_kernels (loads numba)
         from rotorsfd.model.film_finite_kernels import finite_batch
 
         scalar = all(isinstance(a, _SCALARS) for a in (y, z, vy, vz))
@@ -235,6 +239,7 @@ class FiniteSFD(FilmLand):
         uncavitated pressure [Pa] on the half land (``x`` from mid-land to the end, ``phi``
         the absolute angle of each theta node) and ``p`` the model's (zero off the pi arc,
         clamped for Guembel)."""
+        # deferred: model.film_finite_kernels (loads numba)
         from rotorsfd.model.film_finite_kernels import basis_fields
 
         e = math.hypot(y, z)

@@ -165,6 +165,7 @@ class SparseLowRank:
     def bordered_solve(self, a: np.ndarray, rhs: np.ndarray) -> np.ndarray:
         """``x`` of ``[A; a^T] x = rhs`` (A square plus one column; class docstring);
         LinAlgError if the sparse part's bordered matrix is exactly singular."""
+        # deferred: scipy.sparse.linalg is heavy (loaded only when this runs)
         import scipy.sparse.linalg as spla
 
         Ab = sp.vstack([self.S, sp.csr_matrix(np.asarray(a, dtype=float)[None, :])],

@@ -40,6 +40,7 @@ import numpy as np
 
 from rotorsfd.errors import ConfigError
 from rotorsfd.model import dofs, sparse
+from rotorsfd.model.base_terms import MATRIX_NAMES, BaseBasis, disk_basis, shaft_element_basis
 from rotorsfd.model.damping import ModalDamping, RayleighDamping
 from rotorsfd.model.disk import Disk, PointMass
 from rotorsfd.model.rotor import Rotor, lumped_blocks
@@ -280,13 +281,6 @@ class MultiShaftRotor(Rotor):
     def imported_base_basis(self):
         """The base-motion basis with the elements at their global DOFs (base_basis chains
         element i on DOFs 4 i ... 4 i + 7, a single shaft's numbering)."""
-        from rotorsfd.model.base_terms import (
-            MATRIX_NAMES,
-            BaseBasis,
-            disk_basis,
-            shaft_element_basis,
-        )
-
         n = self.n_dof
         blocks: list[list] = [[] for _ in MATRIX_NAMES]
         vecs = np.zeros((8, n))

@@ -19,6 +19,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rotorsfd.io import atomic
+
 #: long names of the added coordinates
 SHAFT_LONG_NAME = "shaft of the node ([[rotor.shafts]] name)"
 SHAFT_NODE_LONG_NAME = "node number within its shaft (from 1)"
@@ -121,8 +123,6 @@ def write_node_table(directory: str | Path, names: NodeNames | None,
     """``nodes.csv`` in ``directory`` for a multi-shaft rotor (``{}`` for None)."""
     if names is None:
         return {}
-    from rotorsfd.io import atomic
-
     cols = node_table(names, nodes)
     rows = zip(*([v.item() for v in c] for c in cols.values()), strict=True)
     return {"nodes.csv": atomic.write_csv(Path(directory) / "nodes.csv", list(cols), rows)}

@@ -60,6 +60,7 @@ def read_record(path: Path, field_name: str) -> tuple[np.ndarray, np.ndarray]:
     if not path.is_file():
         raise ConfigError(field_name, str(path), "an existing CSV or netCDF file")
     if path.suffix.lower() in (".nc", ".nc4", ".netcdf"):
+        # deferred: xarray is heavy (loaded only when this runs)
         import xarray as xr
 
         with xr.open_dataset(path) as ds:
@@ -99,6 +100,7 @@ def lowpass(t: np.ndarray, y: np.ndarray, cutoff: float,
             field_name: str = "filter") -> tuple[np.ndarray, np.ndarray]:
     """The record resampled uniformly at its smallest interval and filtered by a zero-phase
     4th-order Butterworth low-pass of cut-off ``cutoff`` [rad/s] (module docstring)."""
+    # deferred: scipy.signal is heavy (loaded only when this runs)
     from scipy.signal import butter, sosfiltfilt
 
     dt = float(np.min(np.diff(t)))
@@ -127,6 +129,7 @@ class RecordedLaw(TimeLaw):
     _splines: tuple = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
+        # deferred: scipy.interpolate is heavy (loaded only when this runs)
         from scipy.interpolate import make_interp_spline
 
         if self.order not in (-1, 0, 1, 2):

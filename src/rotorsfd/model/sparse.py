@@ -23,6 +23,8 @@ from collections.abc import Iterable, Sequence
 import numpy as np
 import scipy.sparse as sp
 
+from rotorsfd.model.lowrank import with_lowrank
+
 #: Half bandwidth of the beam rotor's matrices: two nodes of 4 DOFs per element.
 HALF_BAND = 2 * 4 - 1
 
@@ -217,8 +219,6 @@ class BandedLinearPart:
     def split(self, lam: float) -> tuple[sp.csr_matrix, object, sp.csr_matrix]:
         """(M, D(lam), K(lam)) without a dense n x n array: CSR, D with the low-rank term
         a :class:`~rotorsfd.model.lowrank.BandedLowRank` (the band beside the factors)."""
-        from rotorsfd.model.lowrank import with_lowrank
-
         M, D, K = (self.csr(a) for a in self.banded(lam))
         return M, with_lowrank(D, self.lowrank), K
 

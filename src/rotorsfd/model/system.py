@@ -26,6 +26,7 @@ import scipy.sparse as sp
 from rotorsfd.elements.base import NonlinearElement
 from rotorsfd.elements.composite import ElementSet
 from rotorsfd.errors import ConfigError
+from rotorsfd.harmonic.fold_curve import TwoParameterProblem
 from rotorsfd.harmonic.problem import NonlinearLaw, PeriodicProblem
 from rotorsfd.model.base_motion import BaseMotion, BaseState, Constant
 from rotorsfd.model.base_polynomial import PolynomialTerms
@@ -437,8 +438,6 @@ class RotorSystem:
         ``periodic_problem("speed")`` of :meth:`with_parameter` (second = value), and
         ``second(speed)`` is ``periodic_problem(second, speed)``; both exact in their
         parameter, so ``dR/dspeed`` and ``dR/dsecond`` are exact at every (speed, value)."""
-        from rotorsfd.harmonic.fold_curve import TwoParameterProblem
-
         self.constant_base_state()
         par = find_parameter(second)
         if par.kind == "speed":

@@ -33,9 +33,11 @@ import scipy.sparse as sp
 
 from rotorsfd.errors import ConfigError
 from rotorsfd.model.base_motion import BaseMotion, Constant
+from rotorsfd.model.base_terms import time_varying_terms
+from rotorsfd.model.lowrank import with_lowrank
 from rotorsfd.model.multishaft_loads import other_spool_harmonics, split_unbalances
 from rotorsfd.model.sparse import DENSE_MAX_DOF
-from rotorsfd.model.unbalance import unbalance_harmonics
+from rotorsfd.model.unbalance import unbalance_harmonics, unbalance_series
 from rotorsfd.second_order import SecondOrderSystem
 from rotorsfd.timedomain.forcing import Forcing, HarmonicLoad, TimeVaryingMatrices
 
@@ -49,8 +51,6 @@ def banded_rotor_terms(rotor: Any) -> tuple[Any, Any, Any, Any] | None:
     None for a smaller (or matrix-free) rotor, whose dense matrices the callers take."""
     if rotor.n_dof <= DENSE_MAX_DOF or not hasattr(rotor, "G_csr"):
         return None
-    from rotorsfd.model.lowrank import with_lowrank
-
     lowrank = getattr(rotor, "damping_lowrank", None)
     C = rotor.C_csr if lowrank is None else rotor.C_band_csr
     return rotor.M_csr, with_lowrank(C, lowrank), rotor.K_csr, rotor.G_csr
@@ -102,9 +102,6 @@ def second_order_system(system: Any, speed: float, *,
         forcing = Forcing(omega=speed, constant=system.static_force(speed), harmonics=harm)
         return SecondOrderSystem(M, D.copy(), K.copy(), nl, kernel, params, forcing, None,
                                  float(speed), el, gyroscopic=G)
-    from rotorsfd.model.base_terms import time_varying_terms
-    from rotorsfd.model.unbalance import unbalance_series
-
     T = 2.0 * math.pi / speed
     span = horizon if horizon is not None else 1000.0 * T
     probe = np.concatenate([np.linspace(0.0, span, 257),

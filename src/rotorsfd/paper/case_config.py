@@ -40,6 +40,7 @@ def load_case_config(case: Case, examples: Path | None = None, quick: bool = Fal
                      extra: Sequence[str] = ()) -> Any:
     """The validated config of ``case`` (a calibrated case: :func:`calibration_overrides`
     first; then its overrides, ``--quick`` ones, ``extra``), titled by :func:`case_title`."""
+    # deferred: io.config (loads scipy, pydantic)
     from rotorsfd.io.config import load_config
 
     folder = examples or examples_dir()
@@ -55,6 +56,7 @@ def paper_stability(config: Any) -> Any:
     eigenproblem per point: a response case takes 27-35 % less CPU without it, e.g.
     Figure 17's U = 252 g mm, 6 rad/s branch 5.38 -> 3.53 s); False when the section is
     disabled."""
+    # deferred: stability.branch_options (loads numba, scipy)
     from rotorsfd.stability.branch_options import StabilityOptions
 
     st = config.analysis.stability

@@ -232,6 +232,7 @@ def calibration_overrides(examples: Path | None = None) -> tuple[str, ...]:
     ``elements`` tables of :data:`CALIBRATED_CONFIG` that differs from the literal rotor it
     extends (the modal damping and the two re-fitted stiffnesses), read from the file, so
     a re-calibration needs no change here."""
+    # deferred: io.config (loads scipy, pydantic)
     from rotorsfd.io.config import read_config, read_toml
 
     folder = examples or examples_dir()

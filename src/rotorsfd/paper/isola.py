@@ -26,9 +26,12 @@ def run_isola(case: Case, config: Any, out: Path | None,
     final state, at the config's step; (e) the same at ``find_steps`` from (a) at
     ``paper_speeds`` (what the paper's step shows); (d) and (e) with the Lyapunov
     exponent (``lyapunov_periods``)."""
+    # deferred: these (loads numba, scipy, pydantic)
     from rotorsfd.analyses.response import run_response
     from rotorsfd.analyses.simulate import SavedState, hb_state, run_simulation
     from rotorsfd.harmonic.periodic import solve_periodic
+
+    # deferred: io.config, model (loads scipy, pydantic)
     from rotorsfd.io.config import with_values
     from rotorsfd.model import dofs
 

@@ -45,6 +45,7 @@ def wave(X: np.ndarray, n: int = 256) -> np.ndarray:
 
 def response_numbers(result: Any, orbits: Sequence[float] = ()) -> tuple[dict, dict]:
     """Numbers and plot data of a :class:`~rotorsfd.analyses.response.ResponseResult`."""
+    # deferred: model (loads scipy)
     from rotorsfd.model import dofs
 
     table = result.table()
@@ -133,6 +134,7 @@ def turning_points(result: Any) -> list[float]:
     """Omega~ of the turning points of a response branch (``dlam/ds = 0``, located on the
     HB equations alone, relative 1e-6 of the bracket in s, as the response's stability
     locates its tangent saddle-nodes), in increasing order."""
+    # deferred: continuation.folds (loads scipy)
     from rotorsfd.continuation.folds import locate_branch_fold
 
     b = result.branch

@@ -129,6 +129,7 @@ def html_symbols(page: str) -> str:
 
 def _markdown_to_html(text: str) -> str:
     """CommonMark-like markdown (tables, no raw HTML: a ``<`` in a message is text)."""
+    # deferred: markdown is heavy (loaded only when this runs)
     import markdown
 
     md = markdown.Markdown(extensions=["tables"], output_format="html")

@@ -10,6 +10,7 @@ runs several in a process pool with a progress bar.
 
 from __future__ import annotations
 
+import io
 import os
 import sys
 import time
@@ -22,8 +23,9 @@ from typing import Any
 
 import numpy as np
 
+from rotorsfd.errors import RotorsfdError
 from rotorsfd.paper.case_config import case_title, load_case_config, paper_stability
-from rotorsfd.paper.cases import READINGS, Case, Outcome, examples_dir
+from rotorsfd.paper.cases import CAL, READINGS, Case, Outcome, examples_dir, select
 from rotorsfd.paper.isola import run_isola
 from rotorsfd.paper.numbers import (
     local_peaks,
@@ -58,6 +60,7 @@ __all__ = [
 
 def _modal(case: Case, config: Any, out: Path | None,
            plots: bool = False) -> tuple[dict, dict]:
+    # deferred: analyses.modal (loads numba, scipy, pydantic)
     from rotorsfd.analyses.modal import run_modal
 
     r = run_modal(config)
@@ -69,6 +72,7 @@ def _modal(case: Case, config: Any, out: Path | None,
 
 def _response(case: Case, config: Any, out: Path | None,
               plots: bool = False) -> tuple[dict, dict]:
+    # deferred: analyses.response (loads numba, scipy, pydantic)
     from rotorsfd.analyses.response import run_response
 
     r = run_response(config, progress=False, stability_options=paper_stability(config))
@@ -79,6 +83,7 @@ def _response(case: Case, config: Any, out: Path | None,
 
 def _simulate(case: Case, config: Any, out: Path | None,
               plots: bool = False) -> tuple[dict, dict]:
+    # deferred: analyses.simulate (loads numba, scipy, pydantic)
     from rotorsfd.analyses.simulate import run_simulation
 
     r = run_simulation(config, speed_ratio=case.options.get("speed_ratio"), progress=False,
@@ -93,6 +98,7 @@ def _simulate(case: Case, config: Any, out: Path | None,
 
 def _fold_curve(case: Case, config: Any, out: Path | None,
                 plots: bool = False) -> tuple[dict, dict]:
+    # deferred: analyses.fold_curve (loads numba, scipy, pydantic)
     from rotorsfd.analyses.fold_curve import run_fold_curve
 
     lo, hi = case.options["range"]
@@ -120,6 +126,7 @@ def _width_sweep(case: Case, config: Any, out: Path | None,
     """The unstable width (upper minus lower fold) per pitching rate: one branch per rate,
     its folds its turning points (no Floquet: a fold is a turning point of the branch, the
     width needs nothing else; the response with stability costs 3-4x)."""
+    # deferred: analyses.response, io.config (loads numba, scipy, pydantic)
     from rotorsfd.analyses.response import run_response
     from rotorsfd.io.config import with_values
 
@@ -151,6 +158,7 @@ def _width_sweep(case: Case, config: Any, out: Path | None,
 
 def _chart(case: Case, config: Any, out: Path | None,
            plots: bool = False) -> tuple[dict, dict]:
+    # deferred: analyses.stability_chart (loads numba, scipy, pydantic)
     from rotorsfd.analyses.stability_chart import run_stability_chart
 
     r = run_stability_chart(config, workers=1, progress=False)
@@ -175,8 +183,6 @@ def run_case(case: Case, examples: Path | None = None, quick: bool = False,
              out: Path | None = None, plots: bool = False) -> Outcome:
     """Run one case; results files into ``out/<case>`` when ``out`` is given, with the
     analysis' own figures (``response_*.png``, ...) if ``plots``."""
-    from rotorsfd.errors import RotorsfdError
-
     t0 = time.perf_counter()
     examples = examples or examples_dir()
     try:
@@ -208,6 +214,7 @@ def run_cases(cases: Sequence[Case], *, examples: Path | None = None, quick: boo
     2; 1: in this process) with a tqdm bar on stderr; ``plots``: see :func:`run_case`;
     ``on_outcome(outcome)`` is called in this process as each case ends (the workers
     keep running meanwhile)."""
+    # deferred: tqdm is heavy (loaded only when this runs)
     from tqdm import tqdm
 
     examples = examples or examples_dir()
@@ -305,8 +312,6 @@ class FigureQueue:
     reads only its own cases). :meth:`pngs`: the PNGs in the order of ``specs``."""
 
     def __init__(self, specs: Sequence[Any], names: Sequence[str]) -> None:
-        from rotorsfd.paper.cases import CAL
-
         ran = set(names)
         self.specs = list(specs)
         self.needs = {s.number: {n for c in s.cases for n in (c, CAL + c) if n in ran}
@@ -322,8 +327,7 @@ class FigureQueue:
                 self.done[spec.number] = self._png(spec)
 
     def _png(self, spec: Any) -> bytes | None:
-        import io
-
+        # deferred: paper.figures (loads scipy, matplotlib)
         from rotorsfd.paper.figures import draw
 
         fig = draw(spec, self.outcomes)
@@ -355,7 +359,7 @@ def run_paper(output: str | Path, figures: Sequence[str] | None = None, *,
     the cases' results files go to ``output/cases/<case>``, with each analysis' own
     figures only if ``case_plots``. Each figure is drawn as soon as its cases have ended,
     while the workers run the others (:class:`FigureQueue`)."""
-    from rotorsfd.paper.cases import select
+    # deferred: paper.report (loads scipy, matplotlib)
     from rotorsfd.paper.report import DIAGNOSES, write_report
 
     t0 = time.perf_counter()

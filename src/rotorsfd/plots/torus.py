@@ -18,6 +18,7 @@ from collections.abc import Callable
 from typing import Any
 
 import numpy as np
+from matplotlib.colors import LogNorm
 from matplotlib.figure import Figure
 
 from rotorsfd.model.node_names import node_words
@@ -120,8 +121,6 @@ def branch_axis(result: Any) -> tuple[np.ndarray, str]:
 
 def plot_torus_spectrum(result: Any, index: int) -> Figure:
     """The 2D amplitude spectrum of point ``index`` (module docstring)."""
-    from matplotlib.colors import LogNorm
-
     b = result.branch
     lat = b.lattice
     H1, H2 = lat.H1, lat.H2

@@ -13,6 +13,7 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
+from matplotlib.colors import LogNorm
 from matplotlib.figure import Figure
 
 from rotorsfd.plots.labels import wrap
@@ -78,8 +79,6 @@ def waterfall_figure(*, time: Any, frequency_hz: Any, amplitude: Any, node: int,
     a = np.asarray(amplitude) * unit_scale
     keep = (f >= 0.0) & (f <= f_max)
     floor = max(float(np.max(a)) * 1e-3, 1e-30)
-    from matplotlib.colors import LogNorm
-
     mesh = ax.pcolormesh(np.asarray(time), f[keep], np.maximum(a[:, keep], floor).T,
                          shading="nearest", norm=LogNorm(vmin=floor, vmax=max(a.max(), floor
                                                                           * 10)),

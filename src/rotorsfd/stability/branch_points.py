@@ -50,6 +50,7 @@ from rotorsfd.continuation.newton import metric, newton_extended
 from rotorsfd.errors import ConvergenceError
 from rotorsfd.harmonic.fourier import to_real
 from rotorsfd.harmonic.hb_system import HBSystem, hb_system
+from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.harmonic.truncation import convert_tangent
 
@@ -241,8 +242,6 @@ def switch_branch_point(problem: PeriodicProblem, point: LocatedBranchPoint,
     on the plane normal to ``t2`` through ``z* +- delta t2`` (scaled units) and follows
     ``+-t2`` (:func:`~rotorsfd.harmonic.periodic.continue_periodic` with
     ``start_tangent``) within ``lam_range``; ``continue_kw`` go to it."""
-    from rotorsfd.harmonic.periodic import continue_periodic
-
     system = point.system
     lo, hi = sorted(lam_range)
     H = system.H

@@ -71,6 +71,7 @@ from rotorsfd.stability.floquet_evaluator import (
     FloquetEvaluator,
     multiplier_change,
 )
+from rotorsfd.stability.hill import LADDER_TOL
 
 #: Names defined in the split-out modules, importable from here as before the split.
 __all__ = ["FOLD_MULTIPLIER_TOL", "HALVE_FRACTION", "METHODS", "N_COMPARED",
@@ -177,8 +178,6 @@ def _hill_resolution(results: list[FloquetResult]) -> list[str]:
     """A message when Hill's largest multiplier is not resolved by the truncation (its
     ladder defect, :func:`rotorsfd.stability.hill.ladder_defect`, above ``LADDER_TOL``) at
     some points: its value and crossing type are then unreliable."""
-    from rotorsfd.stability.hill import LADDER_TOL
-
     d = np.array([r.info.get("critical_defect", 0.0) for r in results], dtype=float)
     bad = ~(d <= LADDER_TOL)
     if not results or not bad.any():

@@ -100,6 +100,7 @@ def lowest_modes(K: Any, M: Any, count: int) -> tuple[NDArray, NDArray]:
     shift-invert Lanczos (ARPACK ``eigsh``) at ``sigma = 0`` (at ``-1`` when K is
     singular) from the deterministic start ``v0_i = 1 + cos(sqrt(2) i)``; ascending,
     mass-normalised. O(nnz) per iteration, no dense n x n array."""
+    # deferred: scipy.sparse.linalg is heavy (loaded only when this runs)
     from scipy.sparse.linalg import eigsh
 
     n = int(M.shape[0])
@@ -137,6 +138,7 @@ class StabilityChart:
 
     def to_dataset(self):
         """xarray Dataset with max_abs, stable, critical_re, critical_im."""
+        # deferred: xarray is heavy (loaded only when this runs)
         import xarray as xr
 
         dims = list(self.names)

@@ -26,6 +26,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rotorsfd.harmonic.problem import PeriodicProblem
+from rotorsfd.model.sparse import DENSE_MAX_DOF
 from rotorsfd.stability.branch_options import REDUCED_METHODS, StabilityOptions
 from rotorsfd.stability.floquet import FloquetResult
 from rotorsfd.stability.hill import (
@@ -105,8 +106,6 @@ class FloquetEvaluator:
         :class:`~rotorsfd.model.lowrank.BandedLowRank` with a low-rank modal damping) when
         the problem's linear part is banded and larger than ``DENSE_MAX_DOF`` (the switch
         of the linear solvers), else the dense arrays."""
-        from rotorsfd.model.sparse import DENSE_MAX_DOF
-
         part = self.problem.matrices
         if hasattr(part, "split") and self.problem.n_dof > DENSE_MAX_DOF:
             return part.split(lam)     # a low-rank modal damping kept as its factors

@@ -147,6 +147,7 @@ def ladder_defect(lam: NDArray, omega: float) -> NDArray[np.float64]:
     """For each Hill eigenvalue, ``max_{k=+-1} min_j |lam_j - lam - i k w| / w``: about 0
     (the truncation error) for the central members of the ladder of a physical exponent,
     about 1 for a spurious eigenvalue of the truncated matrix."""
+    # deferred: scipy.spatial is heavy (loaded only when this runs)
     from scipy.spatial import cKDTree
 
     pts = np.column_stack([lam.real, lam.imag]) / omega

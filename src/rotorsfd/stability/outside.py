@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import numpy as np
 import scipy.linalg as sla
+import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
 
@@ -68,8 +69,6 @@ def averaged_eigenvalues(M: ArrayLike, D: ArrayLike, K: ArrayLike, nl: NDArray,
     """Eigenvalues with ``|Im lambda| > omega_max`` of the averaged model (module
     docstring), ``Jq_bar, Jv_bar`` the (m, m) mean Jacobians of the nonlinear DOFs ``nl``;
     M, D, K dense or (large) scipy.sparse."""
-    import scipy.sparse as sp
-
     nl = np.asarray(nl, dtype=np.intp)
     if not sp.issparse(M):
         Kb, Db = np.array(K, float), np.array(D, float)
@@ -77,6 +76,7 @@ def averaged_eigenvalues(M: ArrayLike, D: ArrayLike, K: ArrayLike, nl: NDArray,
         Db[np.ix_(nl, nl)] -= Jv_bar
         lam = mode_eigenvalues(M, Db, Kb)
     else:
+        # deferred: scipy.sparse.linalg is heavy (loaded only when this runs)
         import scipy.sparse.linalg as spla
 
         n = M.shape[0]

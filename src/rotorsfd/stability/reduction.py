@@ -22,9 +22,12 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg as sla
+import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
 from rotorsfd.errors import ConfigError
+from rotorsfd.model.lowrank import project
+from rotorsfd.model.sparse import DENSE_MAX_DOF, lanczos_start
 
 
 @dataclass(frozen=True)
@@ -76,10 +79,6 @@ class FixedInterfaceBasis:
     """
 
     def __init__(self, M: ArrayLike, K: ArrayLike, boundary_dofs: ArrayLike) -> None:
-        import scipy.sparse as sp
-
-        from rotorsfd.model.sparse import DENSE_MAX_DOF
-
         self.M, self.K = M, K
         n = M.shape[0]
         self.nl = np.asarray(boundary_dofs, dtype=np.intp).ravel()
@@ -98,6 +97,7 @@ class FixedInterfaceBasis:
             w2, self.modes = sla.eigh(Ks, Ms)
             self.omegas = np.sqrt(np.clip(w2, 0.0, None))
         else:
+            # deferred: scipy.sparse.linalg is heavy (loaded only when this runs)
             import scipy.sparse.linalg as spla
 
             self.M, self.K = sp.csr_matrix(M), sp.csr_matrix(K)
@@ -117,8 +117,6 @@ class FixedInterfaceBasis:
 
     def matches(self, M: ArrayLike, K: ArrayLike) -> bool:
         """Whether this basis is for (M, K): the same objects or equal entries."""
-        import scipy.sparse as sp
-
         def same(a, b) -> bool:
             if a is b:
                 return True
@@ -132,9 +130,8 @@ class FixedInterfaceBasis:
     def _lowest(self, n_modes: int | None, omega_max: float | None) -> None:
         """Sparse: make sure the modes asked for are computed (module docstring; a fixed
         start vector, so the same modes bit for bit on every call)."""
+        # deferred: scipy.sparse.linalg is heavy (loaded only when this runs)
         import scipy.sparse.linalg as spla
-
-        from rotorsfd.model.sparse import lanczos_start
 
         ni = self.i.size
         while not self._complete:
@@ -160,8 +157,6 @@ class FixedInterfaceBasis:
         """The reduced model with damping D (dense, sparse or
         :class:`~rotorsfd.model.lowrank.BandedLowRank`) and the modes kept by
         ``n_modes`` / ``omega_max`` (:func:`craig_bampton`)."""
-        from rotorsfd.model.lowrank import project
-
         if self.sparse:
             self._lowest(n_modes, omega_max)
         keep = np.ones(self.omegas.size, bool)

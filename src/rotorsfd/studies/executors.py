@@ -32,6 +32,8 @@ import time
 from collections.abc import Callable, Iterable, Iterator
 from typing import Any, Protocol
 
+from rotorsfd.errors import ConfigError
+
 BLAS_THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "OMP_NUM_THREADS",
                          "BLIS_NUM_THREADS", "VECLIB_MAXIMUM_THREADS")
 
@@ -204,6 +206,7 @@ def _one_blas_thread() -> Any:
     """A context with one BLAS thread (threadpoolctl), so that every executor computes
     with the same BLAS threading, hence the same rounding."""
     try:
+        # optional dependency: threadpoolctl may be missing
         from threadpoolctl import threadpool_limits
     except ImportError:  # pragma: no cover
         return contextlib.nullcontext()
@@ -220,9 +223,8 @@ class DaskExecutor(_Base):
     """Grid points on a Dask distributed cluster at ``address`` (``tcp://HOST:PORT``)."""
 
     def __init__(self, address: str, timeout: float = 15.0) -> None:
+        # deferred: distributed (loads dask, distributed, multiprocessing)
         from distributed import Client
-
-        from rotorsfd.errors import ConfigError
 
         try:
             self._client = Client(address, timeout=timeout, set_as_default=False)
@@ -242,6 +244,7 @@ class DaskExecutor(_Base):
         return fut
 
     def as_completed(self, futures: Iterable[Any]) -> Iterator[Any]:
+        # deferred: distributed (loads dask, distributed, multiprocessing)
         from distributed import as_completed
 
         return iter(as_completed(list(futures), loop=self._client.loop))
@@ -258,8 +261,6 @@ def make_executor(workers: int | None = None, scheduler: str | None = None) -> E
     """Dask with ``scheduler``; serial for ``workers == 1``; else a process pool of
     ``workers`` (default: the available CPUs)."""
     if workers is not None and workers < 1:
-        from rotorsfd.errors import ConfigError
-
         raise ConfigError("--workers", workers, "must be >= 1")
     if scheduler:
         return DaskExecutor(scheduler)

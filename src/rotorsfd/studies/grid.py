@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from rotorsfd.errors import ConfigError
-from rotorsfd.io.config import dump_config, with_values
+from rotorsfd.io.config import dump_config, parse_override, with_values
 from rotorsfd.io.schema import Config, ParameterAxis, axis_values, parameter_values, resolve_kind
 from rotorsfd.io.units import KINDS
 
@@ -168,8 +168,6 @@ def point_key(digest: str, point: GridPoint) -> str:
 def parse_axis(text: str) -> tuple[str, list[Any]]:
     """``"elements.sfd.clearance_ratio=0.4 %,0.5 %"`` -> ``("elements.sfd.clearance_ratio",
     ["0.4 %", "0.5 %"])`` (each value a TOML number or a string with units)."""
-    from rotorsfd.io.config import parse_override
-
     path, _, rest = text.partition("=")
     items = [s.strip() for s in rest.split(",")]
     if not path.strip() or not all(items):

@@ -30,6 +30,7 @@ from typing import Any
 
 import numpy as np
 
+from rotorsfd.errors import ConfigError
 from rotorsfd.io import atomic
 
 FORMAT = "rotorsfd-sweep-point/1"
@@ -84,11 +85,10 @@ class PointStore:
     def lock(self) -> Iterator[None]:
         """Hold ``DIR/.sweep.lock`` (flock, released by the kernel even on SIGKILL) so that
         two sweeps never write into the same folder; ConfigError if it is held."""
-        from rotorsfd.errors import ConfigError
-
         self.directory.parent.mkdir(parents=True, exist_ok=True)
         with open(self.directory.parent / ".sweep.lock", "a") as fh:
             try:
+                # optional dependency: fcntl may be missing
                 import fcntl
             except ImportError:  # pragma: no cover (not POSIX)
                 yield

@@ -35,6 +35,7 @@ import numpy as np
 from rotorsfd.errors import ConfigError, RotorsfdError
 from rotorsfd.io import atomic
 from rotorsfd.io.config import dump_config, with_values
+from rotorsfd.io.provenance import netcdf_attrs
 from rotorsfd.io.schema import Config
 from rotorsfd.studies.executors import Executor, make_executor
 from rotorsfd.studies.grid import (
@@ -167,8 +168,6 @@ class SweepResult:
     def write(self, directory: str | Path, plots: bool = True) -> dict[str, Path]:
         """Write ``sweep.nc``, ``summary.csv`` and ``sweep.json`` atomically (``plots``:
         the protocol's flag; a sweep draws nothing itself)."""
-        from rotorsfd.io.provenance import netcdf_attrs
-
         out = Path(directory)
         ds = self.to_dataset()
         ds.attrs.update(netcdf_attrs())   # version, git revision, command line
@@ -231,6 +230,7 @@ def sweep_dataset(result: SweepResult) -> Any:
                  data; a column missing everywhere is float
         attrs    task, axes, complete (0/1), counts, config (JSON of the base config)
     """
+    # deferred: xarray is heavy (loaded only when this runs)
     import xarray as xr
 
     grid = result.grid
@@ -458,6 +458,7 @@ def _n_failed(result: SweepResult) -> int:
 
 
 def _bar(total: int, done: int, enabled: bool) -> Any:
+    # deferred: tqdm is heavy (loaded only when this runs)
     from tqdm import tqdm
 
     return tqdm(total=total, initial=done, desc="sweep", unit="pt", disable=not enabled,
@@ -466,6 +467,7 @@ def _bar(total: int, done: int, enabled: bool) -> Any:
 
 def load_sweep(directory: str | Path) -> Any:
     """``sweep.nc`` of ``directory`` loaded into memory (file closed)."""
+    # deferred: xarray is heavy (loaded only when this runs)
     import xarray as xr
 
     with xr.open_dataset(Path(directory) / "sweep.nc") as ds:

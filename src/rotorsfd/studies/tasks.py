@@ -37,11 +37,13 @@ import os
 import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any, Protocol
 
 import numpy as np
 
 from rotorsfd.errors import ConfigError, ConvergenceError
+from rotorsfd.io.config import get_path
 from rotorsfd.io.schema import Config
 
 Scalar = bool | int | float | str | None
@@ -104,8 +106,6 @@ class SyntheticTask:
         return f"synthetic:fail_above={self.fail_above!r}"
 
     def __call__(self, config: Config, values: Mapping[str, float]) -> PointOutput:
-        from rotorsfd.io.config import get_path
-
         if self.log:
             with open(self.log, "a") as fh:
                 fh.write(repr(tuple(values.values())) + "\n")
@@ -211,8 +211,7 @@ class ResponseTask:
     spec = "response"
 
     def __call__(self, config: Config, values: Mapping[str, float]) -> PointOutput:
-        from pathlib import Path
-
+        # deferred: analyses.response (loads numba, scipy, threadpoolctl)
         from rotorsfd.analyses.response import run_response
 
         result = run_response(config, search_path=None if self.search_path is None
@@ -300,8 +299,7 @@ class SimulateTask:
     spec = "simulate"
 
     def __call__(self, config: Config, values: Mapping[str, float]) -> PointOutput:
-        from pathlib import Path
-
+        # deferred: analyses.simulate (loads numba, scipy, threadpoolctl)
         from rotorsfd.analyses.simulate import run_simulation
 
         result = run_simulation(config, search_path=None if self.search_path is None
@@ -353,8 +351,7 @@ class StabilityChartTask:
     spec = "stability-chart"
 
     def __call__(self, config: Config, values: Mapping[str, float]) -> PointOutput:
-        from pathlib import Path
-
+        # deferred: analyses.stability_chart (loads numba, scipy, threadpoolctl)
         from rotorsfd.analyses.stability_chart import run_stability_chart
 
         result = run_stability_chart(config, progress=False, search_path=None

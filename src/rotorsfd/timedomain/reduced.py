@@ -57,7 +57,11 @@ from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import scipy.linalg as sla
+import scipy.sparse as sp
+from scipy.sparse.linalg import eigsh, splu
 
+from rotorsfd.errors import ConfigError
 from rotorsfd.model.lowrank import BandedLowRank, project
 from rotorsfd.stability.reduction import ReducedModel, craig_bampton
 from rotorsfd.timedomain.forcing import Forcing, HarmonicLoad, TimeVaryingMatrices
@@ -82,8 +86,6 @@ def load_vectors(forcing: Forcing, n: int) -> list[np.ndarray]:
 def sparse_if_large(a: Any) -> Any:
     """``a`` as CSR when the model is large (``> DENSE_MAX`` DOFs; its products and solves
     then cost O(nnz), the beam matrices being banded), else as a dense array."""
-    import scipy.sparse as sp
-
     if isinstance(a, BandedLowRank):      # a modal damping of a few modes beside the band
         return a if a.shape[0] > DENSE_MAX else a.toarray()
     if sp.issparse(a):
@@ -94,14 +96,8 @@ def sparse_if_large(a: Any) -> Any:
 
 def interior_solve(K: Any, interior: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     """``K_ii^-1 rhs`` (dense LU, or sparse LU of the CSR ``K``)."""
-    import scipy.sparse as sp
-
     if sp.issparse(K):
-        from scipy.sparse.linalg import splu
-
         return splu(sp.csc_matrix(K[interior][:, interior])).solve(rhs)
-    import scipy.linalg as sla
-
     return sla.solve(K[np.ix_(interior, interior)], rhs)
 
 
@@ -145,11 +141,6 @@ def sparse_craig_bampton(M: Any, D: Any, K: Any, boundary: np.ndarray,
     ``omega <= omega_max`` by shift-invert Lanczos at 0 (ARPACK, the count doubled until
     the highest found is above ``omega_max``), mass-normalised. (A stand-in until the
     banded ``craig_bampton`` lands; tested equal to it.)"""
-    import scipy.sparse as sp
-    from scipy.sparse.linalg import eigsh, splu
-
-    from rotorsfd.errors import ConfigError
-
     n = M.shape[0]
     b = np.asarray(boundary, dtype=np.intp).reshape(-1)
     i = np.setdiff1d(np.arange(n), b)

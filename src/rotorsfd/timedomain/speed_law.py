@@ -33,6 +33,8 @@ from dataclasses import dataclass, field
 from typing import Protocol
 
 import numpy as np
+from scipy.integrate import quad
+from scipy.interpolate import PchipInterpolator
 
 from rotorsfd.errors import ConfigError
 
@@ -129,8 +131,6 @@ class TableSpeed:
     _spline: object = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        from scipy.interpolate import PchipInterpolator
-
         t = np.asarray(self.times, dtype=float).reshape(-1)
         w = np.asarray(self.speeds, dtype=float).reshape(-1)
         if t.size < 2 or t.size != w.size:
@@ -192,8 +192,6 @@ class CallableSpeed:
         t = np.asarray(t, dtype=float)
         if self.integral is not None:
             return np.broadcast_to(np.asarray(self.integral(t), float), t.shape).copy()
-        from scipy.integrate import quad
-
         flat = t.reshape(-1)
         order = np.argsort(flat)
         out = np.empty(flat.size)

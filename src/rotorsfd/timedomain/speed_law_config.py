@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from rotorsfd.errors import ConfigError
+from rotorsfd.io.units import UnitError, parse_quantity, to_si
 from rotorsfd.timedomain.speed_law import (
     FIELD,
     ConstantSpeed,
@@ -36,8 +37,6 @@ KEYS = {
 
 
 def _si(spec: Mapping[str, Any], key: str, kind: str) -> float:
-    from rotorsfd.io.units import UnitError, to_si
-
     try:
         return to_si(spec[key], kind)
     except UnitError as exc:
@@ -45,8 +44,6 @@ def _si(spec: Mapping[str, Any], key: str, kind: str) -> float:
 
 
 def _rate(value: Any) -> float:
-    from rotorsfd.io.units import UnitError, parse_quantity
-
     if isinstance(value, int | float) and not isinstance(value, bool):
         return float(value)
     try:

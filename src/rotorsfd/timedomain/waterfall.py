@@ -19,6 +19,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.signal import ShortTimeFFT
+from scipy.signal.windows import hann
 
 
 @dataclass(frozen=True)
@@ -40,9 +42,6 @@ def waterfall(t: np.ndarray, y: np.ndarray, z: np.ndarray, window: float,
               overlap: float = 0.75) -> Waterfall:
     """The waterfall of the orbit (y(t), z(t)) sampled uniformly at ``t`` (module
     docstring); ``window`` [s] is rounded to whole samples (at least 16)."""
-    from scipy.signal import ShortTimeFFT
-    from scipy.signal.windows import hann
-
     t = np.asarray(t, dtype=float)
     dt = float(t[1] - t[0])
     if not np.allclose(np.diff(t), dt, rtol=1e-6, atol=0.0):
