@@ -100,11 +100,6 @@ def test_no_private_name_imported_across_modules():
     assert found == []
 
 
-#: files another helper is changing, whose function-level imports still lack their comment:
-#: to do after the merge of helpers E and F
-EXCLUDED = {"analyses/modal.py", "analyses/response_branch_switch.py",
-            "analyses/response_switch.py", "linear/campbell.py", "linear/static.py"}
-
 
 def _uncommented_function_imports(source: str) -> list[int]:
     """Lines of the imports inside a function (at any depth) without a comment on their
@@ -131,11 +126,5 @@ def test_the_comment_check_could_fail():
 
 def test_every_function_level_import_says_why():
     found = [f"{path.relative_to(ROOT)}:{line}" for path in sorted(MODULES.values())
-             if path.relative_to(ROOT).as_posix() not in EXCLUDED
              for line in _uncommented_function_imports(path.read_text())]
     assert found == []
-
-
-def test_the_excluded_files_still_need_it():
-    """EXCLUDED shrinks as the files get their comments (no stale entry)."""
-    assert all(_uncommented_function_imports((ROOT / f).read_text()) for f in EXCLUDED)

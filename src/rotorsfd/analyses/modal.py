@@ -12,6 +12,7 @@ speed Omega_ref are :mod:`~rotorsfd.analyses.linear_model`'s (``linear_system``,
 
 from __future__ import annotations
 
+import sys
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -71,6 +72,7 @@ class ModalRunResult:
     def plot_on(self, ax: Any) -> Any:
         """The Campbell diagram on ``ax`` (:func:`rotorsfd.plots.campbell.campbell_axes`),
         critical speeds marked, the title wrapped (never cut); returns ``ax``."""
+        # deferred: plots.campbell loads matplotlib (only when drawing)
         from rotorsfd.plots.campbell import campbell_axes
 
         c = self.campbell
@@ -80,6 +82,7 @@ class ModalRunResult:
 
     def plot(self) -> dict[str, Any]:
         """``campbell.png``: the Campbell diagram (:meth:`plot_on` on a new figure)."""
+        # deferred: plots.campbell loads matplotlib (only when drawing)
         from rotorsfd.plots.campbell import campbell_figure
 
         c = self.campbell
@@ -141,8 +144,7 @@ def run_modal(config_or_system: Config | RotorSystem, settings: ModalAnalysis | 
     ``reference_speed`` [rad/s] overrides the context's. Shafts at several speeds: the
     diagram against one spool (:func:`~rotorsfd.analyses.spool_modal.run_spool_modal`).
     ``progress``: a tqdm bar on stderr over the stages."""
-    import sys
-
+    # deferred: tqdm (only with a progress bar)
     from tqdm import tqdm
 
     if isinstance(config_or_system, Config):

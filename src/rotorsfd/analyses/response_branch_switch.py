@@ -159,6 +159,7 @@ class SecondBranchResult:
 
     def write(self, directory: str | Path) -> dict[str, Path]:
         """Write ``branch_bp<N>.nc`` and ``branch_bp<N>.csv`` atomically."""
+        # deferred: io.branch_files loads xarray (only when writing)
         from rotorsfd.io.branch_files import write_netcdf, write_table
 
         out, sw, p = Path(directory), self.switch, self.switch.point
@@ -257,6 +258,7 @@ def run_branch_switch(result: ResponseResult, number: int, *, stability: bool = 
     """The second branch at the ``number``-th branch point of ``result`` (module
     docstring); ``continue_kw`` override :func:`switch_kwargs`. ConfigError (the option
     named) when there is no such branch point."""
+    # deferred: rotorsfd.stability loads numba (only when switching)
     from rotorsfd.stability.branch_points import switch_branch_point
     from rotorsfd.stability.branch_stability import branch_stability
 

@@ -170,6 +170,7 @@ class Period2Result:
 
     def write(self, directory: str | Path) -> dict[str, Path]:
         """Write ``branch_period2.nc`` and ``branch_period2.csv`` atomically."""
+        # deferred: io.branch_files loads xarray (only when writing)
         from rotorsfd.io.branch_files import branch_dataset, write_netcdf, write_table
         from rotorsfd.io.provenance import netcdf_attrs
 
@@ -238,6 +239,7 @@ def run_switch(result: ResponseResult, number: int, *, harmonics: int | None = N
     docstring); ``harmonics`` of Omega/2 (default 4 H); ``continue_kw`` go to
     :func:`~rotorsfd.harmonic.branch_switching.switch_period_doubling`. ConfigError (the
     option named) when there is no such period doubling."""
+    # deferred: harmonic.branch_switching (the HB switching machinery, only when switching)
     from rotorsfd.harmonic.branch_switching import switch_period_doubling
 
     i = check_switch(result, number, value)

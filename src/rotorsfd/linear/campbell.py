@@ -99,6 +99,7 @@ def campbell(system: LinearDynamics, speeds: Sequence[float], n_modes: int = 8,
         return eigen(system, s, m, "sparse" if sparse else "dense")
 
     if sparse and n_speeds > 6 and speeds.max() > speeds.min():
+        # deferred: linear.sparse_modes loads scipy.sparse.linalg (only above 200 DOF)
         from rotorsfd.linear.sparse_modes import pencil_of
 
         if pencil_of(system).terms is not None:   # affine in the speed: a reduced model

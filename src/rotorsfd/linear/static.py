@@ -45,6 +45,7 @@ def static_deflection(system: LinearDynamics, force: np.ndarray, speed: float = 
 
 def _sparse_deflection(k, f: np.ndarray) -> np.ndarray:
     """Sparse-LU form of :func:`static_deflection` for the CSR stiffness k."""
+    # deferred: scipy.sparse.linalg (only for a sparse model)
     import scipy.sparse.linalg as spla
 
     _check_size(f, k.shape[0])

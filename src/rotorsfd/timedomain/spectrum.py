@@ -107,6 +107,7 @@ def spectral_lines(x: np.ndarray, dt: float, omega_ref: float, *,
     total = float(power.sum())
     if top <= 0.0:
         return SpectrumAnalysis(freq, amp, (), 0.0, df)
+    # deferred: scipy.signal costs 0.8 s CPU to import (only where a spectrum is taken)
     import scipy.signal
 
     peaks, props = scipy.signal.find_peaks(amp, height=rel_threshold * top,
