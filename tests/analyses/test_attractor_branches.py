@@ -8,18 +8,14 @@ folds, unstable between."""
 import numpy as np
 import pytest
 
-from rotorsfd.analyses.attractor_branches import (
-    SAME_TOL,
-    crossings,
-    on_branch,
-    trace_attractor_branches,
-)
+from rotorsfd.analyses.attractor_branches import trace_attractor_branches
 from rotorsfd.analyses.attractors import CensusModel, CensusOptions, census
 from rotorsfd.analyses.td_integration import TimeDomainInputs
 from rotorsfd.continuation.folds import locate_branch_fold
 from rotorsfd.errors import ConfigError
 from rotorsfd.harmonic import continue_periodic, solve_periodic
 from rotorsfd.harmonic.examples import duffing
+from rotorsfd.harmonic.orbit_branch import SAME_TOL, crossings, on_branch
 from rotorsfd.timedomain import Forcing, HarmonicLoad
 from rotorsfd.timedomain.kernels import cubic_spring_kernel
 

@@ -4,11 +4,12 @@ orbit continued both ways in the rotor speed (the ``--from-orbit`` algorithm,
 closes on itself, an isola), with its Floquet stability.
 
 Attractors on one branch (two stable parts of an S-curve between its folds) are traced
-once: the branch of attractor ``i`` is crossed at the census speed ``Omega_c`` between
+once (:func:`~rotorsfd.harmonic.orbit_branch.on_branch`): the branch of attractor ``i`` is
+crossed at the census speed ``Omega_c`` between
 points ``j, j + 1`` (``lam_j <= Omega_c <= lam_{j+1}`` or reverse); there the HB
 equations are solved at ``Omega_c`` from the coefficients interpolated linearly in lam,
 and the solution compared with attractor ``k``'s on the nonlinear DOFs,
-``max |X_i(Omega_c) - X_k| / c <`` :data:`SAME_TOL` on the length scales ``c``: then
+``max |X_i(Omega_c) - X_k| / c <`` :data:`~rotorsfd.harmonic.orbit_branch.SAME_TOL` on the length scales ``c``: then
 ``k`` is ``on_branch_of`` ``i``. Period-n attractors (n > 1) are not traced (the branch of
 a period-n orbit in the speed needs the subharmonic problem's continuation: not yet).
 """
@@ -24,18 +25,12 @@ import numpy as np
 from rotorsfd.analyses.attractors_result import AttractorCensus
 from rotorsfd.continuation.branch import Branch
 from rotorsfd.errors import ConfigError, ConvergenceError
-from rotorsfd.harmonic.orbit_branch import continue_both_ways
-from rotorsfd.harmonic.periodic import solve_periodic
+from rotorsfd.harmonic.orbit_branch import continue_both_ways, on_branch
 from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.io.atomic import save_figures, write_csv
 
-__all__ = ["SAME_TOL", "AttractorBranch", "trace_attractor_branches"]
-
-SAME_TOL = 1e-3
-"""Largest coefficient difference (length scales) of one orbit seen on another's branch:
-two Newton solutions of one orbit differ by the solver's tolerance (1e-6 scaled, more at a
-poorly conditioned unstable orbit), distinct orbits at one speed by O(0.1)."""
-
+__all__ = ["AttractorBranch", "AttractorBranches", "run_attractor_branches",
+           "trace_attractor_branches"]
 
 @dataclass
 class AttractorBranch:
@@ -60,37 +55,6 @@ class AttractorBranch:
         if self.branch is None:
             return None
         return float(self.branch.lam.min()), float(self.branch.lam.max())
-
-
-def crossings(problem: PeriodicProblem, branch: Branch, speed: float) -> list[np.ndarray]:
-    """The HB solutions ``X`` (H+1, n_dof) where ``branch`` crosses ``speed``: Newton at
-    that speed from the coefficients interpolated linearly in lam between the two points
-    around each crossing (module docstring); a crossing whose Newton fails is left out."""
-    lam = branch.lam
-    out = []
-    for j in range(lam.size - 1):
-        a, b = lam[j] - speed, lam[j + 1] - speed
-        if a == 0.0 or a * b < 0.0:
-            w = 0.0 if a == 0.0 else a / (a - b)
-            X0 = (1 - w) * branch.X[j] + w * branch.X[j + 1]
-            try:
-                out.append(solve_periodic(problem, speed, branch.H, X0,
-                                          condensed=branch.condensed).X)
-            except ConvergenceError:
-                continue
-    return out
-
-
-def on_branch(problem: PeriodicProblem, branch: Branch, speed: float, X: np.ndarray,
-              tol: float = SAME_TOL) -> bool:
-    """Whether the orbit ``X`` (H+1, n_dof) at ``speed`` lies on ``branch``: one of its
-    :func:`crossings` within ``tol`` length scales on the nonlinear DOFs."""
-    dofs = np.asarray(problem.nl_dofs, dtype=np.int64)
-    scale = np.asarray(problem.dof_scale, float)[dofs]
-    H = min(branch.H, X.shape[0] - 1)
-    target = X[: H + 1][:, dofs] / scale
-    return any(np.max(np.abs(Xc[: H + 1][:, dofs] / scale - target)) < tol
-               for Xc in crossings(problem, branch, speed))
 
 
 def trace_attractor_branches(problem: PeriodicProblem | None, census: AttractorCensus,

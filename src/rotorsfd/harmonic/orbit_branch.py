@@ -28,15 +28,21 @@ from typing import Any
 import numpy as np
 
 from rotorsfd.continuation.branch import Branch, BranchPoint
-from rotorsfd.errors import ConfigError
+from rotorsfd.errors import ConfigError, ConvergenceError
 from rotorsfd.harmonic.periodic import PeriodicSolution, continue_periodic, solve_periodic
 from rotorsfd.harmonic.problem import PeriodicProblem
 
-__all__ = ["CLOSURE_TOL", "OrbitFit", "continue_both_ways", "correct_orbit", "fit_samples",
-           "join_segments", "problem_lam"]
+__all__ = ["CLOSURE_TOL", "SAME_TOL", "OrbitFit", "continue_both_ways", "correct_orbit",
+           "crossings", "fit_samples", "join_segments", "on_branch", "problem_lam"]
 
 #: Default closure tolerance of :func:`continue_both_ways` (units of the length scale).
 CLOSURE_TOL = 0.02
+
+#: Largest coefficient difference (length scales) of one orbit seen on another's branch
+#: (:func:`on_branch`): two Newton solutions of one orbit differ by the solver's tolerance
+#: (1e-6 scaled, more at a poorly conditioned unstable orbit), distinct orbits at one speed
+#: by O(0.1).
+SAME_TOL = 1e-3
 
 
 @dataclass
@@ -282,3 +288,34 @@ def join_segments(segments: list[tuple[Branch, bool]]) -> Branch:
         success=all(b.success for b, _ in segments), message="", H=first.H,
         n_samples=max(b.n_samples for b, _ in segments), nl_dofs=first.nl_dofs,
         condensed=first.condensed, lam_scale=scale, info=info, resolver=resolver)
+
+
+def crossings(problem: PeriodicProblem, branch: Branch, speed: float) -> list[np.ndarray]:
+    """The HB solutions ``X`` (H+1, n_dof) where ``branch`` crosses ``speed``: Newton at
+    that speed from the coefficients interpolated linearly in lam between the two points
+    around each crossing (module docstring); a crossing whose Newton fails is left out."""
+    lam = branch.lam
+    out = []
+    for j in range(lam.size - 1):
+        a, b = lam[j] - speed, lam[j + 1] - speed
+        if a == 0.0 or a * b < 0.0:
+            w = 0.0 if a == 0.0 else a / (a - b)
+            X0 = (1 - w) * branch.X[j] + w * branch.X[j + 1]
+            try:
+                out.append(solve_periodic(problem, speed, branch.H, X0,
+                                          condensed=branch.condensed).X)
+            except ConvergenceError:
+                continue
+    return out
+
+
+def on_branch(problem: PeriodicProblem, branch: Branch, speed: float, X: np.ndarray,
+              tol: float = SAME_TOL) -> bool:
+    """Whether the orbit ``X`` (H+1, n_dof) at ``speed`` lies on ``branch``: one of its
+    :func:`crossings` within ``tol`` length scales on the nonlinear DOFs."""
+    dofs = np.asarray(problem.nl_dofs, dtype=np.int64)
+    scale = np.asarray(problem.dof_scale, float)[dofs]
+    H = min(branch.H, X.shape[0] - 1)
+    target = X[: H + 1][:, dofs] / scale
+    return any(np.max(np.abs(Xc[: H + 1][:, dofs] / scale - target)) < tol
+               for Xc in crossings(problem, branch, speed))
