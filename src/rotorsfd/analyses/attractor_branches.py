@@ -4,14 +4,14 @@ orbit continued both ways in the rotor speed (the ``--from-orbit`` algorithm,
 closes on itself, an isola), with its Floquet stability.
 
 Attractors on one branch (two stable parts of an S-curve between its folds) are traced
-once (:func:`~rotorsfd.harmonic.orbit_branch.on_branch`): the branch of attractor ``i`` is
-crossed at the census speed ``Omega_c`` between
-points ``j, j + 1`` (``lam_j <= Omega_c <= lam_{j+1}`` or reverse); there the HB
-equations are solved at ``Omega_c`` from the coefficients interpolated linearly in lam,
-and the solution compared with attractor ``k``'s on the nonlinear DOFs,
-``max |X_i(Omega_c) - X_k| / c <`` :data:`~rotorsfd.harmonic.orbit_branch.SAME_TOL` on the length scales ``c``: then
-``k`` is ``on_branch_of`` ``i``. Period-n attractors (n > 1) are not traced (the branch of
-a period-n orbit in the speed needs the subharmonic problem's continuation: not yet).
+once (:func:`~rotorsfd.harmonic.orbit_branch.on_branch`): the branch of attractor ``i``
+is crossed at the census speed ``Omega_c`` between points ``j, j + 1``
+(``lam_j <= Omega_c <= lam_{j+1}`` or reverse); there the HB equations are solved at
+``Omega_c`` from the coefficients interpolated linearly in lam, and the solution compared
+with attractor ``k``'s on the nonlinear DOFs, ``max |X_i(Omega_c) - X_k| / c <``
+:data:`~rotorsfd.harmonic.orbit_branch.SAME_TOL` on the length scales ``c``: then ``k`` is
+``on_branch_of`` ``i``. Period-n attractors (n > 1) are not traced (the branch of a
+period-n orbit in the speed needs the subharmonic problem's continuation: not yet).
 """
 
 from __future__ import annotations
