@@ -216,3 +216,17 @@ def uniform_sfd_rotor_raw(n_elements: int = 104, modal_ratio: float | None = Non
                                  "centring_stiffness": 1e7, "centring_damping": 0.0}},
             "unbalance": [{"node": mid, "magnitude": 5e-5}],
             "gravity": {"enabled": False}}
+
+
+def forbid_dense_rotor_matrices(monkeypatch) -> None:
+    """Forming the rotor's dense M, C, K, G or the dense base stack raises (the banded
+    paths of a large model must not reach them)."""
+    from rotorsfd.model.base_terms import BaseBasis
+    from rotorsfd.model.rotor import Rotor
+
+    def boom(self):
+        raise AssertionError("a dense n x n matrix was formed")
+
+    for name in ("M", "C", "K", "G"):
+        monkeypatch.setattr(Rotor, name, property(boom))
+    monkeypatch.setattr(BaseBasis, "matrices", property(boom))

@@ -11,14 +11,12 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from rotors import uniform_sfd_rotor_raw
+from rotors import forbid_dense_rotor_matrices, uniform_sfd_rotor_raw
 from rotorsfd.analyses.runup import run_speed_law, speed_law_inputs
 from rotorsfd.analyses.td_integration import with_reduction
 from rotorsfd.io.config import config_from_dict
 from rotorsfd.model import base_terms, time_terms
-from rotorsfd.model.base_terms import BaseBasis
 from rotorsfd.model.lowrank import BandedLowRank, dense
-from rotorsfd.model.rotor import Rotor
 from rotorsfd.model.sparse import DENSE_MAX_DOF
 from rotorsfd.timedomain import reduced
 from rotorsfd.timedomain.speed_law import RampSpeed
@@ -48,16 +46,6 @@ def _dense_path(monkeypatch) -> None:
     monkeypatch.setattr(reduced, "DENSE_MAX", big)
 
 
-def _no_dense_matrices(monkeypatch) -> None:
-    """Forming the rotor's dense M, C, K, G or the dense base stack raises."""
-    def boom(self):
-        raise AssertionError("a dense n x n matrix was formed")
-
-    for name in ("M", "C", "K", "G"):
-        monkeypatch.setattr(Rotor, name, property(boom))
-    monkeypatch.setattr(BaseBasis, "matrices", property(boom))
-
-
 def _run(inputs, reduction: str):
     q0 = np.zeros(inputs.n_dof)
     q0[0::4] = q0[1::4] = 1e-6
@@ -69,7 +57,7 @@ def _run(inputs, reduction: str):
 def test_large_runup_inputs_keep_the_band_and_equal_the_dense_assembly(monkeypatch):
     system = _system()
     with monkeypatch.context() as m:
-        _no_dense_matrices(m)
+        forbid_dense_rotor_matrices(m)
         inputs = speed_law_inputs(system, LAW, T_END)
         red = with_reduction(inputs, "auto")          # the projection stays sparse too
     assert red.reduction is not None and red.reduction.n_dof < 60
@@ -135,7 +123,7 @@ def test_large_runup_simulation_forms_no_dense_matrix(monkeypatch):
     config = config_from_dict(raw)
     system = build_system(config)
     with monkeypatch.context() as m:
-        _no_dense_matrices(m)
+        forbid_dense_rotor_matrices(m)
         res = run_speed_law_simulation(system, LAW, sim=config.analysis.simulate,
                                        nodes=[1, 51], steps_per_period=STEPS,
                                        natural_modes=2)

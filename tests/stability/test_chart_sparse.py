@@ -11,16 +11,14 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from rotors import uniform_sfd_rotor_raw
+from rotors import forbid_dense_rotor_matrices, uniform_sfd_rotor_raw
 from rotorsfd.analyses.stability_chart import run_stability_chart
 from rotorsfd.analyses.stability_chart_ltp import rotor_ltp_system
 from rotorsfd.analyses.stability_chart_rates import ChartParams
 from rotorsfd.io.config import config_from_dict
 from rotorsfd.model import base_terms, time_terms
-from rotorsfd.model.base_terms import BaseBasis
 from rotorsfd.model.build import build_system
 from rotorsfd.model.lowrank import BandedLowRank
-from rotorsfd.model.rotor import Rotor
 from rotorsfd.model.sparse import DENSE_MAX_DOF
 from rotorsfd.stability import chart
 from rotorsfd.stability.chart import LARGE_MODES, lowest_modes, stability_chart
@@ -49,15 +47,6 @@ def _dense_path(monkeypatch) -> None:
     monkeypatch.setattr(chart, "DENSE_MAX_DOF", big)
 
 
-def _no_dense_matrices(monkeypatch) -> None:
-    def boom(self):
-        raise AssertionError("a dense n x n matrix was formed")
-
-    for name in ("M", "C", "K", "G"):
-        monkeypatch.setattr(Rotor, name, property(boom))
-    monkeypatch.setattr(BaseBasis, "matrices", property(boom))
-
-
 def _ltp(raw: dict):
     """The chart's LTP system over (A0, w_b) with its ChartParams."""
     from rotorsfd.analyses.stability_chart_rates import (
@@ -76,7 +65,7 @@ def test_large_ltp_system_keeps_the_band(monkeypatch):
     system = build_system(config_from_dict(_raw()))
     assert system.n_dof == 404 > DENSE_MAX_DOF
     with monkeypatch.context() as m:
-        _no_dense_matrices(m)
+        forbid_dense_rotor_matrices(m)
         ltp = _ltp(_raw())
         res = run_stability_chart(config_from_dict(_raw()), x=(A0, AMPLITUDES[:1]),
                                   y=(FREQ, FREQUENCIES[:1]), n_intervals=100)
