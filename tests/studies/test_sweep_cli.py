@@ -85,13 +85,22 @@ def test_sigkill_then_resume_equals_uninterrupted(tmp_path):
     assert _bytes(part) == _bytes(full)
 
 
+def _default_sigint() -> None:
+    """The CLI starts as a terminal's foreground job does, with SIGINT at its default (a
+    child inherits an ignored SIGINT across exec, and Python then keeps ignoring it). In
+    two fresh-clone parallel suites the sweep ran on after the SIGINT and exited 0, while
+    the test alone passed; the cause is not found yet: the failure message prints this
+    process's SIGINT handler."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def test_ctrl_c_leaves_valid_partial_result(tmp_path):
     cfg = sweep_toml(tmp_path / "rotor.toml")
     out = tmp_path / "out"
     proc = subprocess.Popen(
         _cli(str(cfg), "-o", str(out), "--task", "synthetic:delay=4.0", "--workers", "2",
              "--quiet", *AXES), env=_env(), start_new_session=True,
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, preexec_fn=_default_sigint)
     deadline = time.monotonic() + 60
     while len(list((out / "points").glob("0*.json"))) < 2 and time.monotonic() < deadline:
         time.sleep(0.02)
@@ -103,7 +112,8 @@ def test_ctrl_c_leaves_valid_partial_result(tmp_path):
     assert len(list((out / "points").glob("0*.json"))) < 12
     os.killpg(proc.pid, signal.SIGINT)                     # Ctrl-C at the terminal
     _, err = proc.communicate(timeout=30)
-    assert proc.returncode == 130, err
+    assert proc.returncode == 130, (err, "SIGINT in the test process:",
+                                    signal.getsignal(signal.SIGINT))
     assert "--resume" in err
     manifest = json.loads((out / "sweep.json").read_text())
     done = len(list((out / "points").glob("0*.json")))
