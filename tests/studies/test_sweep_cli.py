@@ -86,12 +86,14 @@ def test_sigkill_then_resume_equals_uninterrupted(tmp_path):
 
 
 def _default_sigint() -> None:
-    """The CLI starts as a terminal's foreground job does, with SIGINT at its default (a
-    child inherits an ignored SIGINT across exec, and Python then keeps ignoring it). In
+    """The CLI starts as a terminal's foreground job does, with SIGINT at its default and
+    not blocked (a child inherits an ignored SIGINT and the signal mask across exec: an
+    ignored SIGINT stays ignored in Python, a blocked one is never delivered). In
     two fresh-clone parallel suites the sweep ran on after the SIGINT and exited 0, while
     the test alone passed; the cause is not found yet: the failure message prints this
     process's SIGINT handler."""
     signal.signal(signal.SIGINT, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
 
 
 def test_ctrl_c_leaves_valid_partial_result(tmp_path):
@@ -113,7 +115,9 @@ def test_ctrl_c_leaves_valid_partial_result(tmp_path):
     os.killpg(proc.pid, signal.SIGINT)                     # Ctrl-C at the terminal
     _, err = proc.communicate(timeout=30)
     assert proc.returncode == 130, (err, "SIGINT in the test process:",
-                                    signal.getsignal(signal.SIGINT))
+                                    signal.getsignal(signal.SIGINT), "blocked:",
+                                    signal.SIGINT in signal.pthread_sigmask(
+                                        signal.SIG_BLOCK, set()))
     assert "--resume" in err
     manifest = json.loads((out / "sweep.json").read_text())
     done = len(list((out / "points").glob("0*.json")))
