@@ -194,22 +194,34 @@ class AttractorBranches:
         return paths
 
 
-def run_attractor_branches(config: Any, result: Any, *, search_path: Any = None,
-                           progress: bool = False) -> AttractorBranches:
-    """:class:`AttractorBranches` of a :class:`CensusResult` run from ``config``: the
-    branches within ``[analysis.response] speed_range`` with ``[analysis.stability]``'s
-    options (off when it is off)."""
+def run_attractor_branches(config_or_system: Any, result: Any, *, settings: Any = None,
+                           stability: Any = None,
+                           search_path: Any = None) -> AttractorBranches:
+    """:class:`AttractorBranches` of a :class:`CensusResult`: the branches within
+    ``settings.speed_range`` (an ``[analysis.response]`` section) with the options of
+    ``stability`` (an ``[analysis.stability]`` section; off when it is off).
+    ``run_attractor_branches(system, result, settings=..., stability=...)``, defaults: an
+    empty configuration's sections; ``run_attractor_branches(config, result)`` is that
+    call with ``build(config)`` and the config's two sections."""
     # deferred: analyses.context, stability.branch_options (loads scipy, pydantic)
     from rotorsfd.analyses.context import build
+    from rotorsfd.io.schema import Config, ResponseAnalysis, StabilityAnalysis
     from rotorsfd.stability.branch_options import StabilityOptions
 
-    system = build(config, search_path)
+    if isinstance(config_or_system, Config):
+        config = config_or_system
+        return run_attractor_branches(
+            build(config, search_path), result,
+            settings=config.analysis.response if settings is None else settings,
+            stability=config.analysis.stability if stability is None else stability)
+    system = config_or_system
+    settings = settings if settings is not None else ResponseAnalysis()
+    st = stability if stability is not None else StabilityAnalysis()
     problem = system.periodic_problem() if system.base.is_constant else None
     ref = result.censuses[0].reference_speed if result.censuses else None
-    lo, hi = config.analysis.response.speed_range.bounds(ref or 0.0)
-    st = config.analysis.stability
-    stability = StabilityOptions.from_section(st) if st.enabled else False
-    branches = [trace_attractor_branches(problem, c, lo, hi, stability=stability)
+    lo, hi = settings.speed_range.bounds(ref or 0.0)
+    options = StabilityOptions.from_section(st) if st.enabled else False
+    branches = [trace_attractor_branches(problem, c, lo, hi, stability=options)
                 for c in result.censuses]
     dofs = np.asarray(problem.nl_dofs if problem is not None else [], dtype=np.int64)
     scale = (np.asarray(problem.dof_scale, float)[dofs] if problem is not None
