@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from rotorsfd.continuation.folds import FoldOptions
+from rotorsfd.errors import ConvergenceError
 from rotorsfd.harmonic.ns_curve import continue_neimark_sacker
 from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.io.config import config_from_dict, read_toml
@@ -69,3 +70,16 @@ def test_curve_passes_through_the_secondary_hopf_at_another_unbalance(curve, fam
     assert speed == pytest.approx(lam, rel=1e-4)       # measured 1.7e-6
     assert th == pytest.approx(theta, abs=1e-4)
     assert 0.49 < th < 0.5
+
+
+def test_a_start_that_converges_elsewhere_is_refused(family):
+    """From the Hopf's orbit but a speed 5 % off, the NS equations converge back near the
+    Hopf, 5 % from the speed asked for: not a curve through that point, refused (before,
+    such a curve was drawn from wherever Newton landed: the paper's C/R = 0.728 % case
+    started its NS curves 200 rad/s from their secondary Hopf points)."""
+    _, theta, pt = floquet_hopf(family, 1e-6)
+    with pytest.raises(ConvergenceError) as info:
+        continue_neimark_sacker(family, pt.X, 1.05 * pt.lam, 1e-6, theta, (1e-6, 1.3e-6),
+                                H=H, N=32, K=2 * H, scales=(200.0, 1e-6),
+                                options=FoldOptions(ds=0.1, ds_max=0.2))
+    assert "converged at" in str(info.value)     # Newton found the Hopf 5 % away

@@ -40,6 +40,7 @@ from rotorsfd.continuation.folds import (
     continue_folds,
 )
 from rotorsfd.continuation.newton import newton_extended
+from rotorsfd.errors import ConvergenceError
 from rotorsfd.harmonic.fold_curve import TwoParameterHB, TwoParameterProblem
 from rotorsfd.harmonic.fourier import to_real
 from rotorsfd.harmonic.synthesis import orbit_samples
@@ -172,6 +173,11 @@ class NeimarkSackerSystem:
             self.c, self.b = v / np.linalg.norm(v), w / np.linalg.norm(w)
 
 
+#: Largest relative move of lam1 from the given secondary Hopf to the curve's first point
+#: (a located Hopf is within the locating tolerance, ~1e-6; more is another solution).
+START_RTOL = 1e-3
+
+
 def continue_neimark_sacker(problem: TwoParameterProblem, X: ComplexArray, lam1: float,
                             lam2: float, theta: float, lam2_range: tuple[float, float], *,
                             H: int, N: int, K: int, scales: tuple[float, float],
@@ -201,6 +207,13 @@ def continue_neimark_sacker(problem: TwoParameterProblem, X: ComplexArray, lam1:
                          events=(lambda z: float(z[-2]) - 0.5 * h[0],
                                  lambda z: 0.5 - 0.5 * h[1] - float(z[-2])),
                          event_xtol=event_xtol)
+    if leg.z.shape[0]:
+        start = hb.from_z(ns.embed(leg.z[0]))[1]
+        if abs(start - lam1) > START_RTOL * abs(lam1):
+            raise ConvergenceError(
+                f"the Neimark-Sacker equations from the secondary Hopf at {lam1:.6g} "
+                f"converged at {start:.6g} (theta {float(leg.z[0][-2]):.4g}): another "
+                "solution, not that point; no curve from it")
     if leg.ended_at is not None:
         leg = resonance_end(leg, options.tol if options else 1e-8, h[leg.ended_at])
     return hb, leg
