@@ -425,12 +425,8 @@ def run_bifurcation_curves(config_or_system: Config | RotorSystem, parameter: st
     with units). From a :class:`RotorSystem` with ``settings`` and ``context`` (defaults:
     an empty configuration's) or from a Config (its system, section and context), through
     the same :meth:`TwoParameterInputs.from_system`."""
-    if isinstance(config_or_system, RotorSystem):
-        inputs = TwoParameterInputs.from_system(config_or_system, parameter, start, stop,
-                                                settings, context)
-    else:
-        inputs = TwoParameterInputs.from_config(config_or_system, parameter, start, stop,
-                                                "the bifurcation curves need", search_path)
+    inputs = TwoParameterInputs.resolve(config_or_system, parameter, start, stop, settings,
+                                        context, "the bifurcation curves need", search_path)
     result = bifurcation_curves(inputs.system, inputs.speed_range, inputs.param,
                                 inputs.range2, harmonics or inputs.response.start_harmonics,
                                 harmonics_factor=harmonics_factor,

@@ -419,12 +419,8 @@ def run_fold_curve(config_or_system: Config | RotorSystem, parameter: str, start
     ``ResponseAnalysis()``) and ``context`` (default ``RunContext()``); from a Config:
     its system (one ``build``), section and context, through the same
     :meth:`TwoParameterInputs.from_system`."""
-    if isinstance(config_or_system, RotorSystem):
-        inputs = TwoParameterInputs.from_system(config_or_system, parameter, start, stop,
-                                                settings, context)
-    else:
-        inputs = TwoParameterInputs.from_config(config_or_system, parameter, start, stop,
-                                                "the fold curve needs", search_path)
+    inputs = TwoParameterInputs.resolve(config_or_system, parameter, start, stop, settings,
+                                        context, "the fold curve needs", search_path)
     r = inputs.response
     H = harmonics or (None if r.adaptive_harmonics else r.start_harmonics)
     result = fold_curve(inputs.system, inputs.speed_range, inputs.param, inputs.range2, H,

@@ -30,11 +30,10 @@ from typing import TYPE_CHECKING, Any
 from rotorsfd.analyses.context import RunContext, build, config_context
 from rotorsfd.analyses.response_words import FIELD, PARAMETER_UNITS, system_parameter
 from rotorsfd.errors import ConfigError
-from rotorsfd.io.schema import ResponseAnalysis, StabilityAnalysis
+from rotorsfd.io.schema import Config, ResponseAnalysis, StabilityAnalysis
 from rotorsfd.io.units import KINDS, UnitError, to_si
 
 if TYPE_CHECKING:
-    from rotorsfd.io.schema import Config
     from rotorsfd.model.system import RotorSystem
     from rotorsfd.stability.branch_options import StabilityOptions
 
@@ -236,3 +235,15 @@ class TwoParameterInputs:
         ctx = config_context(config, system, "response", search_path=search_path)
         return cls.from_system(system, parameter, start, stop, config.analysis.response,
                                ctx)
+
+    @classmethod
+    def resolve(cls, config_or_system: Any, parameter: str, start: Any, stop: Any,
+                settings: Any, context: Any, what: str,
+                search_path: Path | None = None) -> TwoParameterInputs:
+        """:meth:`from_system` for a :class:`RotorSystem` (with ``settings`` and
+        ``context``), :meth:`from_config` for a Config: the one dispatch of the
+        (speed, lam2) analyses."""
+        if isinstance(config_or_system, Config):
+            return cls.from_config(config_or_system, parameter, start, stop, what,
+                                   search_path)
+        return cls.from_system(config_or_system, parameter, start, stop, settings, context)
