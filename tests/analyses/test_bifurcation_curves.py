@@ -9,6 +9,7 @@ no period doubling, above it two."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from pathlib import Path
 
@@ -16,6 +17,7 @@ import numpy as np
 import pytest
 
 from rotorsfd import api
+from rotorsfd.analyses.bifurcation_curves import at_limit
 from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.io.config import config_from_dict, read_toml
 from rotorsfd.model.build import build_system
@@ -187,3 +189,21 @@ def test_neimark_sacker_curve_ends_on_the_period_doubling_curve(curves, tmp_path
     assert r2.speed_rad_s == pytest.approx(r2_pd.speed_rad_s, rel=1e-5)
     assert r2.value == pytest.approx(r2_pd.value, rel=2e-3)
     assert "curves.png" in result.write(tmp_path)
+
+
+def test_a_curve_stopped_at_the_film_limit_is_a_result(curves):
+    """A curve whose corrector stopped with its last orbit within 2 % of the validity
+    limit (analysis.response.max_eccentricity) is a result that ends there, the element
+    named (as a response branch at the film's limit); one stopped farther from it stays
+    a failure. The last point's eccentricity is recomputed here from the table."""
+    leg = dataclasses.replace(curves.pd_curves[0], success=False,
+                              message="corrector failed: state limit reached")
+    rows = np.flatnonzero((curves.table["kind"] == "period-doubling")
+                          & (curves.table["curve"] == 0))
+    eps = float(curves.table["max_eps"][rows[-1]])
+    system = build_system(config())
+    near = at_limit(leg, curves.pd_hb, system, eps / 0.99)
+    assert near.success and f"= {eps:.3f}" in near.message
+    assert "max_eccentricity" in near.message and "state limit" in near.message
+    far = at_limit(leg, curves.pd_hb, system, eps / 0.9)
+    assert not far.success and far.message == leg.message

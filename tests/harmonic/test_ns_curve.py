@@ -15,7 +15,7 @@ import pytest
 
 from rotorsfd.continuation.folds import FoldOptions
 from rotorsfd.errors import ConvergenceError
-from rotorsfd.harmonic.ns_curve import continue_neimark_sacker
+from rotorsfd.harmonic.ns_curve import NeimarkSackerSystem, continue_neimark_sacker
 from rotorsfd.harmonic.periodic import continue_periodic
 from rotorsfd.io.config import config_from_dict, read_toml
 from rotorsfd.model.build import build_system
@@ -83,3 +83,28 @@ def test_a_start_that_converges_elsewhere_is_refused(family):
                                 H=H, N=32, K=2 * H, scales=(200.0, 1e-6),
                                 options=FoldOptions(ds=0.1, ds_max=0.2))
     assert "converged at" in str(info.value)     # Newton found the Hopf 5 % away
+
+
+def test_the_border_update_pairs_with_a_complex_null_vector():
+    """update_border takes the conjugated null vectors as borders: ``bordered`` pairs a
+    border with a vector by the bilinear ``c^T v``, and for a complex null vector v,
+    ``v^T v`` can be far below ``|v|^2`` (the unconjugated update left the paper's
+    C/R = 0.728 % Neimark-Sacker start with a near-singular bordered matrix: its Newton
+    went 200 rad/s away). On a singular complex matrix with known null vectors, the
+    updated borders pair with them to |c^T v| = |v| and |w^T b| = |w|."""
+    rng = np.random.default_rng(7)
+    n = 12
+    A = rng.standard_normal((n, n)) + 1j * rng.standard_normal((n, n))
+    U, s, Vh = np.linalg.svd(A)
+    s[-1] = 0.0
+    A = (U * s) @ Vh
+    v_null, w_null = np.conj(Vh[-1]), np.conj(U[:, -1])     # A v = 0, w^T A = 0
+    ns = object.__new__(NeimarkSackerSystem)
+    ns.hill = lambda z: A
+    ns.b = rng.standard_normal(n) + 1j * rng.standard_normal(n)
+    ns.c = rng.standard_normal(n) + 1j * rng.standard_normal(n)
+    ns.update_border(np.zeros(3))
+    assert abs(ns.c @ v_null) == pytest.approx(1.0, abs=1e-10)
+    assert abs(w_null @ ns.b) == pytest.approx(1.0, abs=1e-10)
+    # the unconjugated pairing of the same vector is far from 1 here (what it was before)
+    assert abs(v_null @ v_null) < 0.9

@@ -54,7 +54,7 @@ from rotorsfd.analyses.bifurcation_points import Codim2Record, codim2_records
 from rotorsfd.analyses.context import RunContext
 from rotorsfd.analyses.fold_curve import FoldCurve, curves_dataset, fold_curve
 from rotorsfd.analyses.modal import first_critical
-from rotorsfd.analyses.response_inputs import TwoParameterInputs
+from rotorsfd.analyses.response_inputs import TwoParameterInputs, stability_settings
 from rotorsfd.analyses.response_words import PARAMETER_UNITS, column_slug, system_parameter
 from rotorsfd.continuation.folds import FoldBranch, FoldOptions
 from rotorsfd.errors import ConfigError, ConvergenceError
@@ -66,12 +66,24 @@ from rotorsfd.harmonic.synthesis import max_radius, orbit_samples
 from rotorsfd.io import atomic
 from rotorsfd.model import dofs
 from rotorsfd.model.system import RotorSystem
-from rotorsfd.stability.branch_stability import StabilityOptions, branch_stability
+from rotorsfd.stability.bifurcation_check import (
+    BifurcationCheck,
+    CheckOptions,
+    check_bifurcations,
+)
+from rotorsfd.stability.branch_stability import (
+    BranchStability,
+    StabilityOptions,
+    branch_stability,
+    reported_kind,
+)
 
 if TYPE_CHECKING:
     import xarray as xr
     from matplotlib.figure import Figure
 
+    from rotorsfd.continuation.branch import Branch
+    from rotorsfd.harmonic.problem import PeriodicProblem
     from rotorsfd.io.schema import Config, ResponseAnalysis
 
 FloatArray = NDArray[np.float64]
@@ -273,6 +285,37 @@ def _merge(fold: FoldCurve | None, pd: dict[str, list]) -> dict[str, NDArray]:
             for k, v in out.items()}
 
 
+def at_limit(leg: FoldBranch, hb: TwoParameterHB, system: RotorSystem, limit_max: float
+             ) -> FoldBranch:
+    """``leg``, or, when it stopped because its last orbit is at an element's validity
+    limit (within 2 % of ``limit_max``, ``analysis.response.max_eccentricity``), the same
+    points marked a result that ends there (success, the element named), as a response
+    branch that ends at the film's limit is."""
+    if leg.success or not leg.z.shape[0]:
+        return leg
+    el = system.elements
+    X = hb.coefficients(leg.system.embed(leg.z[-1]))
+    element, value = el.limiting(orbit_samples(X[:, el.nl_dofs])[0])
+    if element is None or value < 0.98 * limit_max:
+        return leg
+    return dataclasses.replace(
+        leg, success=True, message=f"ended where {element.describe()} reached "
+        f"{element.limit_label} = {value:.3f}, the limit analysis.response.max_eccentricity"
+        f" = {limit_max:g} (a result up to there; {leg.message})")
+
+
+def start_checks(branch: Branch, problem: PeriodicProblem, stability: BranchStability,
+                 options: StabilityOptions) -> list[BifurcationCheck | None]:
+    """The check of each located bifurcation of the start branch (one per
+    ``stability.bifurcations``, None when ``options.check`` is off), as ``rotorsfd
+    response`` runs it (:mod:`rotorsfd.stability.bifurcation_check`): no curve starts
+    from a bifurcation that vanishes at the check's H and M (a truncation artefact)."""
+    if not (options.check and stability.bifurcations):
+        return [None] * len(stability.bifurcations)
+    return check_bifurcations(branch, problem, stability, options,
+                              CheckOptions(rtol=options.check_rtol))
+
+
 def bifurcation_curves(system: RotorSystem, speed_range: tuple[float, float],
                        second_parameter: str, range2: tuple[float, float], H: int = 3, *,
                        harmonics_factor: int = 4, reference_speed: float | None = None,
@@ -297,17 +340,28 @@ def bifurcation_curves(system: RotorSystem, speed_range: tuple[float, float],
     ref = float(reference_speed if reference_speed is not None else first_critical(system))
     out_nodes = tuple(nodes) if nodes else system.output_nodes
     family = system.two_parameter_problem(param)
+    limit_max = float(dict(branch_options or {}).get("limit_max", 1.0))
     t0 = time.perf_counter()
     problem = family.first(range2[0])
     branch = continue_periodic(problem, speed_range[0], speed_range[1], H,
                                **dict(branch_options or {}))
-    st = branch_stability(branch, problem, stability_options)
-    flips = [b for b in st.bifurcations if b.kind == "period-doubling"]
+    opts = stability_options or StabilityOptions()
+    st = branch_stability(branch, problem, opts)
+    found, messages, noted = [], [], {}
+    for b, c in zip(st.bifurcations, start_checks(branch, problem, st, opts), strict=True):
+        if c is not None and c.vanished:
+            messages.append(f"{reported_kind(b)} at {b.lam:.6g} rad/s not continued: "
+                            f"{c.message}")
+            continue
+        found.append(b)
+        if c is not None and not c.confirmed:
+            noted[id(b)] = f" ({c.message})"
+    flips = [b for b in found if b.kind == "period-doubling"]
     n_folds = len(branch.folds())
     t1 = time.perf_counter()
     where = (f"the speed branch at {param} = {range2[0]:g} in {speed_range[0]:.6g} .. "
              f"{speed_range[1]:.6g} rad/s")
-    has_hopf = any(b.kind == "secondary-hopf" for b in st.bifurcations)
+    has_hopf = any(b.kind == "secondary-hopf" for b in found)
     if not n_folds and not flips and not has_hopf:
         if not branch.success:
             raise ConvergenceError(f"{where} stopped before any bifurcation: "
@@ -315,13 +369,12 @@ def bifurcation_curves(system: RotorSystem, speed_range: tuple[float, float],
         raise ConfigError("--from", range2[0], f"{where} has no saddle-node, period "
                           "doubling or secondary Hopf; start where the response has one")
     fold = None
-    messages = []
     if n_folds:
         fold = fold_curve(system, speed_range, param, range2, H, reference_speed=ref,
                           nodes=out_nodes, options=options, branch_options=branch_options)
         messages.append(f"saddle-node: {fold.message}")
     t2 = time.perf_counter()
-    hopfs = [b for b in st.bifurcations if b.kind == "secondary-hopf"
+    hopfs = [b for b in found if b.kind == "secondary-hopf"
              and abs(abs(b.critical) - 1.0) < 1e-3
              and 0.0 < abs(np.angle(b.critical)) < np.pi]
     Nb = branch.info["n_samples"]
@@ -339,10 +392,12 @@ def bifurcation_curves(system: RotorSystem, speed_range: tuple[float, float],
         p = branch.point_at(b.s)
         pd_hb, legs = continue_period_doublings(family, p.X, p.lam, range2[0], range2,
                                                 H2=H2, N=N2, scales=scales,
-                                                options=options, both_ways=False)
-        leg = legs[0]
+                                                options=options, both_ways=False,
+                                                limit_max=limit_max)
+        leg = at_limit(legs[0], pd_hb, system, limit_max)
         pd_curves.append(leg)
-        messages.append(f"period doubling at {b.lam:.6g} rad/s: {leg.message}")
+        messages.append(f"period doubling at {b.lam:.6g} rad/s{noted.get(id(b), '')}: "
+                        f"{leg.message}")
         if not leg.cusps:
             continue
         try:
@@ -360,7 +415,9 @@ def bifurcation_curves(system: RotorSystem, speed_range: tuple[float, float],
         try:
             ns_hb, leg = continue_neimark_sacker(family, p.X, p.lam, range2[0], theta,
                                                  range2, H=H, N=N_b, K=H2 // 2,
-                                                 scales=scales, options=options)
+                                                 scales=scales, options=options,
+                                                 limit_max=limit_max)
+            leg = at_limit(leg, ns_hb, system, limit_max)
         except ConvergenceError as exc:
             messages.append(f"secondary Hopf at {b.lam:.6g} rad/s not continued: {exc}")
             continue
@@ -377,7 +434,8 @@ def bifurcation_curves(system: RotorSystem, speed_range: tuple[float, float],
                            if leg.ended_at == 0 else "-1 (theta = 1/2, a 1:2") +
                            " resonance, located)")
         ns_curves.append(leg)
-        messages.append(f"secondary Hopf at {b.lam:.6g} rad/s: {leg.message}")
+        messages.append(f"secondary Hopf at {b.lam:.6g} rad/s{noted.get(id(b), '')}: "
+                        f"{leg.message}")
     t3 = time.perf_counter()
     col = f"{column_slug(param)}_{column_slug(PARAMETER_UNITS[param])}"
     rows = _curve_rows("period-doubling", pd_hb, pd_curves, system, ref, out_nodes, col)
@@ -431,6 +489,8 @@ def run_bifurcation_curves(config_or_system: Config | RotorSystem, parameter: st
                                 inputs.range2, harmonics or inputs.response.start_harmonics,
                                 harmonics_factor=harmonics_factor,
                                 reference_speed=inputs.reference_speed, nodes=inputs.nodes,
-                                options=options)
+                                options=options, stability_options=stability_settings(
+                                    inputs.stability, True),
+                                branch_options={"limit_max": inputs.response.max_eccentricity})
     result.title = inputs.title
     return result

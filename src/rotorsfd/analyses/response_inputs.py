@@ -190,7 +190,9 @@ class TwoParameterInputs:
     """What a (speed, lam2) analysis runs with: the system, the second parameter ``param``
     (a system parameter, not the speed), Omega_ref, the speed range of
     ``[analysis.response]`` [rad/s], lam2's range ``range2`` (SI), the settings section,
-    the output nodes (None: the system's) and the title."""
+    the output nodes (None: the system's), the title and the ``[analysis.stability]``
+    section (the start branch's Floquet stability and bifurcation checks, as ``rotorsfd
+    response`` runs them)."""
 
     system: RotorSystem
     param: str
@@ -200,6 +202,7 @@ class TwoParameterInputs:
     response: ResponseAnalysis
     nodes: tuple[int, ...] | None
     title: str = ""
+    stability: StabilityAnalysis = field(default_factory=StabilityAnalysis)
 
     @classmethod
     def from_system(cls, system: RotorSystem, parameter: str, start: Any, stop: Any,
@@ -218,7 +221,7 @@ class TwoParameterInputs:
         lo, hi = r.speed_range.bounds(ref)
         v0, v1 = parameter_si(parameter, [start, stop], "--from/--to")
         return cls(system, param, ref, (float(lo), float(hi)), (v0, v1), r,
-                   tuple(r.nodes) or None, ctx.title)
+                   tuple(r.nodes) or None, ctx.title, ctx.stability)
 
     @classmethod
     def from_config(cls, config: Config, parameter: str, start: Any, stop: Any,

@@ -70,7 +70,8 @@ class CheckOptions:
 class BifurcationCheck:
     """The outcome of one check: ``confirmed``; ``lam`` the re-located parameter (None if
     the bifurcation vanished), ``shift`` ``|lam - lam_0| / |lam_0|`` (None likewise), the
-    ``H`` and ``n_intervals`` of the check, and a one-line ``message``."""
+    ``H`` and ``n_intervals`` of the check, a one-line ``message``, and ``checked``
+    (False: the check itself failed, so nothing is known)."""
 
     confirmed: bool
     lam: float | None
@@ -78,10 +79,16 @@ class BifurcationCheck:
     H: int
     n_intervals: int
     message: str
+    checked: bool = True
 
     @property
     def status(self) -> str:
         return "confirmed" if self.confirmed else "unconfirmed"
+
+    @property
+    def vanished(self) -> bool:
+        """The bifurcation does not exist at the check's H and M (a truncation artefact)."""
+        return self.checked and self.lam is None
 
 
 #: Points of a check's piece of branch (its step is at least its length over this).
@@ -240,7 +247,7 @@ def _check_one(b: Bifurcation, piece: _Piece, opts: StabilityOptions, c: CheckOp
     except (ConvergenceError, ArithmeticError, ValueError) as exc:
         return BifurcationCheck(False, None, None, H_c, M_c,
                                 f"{where}: not checked at H = {H_c}, M = {M_c} (the check "
-                                f"failed: {' '.join(str(exc).split())})")
+                                f"failed: {' '.join(str(exc).split())})", checked=False)
     if not lams:
         return BifurcationCheck(False, None, None, H_c, M_c,
                                 f"{where} unconfirmed: it vanishes at H = {H_c}, M = {M_c} "
