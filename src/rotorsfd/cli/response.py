@@ -145,18 +145,13 @@ def period_two(args: argparse.Namespace, result: Any) -> int:
     from rotorsfd.io import atomic
 
     sw = args.switch_at
-    if sw.kind == "bp":
-        # deferred: analyses.response_branch_switch (loads numba, scipy, pydantic)
-        from rotorsfd.analyses.response_branch_switch import (
-            check_branch_switch as check,
-        )
+    # deferred: analyses.response_switch, analyses.response_branch_switch (load numba,
+    # scipy, pydantic)
+    from rotorsfd.analyses import response_branch_switch, response_switch
 
-        # deferred: analyses.response_branch_switch (loads numba, scipy, pydantic)
-        from rotorsfd.analyses.response_branch_switch import run_branch_switch as run
-    else:
-        # deferred: analyses.response_switch (loads numba, scipy, pydantic)
-        from rotorsfd.analyses.response_switch import check_switch as check
-        from rotorsfd.analyses.response_switch import run_switch as run
+    check, run = {"bp": (response_branch_switch.check_branch_switch,
+                         response_branch_switch.run_branch_switch),
+                  "pd": (response_switch.check_switch, response_switch.run_switch)}[sw.kind]
     try:
         check(result, sw.number, sw.text)
     except ConfigError as exc:
