@@ -42,8 +42,11 @@ def written(tmp_path_factory) -> dict[str, tuple[SecondBranchResult, Path]]:
     cfg = api.load_config(str(JOURNAL), ['analysis.response.speed_range={start="1000 '
                                          'rad/s", stop="1100 rad/s"}',
                                          "analysis.stability.enabled=true"])
-    pd = run_switch(api.run_response(cfg, progress=False), 1, max_points=25)
-    bp = run_branch_switch(api.run_response(api.load_config(str(CASE)), progress=False), 1)
+    pd = api.run_second_branch(api.run_response(cfg, progress=False), "pd", 1, max_points=25)
+    bp = api.run_second_branch(api.run_response(api.load_config(str(CASE)), progress=False),
+                               "bp", 1)
+    assert api.second_branch_switch("pd")[1] is run_switch
+    assert api.second_branch_switch("bp")[1] is run_branch_switch
     out = {}
     for name, res in (("pd", pd), ("bp", bp)):
         d = tmp_path_factory.mktemp(name)

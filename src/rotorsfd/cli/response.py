@@ -141,17 +141,12 @@ def period_two(args: argparse.Namespace, result: Any) -> int:
     a bad N (no such bifurcation) is one line and exit 2."""
     if args.switch_at is None:
         return 0
-    # deferred: io.atomic imports numpy (keeps --help fast)
+    # deferred: numpy, scipy, numba (keeps --help fast)
+    from rotorsfd import api
     from rotorsfd.io import atomic
 
     sw = args.switch_at
-    # deferred: analyses.response_switch, analyses.response_branch_switch (load numba,
-    # scipy, pydantic)
-    from rotorsfd.analyses import response_branch_switch, response_switch
-
-    check, run = {"bp": (response_branch_switch.check_branch_switch,
-                         response_branch_switch.run_branch_switch),
-                  "pd": (response_switch.check_switch, response_switch.run_switch)}[sw.kind]
+    check, run = api.second_branch_switch(sw.kind)
     try:
         check(result, sw.number, sw.text)
     except ConfigError as exc:
