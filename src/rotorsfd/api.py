@@ -63,9 +63,11 @@ __all__ = [
     "run_modal",
     "run_paper",
     "run_response",
+    "run_second_branch",
     "run_simulation",
     "run_stability_chart",
     "run_static",
+    "second_branch_switch",
     "show_config",
     "with_values",
 ]
@@ -168,6 +170,30 @@ def run_response(config: Any, **kwargs: Any) -> Any:
 
     announce_compilation("response", kwargs)
     return _run(config, **kwargs)
+
+
+def second_branch_switch(at: str) -> tuple[Any, Any]:
+    """The check and the run of ``rotorsfd response --switch-at <at>:N``: ``"pd"``
+    (:mod:`rotorsfd.analyses.response_switch`) or ``"bp"``
+    (:mod:`rotorsfd.analyses.response_branch_switch`)."""
+    # deferred: analyses.response_switch, analyses.response_branch_switch (load numba,
+    # scipy, pydantic)
+    from rotorsfd.analyses import response_branch_switch, response_switch
+
+    if at == "pd":
+        return response_switch.check_switch, response_switch.run_switch
+    if at == "bp":
+        return response_branch_switch.check_branch_switch, response_branch_switch.run_branch_switch
+    raise ValueError(f"switch at 'pd' or 'bp', got {at!r}")
+
+
+def run_second_branch(result: Any, at: str, number: int, **kwargs: Any) -> Any:
+    """The second branch of a response ``result`` at its ``number``-th period doubling
+    (``at = "pd"``: the period-2 branch) or branch point (``"bp"``), as ``rotorsfd
+    response --switch-at pd:N | bp:N``: a
+    :class:`~rotorsfd.analyses.response_second_branch.SecondBranchResult` (``write(dir)``,
+    ``table()``, ``summary()``); ``kwargs`` go to the switch's run function."""
+    return second_branch_switch(at)[1](result, number, **kwargs)
 
 
 def run_static(config: Any, **kwargs: Any) -> Any:

@@ -154,3 +154,72 @@ def test_branches_outside_the_speed_range_is_one_line_exit_2(tmp_path, capsys):
     assert status == 2 and len(err) == 1
     assert "--branches" in err[0] and "1.7" in err[0] and "speed_range" in err[0]
     assert not (tmp_path / "x" / "attractors.csv").exists()
+
+
+def duffing_census(w: float):
+    inputs = TimeDomainInputs(np.eye(1), np.array([[C]]), np.array([[K]]), np.array([0]),
+                              cubic_spring_kernel, np.array([0.0, K3]),
+                              Forcing(omega=w, harmonics=[HarmonicLoad(1.0, np.array([F]))]),
+                              None, w)
+    opts = CensusOptions(n_starts=24, steps_per_period=100, displacement_fraction=0.9,
+                         velocity_fraction=0.9, max_periods=600, harmonics=H)
+    return census(CensusModel(inputs, np.array([3.0]), duffing(C, K, K3, F)), opts)
+
+
+def fine_crossings(problem, branch, w: float) -> np.ndarray:
+    """The branch's orbits at ``w``: Newton to 1e-13 from the coefficients interpolated
+    between the points around each crossing, sorted by |X_1| (independent of
+    on_branch's tolerance)."""
+    lam = branch.lam
+    out = []
+    d = lam - w
+    for j in np.nonzero((d[:-1] * d[1:] < 0) | (d[:-1] == 0))[0]:
+        a = (w - lam[j]) / (lam[j + 1] - lam[j])
+        X0 = (1 - a) * branch.X[j] + a * branch.X[j + 1]
+        out.append(solve_periodic(problem, w, branch.H, X0, tol=1e-13).X)
+    return np.array(sorted(out, key=lambda X: abs(X[1, 0])))
+
+
+def test_a_stride_traces_each_branch_once(monkeypatch):
+    """Two census speeds inside the fold interval: both have their two stable orbits on
+    the one S-branch. Over the stride it is traced once (at the first speed) and taken at
+    the second; run apart, each speed traces it: the same branch (its orbits at 16 speeds
+    over the range and at the census speeds to 1e-10, its range and its folds to 1e-8)
+    with half the traces."""
+    from rotorsfd.analyses import attractor_branches as ab
+
+    problem = duffing(C, K, K3, F)
+    speeds = (1.09, 1.10)
+    censuses = [duffing_census(w) for w in speeds]
+    calls = []
+    trace = ab.continue_both_ways
+
+    def counted(*args, **kw):
+        calls.append(args[1])
+        return trace(*args, **kw)
+
+    monkeypatch.setattr(ab, "continue_both_ways", counted)
+    stride = ab.trace_census_branches(problem, censuses, 0.5, 2.0, stability=False)
+    n_stride = len(calls)
+    apart = [ab.trace_attractor_branches(problem, c, 0.5, 2.0, stability=False)
+             for c in censuses]
+    assert n_stride == 1 and len(calls) - n_stride == 2
+    result = ab.AttractorBranches(censuses, stride, np.array([0]), np.array([3.0]))
+    assert result.traces == 1
+    for k, (mine, theirs) in enumerate(zip(stride, apart, strict=True)):
+        assert [b.on_branch_of for b in mine] == [b.on_branch_of for b in theirs]
+        assert [b.traced for b in mine] == [b.traced for b in theirs]
+        got = next(b for b in mine if b.traced)
+        ref = next(b for b in theirs if b.traced)
+        assert got.info["traced_at"] == speeds[0]
+        assert got.branch is next(b for b in stride[0] if b.traced).branch
+        assert ref.info["traced_at"] == speeds[k]
+        assert got.closed == ref.closed
+        np.testing.assert_allclose(got.speed_range(), ref.speed_range(), rtol=1e-10)
+        np.testing.assert_allclose(fold_speeds(got.branch), fold_speeds(ref.branch),
+                                   rtol=1e-8)
+        for w in (*np.linspace(0.55, 1.95, 16), *speeds):
+            a, b = fine_crossings(problem, got.branch, w), fine_crossings(problem,
+                                                                         ref.branch, w)
+            assert a.shape == b.shape and a.shape[0] in (1, 3)
+            assert np.max(np.abs(a - b)) / 3.0 < 1e-10         # measured 8e-14

@@ -10,12 +10,19 @@ is crossed at the census speed ``Omega_c`` between points ``j, j + 1``
 ``Omega_c`` from the coefficients interpolated linearly in lam, and the solution compared
 with attractor ``k``'s on the nonlinear DOFs, ``max |X_i(Omega_c) - X_k| / c <``
 :data:`~rotorsfd.harmonic.orbit_branch.SAME_TOL` on the length scales ``c``: then ``k`` is
-``on_branch_of`` ``i``. Period-n attractors (n > 1) are not traced (the branch of a
-period-n orbit in the speed needs the subharmonic problem's continuation: not yet).
+``on_branch_of`` ``i``. Over several census speeds (``--speed-ratio A --to B --stride S``)
+each branch is traced once too: an attractor at a later speed that lies on a branch
+traced at an earlier one (the same test at its own speed, the same H) takes that branch,
+its stability and its note (``info["traced_at"]``: the census speed it was traced from)
+instead of tracing it again (:func:`trace_census_branches`). Period-n attractors (n > 1)
+are not traced (the branch of a period-n orbit in the speed needs the subharmonic
+problem's continuation: not yet).
 """
 
 from __future__ import annotations
 
+import dataclasses
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -30,7 +37,8 @@ from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.io.atomic import save_figures, write_csv
 
 __all__ = ["AttractorBranch", "AttractorBranches", "run_attractor_branches",
-           "trace_attractor_branches"]
+           "trace_attractor_branches", "trace_census_branches"]
+
 
 @dataclass
 class AttractorBranch:
@@ -59,13 +67,15 @@ class AttractorBranch:
 
 def trace_attractor_branches(problem: PeriodicProblem | None, census: AttractorCensus,
                              lo: float, hi: float, *, stability: Any = True,
+                             known: Sequence[AttractorBranch] = (),
                              **continue_kw: Any) -> list[AttractorBranch]:
     """One :class:`AttractorBranch` per attractor of ``census`` (the HB ``problem`` of its
     model, speed-parameter; None: nothing traced): each period-1 attractor with an HB
-    correction continued within ``(lo, hi)`` rad/s,
-    unless it lies on an earlier attractor's branch (module docstring); ``stability``
-    True (default options), a :class:`~rotorsfd.stability.branch_options.StabilityOptions`
-    or False; ``continue_kw`` go to ``continue_both_ways``."""
+    correction continued within ``(lo, hi)`` rad/s, unless it lies on an earlier
+    attractor's branch or on one of ``known`` (traced branches of other census speeds
+    over the same range: taken as they are; module docstring); ``stability`` True
+    (default options), a :class:`~rotorsfd.stability.branch_options.StabilityOptions` or
+    False; ``continue_kw`` go to ``continue_both_ways``."""
     speed = census.speed
     if not lo < speed < hi:
         raise ConfigError("branches", (lo, hi), f"the speed range must contain the census "
@@ -87,13 +97,20 @@ def trace_attractor_branches(problem: PeriodicProblem | None, census: AttractorC
                                        first.max_multiplier,
                                        note=f"on the branch of attractor {home}"))
             continue
+        seen = next((b for b in known if b.traced and b.branch.H == X.shape[0] - 1
+                     and on_branch(problem, b.branch, speed, X)), None)
+        if seen is not None:
+            out.append(dataclasses.replace(seen, attractor=i, on_branch_of=i,
+                                           info={**seen.info}))
+            continue
         try:
             branch = continue_both_ways(problem, speed, X, X.shape[0] - 1, lo, hi,
                                         **continue_kw)
         except ConvergenceError as exc:
             out.append(AttractorBranch(i, i, note=" ".join(str(exc).split())[:200]))
             continue
-        item = AttractorBranch(i, i, branch, bool(branch.info.get("closed")))
+        item = AttractorBranch(i, i, branch, bool(branch.info.get("closed")),
+                               info={"traced_at": speed})
         if stability is not False:
             # deferred: stability.branch_options, stability.branch_stability (loads scipy)
             from rotorsfd.stability.branch_options import StabilityOptions
@@ -108,6 +125,20 @@ def trace_attractor_branches(problem: PeriodicProblem | None, census: AttractorC
     return out
 
 
+def trace_census_branches(problem: PeriodicProblem | None,
+                          censuses: Sequence[AttractorCensus], lo: float, hi: float, *,
+                          stability: Any = True,
+                          **continue_kw: Any) -> list[list[AttractorBranch]]:
+    """:func:`trace_attractor_branches` of every census in turn, each knowing the
+    branches traced at the speeds before it (a branch is traced once over the stride)."""
+    out: list[list[AttractorBranch]] = []
+    for c in censuses:
+        known = [b for bs in out for b in bs if b.traced]
+        out.append(trace_attractor_branches(problem, c, lo, hi, stability=stability,
+                                            known=known, **continue_kw))
+    return out
+
+
 @dataclass
 class AttractorBranches:
     """The traced branches of every census of a :class:`CensusResult` (``censuses[k]``
@@ -119,6 +150,12 @@ class AttractorBranches:
     dof_scale: np.ndarray
     reference_speed: float | None = None
     title: str = ""
+
+    @property
+    def traces(self) -> int:
+        """How many branches were continued (a branch taken at several census speeds
+        counts once)."""
+        return len({id(b.branch) for bs in self.branches for b in bs if b.traced})
 
     def rows(self) -> list[list[Any]]:
         """attractor_branches.csv: one row per attractor and census speed."""
@@ -149,8 +186,11 @@ class AttractorBranches:
                     span = (f"Omega~ {lo / ref:.4g}-{hi / ref:.4g}" if ref
                             else f"{lo:.6g}-{hi:.6g} rad/s")
                     kind = "an isola" if b.closed else "an open branch"
+                    at = b.info.get("traced_at", c.speed)
+                    again = ("" if at == c.speed
+                             else f" (traced from the census at {at:.6g} rad/s)")
                     lines.append(f"{head}: {kind} over {span}, {b.branch.n_points} points, "
-                                 f"{b.branch.folds().size} folds")
+                                 f"{b.branch.folds().size} folds{again}")
         return "\n".join(lines)
 
     def plot(self) -> dict[str, Any]:
@@ -221,8 +261,7 @@ def run_attractor_branches(config_or_system: Any, result: Any, *, settings: Any 
     ref = result.censuses[0].reference_speed if result.censuses else None
     lo, hi = settings.speed_range.bounds(ref or 0.0)
     options = StabilityOptions.from_section(st) if st.enabled else False
-    branches = [trace_attractor_branches(problem, c, lo, hi, stability=options)
-                for c in result.censuses]
+    branches = trace_census_branches(problem, result.censuses, lo, hi, stability=options)
     dofs = np.asarray(problem.nl_dofs if problem is not None else [], dtype=np.int64)
     scale = (np.asarray(problem.dof_scale, float)[dofs] if problem is not None
              else np.zeros(0))

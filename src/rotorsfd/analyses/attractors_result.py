@@ -12,7 +12,8 @@ binomial standard error ``sqrt(p (1 - p) / N)``.
 HB correction (period-n orbits). The last n recorded periods of the representative start
 are fitted in harmonics of ``Omega / n`` (``n H`` of them, ``2 n H`` if Newton fails there,
 :func:`~rotorsfd.analyses.orbit_branch.fit_samples`) and Newton solves the HB equations
-of the same system written with that fundamental (:func:`period_n_problem`: forcing
+of the same system written with that fundamental
+(:func:`~rotorsfd.harmonic.branch_switching.period_n`: forcing
 harmonic k moved to k n) from there; reported: the scaled residual norm, the largest
 difference over the orbit between the HB and the time-domain orbit (length scales) and
 the Floquet multiplier of largest modulus over ``n T``
@@ -70,48 +71,19 @@ def _same(a: Attractor, motion: str, period: int | None, P: np.ndarray, tol: flo
     return set_distance(a.points, P) <= limit
 
 
-def period_n_problem(problem: Any, n: int) -> Any:
-    """``problem`` written with fundamental ``w(lam) / n``: forcing harmonic k becomes
-    harmonic k n (the others unforced); ``n = 1``: ``problem`` itself."""
-    if n == 1:
-        return problem
-    # deferred: harmonic.problem (loads numba, scipy, threadpoolctl)
-    from rotorsfd.harmonic.problem import PeriodicProblem
-
-    m = problem.n_dof
-
-    def spread(F: np.ndarray, Hn: int) -> np.ndarray:
-        out = np.zeros((Hn + 1, m), dtype=complex)
-        out[0::n] = F[: Hn // n + 1]
-        return out
-
-    return PeriodicProblem(
-        n_dof=m, nl_dofs=problem.nl_dofs, matrices=problem.matrices,
-        dmatrices=problem.dmatrices,
-        forcing=lambda lam, H: spread(problem.forcing(lam, H // n), H),
-        dforcing=lambda lam, H: spread(problem.dforcing(lam, H // n), H),
-        frequency=lambda lam: problem.frequency(lam) / n,
-        dfrequency=lambda lam: problem.dfrequency(lam) / n,
-        nl_force=problem.nl_force, nl_jacobian=problem.nl_jacobian,
-        scaling=problem.scaling, nl_limit=problem.nl_limit,
-        name=f"{problem.name} (period {n})", nl_force_jacobian=problem.nl_force_jacobian,
-        nl_kernel=problem.nl_kernel, nl_kernel_params=problem.nl_kernel_params,
-        nl_at=problem.nl_at, nl_force_jacobians=problem.nl_force_jacobians,
-        nl_inertial_kernel=problem.nl_inertial_kernel)
-
-
 def hb_correction(model: Any, outcome: Any, harmonics: int) -> dict[str, Any]:
     """HB solution through a settled period-n outcome (module docstring): residual,
     orbit difference, largest multiplier and stability; ``{"hb_note": why}`` if none."""
     # deferred: these (loads numba, scipy, pydantic)
     from rotorsfd.analyses.orbit_branch import fit_samples
+    from rotorsfd.harmonic.branch_switching import period_n  # deferred: as these
     from rotorsfd.harmonic.periodic import solve_periodic
     from rotorsfd.stability.floquet_evaluator import FloquetEvaluator
 
     n = outcome.period
     if model.problem is None or n is None or outcome.t.size == 0:
         return {"hb_note": "no HB problem or no recorded period"}
-    problem = period_n_problem(model.problem, n)
+    problem = period_n(model.problem, n)
     nl = model.nl_dofs
     samples = {int(d): outcome.q[:, j] for j, d in enumerate(nl)}
     note = ""

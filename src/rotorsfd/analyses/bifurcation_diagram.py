@@ -37,13 +37,13 @@ import math
 import sys
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from rotorsfd.analyses.context import RunContext, build, config_context
+from rotorsfd.analyses.context import RunContext, system_context
 from rotorsfd.analyses.simulate import classify
 from rotorsfd.analyses.step_control import integrate_controlled
 from rotorsfd.analyses.td_integration import (
@@ -320,20 +320,13 @@ def run_bifurcation_diagram(config_or_system: Config | RotorSystem,
     # deferred: tqdm is heavy (loaded only when this runs)
     from tqdm import tqdm
 
-    if isinstance(config_or_system, RotorSystem):
-        system = config_or_system
-        bd = settings if settings is not None else BifurcationDiagramAnalysis()
-        sim = simulate if simulate is not None else SimulateAnalysis()
-        ctx = context if context is not None else RunContext(search_path=search_path)
-        if reference_speed is not None:
-            ctx = replace(ctx, reference_speed=float(reference_speed))
-    else:
-        config = config_or_system
-        system = build(config, search_path)
-        bd = config.analysis.bifurcation_diagram if settings is None else settings
-        sim = config.analysis.simulate if simulate is None else simulate
-        ctx = config_context(config, system, "simulate", search_path=search_path,
-                             reference_speed=reference_speed)
+    system, ctx, config = system_context(config_or_system, "simulate", context=context,
+                                         search_path=search_path,
+                                         reference_speed=reference_speed)
+    bd = (settings if settings is not None else config.analysis.bifurcation_diagram
+          if config else BifurcationDiagramAnalysis())
+    sim = (simulate if simulate is not None else config.analysis.simulate if config
+           else SimulateAnalysis())
     ref = ctx.reference_speed
     if start is None or stop is None:
         ref = ctx.reference(system)

@@ -9,7 +9,8 @@ builds the context of a configuration and :func:`build` its system, so the confi
 ``run_x(build(config), config.analysis.x, config_context(config, system, "x"))``; given a
 system only, the context's defaults are those of an empty configuration (the sections'
 defaults: ``ResponseAnalysis()``, ``StabilityAnalysis()``, the critical-speed search up to
-``ModalAnalysis().critical_speed_max``), so the two paths cannot disagree. Written so:
+``ModalAnalysis().critical_speed_max``), so the two paths cannot disagree
+(:func:`system_context`: that dispatch, for simulate and bifurcation_diagram). Written so:
 simulate, bifurcation_diagram, response (its system path), modal, static,
 attractors_config (the census), torus_response, dual_spool_response (docs/INTERFACES.md
 lists their sections).
@@ -17,7 +18,7 @@ lists their sections).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -25,14 +26,13 @@ from rotorsfd.analyses.linear_model import first_critical
 from rotorsfd.analyses.linear_model import reference_speed as config_reference_speed
 from rotorsfd.errors import ConfigError
 from rotorsfd.io.config import show_config
-from rotorsfd.io.schema import ModalAnalysis, ResponseAnalysis, StabilityAnalysis
+from rotorsfd.io.schema import Config, ModalAnalysis, ResponseAnalysis, StabilityAnalysis
 from rotorsfd.model.build import build_system
 
 if TYPE_CHECKING:
-    from rotorsfd.io.schema import Config
     from rotorsfd.model.system import RotorSystem
 
-__all__ = ["RunContext", "build", "config_context"]
+__all__ = ["RunContext", "build", "config_context", "system_context"]
 
 
 @dataclass(frozen=True)
@@ -100,3 +100,22 @@ def config_context(config: Config, system: RotorSystem, section: str, *,
                       tuple(config.output_nodes(section)) if has_nodes else None,
                       config.title, show_config(config), search_path,
                       config.analysis.stability)
+
+
+def system_context(config_or_system: Config | RotorSystem, section: str, *,
+                   context: RunContext | None = None, search_path: Path | None = None,
+                   reference_speed: float | None = None
+                   ) -> tuple[RotorSystem, RunContext, Config | None]:
+    """The system, the context and the Config (None for a system) of an analysis called
+    as ``run_x(system, context=...)`` (default: an empty configuration's context with
+    ``search_path``) or ``run_x(config)`` (:func:`build`, :func:`config_context` of
+    ``analysis.<section>``); ``reference_speed`` overrides Omega_ref on both paths."""
+    if isinstance(config_or_system, Config):
+        system = build(config_or_system, search_path)
+        return system, config_context(config_or_system, system, section,
+                                      search_path=search_path,
+                                      reference_speed=reference_speed), config_or_system
+    ctx = context if context is not None else RunContext(search_path=search_path)
+    if reference_speed is not None:
+        ctx = replace(ctx, reference_speed=float(reference_speed))
+    return config_or_system, ctx, None

@@ -33,10 +33,10 @@ from rotorsfd.analyses.torus_response import (
     LYAPUNOV_POINTS,
     TorusPoint,
     TorusResponseResult,
+    branch_lyapunov,
     continue_torus_section,
-    lyapunov_indices,
 )
-from rotorsfd.errors import ConfigError, ConvergenceError
+from rotorsfd.errors import ConfigError
 from rotorsfd.io.schema import Config
 
 if TYPE_CHECKING:
@@ -129,7 +129,6 @@ def run_dual_spool_response(config_or_system: Config | RotorSystem,
     ``callback(point)`` returning True stops the branch."""
     from rotorsfd.quasiperiodic import TorusLattice  # deferred: numba
     from rotorsfd.quasiperiodic.dual_frequency import dual_spool_problem
-    from rotorsfd.quasiperiodic.torus_stability import torus_lyapunov
 
     if from_orbit is not None:
         raise ConfigError("--from-orbit", str(from_orbit), "a dual-spool branch (unbalances "
@@ -173,20 +172,11 @@ def run_dual_spool_response(config_or_system: Config | RotorSystem,
         return bool(callback(TorusPoint(index, lam, X))) if callback else False
 
     t0 = time.perf_counter()
-    try:
-        branch = continue_torus_section(problem, lo, hi, lattice, r, hook)
-    except ConvergenceError as exc:
-        raise ConvergenceError(f"no torus at the start of the speed range (Omega~ = "
-                               f"{lo / ref:.4g}): {exc}") from None
-    finally:
-        if progress:
-            print("\r\033[K", end="", file=sys.stderr, flush=True)
+    branch = continue_torus_section(problem, lo, hi, lattice, r, hook, progress=progress,
+                                    start=f"the speed range (Omega~ = {lo / ref:.4g})")
     enabled = ctx.stability.enabled if stability is None else stability
-    lyap = {}
-    if enabled:
-        for i in lyapunov_indices(branch.n_points, lyapunov_points):
-            lyap[i] = torus_lyapunov(system, lattice, branch.X[i], float(branch.omega[i]),
-                                     float(branch.wb[i]))
+    lyap = (branch_lyapunov(branch, lattice, lambda lam: system, lyapunov_points)
+            if enabled else {})
     return DualSpoolResponseResult(
         branch, system, ref, tuple(nodes), tuple(r.directions), ctx.title,
         time.perf_counter() - t0, lyap,

@@ -74,6 +74,9 @@ class ResponseResult:
     multipliers: NDArray[np.complex128] | None = None
     bifurcations: list[dict[str, Any]] | None = None
     info: dict[str, Any] = field(default_factory=dict)
+    #: The orbit's period in T = 2 pi / Omega: the branch's harmonic k is k Omega / period
+    #: (``branch.frequency`` is Omega / period; 2 on a period-2 branch).
+    period: int = 1
 
     FILES = ("branch.nc", "branch.csv")
 
@@ -157,8 +160,8 @@ class ResponseResult:
 
     @property
     def speeds(self) -> FloatArray:
-        """Rotor speed of every point [rad/s]."""
-        return np.asarray(self.branch.frequency, dtype=float).copy()
+        """Rotor speed of every point [rad/s]: ``period`` x the branch's frequency."""
+        return self.period * np.asarray(self.branch.frequency, dtype=float)
 
     def static(self, node: int, direction: str) -> FloatArray:
         """X_0 of (node, direction) along the branch [m]."""
@@ -174,6 +177,21 @@ class ResponseResult:
         Xy, Xz = X[:, :, dofs.dof_index(node, "y")], X[:, :, dofs.dof_index(node, "z")]
         return max_radius(Xy, Xz) / self.clearance
 
+    def subharmonic(self, node: int) -> FloatArray:
+        """``sqrt(sum_k |X_k,y|^2 + |X_k,z|^2) / C`` at ``node`` over the harmonics k that
+        are not multiples of ``period`` (the part that is not T-periodic; 0 on period 1)."""
+        X = self.branch.X
+        k = np.arange(X.shape[1]) % self.period != 0
+        Xy, Xz = X[:, k, dofs.dof_index(node, "y")], X[:, k, dofs.dof_index(node, "z")]
+        return np.sqrt((np.abs(Xy) ** 2 + np.abs(Xz) ** 2).sum(axis=1)) / self.clearance
+
+    def harmonic_name(self, k: int) -> str:
+        """The column tag of the branch's harmonic k, of frequency k Omega / ``period``:
+        ``h<k/period>`` for a harmonic of the speed, ``h<k>_<period>`` otherwise
+        (``h1_2``: the Omega/2 subharmonic)."""
+        p = self.period
+        return f"h{k // p}" if k % p == 0 else f"h{k}_{p}"
+
     def table(self) -> dict[str, NDArray[Any]]:
         """The columns of ``branch.csv`` in order (module docstring)."""
         speeds = self.speeds
@@ -186,9 +204,11 @@ class ResponseResult:
             for d in self.directions:
                 cols[f"static_{n}_{d}"] = self.static(n, d)
                 for k in range(1, self.branch.H + 1):
-                    cols[f"amp_{n}_{d}_h{k}"] = self.amplitude(n, d, k)
+                    cols[f"amp_{n}_{d}_{self.harmonic_name(k)}"] = self.amplitude(n, d, k)
         for n in self.nodes:
             cols[f"defl_{n}"] = self.deflection(n)
+            if self.period > 1:
+                cols[f"sub_{n}"] = self.subharmonic(n)
         cols.update(self.element_columns())
         cols.update(point_info_columns(self.branch))
         if self.stable is not None:
@@ -294,6 +314,11 @@ class ResponseResult:
                 "long_name": "largest radius over the period at "
                              f"{node_words(self.node_names, n)} / C (r~)",
                 "units": "1"})
+            if self.period > 1:
+                ds[f"sub_{n}"] = ("point", self.subharmonic(n), {
+                    "long_name": "harmonics that are not T-periodic at "
+                                 f"{node_words(self.node_names, n)}, 2-norm / C",
+                    "units": "1"})
         if "config_toml" in self.info:
             ds.attrs["config_toml"] = self.info["config_toml"]
         info = self.system.elements.diagnostic_info()

@@ -38,13 +38,12 @@ import math
 import sys
 import time
 from collections.abc import Sequence
-from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from rotorsfd.analyses.context import RunContext, build, config_context
+from rotorsfd.analyses.context import RunContext, build, system_context
 from rotorsfd.analyses.simulation_result import (
     FILE_SAMPLES_PER_PERIOD,
     SimulationResult,
@@ -201,18 +200,11 @@ def run_simulation(config_or_system: Config | RotorSystem, speed: float | None =
     (issue 22): ``result.ended == "limit"``, the periods recorded up to there, the
     warning :attr:`SimulationResult.message`; a numerical failure raises.
     """
-    if isinstance(config_or_system, RotorSystem):
-        system = config_or_system
-        sim = settings if settings is not None else SimulateAnalysis()
-        ctx = context if context is not None else RunContext(search_path=search_path)
-        if reference_speed is not None:
-            ctx = replace(ctx, reference_speed=float(reference_speed))
-    else:
-        config = config_or_system
-        system = build(config, search_path)
-        sim = config.analysis.simulate if settings is None else settings
-        ctx = config_context(config, system, "simulate", search_path=search_path,
-                             reference_speed=reference_speed)
+    system, ctx, config = system_context(config_or_system, "simulate", context=context,
+                                         search_path=search_path,
+                                         reference_speed=reference_speed)
+    sim = (settings if settings is not None else config.analysis.simulate if config
+           else SimulateAnalysis())
     search_path = ctx.search_path
     ref = ctx.reference_speed
     H = harmonics or ctx.harmonics

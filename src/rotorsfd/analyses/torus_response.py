@@ -100,16 +100,38 @@ class TorusPoint(NamedTuple):
 
 
 def continue_torus_section(problem: Any, lo: float, hi: float, lattice: Any, r: Any,
-                           hook: Any) -> Any:
+                           hook: Any, *, start: str = "the range",
+                           progress: bool = False) -> Any:
     """:func:`~rotorsfd.quasiperiodic.torus_continuation.continue_torus` over [lo, hi]
-    with the continuation settings of the ``[analysis.response]`` section ``r``."""
+    with the continuation settings of the ``[analysis.response]`` section ``r``; a first
+    point that does not converge is ConvergenceError "no torus at the start of
+    ``start``"; ``progress``: the hook's progress line cleared at the end."""
     from rotorsfd.quasiperiodic import continue_torus  # deferred: numba
 
-    return continue_torus(problem, float(lo), float(hi), lattice, tol=r.tolerance,
-                          ds=r.step_initial, ds_min=r.step_min, ds_max=r.step_max,
-                          max_iter=r.max_iterations, max_points=r.max_points,
-                          max_angle_deg=math.degrees(r.max_tangent_angle),
-                          limit_max=r.max_eccentricity, callback=hook)
+    try:
+        return continue_torus(problem, float(lo), float(hi), lattice, tol=r.tolerance,
+                              ds=r.step_initial, ds_min=r.step_min, ds_max=r.step_max,
+                              max_iter=r.max_iterations, max_points=r.max_points,
+                              max_angle_deg=math.degrees(r.max_tangent_angle),
+                              limit_max=r.max_eccentricity, callback=hook)
+    except ConvergenceError as exc:
+        raise ConvergenceError(f"no torus at the start of {start}: {exc}") from None
+    finally:
+        if progress:
+            print("\r\033[K", end="", file=sys.stderr, flush=True)
+
+
+def branch_lyapunov(branch: Any, lattice: Any, system_of: Callable[[float], Any],
+                    count: int = LYAPUNOV_POINTS) -> dict[int, Any]:
+    """The largest Lyapunov exponent of the motion started on the torus
+    (:func:`~rotorsfd.quasiperiodic.torus_stability.torus_lyapunov`) at ``count`` points
+    spread along ``branch`` (:func:`lyapunov_indices`), by point index; ``system_of(lam)``
+    the system at a point's parameter."""
+    from rotorsfd.quasiperiodic.torus_stability import torus_lyapunov  # deferred: numba
+
+    return {i: torus_lyapunov(system_of(float(branch.lam[i])), lattice, branch.X[i],
+                              float(branch.omega[i]), float(branch.wb[i]))
+            for i in lyapunov_indices(branch.n_points, count)}
 
 
 def component_slug(k1: int, k2: int) -> str:
@@ -369,7 +391,6 @@ def run_torus_response(config_or_system: Config | RotorSystem,
     context's ``[analysis.stability].enabled``. ``callback(point)`` returning True stops
     the branch (``point.index``, ``point.lam``: the parameter in SI)."""
     from rotorsfd.quasiperiodic import TorusLattice  # deferred: numba
-    from rotorsfd.quasiperiodic.torus_stability import torus_lyapunov
 
     if from_orbit is not None:
         raise ConfigError("--from-orbit", str(from_orbit), "a torus branch (harmonic base "
@@ -441,22 +462,13 @@ def run_torus_response(config_or_system: Config | RotorSystem,
         return bool(callback(TorusPoint(index, lam, X))) if callback else False
 
     t0 = time.perf_counter()
-    try:
-        branch = continue_torus_section(problem, lo, hi, lattice, r, hook)
-    except ConvergenceError as exc:
-        where_start = (f"the speed range ({where(lo)})" if speed is None else
-                       f"{FIELD}.parameter_range ({where(lo)}, Omega~ = {speed / ref:.4g})")
-        raise ConvergenceError(f"no torus at the start of {where_start}: {exc}") from None
-    finally:
-        if progress:
-            print("\r\033[K", end="", file=sys.stderr, flush=True)
+    where_start = (f"the speed range ({where(lo)})" if speed is None else
+                   f"{FIELD}.parameter_range ({where(lo)}, Omega~ = {speed / ref:.4g})")
+    branch = continue_torus_section(problem, lo, hi, lattice, r, hook, start=where_start,
+                                    progress=progress)
     enabled = ctx.stability.enabled if stability is None else stability
-    lyap = {}
-    if enabled:
-        for i in lyapunov_indices(branch.n_points, lyapunov_points):
-            lyap[i] = torus_lyapunov(system_at(system, par, float(branch.lam[i])), lattice,
-                                     branch.X[i], float(branch.omega[i]),
-                                     float(branch.wb[i]))
+    lyap = (branch_lyapunov(branch, lattice, lambda lam: system_at(system, par, lam),
+                            lyapunov_points) if enabled else {})
     return TorusResponseResult(branch, system, ref, tuple(nodes),
                                tuple(r.directions), ctx.title,
                                time.perf_counter() - t0, lyap,

@@ -141,22 +141,12 @@ def period_two(args: argparse.Namespace, result: Any) -> int:
     a bad N (no such bifurcation) is one line and exit 2."""
     if args.switch_at is None:
         return 0
-    # deferred: io.atomic imports numpy (keeps --help fast)
+    # deferred: numpy, scipy, numba (keeps --help fast)
+    from rotorsfd import api
     from rotorsfd.io import atomic
 
     sw = args.switch_at
-    if sw.kind == "bp":
-        # deferred: analyses.response_branch_switch (loads numba, scipy, pydantic)
-        from rotorsfd.analyses.response_branch_switch import (
-            check_branch_switch as check,
-        )
-
-        # deferred: analyses.response_branch_switch (loads numba, scipy, pydantic)
-        from rotorsfd.analyses.response_branch_switch import run_branch_switch as run
-    else:
-        # deferred: analyses.response_switch (loads numba, scipy, pydantic)
-        from rotorsfd.analyses.response_switch import check_switch as check
-        from rotorsfd.analyses.response_switch import run_switch as run
+    check, run = api.second_branch_switch(sw.kind)
     try:
         check(result, sw.number, sw.text)
     except ConfigError as exc:

@@ -37,29 +37,37 @@ from rotorsfd.harmonic.problem import PeriodicProblem
 ComplexArray = NDArray[np.complex128]
 
 
-def period_doubled(problem: PeriodicProblem) -> PeriodicProblem:
-    """The same system written with fundamental frequency ``w(lam)/2``: forcing harmonic
-    k becomes harmonic 2k (odd harmonics unforced)."""
-    n = problem.n_dof
+def period_n(problem: PeriodicProblem, n: int) -> PeriodicProblem:
+    """The same system written with fundamental frequency ``w(lam) / n``: forcing
+    harmonic k becomes harmonic k n (the others unforced); ``n = 1``: ``problem`` itself."""
+    if n == 1:
+        return problem
+    m = problem.n_dof
 
-    def spread(F: ComplexArray, H2: int) -> ComplexArray:
-        out = np.zeros((H2 + 1, n), dtype=complex)
-        out[0::2] = F[: H2 // 2 + 1]
+    def spread(F: ComplexArray, Hn: int) -> ComplexArray:
+        out = np.zeros((Hn + 1, m), dtype=complex)
+        out[0::n] = F[: Hn // n + 1]
         return out
 
     return PeriodicProblem(
-        n_dof=n, nl_dofs=problem.nl_dofs, matrices=problem.matrices,
+        n_dof=m, nl_dofs=problem.nl_dofs, matrices=problem.matrices,
         dmatrices=problem.dmatrices,
-        forcing=lambda lam, H: spread(problem.forcing(lam, H // 2), H),
-        dforcing=lambda lam, H: spread(problem.dforcing(lam, H // 2), H),
-        frequency=lambda lam: 0.5 * problem.frequency(lam),
-        dfrequency=lambda lam: 0.5 * problem.dfrequency(lam),
+        forcing=lambda lam, H: spread(problem.forcing(lam, H // n), H),
+        dforcing=lambda lam, H: spread(problem.dforcing(lam, H // n), H),
+        frequency=lambda lam: problem.frequency(lam) / n,
+        dfrequency=lambda lam: problem.dfrequency(lam) / n,
         nl_force=problem.nl_force, nl_jacobian=problem.nl_jacobian,
         scaling=problem.scaling, nl_limit=problem.nl_limit,
-        name=f"{problem.name} (period 2)", nl_force_jacobian=problem.nl_force_jacobian,
+        name=f"{problem.name} (period {n})", nl_force_jacobian=problem.nl_force_jacobian,
         nl_kernel=problem.nl_kernel, nl_kernel_params=problem.nl_kernel_params,
         nl_at=problem.nl_at, nl_force_jacobians=problem.nl_force_jacobians,
         nl_inertial_kernel=problem.nl_inertial_kernel)
+
+
+def period_doubled(problem: PeriodicProblem) -> PeriodicProblem:
+    """:func:`period_n` with n = 2: fundamental ``w(lam)/2``, forcing harmonic k becomes
+    harmonic 2k (odd harmonics unforced)."""
+    return period_n(problem, 2)
 
 
 def doubled_coefficients(X: ComplexArray, H2: int | None = None) -> ComplexArray:
