@@ -69,3 +69,16 @@ def fixed_layout_faults(fig: Figure) -> list[str]:
             if other is not ax and tight.overlaps(other.get_window_extent(r)):
                 out.append(f"over a panel: {ax.get_title()!r} on {other.get_title()!r}")
     return out
+
+
+def labels_under_legends(fig: Figure) -> list[str]:
+    """Axis labels, titles and the figure title that a legend covers."""
+    fig.set_dpi(40)
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    r = canvas.get_renderer()
+    texts = [t for ax in fig.axes for t in (ax.xaxis.label, ax.yaxis.label, ax.title)]
+    texts += list(fig.texts)
+    return [t.get_text() for lg in legends(fig) for t in texts
+            if t.get_visible() and t.get_text()
+            and lg.get_window_extent(r).overlaps(t.get_window_extent(r))]

@@ -5,8 +5,7 @@ over a label."""
 
 import numpy as np
 import pytest
-from figure_text import fixed_layout_faults, legends, legends_over_panels
-from matplotlib.backends.backend_agg import FigureCanvasAgg
+from figure_text import fixed_layout_faults, labels_under_legends, legends_over_panels
 from matplotlib.figure import Figure
 
 from rotorsfd.plots.response import PANEL, mark_bifurcations, plot_multipliers, response_figures
@@ -58,19 +57,6 @@ def test_branch_points_get_their_own_markers():
     assert markers == ["o", "D", "v"]      # none drawn with the untyped cross
 
 
-def _labels_under_legends(fig: Figure) -> list[str]:
-    """Axis labels, titles and the figure title that a legend covers."""
-    fig.set_dpi(40)
-    canvas = FigureCanvasAgg(fig)
-    canvas.draw()
-    r = canvas.get_renderer()
-    texts = [t for ax in fig.axes for t in (ax.xaxis.label, ax.yaxis.label, ax.title)]
-    texts += list(fig.texts)
-    return [t.get_text() for lg in legends(fig) for t in texts
-            if t.get_visible() and t.get_text()
-            and lg.get_window_extent(r).overlaps(t.get_window_extent(r))]
-
-
 def _table(nodes: dict[int, float], H: int = 3) -> dict:
     """A branch over Omega~ 0.6-1.4 with a resonance; node n's amplitude scaled by
     ``nodes[n]``, an unstable middle part."""
@@ -105,7 +91,7 @@ def test_response_figures_fixed_layout(scales):
         assert fig.get_layout_engine() is None, name
         assert not fixed_layout_faults(fig), (name, fixed_layout_faults(fig))
         assert not legends_over_panels(fig), name
-        assert not _labels_under_legends(fig), (name, _labels_under_legends(fig))
+        assert not labels_under_legends(fig), (name, labels_under_legends(fig))
     # the axes boxes have the fixed size in inches
     fig = figs["response_node1.png"]
     W, H = fig.get_size_inches()
@@ -121,4 +107,4 @@ def test_multipliers_figure_fixed_layout():
     assert fig.get_layout_engine() is None
     assert not fixed_layout_faults(fig), fixed_layout_faults(fig)
     assert not legends_over_panels(fig)
-    assert not _labels_under_legends(fig), _labels_under_legends(fig)
+    assert not labels_under_legends(fig), labels_under_legends(fig)

@@ -22,7 +22,11 @@ from matplotlib.colors import LogNorm
 from matplotlib.figure import Figure
 
 from rotorsfd.model.node_names import node_words
+from rotorsfd.plots.fixed_layout import fixed_layout
 from rotorsfd.plots.labels import mathtext, wrap
+
+#: Axes box (width, height) of each panel of the lines figure, inches (fixed layout).
+PANEL = (5.6, 2.6)
 
 
 def component_label(k1: int, k2: int) -> str:
@@ -59,7 +63,7 @@ def plot_torus_components(result: Any) -> Figure:
     b = result.branch
     x, xlabel = branch_axis(result)
     rows = len(result.nodes) + (1 if result.lyapunov else 0)
-    fig = Figure(figsize=(8, 2.8 * rows + 0.8), layout="constrained")
+    fig = Figure()
     axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
     plot_lines(axes, result, x, lambda k1, k2: mathtext(component_label(k1, k2)))
     if result.lyapunov:
@@ -73,6 +77,7 @@ def plot_torus_components(result: Any) -> Figure:
             else f", w_b = {float(b.wb[0]):.4g} rad/s")
     fig.suptitle(mathtext(wrap(f"{result.title or 'Quasi-periodic response'}: lines at "
                                f"k1 Omega + k2 w_b, {at}", 90)), fontsize=9)
+    fixed_layout(fig, [[ax] for ax in axes], PANEL)
     return fig
 
 
