@@ -15,11 +15,13 @@ from matplotlib.figure import Figure
 from rotorsfd.plots.basins import basin_figure
 from rotorsfd.plots.bifurcation_curves import bifurcation_curves_figure
 from rotorsfd.plots.campbell import campbell_figure
+from rotorsfd.plots.chart import chart_figure
 from rotorsfd.plots.dual_spool import plot_dual_spool_response
 from rotorsfd.plots.fixed_layout import fixed_layout
 from rotorsfd.plots.fold import fold_curve_figure
 from rotorsfd.plots.timedomain import bifurcation_figure, simulation_figures
-from rotorsfd.plots.torus import plot_torus_components
+from rotorsfd.plots.torus import plot_torus_components, plot_torus_spectrum
+from rotorsfd.plots.transient import envelope_figure, waterfall_figure
 
 LONG = ("A title as long as a user's, naming the rotor, the SFD, the unbalance of 144.02 g mm "
         "and the settings, with the end of a long title")
@@ -101,7 +103,46 @@ def _lines_result(ratio: float | None = None) -> SimpleNamespace:
                            parameter="speed", parameter_units="rad/s", ratio=ratio)
 
 
-FIGURES = {"campbell": _campbell, "fold": _fold, "bifurcation curves": _curves,
+def _chart(stable: bool = False) -> Figure:
+    x, y = np.linspace(80.0, 300.0, 23), np.linspace(0.0, 0.3, 16)
+    X, Y = np.meshgrid(x, y, indexing="ij")
+    m = 1.0 + (0.0 if stable else 0.08) * np.exp(-((X - 190) / 30) ** 2) * Y / 0.3
+    return chart_figure(x, y, m, x_path="base.pitching.frequency",
+                        y_path="base.pitching.angle_amplitude", x_units="rad/s",
+                        y_units="rad", speed=250.0, title=LONG)
+
+
+def _spectrum() -> Figure:
+    result = _lines_result()
+    k = np.array([(k1, k2) for k1 in range(4) for k2 in range(-2, 3)])
+    result.branch.lattice = SimpleNamespace(H1=3, H2=2, k=k)
+    result.branch.X = np.exp(-np.arange(k.shape[0]))[None, :, None] * np.ones((30, 1, 8))
+    return plot_torus_spectrum(result, 5)
+
+
+def _envelope() -> Figure:
+    t = np.linspace(0.0, 2.0, 400)
+    speed = 300 + 200 * t
+    radius = {1: 1e-4 * (1 + np.sin(speed / 50) ** 2), 8: 3e-5 * (1 + t)}
+    return envelope_figure(t=t, speed=speed, radius=radius, clearances={1: 1.27e-4},
+                           events=[0.7], branch={1: (speed, 1e-4 * np.ones(400),
+                                                     np.r_[np.ones(200), np.zeros(200)])},
+                           title=LONG)
+
+
+def _waterfall() -> Figure:
+    t = np.linspace(0.0, 2.0, 40)
+    f = np.linspace(0.0, 200.0, 100)
+    amp = 1e-5 * np.exp(-((f[None, :] - 50 * (1 + t[:, None])) / 10) ** 2) + 1e-9
+    speed = 2 * np.pi * 50 * (1 + t)
+    return waterfall_figure(time=t, frequency_hz=f, amplitude=amp, node=1, t=t, speed=speed,
+                            natural=(np.array([0.0, 1000.0]), np.array([[600.0], [620.0]])),
+                            title=LONG)
+
+
+FIGURES = {"chart": _chart, "chart all stable": lambda: _chart(True),
+           "torus spectrum": _spectrum, "envelope": _envelope, "waterfall": _waterfall,
+"campbell": _campbell, "fold": _fold, "bifurcation curves": _curves,
            "bifurcation diagram": _bifurcation_diagram, "basins": _basins,
            "torus lines": lambda: plot_torus_components(_lines_result()),
            "dual spool": lambda: plot_dual_spool_response(_lines_result(1.4)),
@@ -115,8 +156,8 @@ def test_figure_fixed_layout(name):
     fig = FIGURES[name]()
     assert fig.get_layout_engine() is None
     assert not fixed_layout_faults(fig), fixed_layout_faults(fig)
-    if name not in ("torus lines", "dual spool"):   # those keep their legends inside
-        assert not legends_over_panels(fig)            # their panels (loc="best")
+    if name not in ("torus lines", "dual spool", "envelope", "waterfall"):
+        assert not legends_over_panels(fig)     # those keep their legends inside (best)
     assert not labels_under_legends(fig), labels_under_legends(fig)
 
 

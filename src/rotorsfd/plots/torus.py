@@ -130,8 +130,7 @@ def plot_torus_spectrum(result: Any, index: int) -> Figure:
     lat = b.lattice
     H1, H2 = lat.H1, lat.H2
     nodes = result.nodes
-    fig = Figure(figsize=(1.1 * (H1 + 1) * len(nodes) + 2.5, 0.55 * (2 * H2 + 1) + 1.6),
-                 layout="constrained")
+    fig = Figure()
     axes = fig.subplots(1, len(nodes), squeeze=False)[0]
     image = None
     floor = 1e-6
@@ -154,12 +153,16 @@ def plot_torus_spectrum(result: Any, index: int) -> Figure:
         ax.set_xlabel(r"$k_1$ (multiples of $\Omega$)")
         ax.set_title(f"node {n}", fontsize=8)
     axes[0].set_ylabel(r"$k_2$ (multiples of $\omega_b$)")
+    bars = []
     if image is not None:
-        fig.colorbar(image, ax=list(axes), label=r"$\sqrt{|X_y|^2 + |X_z|^2}\,/\,C$")
+        cax = fig.add_axes((0.0, 0.0, 0.1, 0.1), label="<colorbar>")
+        fig.colorbar(image, cax=cax, label=r"$\sqrt{|X_y|^2 + |X_z|^2}\,/\,C$")
+        bars.append((cax, list(axes)))
     ratio = b.omega[index] / result.reference_speed
     at = f"Omega~ = {ratio:.4g}" if result.is_speed else \
         f"{result.at(index)}, Omega~ = {ratio:.4g}"
     fig.suptitle(mathtext(wrap(f"Amplitude spectrum at {at} (the line at "
                                "k1 Omega + k2 w_b; blank: the conjugate of the mirrored "
                                "cell)", 90)), fontsize=9)
+    fixed_layout(fig, [list(axes)], (1.1 * (H1 + 1), 0.55 * (2 * H2 + 1)), colorbars=bars)
     return fig
