@@ -61,3 +61,23 @@ def test_the_full_step_of_a_model_at_the_limit_still_runs():
     inputs = with_reduction(time_domain_inputs(system, 300.0), "none")
     assert inputs.reduction is None and inputs.n_dof == DENSE_MAX_DOF
     assert np.all(np.isfinite(inputs.K.diagonal()))
+
+
+def test_auto_without_a_craig_bampton_model_is_refused_on_a_large_model(monkeypatch):
+    """Supported only by the SFD at node 1: with the SFD's DOFs fixed the shaft pivots
+    about node 1 (a free interior, no Craig-Bampton model), so "auto" would fall back to
+    the dense full step: refused above the limit, one line; the 84-DOF analogue falls back
+    as before."""
+    raw = uniform_sfd_rotor_raw(104)
+    raw["rotor"]["supports"] = []
+    with monkeypatch.context() as m:
+        forbid_dense_rotor_matrices(m)
+        inputs = time_domain_inputs(build_system(config_from_dict(raw)), 300.0)
+        with pytest.raises(ConfigError, match=r"analysis\.simulate\.reduction: got 'auto'; "
+                           r"no Craig-Bampton model of this 420-DOF model \(.*\), and the "
+                           r"full step is allowed up to 400 DOFs"):
+            with_reduction(inputs, "auto")
+    small = uniform_sfd_rotor_raw(20)
+    small["rotor"]["supports"] = []
+    inputs = time_domain_inputs(build_system(config_from_dict(small)), 300.0)
+    assert inputs.n_dof == 84 and with_reduction(inputs, "auto").reduction is None

@@ -68,8 +68,8 @@ def with_reduction(inputs: TimeDomainInputs, reduction: str = "auto",
     ``omega <= cutoff Omega`` when it has fewer coordinates than the model (and the
     interior is restrained once the nonlinear DOFs are fixed: no fixed-interface mode
     below ``1e-6`` of the cutoff), else the full step;
-    ``"none"`` the full step (refused above ``DENSE_MAX_DOF`` DOFs:
-    :func:`refuse_large_full_step`)."""
+    ``"none"`` the full step. The full step is refused above ``DENSE_MAX_DOF`` DOFs
+    (:func:`refuse_large_full_step`; for ``"auto"`` without a Craig-Bampton model too)."""
     if reduction not in REDUCTIONS:
         raise ConfigError(f"{FIELD}.reduction", reduction, '"auto" or "none"')
     if not cutoff > 0.0:
@@ -80,12 +80,25 @@ def with_reduction(inputs: TimeDomainInputs, reduction: str = "auto",
     try:
         red = reduce_system(inputs, cutoff * inputs.speed)
     except (ConfigError, np.linalg.LinAlgError):  # a free interior: no Craig-Bampton model
-        return replace(inputs, reduction=None)
+        return _full_step_instead(inputs, "it fails")
     omegas = red.model.omegas
     mechanism = (omegas.size and omegas[0] < 1e-6 * red.omega_max) or not np.all(
         np.isfinite(red.basis))                        # a (nearly) free interior
-    useful = red.n_dof < inputs.n_dof and not mechanism
-    return replace(inputs, reduction=red if useful else None)
+    if mechanism:
+        return _full_step_instead(inputs, "the interior is free once the nonlinear DOFs "
+                                          "are fixed")
+    return replace(inputs, reduction=red if red.n_dof < inputs.n_dof else None)
+
+
+def _full_step_instead(inputs: TimeDomainInputs, why: str) -> TimeDomainInputs:
+    """The full step where ``"auto"`` has no Craig-Bampton model (``why``); ConfigError
+    above ``DENSE_MAX_DOF`` DOFs, where the full step is refused
+    (:func:`refuse_large_full_step`)."""
+    if inputs.n_dof > DENSE_MAX_DOF:
+        raise ConfigError(f"{FIELD}.reduction", "auto",
+                          f"no Craig-Bampton model of this {inputs.n_dof}-DOF model ({why}), "
+                          f"and the full step is allowed up to {DENSE_MAX_DOF} DOFs")
+    return replace(inputs, reduction=None)
 
 
 def stepped_system(inputs: TimeDomainInputs, state: tuple[np.ndarray, np.ndarray, float]
@@ -129,8 +142,11 @@ def reduction_check(inputs: TimeDomainInputs, state: tuple[np.ndarray, np.ndarra
         ref, label = full, "full step"
     else:
         factor = CHECK_FACTOR * red.omega_max / inputs.speed
-        ref = with_reduction(full, "auto", factor)
-        if ref.reduction is None:          # never the dense full step of a large model
+        try:
+            ref = with_reduction(full, "auto", factor)
+        except ConfigError:                # never the dense full step of a large model
+            return {}
+        if ref.reduction is None:
             return {}
         label = f"reduced step at {factor:g} x Omega ({ref.reduction.n_dof} coordinates)"
     q, v, t = state
