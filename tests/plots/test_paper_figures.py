@@ -6,7 +6,7 @@ its title saying what the grid shows (issue 24, item 6)."""
 from __future__ import annotations
 
 import numpy as np
-from figure_text import legend_labels, legends_over_panels, texts
+from figure_text import fixed_layout_faults, legend_labels, legends_over_panels, texts
 
 from rotorsfd.paper.cases import FIGURES
 from rotorsfd.paper.figures import draw
@@ -130,39 +130,6 @@ def test_chart_axes_in_words_and_title_says_what_it_shows():
     assert ticks and all(abs(t * 1000 - round(t * 1000)) < 1e-6 for t in ticks)
 
 
-def _fixed_layout_faults(fig) -> list[str]:
-    """What a fixed layout got wrong, measured on the drawn figure: a text or legend
-    reaching outside the figure (clipped), or a panel's decorations (ticks, labels, title)
-    over another panel's frame."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.legend import Legend
-    from matplotlib.text import Text
-
-    fig.set_dpi(40)
-    canvas = FigureCanvasAgg(fig)
-    canvas.draw()
-    r = canvas.get_renderer()
-    page = fig.bbox
-    out = []
-    # the figure's own texts (title, headings), the legends and every panel with what it
-    # draws around it (ticks shown, labels, title)
-    boxes = [(a.get_text(), a.get_window_extent(r)) for a in fig.findobj(Text)
-             if a.get_text() and (a in fig.texts or a.get_text() == fig.get_suptitle())]
-    boxes += [("legend", a.get_window_extent(r)) for a in fig.findobj(Legend)]
-    boxes += [(ax.get_title() or ax.get_ylabel(), ax.get_tightbbox(r)) for ax in fig.axes]
-    for name, b in boxes:
-        if b.x0 < page.x0 - 1 or b.x1 > page.x1 + 1 or b.y0 < page.y0 - 1 \
-                or b.y1 > page.y1 + 1:
-            out.append(f"outside: {name}")
-    panels = [ax for ax in fig.axes if ax.get_label() != "<colorbar>"]
-    for ax in panels:
-        tight = ax.get_tightbbox(r)
-        for other in panels:
-            if other is not ax and tight.overlaps(other.get_window_extent(r)):
-                out.append(f"over a panel: {ax.get_title()!r} on {other.get_title()!r}")
-    return out
-
-
 def _both_readings(number: str) -> dict:
     from rotorsfd.paper.cases import CAL, CASES
 
@@ -199,5 +166,5 @@ def test_fixed_layout_keeps_every_text_inside_and_panels_apart():
     for number, outcomes in LAYOUT_CASES.items():
         fig = draw(FIGURES[number.split()[0]], outcomes())
         assert fig.get_layout_engine() is None, number        # no constrained layout
-        assert not _fixed_layout_faults(fig), (number, _fixed_layout_faults(fig))
+        assert not fixed_layout_faults(fig), (number, fixed_layout_faults(fig))
         assert not legends_over_panels(fig), number

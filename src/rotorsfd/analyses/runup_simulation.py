@@ -28,7 +28,12 @@ import numpy as np
 from rotorsfd import __version__
 from rotorsfd.analyses.runup import SpeedLawRun, run_speed_law, speed_law_inputs
 from rotorsfd.analyses.runup_step import controlled_run
-from rotorsfd.analyses.td_integration import DIRECTIONS, FIELD, scheme_options
+from rotorsfd.analyses.td_integration import (
+    DIRECTIONS,
+    FIELD,
+    refuse_large_full_step,
+    scheme_options,
+)
 from rotorsfd.errors import ConfigError
 from rotorsfd.io import atomic
 from rotorsfd.io.provenance import netcdf_attrs
@@ -313,6 +318,8 @@ def run_speed_law_simulation(system: RotorSystem, law: SpeedLaw, *, sim: Any,
             clear[int(node)] = float(c)
     inputs = speed_law_inputs(system, law, t_end)
     reduction = getattr(sim, "reduction", "none")
+    if reduction == "none":           # the config's full step: refused on large models
+        refuse_large_full_step(inputs.n_dof)
 
     def run_at(n: int) -> SpeedLawRun:
         return run_speed_law(None, law, t_end, steps_per_period=n, record_dofs=rec, q0=q0,

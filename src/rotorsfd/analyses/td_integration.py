@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 
 from rotorsfd.errors import ConfigError, ConvergenceError
+from rotorsfd.model.sparse import DENSE_MAX_DOF
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.second_order import SecondOrderSystem
 from rotorsfd.timedomain import newmark as nm
@@ -49,6 +50,17 @@ REDUCTION_CUTOFF = 40.0
 (``analysis.simulate.reduction_cutoff``; see :func:`with_reduction`)."""
 
 
+def refuse_large_full_step(n_dof: int) -> None:
+    """ConfigError for ``reduction = "none"`` on a model above
+    :data:`~rotorsfd.model.sparse.DENSE_MAX_DOF` DOFs: the full step forms the dense
+    n x 2n step operator ``K_eff^-1 [-2K, 4/h M]`` (O(n^3) to prepare, O(n^2) a step:
+    hours and GiB at 5000 DOFs), and no banded full step exists."""
+    if n_dof > DENSE_MAX_DOF:
+        raise ConfigError(f"{FIELD}.reduction", "none",
+                          f'the full step (a dense n x 2n step operator) is allowed up to '
+                          f'{DENSE_MAX_DOF} DOFs and this model has {n_dof}: use "auto"')
+
+
 def with_reduction(inputs: TimeDomainInputs, reduction: str = "auto",
                    cutoff: float = REDUCTION_CUTOFF) -> TimeDomainInputs:
     """``inputs`` with the reduced step of ``reduction``: ``"auto"`` the Craig-Bampton
@@ -56,22 +68,37 @@ def with_reduction(inputs: TimeDomainInputs, reduction: str = "auto",
     ``omega <= cutoff Omega`` when it has fewer coordinates than the model (and the
     interior is restrained once the nonlinear DOFs are fixed: no fixed-interface mode
     below ``1e-6`` of the cutoff), else the full step;
-    ``"none"`` the full step."""
+    ``"none"`` the full step. The full step is refused above ``DENSE_MAX_DOF`` DOFs
+    (:func:`refuse_large_full_step`; for ``"auto"`` without a Craig-Bampton model too)."""
     if reduction not in REDUCTIONS:
         raise ConfigError(f"{FIELD}.reduction", reduction, '"auto" or "none"')
     if not cutoff > 0.0:
         raise ConfigError(f"{FIELD}.reduction_cutoff", cutoff, "must be > 0")
     if reduction == "none":
+        refuse_large_full_step(inputs.n_dof)
         return replace(inputs, reduction=None)
     try:
         red = reduce_system(inputs, cutoff * inputs.speed)
     except (ConfigError, np.linalg.LinAlgError):  # a free interior: no Craig-Bampton model
-        return replace(inputs, reduction=None)
+        return _full_step_instead(inputs, "it fails")
     omegas = red.model.omegas
     mechanism = (omegas.size and omegas[0] < 1e-6 * red.omega_max) or not np.all(
         np.isfinite(red.basis))                        # a (nearly) free interior
-    useful = red.n_dof < inputs.n_dof and not mechanism
-    return replace(inputs, reduction=red if useful else None)
+    if mechanism:
+        return _full_step_instead(inputs, "the interior is free once the nonlinear DOFs "
+                                          "are fixed")
+    return replace(inputs, reduction=red if red.n_dof < inputs.n_dof else None)
+
+
+def _full_step_instead(inputs: TimeDomainInputs, why: str) -> TimeDomainInputs:
+    """The full step where ``"auto"`` has no Craig-Bampton model (``why``); ConfigError
+    above ``DENSE_MAX_DOF`` DOFs, where the full step is refused
+    (:func:`refuse_large_full_step`)."""
+    if inputs.n_dof > DENSE_MAX_DOF:
+        raise ConfigError(f"{FIELD}.reduction", "auto",
+                          f"no Craig-Bampton model of this {inputs.n_dof}-DOF model ({why}), "
+                          f"and the full step is allowed up to {DENSE_MAX_DOF} DOFs")
+    return replace(inputs, reduction=None)
 
 
 def stepped_system(inputs: TimeDomainInputs, state: tuple[np.ndarray, np.ndarray, float]
@@ -115,8 +142,11 @@ def reduction_check(inputs: TimeDomainInputs, state: tuple[np.ndarray, np.ndarra
         ref, label = full, "full step"
     else:
         factor = CHECK_FACTOR * red.omega_max / inputs.speed
-        ref = with_reduction(full, "auto", factor)
-        if ref.reduction is None:          # never the dense full step of a large model
+        try:
+            ref = with_reduction(full, "auto", factor)
+        except ConfigError:                # never the dense full step of a large model
+            return {}
+        if ref.reduction is None:
             return {}
         label = f"reduced step at {factor:g} x Omega ({ref.reduction.n_dof} coordinates)"
     q, v, t = state

@@ -41,9 +41,12 @@ from rotorsfd.continuation.folds import (
 )
 from rotorsfd.continuation.newton import newton_extended
 from rotorsfd.errors import ConvergenceError
+from rotorsfd.harmonic.banded_receptance import banded_receptances
+from rotorsfd.harmonic.condensation import banded_band
 from rotorsfd.harmonic.fold_curve import TwoParameterHB, TwoParameterProblem
 from rotorsfd.harmonic.fourier import to_real
 from rotorsfd.harmonic.synthesis import orbit_samples
+from rotorsfd.model.sparse import DENSE_MAX_DOF
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -64,11 +67,17 @@ where theta comes within h / 2 of t."""
 
 def receptance_blocks(problem, lam: float, theta: float, K: int) -> ComplexArray:
     """The diagonal blocks ``Zs(k w + sigma)`` of ``A(sigma)``, ``k = -K .. K-1``, at
-    ``lam`` (``sigma = theta * w``): (2K, m, m), one batched solve and inverse."""
+    ``lam`` (``sigma = theta * w``): (2K, m, m). A banded linear part above
+    ``DENSE_MAX_DOF`` DOFs: one banded LU of ``Z(W)`` per frequency and the nonlinear
+    DOFs' columns only (:mod:`rotorsfd.harmonic.banded_receptance`, no n x n array);
+    otherwise one batched dense solve. Then one batched m x m inverse."""
     w = float(problem.frequency(lam))
     nl = np.asarray(problem.nl_dofs)
-    M, D, Kmat = (np.asarray(a) for a in problem.matrices(lam))
     W = (np.arange(-K, K) + theta) * w
+    part = problem.matrices
+    if banded_band(part) is not None and problem.n_dof > DENSE_MAX_DOF:
+        return np.linalg.inv(banded_receptances(part, lam, nl, W))
+    M, D, Kmat = (np.asarray(a) for a in part(lam))
     Z = (Kmat[None] - W[:, None, None] ** 2 * M[None] + 1j * W[:, None, None] * D[None])
     E = np.broadcast_to(np.eye(Kmat.shape[0])[:, nl], (W.size, Kmat.shape[0], nl.size))
     return np.linalg.inv(np.linalg.solve(Z, E)[:, nl, :])

@@ -7,8 +7,10 @@ positions and base-motion terms, and returns the configuration that reads them b
 parts, an SFD's centring spring, are added again at build), unbalances, base motion,
 ``[rotor.damping]`` (computed again on the supported rotor) and the analyses. Both rotors
 then have the same M, K, C, G to rounding, and every analysis gives the same results.
-``fmt="mtx"`` writes Matrix Market files and a DOF-map CSV instead (no base-motion terms:
-the model then takes base translation and gravity, not base rotation).
+``fmt="mtx"`` writes Matrix Market files (sparse, coordinate format, from the rotor's CSR
+matrices: no dense n x n array) and a DOF-map CSV instead (no base-motion terms: the model
+then takes base translation and gravity, not base rotation). The npz arrays are dense:
+refused above :data:`~rotorsfd.model.sparse.DENSE_MAX_DOF` DOFs (issue 17 item 2).
 """
 
 from __future__ import annotations
@@ -21,11 +23,12 @@ from typing import Any
 import numpy as np
 
 from rotorsfd.errors import ConfigError
-from rotorsfd.interop.matrices import DIRECTIONS
+from rotorsfd.interop.matrices import ARRAYS, DIRECTIONS
 from rotorsfd.io.atomic import write_bytes, write_text
 from rotorsfd.io.schema import Config, DampingConfig
 from rotorsfd.model.base_terms import base_basis
 from rotorsfd.model.build import build_rotor
+from rotorsfd.model.sparse import DENSE_MAX_DOF, as_csr
 
 
 def element_rotor(config: Config, search_path: Path | None = None) -> Any:
@@ -38,6 +41,13 @@ def element_rotor(config: Config, search_path: Path | None = None) -> Any:
         "rotor": config.rotor.model_copy(update={"damping": DampingConfig()}),
         "elements": {}})
     return build_rotor(bare, search_path)
+
+
+def sparse_matrix(rotor: Any, key: str) -> Any:
+    """``rotor``'s matrix ``key`` (M, K, C or G) sparse: its CSR form (``M_csr`` ...) when
+    it has one (a rotor of shaft elements), else the dense matrix as CSR."""
+    csr = getattr(rotor, f"{key}_csr", None)
+    return csr if csr is not None else as_csr(getattr(rotor, key))
 
 
 def dof_table(n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
@@ -74,10 +84,14 @@ def export_matrices(config: Config, path: str | Path, fmt: str = "npz",
     if fmt not in ("npz", "mtx"):
         raise ConfigError("format", fmt, "allowed: 'npz' or 'mtx'")
     rotor = element_rotor(config, search_path)
-    arrays = {k: np.asarray(getattr(rotor, k), dtype=float) for k in ("M", "K", "C", "G")}
     node, direction = dof_table(rotor.n_nodes)
     target = Path(path)
     if fmt == "npz":
+        if rotor.n_dof > DENSE_MAX_DOF:
+            raise ConfigError("format", fmt, f"npz holds dense arrays (the base terms 12 "
+                              f"n x n): allowed up to {DENSE_MAX_DOF} DOFs and this rotor "
+                              f"has {rotor.n_dof}; 'mtx' writes the matrices sparse")
+        arrays = {k: np.asarray(getattr(rotor, k), dtype=float) for k in ARRAYS}
         basis = base_basis(rotor)
         data = _bytes_npz(**arrays, dof_node=node, dof_direction=direction,
                           node_x=np.asarray(rotor.node_x, float),
@@ -93,9 +107,9 @@ def export_matrices(config: Config, path: str | Path, fmt: str = "npz",
     written = []
     names = {"M": "mass", "K": "stiffness", "C": "damping", "G": "gyroscopic"}
     table: dict[str, Any] = {"n_nodes": rotor.n_nodes}
-    for key, a in arrays.items():
+    for key in ARRAYS:   # sparse (coordinate format) from the CSR matrices: no n x n array
         buffer = io.BytesIO()
-        scipy.io.mmwrite(buffer, a, precision=17)
+        scipy.io.mmwrite(buffer, sparse_matrix(rotor, key), precision=17)
         written.append(write_bytes(target / f"{key}.mtx", buffer.getvalue()))
         table[names[key]] = f"{target.name}/{key}.mtx"
     text = io.StringIO()

@@ -9,9 +9,14 @@ from typing import Any
 
 from matplotlib.figure import Figure
 
+from rotorsfd.plots.fixed_layout import fixed_layout
 from rotorsfd.plots.labels import wrap
 
 MARKERS = "osD^v<>ph*"
+
+
+#: Axes box (width, height) of the figure, inches (fixed layout).
+PANEL = (6.2, 4.4)
 
 
 def _legend(census: Any, i: int, a: Any) -> str:
@@ -35,7 +40,7 @@ def basin_figure(census: Any, coordinate_names: Sequence[str] | None = None,
     ``coordinate_names``), one colour and marker per attractor."""
     names = list(coordinate_names or ["first initial coordinate",
                                       "second initial coordinate"])
-    fig = Figure(figsize=(8.5, 6.5), layout="constrained")
+    fig = Figure()
     ax = fig.subplots()
     lab = census.labels()
     X = census.coords
@@ -51,4 +56,5 @@ def basin_figure(census: Any, coordinate_names: Sequence[str] | None = None,
                       f"Where {census.n_starts} starts end up ({census.speed:.5g} rad/s"
                       f"{ratio})"), fontsize=10)
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), fontsize=8, frameon=False)
+    fixed_layout(fig, [[ax]], PANEL)
     return fig

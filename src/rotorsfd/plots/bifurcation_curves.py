@@ -12,6 +12,7 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator
 
+from rotorsfd.plots.fixed_layout import fixed_layout
 from rotorsfd.plots.labels import axis_label, wrap
 
 #: kind -> (legend words, colour, line style)
@@ -35,6 +36,10 @@ CODIM2 = {"1:1 resonance": ("1:1 resonance (multipliers meet at +1)", "D", "C1")
 DISPLAY_UNITS = {"kg*m": ("g*mm", 1e6)}
 
 
+#: Axes box (width, height) of the figure, inches (fixed layout).
+PANEL = (5.6, 4.0)
+
+
 def bifurcation_curves_figure(kind: Any, curve: Any, speed_ratio: Any, value: Any, *,
                               turns: Sequence[tuple[str, float, float]] = (),
                               codim2: Sequence[tuple[str, float, float]] = (),
@@ -48,7 +53,7 @@ def bifurcation_curves_figure(kind: Any, curve: Any, speed_ratio: Any, value: An
     kind, curve = np.asarray(kind, dtype=str), np.asarray(curve)
     ratio, value = np.asarray(speed_ratio, float), np.asarray(value, float)
     shown, factor = DISPLAY_UNITS.get(units, (units, 1.0))
-    fig = Figure(figsize=(8.5, 5.5), layout="constrained")
+    fig = Figure()
     ax = fig.subplots()
     for k, (words, colour, style) in STYLE.items():
         for j, c in enumerate(np.unique(curve[kind == k])):
@@ -79,4 +84,5 @@ def bifurcation_curves_figure(kind: Any, curve: Any, speed_ratio: Any, value: An
                       80), fontsize=9)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
+    fixed_layout(fig, [[ax]], PANEL)
     return fig

@@ -13,12 +13,17 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from rotorsfd.plots.fixed_layout import fixed_layout
 from rotorsfd.plots.labels import wrap
 
 #: the spools' excitation lines (none red or blue: those are the whirl branches)
 LINE_COLORS = ("tab:green", "tab:orange", "tab:purple", "tab:brown")
 STYLE = {"forward": {"color": "tab:blue", "ls": "-"},
          "backward": {"color": "tab:red", "ls": "--"}}
+
+
+#: Axes box (width, height) of the figure, inches (fixed layout).
+PANEL = (5.6, 3.8)
 
 
 def campbell_axes(ax: Axes, speeds: Any, frequencies: Any, whirl: Any, *,
@@ -72,7 +77,8 @@ def campbell_figure(speeds: Any, frequencies: Any, whirl: Any, *,
                     title: str = "", **spools: Any) -> Figure:
     """``campbell.png``: :func:`campbell_axes` on a figure of its own (``spools``: its
     ``lines``, ``marks``, ``xlabel``)."""
-    fig = Figure(figsize=(8.5, 5), layout="constrained")
-    campbell_axes(fig.add_subplot(), speeds, frequencies, whirl, critical=critical,
-                  harmonics=harmonics, title=title, **spools)
+    fig = Figure()
+    ax = campbell_axes(fig.add_subplot(), speeds, frequencies, whirl, critical=critical,
+                       harmonics=harmonics, title=title, **spools)
+    fixed_layout(fig, [[ax]], PANEL)
     return fig

@@ -20,7 +20,11 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator
 from scipy import ndimage
 
+from rotorsfd.plots.fixed_layout import fixed_layout
 from rotorsfd.plots.labels import label, wrap
+
+#: Axes box (width, height) of the chart figure, inches (fixed layout).
+PANEL = (5.0, 3.9)
 
 ZONE_FRACTION = 1e-3   # regions of this fraction of the grid (>= 3 points) are zones
 
@@ -85,11 +89,12 @@ def describe(regions: list[Region], y_name: str, y_units: str = "", *,
 
 
 def chart_axes(ax: Axes, x: Any, y: Any, max_abs: Any, *, x_label: str, y_label: str,
-               tol: float = 1e-5, speed: float | None = None, title: str = "") -> Axes:
+               tol: float = 1e-5, speed: float | None = None, title: str = "",
+               cax: Axes | None = None) -> Axes:
     """Unstable points shaded by max |mu| (white: stable), the boundary max |mu| = 1 + tol
-    in black, islands ringed, a colour bar with round ticks; the title says what is shown
-    (:func:`describe`). Labels given as config paths ("base.pitching.frequency [rad/s]")
-    are written in words."""
+    in black, islands ringed, a colour bar with round ticks (in ``cax`` when given, else
+    space taken from ``ax``); the title says what is shown (:func:`describe`). Labels given
+    as config paths ("base.pitching.frequency [rad/s]") are written in words."""
     x, y = np.asarray(x, float), np.asarray(y, float)
     m = np.asarray(max_abs, float)
     stable = m <= 1.0 + tol
@@ -99,7 +104,9 @@ def chart_axes(ax: Axes, x: Any, y: Any, max_abs: Any, *, x_label: str, y_label:
         norm = Normalize(vmin=1.0 - 0.25 * (top - 1.0), vmax=top)
         mesh = ax.pcolormesh(X, Y, np.where(stable, np.nan, m), shading="nearest",
                              cmap="Blues", norm=norm)
-        bar = ax.figure.colorbar(mesh, ax=ax, ticks=MaxNLocator(6, steps=[1, 2, 2.5, 5, 10]))
+        where = {"ax": ax} if cax is None else {"cax": cax}
+        bar = ax.figure.colorbar(mesh, **where,
+                                 ticks=MaxNLocator(6, steps=[1, 2, 2.5, 5, 10]))
         bar.set_label(r"max $|\mu|$ (Floquet multiplier) of the unstable points")
         if min(m.shape) > 1:
             ax.contour(X, Y, m, levels=[1.0 + tol], colors="k", linewidths=0.6)
@@ -126,11 +133,14 @@ def chart_figure(x: Any, y: Any, max_abs: Any, *, x_path: str, y_path: str,
                  x_units: str = "", y_units: str = "", tol: float = 1e-5,
                  speed: float | None = None, title: str = "") -> Figure:
     """``chart.png``: :func:`chart_axes` on its own figure (axes named in words)."""
-    fig = Figure(figsize=(7.4, 5.6), layout="constrained")
-    chart_axes(fig.add_subplot(), x, y, max_abs,
-               x_label=f"{x_path} [{x_units}]" if x_units else x_path,
+    fig = Figure()
+    ax = fig.add_subplot()
+    unstable = bool(np.any(np.asarray(max_abs, float) > 1.0 + tol))   # a colour bar
+    cax = fig.add_axes((0.0, 0.0, 0.1, 0.1), label="<colorbar>") if unstable else None
+    chart_axes(ax, x, y, max_abs, x_label=f"{x_path} [{x_units}]" if x_units else x_path,
                y_label=f"{y_path} [{y_units}]" if y_units else y_path,
-               tol=tol, speed=speed, title=title)
+               tol=tol, speed=speed, title=title, cax=cax)
+    fixed_layout(fig, [[ax]], PANEL, colorbars=[(cax, [ax])] if cax is not None else ())
     return fig
 
 

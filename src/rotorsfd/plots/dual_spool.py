@@ -10,8 +10,12 @@ from typing import Any
 
 from matplotlib.figure import Figure
 
+from rotorsfd.plots.fixed_layout import fixed_layout
 from rotorsfd.plots.labels import wrap
 from rotorsfd.plots.torus import plot_lines, plot_lyapunov
+
+#: Axes box (width, height) of each panel, inches (fixed layout).
+PANEL = (5.6, 2.6)
 
 
 def spool_label(k1: int, k2: int) -> str:
@@ -30,7 +34,7 @@ def plot_dual_spool_response(result: Any) -> Figure:
     b = result.branch
     x = b.omega / result.reference_speed
     rows = len(result.nodes) + (1 if result.lyapunov else 0)
-    fig = Figure(figsize=(8, 2.8 * rows + 1.0), layout="constrained")
+    fig = Figure()
     axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
     plot_lines(axes, result, x, spool_label)
     ratio, ref = result.ratio, result.reference_speed
@@ -43,4 +47,5 @@ def plot_dual_spool_response(result: Any) -> Figure:
                         rf"$\Omega_{{ref}}$ = {ref:.4g} rad/s")
     fig.suptitle(wrap(f"{result.title or 'Dual-spool response'}: lines k1 Omega_LP + "
                       f"k2 Omega_HP, Omega_HP = {ratio:g} Omega_LP", 90), fontsize=9)
+    fixed_layout(fig, [[ax] for ax in axes], PANEL)
     return fig

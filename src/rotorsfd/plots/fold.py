@@ -12,7 +12,11 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
+from rotorsfd.plots.fixed_layout import fixed_layout
 from rotorsfd.plots.labels import axis_label, wrap
+
+#: Axes box (width, height) of each panel, inches (fixed layout).
+PANEL = (5.6, 2.9)
 
 
 def fold_curve_figure(value: Any, speed_ratio: Any, curve: Any, *, grid: Any, lo: Any,
@@ -24,7 +28,7 @@ def fold_curve_figure(value: Any, speed_ratio: Any, curve: Any, *, grid: Any, lo
     (value, speed_ratio)."""
     value, ratio, curve = (np.asarray(a) for a in (value, speed_ratio, curve))
     grid, lo, hi, count = (np.asarray(a, float) for a in (grid, lo, hi, count))
-    fig = Figure(figsize=(8.5, 7), layout="constrained")
+    fig = Figure()
     ax, ax2 = fig.subplots(2, 1, sharex=True)
     for k, c in enumerate(np.unique(curve)):
         sel = curve == c
@@ -46,4 +50,5 @@ def fold_curve_figure(value: Any, speed_ratio: Any, curve: Any, *, grid: Any, lo
     ax2.set_xlabel(axis_label(parameter, units))
     ax2.set_ylabel(r"unstable width in $\tilde\Omega$")
     ax2.grid(alpha=0.3)
+    fixed_layout(fig, [[ax], [ax2]], PANEL)
     return fig

@@ -19,7 +19,12 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
+from rotorsfd.plots.fixed_layout import fixed_layout
 from rotorsfd.plots.labels import label, mathtext, wrap
+
+#: Axes boxes (width, height), inches: a panel of a stack, the deflection panel alone, the
+#: multipliers' circle (fixed layout, :mod:`rotorsfd.plots.fixed_layout`).
+PANEL, PANEL_ALONE, PANEL_CIRCLE = (5.6, 2.3), (5.6, 3.3), (3.9, 3.9)
 
 MARKERS = {"saddle-node": "o", "period-doubling": "s", "secondary-hopf": "^",
            "pitchfork": "D", "transcritical": "v", "branch-point": "x"}
@@ -139,7 +144,7 @@ def response_figures(table: Mapping[str, Any], *, x_name: str, x_label: str,
     nodes = list(nodes)
     apart = separate_scales([_peak(table[f"defl_{n}"]) for n in nodes])
     rows = len(nodes) if apart else 1
-    fig = Figure(figsize=(8, 2.6 * rows + 1.4 if apart else 4.5), layout="constrained")
+    fig = Figure()
     axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
     for k, n in enumerate(nodes):
         ax = axes[k if apart else 0]
@@ -154,10 +159,11 @@ def response_figures(table: Mapping[str, Any], *, x_name: str, x_label: str,
     axes[-1].set_xlabel(xlabel)
     fig.suptitle(wrap(title or "Frequency response", 90), fontsize=9)
     outside_legend(fig, axes, key)
+    fixed_layout(fig, [[ax] for ax in axes], PANEL if apart else PANEL_ALONE)
     figs["response_deflection.png"] = fig
 
     for n in nodes:
-        fig = Figure(figsize=(8, 3.0 * len(directions) + 0.6), layout="constrained")
+        fig = Figure()
         axes = fig.subplots(len(directions), 1, sharex=True, squeeze=False)[:, 0]
         for ax, d in zip(axes, directions, strict=True):
             styled_line(ax, x, np.asarray(table[f"static_{n}_{d}"]) / clearance, stable,
@@ -174,6 +180,7 @@ def response_figures(table: Mapping[str, Any], *, x_name: str, x_label: str,
         axes[-1].set_xlabel(xlabel)
         fig.suptitle(wrap(title or "Harmonic amplitudes", 90), fontsize=9)
         outside_legend(fig, axes, key)
+        fixed_layout(fig, [[ax] for ax in axes], PANEL)
         figs[f"response_node{n}.png"] = fig
     return figs
 
@@ -191,7 +198,7 @@ def plot_multipliers(multipliers: Any, *, where: str, max_multiplier: float | No
     rest = np.delete(mu, i)
     mu_max = float(abs(mu[i])) if max_multiplier is None else float(max_multiplier)
 
-    fig = Figure(figsize=(5.2, 5.2), layout="constrained")
+    fig = Figure()
     ax = fig.add_subplot()
     theta = np.linspace(0.0, 2 * np.pi, 361)
     ax.plot(np.cos(theta), np.sin(theta), "-", color="0.5", lw=1.0, label="unit circle",
@@ -209,9 +216,10 @@ def plot_multipliers(multipliers: Any, *, where: str, max_multiplier: float | No
     ax.set_xlabel(r"Re $\mu$")
     ax.set_ylabel(r"Im $\mu$")
     ax.grid(alpha=0.3)
-    fig.legend(loc="outside lower center", fontsize=8, ncol=3)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), fontsize=8, ncol=3)
     state = "" if stable is None else (" (stable)" if stable else " (unstable)")
     head = f"{wrap(title, 70)}\n" if title else ""
     ax.set_title(f"{head}{wrap('Floquet multipliers at ' + mathtext(where), 70)}\n"
                  rf"$|\mu|_{{max}}$ = {mu_max:.5f}{state}", fontsize=9)
+    fixed_layout(fig, [[ax]], PANEL_CIRCLE)
     return fig

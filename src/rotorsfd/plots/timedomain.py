@@ -16,7 +16,12 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator
 
+from rotorsfd.plots.fixed_layout import fixed_layout
 from rotorsfd.plots.labels import label, wrap
+
+#: Axes boxes (width, height), inches (fixed layout): a panel of the 2 x 2 simulation
+#: figure, a panel alone, a panel of the bifurcation diagram's stack.
+PANEL_GRID, PANEL_ALONE, PANEL_STACK = (3.9, 3.0), (4.4, 3.5), (5.6, 2.2)
 
 
 def section_limits(points: Any, orbit: Any = None, floor: float = 0.02,
@@ -109,13 +114,14 @@ def simulation_figures(*, y: Any, z: Any, vy: Any, py: Any, pz: Any, pvy: Any,
     """``simulation.png`` (the four panels of Fig. 23) and each panel alone:
     ``orbit.png``, ``phase.png``, ``poincare.png``, ``spectrum.png``."""
     figs: dict[str, Figure] = {}
-    fig = Figure(figsize=(10, 8), layout="constrained")
+    fig = Figure()
     axs = fig.subplots(2, 2)
     orbit_axes(axs[0, 0], y, z, clearance_circle=clearance_circle, unit=unit)
     phase_axes(axs[0, 1], y, vy, py, pvy, unit=unit)
     poincare_axes(axs[1, 0], py, pz, y, z, unit=unit)
     spectrum_axes(axs[1, 1], frequency_ratio, amplitude, unit=unit)
     fig.suptitle(wrap(title, 110), fontsize=10)
+    fixed_layout(fig, axs.tolist(), PANEL_GRID)
     figs["simulation.png"] = fig
     for name, draw in (
             ("orbit.png", lambda ax: orbit_axes(ax, y, z, clearance_circle=clearance_circle,
@@ -124,9 +130,11 @@ def simulation_figures(*, y: Any, z: Any, vy: Any, py: Any, pz: Any, pvy: Any,
             ("poincare.png", lambda ax: poincare_axes(ax, py, pz, y, z, unit=unit)),
             ("spectrum.png", lambda ax: spectrum_axes(ax, frequency_ratio, amplitude,
                                                       unit=unit))):
-        f = Figure(figsize=(6, 5), layout="constrained")
-        draw(f.add_subplot())
+        f = Figure()
+        ax = f.add_subplot()
+        draw(ax)
         f.suptitle(wrap(title, 75), fontsize=9)
+        fixed_layout(f, [[ax]], PANEL_ALONE)
         figs[name] = f
     return figs
 
@@ -140,7 +148,7 @@ def bifurcation_figure(table: Mapping[str, Any], *, nodes: Sequence[int],
     where they coincide; jumps and hysteresis show as their difference); one legend
     right of the panels."""
     nodes = list(nodes)
-    fig = Figure(figsize=(8, 2.8 * len(nodes) + 0.6), layout="constrained")
+    fig = Figure()
     axs = np.atleast_1d(fig.subplots(len(nodes), 1, sharex=True))
     x = np.asarray(table[x_name], float)
     node = np.asarray(table["node"])
@@ -160,4 +168,5 @@ def bifurcation_figure(table: Mapping[str, Any], *, nodes: Sequence[int],
     axs[0].legend([handles[i] for i in order], [labels[i] for i in order], fontsize=8,
                   loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     fig.suptitle(wrap(title or "Bifurcation diagram (Poincare points)", 90), fontsize=9)
+    fixed_layout(fig, [[ax] for ax in axs], PANEL_STACK)
     return fig

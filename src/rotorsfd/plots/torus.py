@@ -22,7 +22,11 @@ from matplotlib.colors import LogNorm
 from matplotlib.figure import Figure
 
 from rotorsfd.model.node_names import node_words
+from rotorsfd.plots.fixed_layout import fixed_layout
 from rotorsfd.plots.labels import mathtext, wrap
+
+#: Axes box (width, height) of each panel of the lines figure, inches (fixed layout).
+PANEL = (5.6, 2.6)
 
 
 def component_label(k1: int, k2: int) -> str:
@@ -59,7 +63,7 @@ def plot_torus_components(result: Any) -> Figure:
     b = result.branch
     x, xlabel = branch_axis(result)
     rows = len(result.nodes) + (1 if result.lyapunov else 0)
-    fig = Figure(figsize=(8, 2.8 * rows + 0.8), layout="constrained")
+    fig = Figure()
     axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
     plot_lines(axes, result, x, lambda k1, k2: mathtext(component_label(k1, k2)))
     if result.lyapunov:
@@ -73,6 +77,7 @@ def plot_torus_components(result: Any) -> Figure:
             else f", w_b = {float(b.wb[0]):.4g} rad/s")
     fig.suptitle(mathtext(wrap(f"{result.title or 'Quasi-periodic response'}: lines at "
                                f"k1 Omega + k2 w_b, {at}", 90)), fontsize=9)
+    fixed_layout(fig, [[ax] for ax in axes], PANEL)
     return fig
 
 
@@ -125,8 +130,7 @@ def plot_torus_spectrum(result: Any, index: int) -> Figure:
     lat = b.lattice
     H1, H2 = lat.H1, lat.H2
     nodes = result.nodes
-    fig = Figure(figsize=(1.1 * (H1 + 1) * len(nodes) + 2.5, 0.55 * (2 * H2 + 1) + 1.6),
-                 layout="constrained")
+    fig = Figure()
     axes = fig.subplots(1, len(nodes), squeeze=False)[0]
     image = None
     floor = 1e-6
@@ -149,12 +153,16 @@ def plot_torus_spectrum(result: Any, index: int) -> Figure:
         ax.set_xlabel(r"$k_1$ (multiples of $\Omega$)")
         ax.set_title(f"node {n}", fontsize=8)
     axes[0].set_ylabel(r"$k_2$ (multiples of $\omega_b$)")
+    bars = []
     if image is not None:
-        fig.colorbar(image, ax=list(axes), label=r"$\sqrt{|X_y|^2 + |X_z|^2}\,/\,C$")
+        cax = fig.add_axes((0.0, 0.0, 0.1, 0.1), label="<colorbar>")
+        fig.colorbar(image, cax=cax, label=r"$\sqrt{|X_y|^2 + |X_z|^2}\,/\,C$")
+        bars.append((cax, list(axes)))
     ratio = b.omega[index] / result.reference_speed
     at = f"Omega~ = {ratio:.4g}" if result.is_speed else \
         f"{result.at(index)}, Omega~ = {ratio:.4g}"
     fig.suptitle(mathtext(wrap(f"Amplitude spectrum at {at} (the line at "
                                "k1 Omega + k2 w_b; blank: the conjugate of the mirrored "
                                "cell)", 90)), fontsize=9)
+    fixed_layout(fig, [list(axes)], (1.1 * (H1 + 1), 0.55 * (2 * H2 + 1)), colorbars=bars)
     return fig

@@ -16,7 +16,12 @@ import numpy as np
 from matplotlib.colors import LogNorm
 from matplotlib.figure import Figure
 
+from rotorsfd.plots.fixed_layout import fixed_layout
 from rotorsfd.plots.labels import wrap
+
+#: Axes boxes (width, height), inches (fixed layout): a panel of the envelope figure, the
+#: waterfall.
+PANEL_ENVELOPE, PANEL_WATERFALL = (3.6, 2.1), (5.6, 3.8)
 
 
 def envelope_figure(*, t: Any, speed: Any, radius: Mapping[int, Any],
@@ -27,7 +32,7 @@ def envelope_figure(*, t: Any, speed: Any, radius: Mapping[int, Any],
     ``branch[node] = (speed, radius, stable)`` over it) and against time (right, events
     marked); r / C where the node has a clearance, else micrometres."""
     nodes = list(radius)
-    fig = Figure(figsize=(9.0, 2.6 * len(nodes) + 0.8))
+    fig = Figure()
     axes = np.atleast_2d(fig.subplots(len(nodes), 2, squeeze=False))
     for row, node in zip(axes, nodes, strict=True):
         c = clearances.get(node)
@@ -57,7 +62,7 @@ def envelope_figure(*, t: Any, speed: Any, radius: Mapping[int, Any],
     axes[-1, 1].set_xlabel("time [s]")
     if title:
         fig.suptitle(wrap(title, 100), fontsize=10)
-    fig.tight_layout()
+    fixed_layout(fig, axes.tolist(), PANEL_ENVELOPE)
     return fig
 
 
@@ -69,7 +74,7 @@ def waterfall_figure(*, time: Any, frequency_hz: Any, amplitude: Any, node: int,
     colour), order lines ``k Omega(t) / 2 pi`` and the natural frequencies ``natural =
     (speeds [rad/s], frequencies [rad/s] (n_speeds, n_modes))`` mapped onto the run's
     time through Omega(t)."""
-    fig = Figure(figsize=(8.0, 5.0))
+    fig = Figure()
     ax = fig.subplots()
     t, speed = np.asarray(t), np.asarray(speed)
     f_max = 1.3 * max(orders) * float(speed.max()) / (2 * np.pi)
@@ -83,7 +88,8 @@ def waterfall_figure(*, time: Any, frequency_hz: Any, amplitude: Any, node: int,
                          shading="nearest", norm=LogNorm(vmin=floor, vmax=max(a.max(), floor
                                                                           * 10)),
                          cmap="viridis")
-    fig.colorbar(mesh, ax=ax, label=f"forward whirl amplitude [{unit}]")
+    cax = fig.add_axes((0.0, 0.0, 0.1, 0.1), label="<colorbar>")
+    fig.colorbar(mesh, cax=cax, label=f"forward whirl amplitude [{unit}]")
     styles = ["-", "--", "-.", ":"]
     for i, k in enumerate(orders):
         ax.plot(t, k * speed / (2 * np.pi), styles[i % 4], color="w", lw=1.0,
@@ -103,5 +109,5 @@ def waterfall_figure(*, time: Any, frequency_hz: Any, amplitude: Any, node: int,
     ax.set_ylabel("frequency [Hz]")
     ax.legend(fontsize=7, loc="upper left", facecolor="0.25", labelcolor="w", framealpha=0.8)
     ax.set_title(wrap(title or f"waterfall of node {node}", 90), fontsize=10)
-    fig.tight_layout()
+    fixed_layout(fig, [[ax]], PANEL_WATERFALL, colorbars=[(cax, [ax])])
     return fig
