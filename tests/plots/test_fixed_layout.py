@@ -181,3 +181,16 @@ def test_fixed_layout_gives_the_boxes_their_size_and_room_for_their_labels():
     assert not fixed_layout_faults(fig) and not legends_over_panels(fig)
     title = fig.texts[0].get_window_extent(fig.canvas.get_renderer()).width / fig.dpi
     assert W == pytest.approx(title + 0.24, rel=1e-6)     # the title's width plus 2 PAD
+
+
+def test_a_clearance_ratio_axis_is_in_per_cent():
+    """C/R (a dimensionless ratio) is drawn in per cent, as configs write it ("0.728 %"):
+    the values times 100 and the unit named."""
+    s = np.linspace(1.0, 1.1, 10)
+    fig = bifurcation_curves_figure(np.array(["Neimark-Sacker"] * 10), np.zeros(10), s,
+                                    np.linspace(0.0061, 0.00728, 10),
+                                    parameter="elements.sfd.clearance_ratio", units="1",
+                                    H=8)
+    ax = fig.axes[0]
+    assert ax.get_ylabel().endswith("[%]")
+    assert ax.lines[0].get_ydata() == pytest.approx(np.linspace(0.61, 0.728, 10))

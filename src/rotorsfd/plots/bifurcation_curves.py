@@ -34,6 +34,8 @@ CODIM2 = {"1:1 resonance": ("1:1 resonance (multipliers meet at +1)", "D", "C1")
                                   "C6")}
 #: SI unit -> (unit shown, factor): an unbalance in g mm, not 5e-06 kg m
 DISPLAY_UNITS = {"kg*m": ("g*mm", 1e6)}
+#: ... and a dimensionless ratio (C/R, a damping ratio) in per cent, as configs write it
+RATIO_DISPLAY = ("%", 100.0)
 
 
 #: Axes box (width, height) of the figure, inches (fixed layout).
@@ -52,7 +54,8 @@ def bifurcation_curves_figure(kind: Any, curve: Any, speed_ratio: Any, value: An
     is drawn once, as the fold curve's turn."""
     kind, curve = np.asarray(kind, dtype=str), np.asarray(curve)
     ratio, value = np.asarray(speed_ratio, float), np.asarray(value, float)
-    shown, factor = DISPLAY_UNITS.get(units, (units, 1.0))
+    shown, factor = (RATIO_DISPLAY if units == "1" and parameter.endswith("ratio")
+                     else DISPLAY_UNITS.get(units, (units, 1.0)))
     fig = Figure()
     ax = fig.subplots()
     for k, (words, colour, style) in STYLE.items():
