@@ -15,9 +15,9 @@ are split into :data:`GROUPS` whose call trees share no function, and
 :func:`compile_kernels` compiles the groups side by side: the first in this process, the
 others in ``python -m rotorsfd.kernel_cache ANALYSIS GROUP`` subprocesses that write the
 cache this process then loads. :func:`compile_notice` prints ``compiling the numerical
-kernels once (...) ...`` on stderr, compiles, and ends the line with the measured time. A
-kernel missing from the table (another force law, another solver option) is compiled on
-its first call as before.
+kernels once (...) ...`` on stderr, compiles, and ends the line with the measured wall
+and CPU times. A kernel missing from the table (another force law, another solver
+option) is compiled on its first call as before.
 """
 
 from __future__ import annotations
@@ -31,6 +31,11 @@ from collections.abc import Sequence
 from typing import Any, TextIO
 
 from numba import types
+
+try:
+    import resource
+except ImportError:  # not on Unix: the subprocesses' CPU time is not reported
+    resource = None  # type: ignore[assignment]
 
 __all__ = ["COMPILE_SECONDS", "ENTRY_POINTS", "GROUPS", "KERNEL_MODULES", "cold_modules",
            "compile_group", "compile_kernels", "compile_notice", "module_cached"]
@@ -161,24 +166,41 @@ def _cores() -> int:
         return os.cpu_count() or 1
 
 
-def compile_kernels(analysis: str, processes: int | None = None) -> float:
+def _children_cpu() -> float:
+    """CPU time of this process' finished children [s] (NaN where not known)."""
+    if resource is None:
+        return float("nan")
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def compile_kernels(analysis: str, processes: int | None = None
+                    ) -> tuple[float, list[float]]:
     """Compile the entry points of ``analysis`` into numba's cache, its :data:`GROUPS`
     side by side in ``processes`` processes (default: the CPUs, at most the groups); this
     process compiles the first group and waits for the others. A subprocess that fails
-    leaves its kernels to be compiled on first use. Returns the wall time [s]."""
+    leaves its kernels to be compiled on first use. Returns the wall time [s] and the CPU
+    time of each process [s] (this one first; on idle cores the wall time is about the
+    largest, more when other jobs share the cores)."""
     groups = GROUPS.get(analysis, ())
     n = max(1, min(processes or _cores(), len(groups)))
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
+    r0 = _children_cpu()
     children = [subprocess.Popen([sys.executable, "-m", "rotorsfd.kernel_cache", analysis,
                                   str(i)], stdout=subprocess.DEVNULL,
                                  stderr=subprocess.DEVNULL) for i in range(1, n)]
+    cpu = []
     try:
         for i in [0, *range(n, len(groups))]:
             compile_group(analysis, i)
+        cpu.append(time.process_time() - c0)
     finally:
         for child in children:
             child.wait()
-    return time.perf_counter() - t0
+            r1 = _children_cpu()
+            cpu.append(r1 - r0)
+            r0 = r1
+    return time.perf_counter() - t0, cpu
 
 
 def compile_notice(analysis: str, stream: TextIO | None = None) -> bool:
@@ -194,8 +216,9 @@ def compile_notice(analysis: str, stream: TextIO | None = None) -> bool:
     print(f"compiling the numerical kernels once ({names}; {n} process"
           f"{'es' if n > 1 else ''}, about {COMPILE_SECONDS.get(analysis, 20)} s on 2 cores)"
           " ...", end="", file=out, flush=True)
-    seconds = compile_kernels(analysis, n)
-    print(f" done in {seconds:.1f} s, cached for later runs", file=out, flush=True)
+    seconds, cpu = compile_kernels(analysis, n)
+    print(f" done in {seconds:.1f} s (CPU {' + '.join(f'{c:.1f}' for c in cpu)} s), cached "
+          "for later runs", file=out, flush=True)
     return True
 
 
