@@ -57,7 +57,7 @@ def test_first_run_compiles_up_front_and_the_run_compiles_nothing(tmp_path):
     out = p.stdout + p.stderr
     assert "cold: ['rotorsfd.harmonic.aft_kernels', 'rotorsfd.harmonic.banded'" in out
     assert ("compiling the numerical kernels once (aft_kernels, banded, sfd_kernels, "
-            "monodromy_kernels; 2 processes, about 15 s on 2 cores) ... done in ") in out
+            "monodromy_kernels; 2 processes, about 15 s on 2 idle cores) ... done in ") in out
     assert re.search(r"\.\.\. done in \d+\.\d s \(CPU \d+\.\d \+ \d+\.\d s\), cached for "
                      r"later runs", out)
     assert "compiled after the warm-up: []" in out

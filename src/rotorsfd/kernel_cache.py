@@ -32,6 +32,8 @@ from typing import Any, TextIO
 
 from numba import types
 
+from rotorsfd.kernels import as_cfunc, as_inertial_cfunc
+
 try:
     import resource
 except ImportError:  # not on Unix: the subprocesses' CPU time is not reported
@@ -140,9 +142,6 @@ def cold_modules(analysis: str) -> list[str]:
 
 def compile_entry(name: str) -> None:
     """Compile (or load from the cache) entry point ``name`` of :data:`ENTRY_POINTS`."""
-    # deferred: rotorsfd.kernels loads numba's cfunc machinery only where it is compiled
-    from rotorsfd.kernels import as_cfunc, as_inertial_cfunc
-
     module, function, signature = ENTRY_POINTS[name]
     kernel = getattr(importlib.import_module(module), function)
     if signature == "cfunc":
@@ -205,7 +204,7 @@ def compile_kernels(analysis: str, processes: int | None = None
 
 def compile_notice(analysis: str, stream: TextIO | None = None) -> bool:
     """When ``analysis`` would compile kernels: print ``compiling the numerical kernels
-    once (modules; about N s on 2 cores) ...`` on ``stream`` (stderr), compile them
+    once (modules; about N s on 2 idle cores) ...`` on ``stream`` (stderr), compile them
     (:func:`compile_kernels`) and end the line with the measured time. True if it did."""
     cold = cold_modules(analysis)
     if not cold:
@@ -214,7 +213,7 @@ def compile_notice(analysis: str, stream: TextIO | None = None) -> bool:
     names = ", ".join(m.rsplit(".", 1)[-1] for m in cold)
     n = max(1, min(_cores(), len(GROUPS.get(analysis, ()))))
     print(f"compiling the numerical kernels once ({names}; {n} process"
-          f"{'es' if n > 1 else ''}, about {COMPILE_SECONDS.get(analysis, 20)} s on 2 cores)"
+          f"{'es' if n > 1 else ''}, about {COMPILE_SECONDS.get(analysis, 20)} s on 2 idle cores)"
           " ...", end="", file=out, flush=True)
     seconds, cpu = compile_kernels(analysis, n)
     print(f" done in {seconds:.1f} s (CPU {' + '.join(f'{c:.1f}' for c in cpu)} s), cached "
