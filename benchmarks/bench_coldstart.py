@@ -15,16 +15,27 @@ fresh interpreter (so that import and JIT compilation or cache loading are measu
 - The same with an empty cache directory (``NUMBA_CACHE_DIR`` = a new temporary
   directory each time): the JIT compilation cost a user pays once after installing.
   Not in ``--quick``.
+- The first CLI run after an install (not in ``--quick``): ``rotorsfd response
+  examples/paper_rotor.toml`` and ``rotorsfd paper --quick``, each with an empty cache
+  directory, by the code before the compile-once change (:data:`BEFORE`, extracted with
+  ``git archive``) and by this checkout, then this checkout again with the cache it
+  filled: wall and CPU time (the process and its children) and the load average, since
+  the 2 cores may be shared. And where the compile time goes: every numba compile of the
+  first ``rotorsfd response`` (empty cache, in-process, ``numba:compile`` events), its
+  exclusive time summed per kernel module.
 """
 
 from __future__ import annotations
 
+import os
+import resource
 import shutil
 import statistics
 import subprocess
 import sys
 import tempfile
 import time
+from collections import defaultdict
 from pathlib import Path
 
 from benchmarks.common import ROOT, Row, run_python
@@ -125,6 +136,132 @@ def python_startup(n: int) -> list[float]:
     return times
 
 
+#: the code before the kernels were compiled once up front in 2 processes (issue 17 item 5)
+BEFORE = "b25da63"
+#: first runs timed cold and warm: label -> CLI arguments (each gets ``-o DIR``)
+FIRST_RUNS = {"rotorsfd response examples/paper_rotor.toml":
+              ("response", "examples/paper_rotor.toml"),
+              "rotorsfd paper --quick": ("paper", "--quick")}
+
+
+def checkout_src(commit: str, into: Path) -> Path:
+    """``src/`` (and ``examples/``, which ``rotorsfd paper`` finds above the package) of
+    ``commit`` extracted under ``into`` (``git archive``)."""
+    archive = subprocess.run(["git", "archive", commit, "src", "examples"], cwd=ROOT,
+                             check=True, capture_output=True).stdout
+    subprocess.run(["tar", "-x", "-C", str(into)], input=archive, check=True)
+    return into / "src"
+
+
+def cli_run(src: Path, args: tuple[str, ...], cache: Path, out: Path) -> dict[str, object]:
+    """``python -m rotorsfd ARGS -o OUT`` with ``src`` first on the path and numba's cache
+    in ``cache``: wall and CPU time (with its children), load average before, the
+    progress line about compiling."""
+    env = {**os.environ, "PYTHONPATH": str(src), "NUMBA_CACHE_DIR": str(cache)}
+    load = os.getloadavg()[0]
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    p = subprocess.run([sys.executable, "-m", "rotorsfd", *args, "-o", str(out)], cwd=ROOT,
+                       env=env, capture_output=True, text=True, timeout=900)
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if p.returncode != 0:
+        raise RuntimeError(f"{args} failed ({p.returncode}): {p.stderr.strip()[-800:]}")
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    line = next((x.strip() for x in p.stderr.replace("\r", "\n").splitlines()
+                 if x.startswith("compiling")), "")
+    return {"wall_s": wall, "cpu_s": cpu, "load": load, "line": line}
+
+
+def first_run_rows() -> list[Row]:
+    """Cold (empty cache) first runs, :data:`BEFORE` against this checkout, and this
+    checkout's warm second run."""
+    rows = []
+    with tempfile.TemporaryDirectory(prefix="bench_first_") as tmp:
+        srcs = {f"before ({BEFORE})": checkout_src(BEFORE, Path(tmp)),
+                "this checkout": ROOT / "src"}
+        for label, args in FIRST_RUNS.items():
+            res = {}
+            for name, src in srcs.items():
+                cache = Path(tempfile.mkdtemp(prefix="cache_", dir=tmp))
+                res[name] = cli_run(src, args, cache, Path(tmp) / "out")
+                if name == "this checkout":
+                    res["this checkout, cache filled"] = cli_run(src, args, cache,
+                                                                 Path(tmp) / "out")
+            ref = res["this checkout"]["wall_s"]
+            for name, r in res.items():
+                rows.append(Row("coldstart", f"first run, empty numba cache: {label}", name,
+                                r["wall_s"], ratio=r["wall_s"] / ref, ref="this checkout",
+                                note=(f"CPU {r['cpu_s']:.1f} s, load {r['load']:.1f}"
+                                      + (f"; '{r['line']}'" if r["line"] else "")),
+                                extra=r))
+    return rows
+
+
+#: every numba compile of a CLI run in-process (``numba:compile`` events; a cfunc's
+#: compile timed around ``CFunc._compile_uncached``): exclusive time per function
+PROFILE = r"""
+import json, sys, time
+from numba.core import ccallback, event
+stack, recs = [], []
+def _done(name):
+    t0, child = stack.pop()
+    dt = time.perf_counter() - t0
+    if stack:
+        stack[-1][1] += dt
+    recs.append({"name": name, "excl": dt - child, "incl": dt})
+class Listener(event.Listener):
+    def on_start(self, ev):
+        stack.append([time.perf_counter(), 0.0])
+    def on_end(self, ev):
+        f = ev.data["dispatcher"].py_func
+        _done(f.__module__ + "." + f.__qualname__)
+event.register("numba:compile", Listener())
+_orig = ccallback.CFunc._compile_uncached
+def _cfunc(self):
+    stack.append([time.perf_counter(), 0.0])
+    try:
+        return _orig(self)
+    finally:
+        _done("cfunc " + self._pyfunc.__module__ + "." + self._pyfunc.__qualname__)
+ccallback.CFunc._compile_uncached = _cfunc
+from rotorsfd.cli.app import main
+t0 = time.perf_counter()
+main(ARGS)
+print(json.dumps({"wall_s": time.perf_counter() - t0, "recs": recs}))
+"""
+
+
+def compile_profile(args: tuple[str, ...], src: Path) -> dict[str, object]:
+    """:data:`PROFILE` of ``rotorsfd ARGS -o TMP -q`` with an empty cache."""
+    with tempfile.TemporaryDirectory(prefix="bench_profile_") as tmp:
+        argv = [*args, "-o", str(Path(tmp) / "out"), "-q"]
+        return run_python(PROFILE.replace("ARGS", repr(argv)),
+                          env={"PYTHONPATH": str(src), "NUMBA_CACHE_DIR": tmp})
+
+
+def profile_rows(args: tuple[str, ...] = FIRST_RUNS[next(iter(FIRST_RUNS))]) -> list[Row]:
+    """Exclusive compile time of the first ``rotorsfd ARGS`` per kernel module (numba's
+    own helpers, e.g. ``np.empty``, under ``numba``), with its largest functions."""
+    prof = compile_profile(args, ROOT / "src")
+    per: dict[str, list[tuple[float, str]]] = defaultdict(list)
+    for r in prof["recs"]:
+        name = r["name"].removeprefix("cfunc ")
+        module = "numba" if name.startswith("numba.") else ".".join(
+            name.split(".")[:-1] if "<locals>" not in name else name.split(".")[:2])
+        per[module].append((r["excl"], name.rsplit(".", 1)[-1]))
+    total = sum(t for v in per.values() for t, _ in v)
+    rows = []
+    for module, items in sorted(per.items(), key=lambda kv: -sum(t for t, _ in kv[1])):
+        sec = sum(t for t, _ in items)
+        top = ", ".join(f"{n} {t:.2f}" for t, n in sorted(items, reverse=True)[:3])
+        rows.append(Row("coldstart", f"compile time per module, first rotorsfd {args[0]}",
+                        module, sec, ratio=sec / total, ref="all compiles",
+                        note=f"{len(items)} compiles; largest: {top}; load "
+                             f"{os.getloadavg()[0]:.1f}"))
+    return rows
+
+
 def run(quick: bool = False, repeat: int = 3) -> list[Row]:
     n = 1 if quick else 5
     bare = statistics.median(python_startup(n))
@@ -156,4 +293,6 @@ def run(quick: bool = False, repeat: int = 3) -> list[Row]:
                 ratio=med["first_s"] / med["second_s"], ref="second call",
                 note=(f"import + set-up {med['setup_s']:.2f} s; second call "
                       f"{med['second_s'] * 1e3:.2f} ms"), extra=med))
+    if not quick:
+        rows += first_run_rows() + profile_rows()
     return rows

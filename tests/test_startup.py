@@ -150,19 +150,6 @@ def _in_fresh_cache(code: str, cache_dir) -> str:
     return p.stdout + p.stderr
 
 
-def test_a_cold_kernel_cache_is_announced(tmp_path):
-    """With an empty numba cache every kernel module of the response is cold and the
-    first run says it compiles; the same check reads this checkout's cache as numba
-    does (a module is warm once one of its kernels was cached)."""
-    out = _in_fresh_cache(
-        "from rotorsfd.kernel_cache import cold_modules, compile_notice\n"
-        "print(cold_modules('response'))\n"
-        "assert compile_notice('response')\n", tmp_path)
-    assert "'rotorsfd.harmonic.aft_kernels', 'rotorsfd.harmonic.banded'" in out
-    assert "compiling the numerical kernels once (aft_kernels, banded, sfd_kernels, " \
-           "monodromy_kernels; about 30 s, cached for later runs) ..." in out
-
-
 @pytest.mark.slow
 def test_a_module_is_warm_once_its_kernel_ran(tmp_path):
     """After one SFD kernel call (compiled into the empty cache) its module is cached

@@ -237,6 +237,6 @@ def force_coefficients(kernel: Any, params: np.ndarray, xs: np.ndarray, w: float
     bad = force_samples(kernel, params, q, v, f, dfq, dfv)
     if bad:
         return bad
-    if not project(P, E, Ed, w, f, dfq, dfv, dq, False, G, np.empty((0, 0, 0, 0)), G):
+    if not project_forces(P, f, G):     # project() without the Jacobian
         return -1
     return 0

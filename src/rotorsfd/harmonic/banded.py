@@ -45,9 +45,11 @@ OK, OUTSIDE_BAND, NOT_FINITE = 0, -1, -2
 REFINE_MIN_DOF = 400
 
 
-def refinement_steps(n: int) -> int:
-    """Steps of iterative refinement of :func:`condense_bands` for an n-DOF model."""
-    return 1 if n > REFINE_MIN_DOF else 0
+def refinement_steps(n: int) -> int | None:
+    """Steps of iterative refinement of :func:`condense_bands` for an n-DOF model; None
+    for none (numba then leaves the refinement out of the compiled condensation: a small
+    model does not pay its compilation, ``benchmarks/README.md`` "Compiling the kernels")."""
+    return 1 if n > REFINE_MIN_DOF else None
 
 @njit(cache=True)
 def band_lu(ab: np.ndarray, kl: int, ku: int, ipiv: np.ndarray) -> int:
@@ -390,8 +392,8 @@ def condense_bands(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray, dMb: np.ndarr
                    dDb: np.ndarray, dKb: np.ndarray, w: float, dw: float, kl: int, ku: int,
                    s: np.ndarray, delta: np.ndarray, F: np.ndarray, dF: np.ndarray,
                    deriv: bool, sol: np.ndarray, dsol: np.ndarray, Ht: np.ndarray,
-                   Pt: np.ndarray, dHt: np.ndarray, dPt: np.ndarray, refine: int = 0,
-                   k_first: int = 0) -> int:
+                   Pt: np.ndarray, dHt: np.ndarray, dPt: np.ndarray,
+                   refine: int | None = None, k_first: int = 0) -> int:
     """Condensation of all harmonics (module docstring) from band storage.
 
     Inputs: Mb, Db, Kb, dMb, dDb, dKb (n, kl + ku + 1) the band storage
@@ -402,7 +404,8 @@ def condense_bands(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray, dMb: np.ndarr
     = rows s of ``Zt_k^-1 [-dZ_k C_k, dF_k - dZ_k u_k]``; the same split into the
     receptance Ht (H+1, m, m), particular response Pt (H+1, m) and, with ``deriv``, their
     derivatives dHt, dPt. ``refine``: steps of iterative refinement of sol for k >= 1
-    with the residual's stiffness part in doubled precision (:func:`_refine`).
+    with the residual's stiffness part in doubled precision (:func:`_refine`); None (as
+    0) compiles without it.
     ``k_first``: harmonics ``k < k_first`` are taken as already in sol (and dsol), e.g.
     copied from a condensation at fewer harmonics with the same lam and shift, and only
     ``k >= k_first`` are factorised (the same numbers as computing all).
@@ -429,8 +432,9 @@ def condense_bands(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray, dMb: np.ndarr
         out = sol[k]
         unit_rhs(s, F[k], out)
         band_solve(ab, kl, ku, ipiv, out)
-        for _ in range(refine):
-            _refine(Mb, Db, Kb, kl, ku, kw, kw2, s, delta[k], F[k], ab, ipiv, out, rhs)
+        if refine is not None:
+            for _ in range(refine):
+                _refine(Mb, Db, Kb, kl, ku, kw, kw2, s, delta[k], F[k], ab, ipiv, out, rhs)
         if not deriv:
             continue
         # right-hand sides [-dZ_k C_k, dF_k - dZ_k u_k] = [0, dF_k] - dZ_k sol_k

@@ -93,7 +93,7 @@ def condense_bands_lowrank(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray,
                            ku: int, s: np.ndarray, delta: np.ndarray, F: np.ndarray,
                            dF: np.ndarray, deriv: bool, sol: np.ndarray, dsol: np.ndarray,
                            Ht: np.ndarray, Pt: np.ndarray, dHt: np.ndarray,
-                           dPt: np.ndarray, refine: int, k_first: int = 0) -> int:
+                           dPt: np.ndarray, refine: int | None, k_first: int = 0) -> int:
     """:func:`rotorsfd.harmonic.banded.condense_bands` (the same inputs, outputs and
     return codes) with the damping ``D = D_band + U diag(coef) U^T``: Mb, Db, Kb and the
     derivatives in band storage (Db without the low-rank term), U (n, r), coef (r,);
@@ -137,14 +137,15 @@ def condense_bands_lowrank(Mb: np.ndarray, Db: np.ndarray, Kb: np.ndarray,
         out = sol[k]
         unit_rhs(s, F[k], out)
         _woodbury(ab, kl, ku, ipiv, Uk, Yk, capk, out)
-        for _ in range(refine):
-            band_residual(Mb, Db, Kb, kl, ku, kw, kw2, s, delta[k], F[k], out, rhs)
-            if rk:
-                _lowrank_times(Uk, coef, out, rhs, 1j * kw)
-            _woodbury(ab, kl, ku, ipiv, Uk, Yk, capk, rhs)
-            for i in range(n):
-                for c in range(m + 1):
-                    out[i, c] += rhs[i, c]
+        if refine is not None:      # None: compiled without the refinement
+            for _ in range(refine):
+                band_residual(Mb, Db, Kb, kl, ku, kw, kw2, s, delta[k], F[k], out, rhs)
+                if rk:
+                    _lowrank_times(Uk, coef, out, rhs, 1j * kw)
+                _woodbury(ab, kl, ku, ipiv, Uk, Yk, capk, rhs)
+                for i in range(n):
+                    for c in range(m + 1):
+                        out[i, c] += rhs[i, c]
         if not deriv:
             continue
         # [-dZ_k C_k, dF_k - dZ_k u_k], dZ_k = banded part + i k w' U diag(coef) U^T
