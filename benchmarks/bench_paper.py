@@ -36,9 +36,10 @@ from benchmarks.common import ROOT, Row
 RECORDED_BEFORE = {"full": (1107.0, 682.0, "5-8"), "quick": (21.2, 33.5, "0.6-1.1")}
 
 
-def paper_time(src: Path, quick: bool) -> tuple[float, float]:
+def paper_time(src: Path, quick: bool, keep: Path | None = None) -> tuple[float, float]:
     """(wall, CPU of the command and its workers) [s] of ``rotorsfd paper`` run from the
-    package in ``src`` into a scratch folder."""
+    package in ``src`` into a scratch folder (its ``results.json`` copied to the file
+    ``keep`` if given, to compare the runs' numbers)."""
     out = Path(tempfile.mkdtemp(prefix="bench_paper_"))
     env = {**os.environ, "PYTHONPATH": str(src), "OPENBLAS_NUM_THREADS": "1"}
     cmd = [sys.executable, "-m", "rotorsfd", "paper", "-o", str(out / "paper"), "--quiet",
@@ -48,6 +49,9 @@ def paper_time(src: Path, quick: bool) -> tuple[float, float]:
     try:
         subprocess.run(cmd, cwd=ROOT, env=env, check=True, capture_output=True, text=True,
                        timeout=3600)
+        if keep is not None:
+            keep.parent.mkdir(parents=True, exist_ok=True)
+            shutil.copyfile(out / "paper" / "results.json", keep)
     finally:
         shutil.rmtree(out, ignore_errors=True)
     wall = time.perf_counter() - t0
@@ -56,10 +60,12 @@ def paper_time(src: Path, quick: bool) -> tuple[float, float]:
     return wall, cpu
 
 
-def run(quick: bool = False, repeat: int = 1, before: Path | None = None) -> list[Row]:
+def run(quick: bool = False, repeat: int = 1, before: Path | None = None,
+        keep: Path | None = None) -> list[Row]:
     """Rows of ``rotorsfd paper --quick`` and of the full run, ours and (``before``) the
     other source tree's in turn; none in the suite's smoke run (``quick``: module
-    docstring)."""
+    docstring). ``keep``: a folder for each run's ``results.json``
+    (``<ours|before>-<quick|full>-<round>.json``)."""
     if quick:              # the benchmark suite's smoke run: too long for it
         print("   paper: skipped in --quick (see benchmarks/bench_paper.py)", flush=True)
         return []
@@ -68,10 +74,16 @@ def run(quick: bool = False, repeat: int = 1, before: Path | None = None) -> lis
     load = os.getloadavg()[0]
     for mode in ("quick", "full"):
         runs: dict[str, list[tuple[float, float]]] = {"ours": [], "before": []}
-        for _ in range(max(1, repeat)):        # interleaved: load hits both alike
-            runs["ours"].append(paper_time(ours, mode == "quick"))
-            if before is not None:
-                runs["before"].append(paper_time(before, mode == "quick"))
+        for i in range(max(1, repeat)):        # interleaved: load hits both alike
+            for label, src in (("ours", ours), ("before", before)):
+                if src is not None:
+                    at = os.getloadavg()[0]
+                    runs[label].append(paper_time(
+                        src, mode == "quick",
+                        None if keep is None else keep / f"{label}-{mode}-{i}.json"))
+                    w, c = runs[label][-1]
+                    print(f"   paper {mode} {label} round {i + 1}: {w:.1f} s wall, "
+                          f"{c:.1f} s CPU (load {at:.1f} at start)", flush=True)
         wall, cpu = (sorted(x[i] for x in runs["ours"])[len(runs["ours"]) // 2]
                      for i in (0, 1))
         case = f"rotorsfd paper{' --quick' if mode == 'quick' else ''}, 2 workers"
@@ -96,13 +108,15 @@ def run(quick: bool = False, repeat: int = 1, before: Path | None = None) -> lis
 def main(argv: list[str]) -> int:
     quick_only = "--quick" in argv
     before = Path(argv[argv.index("--before") + 1]) if "--before" in argv else None
+    repeat = int(argv[argv.index("--repeat") + 1]) if "--repeat" in argv else 1
+    keep = Path(argv[argv.index("--keep") + 1]) if "--keep" in argv else None
     if quick_only:
         rows = []
         wall, cpu = paper_time(ROOT / "src", True)
         rows.append(Row("paper", "rotorsfd paper --quick, 2 workers", "ours (wall)", wall,
                         note=f"CPU {cpu:.0f} s"))
     else:
-        rows = run(False, 1, before)
+        rows = run(False, repeat, before, keep)
     print("| case | method | wall | ratio | note |\n|---|---|---:|---:|---|")
     for r in rows:
         ratio = "" if r.ratio is None else f"{r.ratio:.3g}x"

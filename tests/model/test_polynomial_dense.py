@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from rotorsfd.model.base_polynomial import PolynomialTerms
+from rotorsfd.model.base_polynomial import DenseLinearPart, PolynomialTerms
+from rotorsfd.model.sparse import BandedLinearPart, bandwidths
 
 
 def _terms(seed: int, n: int = 30) -> tuple:
@@ -63,3 +64,25 @@ def test_a_constant_term_is_the_same_object() -> None:
     D = (_terms(4)[0], None, None)
     pt = PolynomialTerms(30, D=D)
     assert pt.damping(1.0) is pt.damping(2.0)
+
+
+def test_linear_part_stops_reading_at_a_wide_term_with_the_same_choice() -> None:
+    """``linear_part``: banded with the band of all the terms when it is narrow (the band
+    ``bandwidths`` reads from every term at once), dense as soon as one term is too wide."""
+    n = 40
+    M = sp.identity(n, format="csr")
+    tri = sp.diags([np.ones(n - 2), np.ones(n), 2 * np.ones(n - 1)], [-2, 0, 1],
+                   format="csr")
+    narrow = PolynomialTerms(n, D=(tri, 3.0 * tri), K=(tri.T.tocsr(),)).linear_part(M)
+    assert isinstance(narrow, BandedLinearPart)
+    assert narrow.band == bandwidths((M, tri, 3.0 * tri, tri.T)) == (2, 2)
+    full = np.random.default_rng(5).normal(size=(n, n))
+    wide = PolynomialTerms(n, D=(full, tri), K=(tri,)).linear_part(M)
+    assert isinstance(wide, DenseLinearPart)
+
+
+def test_bandwidths_of_a_dense_array_are_those_of_its_pattern() -> None:
+    a = np.zeros((30, 30))
+    a[4, 1], a[2, 9], a[17, 17] = 1.0, -2.0, 3.0
+    assert bandwidths((a,)) == bandwidths((sp.csr_matrix(a),)) == (3, 7)
+    assert bandwidths((np.zeros((5, 5)),)) == (0, 0)

@@ -155,10 +155,13 @@ class PolynomialTerms:
         narrow enough for the banded condensation to pay off (``3 (kl + ku + 1) < n``, the
         beam rotor's 7 + 7 + 1 from 46 DOFs on), else :class:`DenseLinearPart` (a full
         modal damping matrix)."""
-        kl, ku = bandwidths((M, *self.D, *self.K))
-        if 3 * (kl + ku + 1) < self.n:
-            return self.banded(M, (kl, ku))
-        return DenseLinearPart(M, self)
+        kl = ku = 0
+        for term in (M, *self.D, *self.K):     # bandwidths() of all, term by term
+            a, b = bandwidths((term,))
+            kl, ku = max(kl, a), max(ku, b)
+            if 3 * (kl + ku + 1) >= self.n:    # too wide already: the rest need not be read
+                return DenseLinearPart(M, self)
+        return self.banded(M, (kl, ku))
 
     @staticmethod
     def _value(terms: tuple, p: float) -> Any:
