@@ -3,20 +3,34 @@ wall and CPU time (the command in a fresh interpreter, 2 workers, BLAS one threa
 
 Before / after (issue 17 item 5): the code before is any other source tree, run the same
 way in turn with this one (A B A B ..., ``--before SRC``: a folder holding the package,
-e.g. ``git archive 862686d src examples | tar -x -C /tmp/base`` then ``--before
+e.g. ``git archive b25da63 src examples | tar -x -C /tmp/base`` then ``--before
 /tmp/base/src``); without it the rows carry the figures recorded below as the reference.
 
-Recorded 2026-12-03 on the shared 2-core machine (load 5-8 from the other agents, so
-wall is about 1.6 x CPU): before (862686d) full 1107 s wall / 682 s CPU, ``--quick``
-21.2 s / 33.5 s (nothing else running; ours then 16.8 s / 26.4 s); the changes:
-no ``max_multiplier_outside`` eigenproblem per branch point (Floquet per point -30 %: a
-literal and a calibrated response branch 5.38 -> 3.53 and 3.87 -> 2.84 s CPU), every case
-ordered by its measured cost, each figure drawn as soon as its cases end (overlapping the
-pool's last cases). The after figures are in the README's "Speed" section.
+Recorded 2026-12-03, first on the shared 2-core machine at load 5-8 (wall about 1.6 x
+CPU): before (862686d) full 1107 s wall / 682 s CPU, ``--quick`` 21.2 s / 33.5 s; the
+changes then: no ``max_multiplier_outside`` eigenproblem per branch point, every case
+ordered by its measured cost, each figure drawn as soon as its cases end. Then on a
+2-core AMD EPYC (issue 17 item 5, before = b25da63): idle, the full run took 137 s wall,
+254 s CPU; run in turn with ours at load 4-7 (``--before /tmp/base/src --keep DIR``, two
+rounds): before 253.7 / 282.1 s wall, 249.5 / 260.3 s CPU, ours 438.7 / 386.8 s wall,
+256.9 / 276.9 s CPU (the runs' CPU differs by more than the change between them at this
+load), ``--quick`` 19.2-20.7 s wall, 12-14 s CPU both; every number of ``results.json``
+the same in all four runs (1e-9, none moved). The changes: the dense modal-damping
+condensation's truncation estimate copies the point's harmonics, dense D(p), K(p) from
+the terms' dense forms (no scipy.sparse per call), the linear part's band scan stops at a
+dense term, the unbalance derivative of the continuation parameter alone (the second
+round also with the new CASE_COST order); counted: 9-10 % fewer complex LUs in the
+calibrated branches, 10853 -> 38 scipy.sparse constructions in one; per case in one
+process, base and ours in turn (the README's "Speed" row): calibrated branches 0-15 %
+less CPU, the literal ones unchanged. Issue 17's 90 s (idle, 2 cores) is not reached:
+the dense LAPACK condensation of the calibrated reading (modal damping on all modes, 84
+DOF x 9-17 harmonics, at its flop rate) is about half of the run's CPU, the compiled
+Newmark steps of the time-domain cases a quarter.
 
 Not in ``python -m benchmarks --quick`` (the suite's smoke run stays under 75 s): the
 quick row needs ~10-15 s, the full one minutes. Run: ``python -m benchmarks --only paper``
-(full and quick) or ``python -m benchmarks.bench_paper [--quick] [--before SRC]``.
+(full and quick) or ``python -m benchmarks.bench_paper [--quick] [--before SRC]
+[--repeat N] [--keep DIR]`` (``--keep``: each run's ``results.json`` into DIR).
 """
 
 from __future__ import annotations
@@ -32,13 +46,14 @@ from pathlib import Path
 
 from benchmarks.common import ROOT, Row
 
-#: The code before (862686d), recorded as above: mode -> (wall s, CPU s, load).
-RECORDED_BEFORE = {"full": (1107.0, 682.0, "5-8"), "quick": (21.2, 33.5, "0.6-1.1")}
+#: The code before (b25da63), recorded as above: mode -> (wall s, CPU s, load).
+RECORDED_BEFORE = {"full": (137.0, 254.0, "0 (idle)"), "quick": (19.2, 12.1, "5.8")}
 
 
-def paper_time(src: Path, quick: bool) -> tuple[float, float]:
+def paper_time(src: Path, quick: bool, keep: Path | None = None) -> tuple[float, float]:
     """(wall, CPU of the command and its workers) [s] of ``rotorsfd paper`` run from the
-    package in ``src`` into a scratch folder."""
+    package in ``src`` into a scratch folder (its ``results.json`` copied to the file
+    ``keep`` if given, to compare the runs' numbers)."""
     out = Path(tempfile.mkdtemp(prefix="bench_paper_"))
     env = {**os.environ, "PYTHONPATH": str(src), "OPENBLAS_NUM_THREADS": "1"}
     cmd = [sys.executable, "-m", "rotorsfd", "paper", "-o", str(out / "paper"), "--quiet",
@@ -48,6 +63,9 @@ def paper_time(src: Path, quick: bool) -> tuple[float, float]:
     try:
         subprocess.run(cmd, cwd=ROOT, env=env, check=True, capture_output=True, text=True,
                        timeout=3600)
+        if keep is not None:
+            keep.parent.mkdir(parents=True, exist_ok=True)
+            shutil.copyfile(out / "paper" / "results.json", keep)
     finally:
         shutil.rmtree(out, ignore_errors=True)
     wall = time.perf_counter() - t0
@@ -56,10 +74,12 @@ def paper_time(src: Path, quick: bool) -> tuple[float, float]:
     return wall, cpu
 
 
-def run(quick: bool = False, repeat: int = 1, before: Path | None = None) -> list[Row]:
+def run(quick: bool = False, repeat: int = 1, before: Path | None = None,
+        keep: Path | None = None) -> list[Row]:
     """Rows of ``rotorsfd paper --quick`` and of the full run, ours and (``before``) the
     other source tree's in turn; none in the suite's smoke run (``quick``: module
-    docstring)."""
+    docstring). ``keep``: a folder for each run's ``results.json``
+    (``<ours|before>-<quick|full>-<round>.json``)."""
     if quick:              # the benchmark suite's smoke run: too long for it
         print("   paper: skipped in --quick (see benchmarks/bench_paper.py)", flush=True)
         return []
@@ -68,10 +88,16 @@ def run(quick: bool = False, repeat: int = 1, before: Path | None = None) -> lis
     load = os.getloadavg()[0]
     for mode in ("quick", "full"):
         runs: dict[str, list[tuple[float, float]]] = {"ours": [], "before": []}
-        for _ in range(max(1, repeat)):        # interleaved: load hits both alike
-            runs["ours"].append(paper_time(ours, mode == "quick"))
-            if before is not None:
-                runs["before"].append(paper_time(before, mode == "quick"))
+        for i in range(max(1, repeat)):        # interleaved: load hits both alike
+            for label, src in (("ours", ours), ("before", before)):
+                if src is not None:
+                    at = os.getloadavg()[0]
+                    runs[label].append(paper_time(
+                        src, mode == "quick",
+                        None if keep is None else keep / f"{label}-{mode}-{i}.json"))
+                    w, c = runs[label][-1]
+                    print(f"   paper {mode} {label} round {i + 1}: {w:.1f} s wall, "
+                          f"{c:.1f} s CPU (load {at:.1f} at start)", flush=True)
         wall, cpu = (sorted(x[i] for x in runs["ours"])[len(runs["ours"]) // 2]
                      for i in (0, 1))
         case = f"rotorsfd paper{' --quick' if mode == 'quick' else ''}, 2 workers"
@@ -96,13 +122,15 @@ def run(quick: bool = False, repeat: int = 1, before: Path | None = None) -> lis
 def main(argv: list[str]) -> int:
     quick_only = "--quick" in argv
     before = Path(argv[argv.index("--before") + 1]) if "--before" in argv else None
+    repeat = int(argv[argv.index("--repeat") + 1]) if "--repeat" in argv else 1
+    keep = Path(argv[argv.index("--keep") + 1]) if "--keep" in argv else None
     if quick_only:
         rows = []
         wall, cpu = paper_time(ROOT / "src", True)
         rows.append(Row("paper", "rotorsfd paper --quick, 2 workers", "ours (wall)", wall,
                         note=f"CPU {cpu:.0f} s"))
     else:
-        rows = run(False, 1, before)
+        rows = run(False, repeat, before, keep)
     print("| case | method | wall | ratio | note |\n|---|---|---:|---:|---|")
     for r in rows:
         ratio = "" if r.ratio is None else f"{r.ratio:.3g}x"

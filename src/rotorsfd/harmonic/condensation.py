@@ -260,7 +260,7 @@ class CondensedHB:
                                                 banded.refinement_steps(n), k_first)
         else:
             status = self._dense_condense(lam, deriv, w, dw, F, dF, diag, sol, dsol, Ht,
-                                          Pt, dHt, dPt)
+                                          Pt, dHt, dPt, self._reusable(reuse, lam, deriv))
         if status > 0:
             raise FloatingPointError(f"singular dynamic stiffness Z_{status - 1} "
                                      f"(w={w:.6g}, lam={lam:.6g})")
@@ -286,10 +286,12 @@ class CondensedHB:
             dsol[:h1, :, m] = known.dPt
         return h1
 
-    def _dense_condense(self, lam, deriv, w, dw, F, dF, diag, sol, dsol, Ht, Pt, dHt, dPt
-                        ) -> int:
+    def _dense_condense(self, lam, deriv, w, dw, F, dF, diag, sol, dsol, Ht, Pt, dHt, dPt,
+                        known: Condensed | None = None) -> int:
         """:meth:`condense` from the problem's dense matrices: the compiled banded kernel
-        on their band (found by scanning them), or dense LAPACK when it is too wide."""
+        on their band (found by scanning them), or dense LAPACK when it is too wide (then
+        the harmonics of ``known``, a reusable condensation at fewer harmonics, copied
+        instead of factorised again, as on the banded path)."""
         p, s = self.problem, self.problem.nl_dofs
         M, D, K = p.matrices(lam)
         dM, dD, dK = p.dmatrices(lam) if deriv else (M, D, K)
@@ -303,8 +305,9 @@ class CondensedHB:
         while status == banded.OUTSIDE_BAND:
             kl, ku = self._bandwidths(mats)
             if kl < 0 or diag is None:
+                k_first = self._copy_harmonics(known, sol, dsol)
                 dense_solves(p, self.H, self.delta, *mats, w, dw, F, dF, deriv, sol,
-                             dsol)
+                             dsol, k_first)
                 return banded._split(s, deriv, sol, dsol, Ht, Pt, dHt, dPt)
             status = banded.condense_banded(*mats, w, dw, kl, ku, s, diag, F, dF, deriv,
                                             check, sol, dsol, Ht, Pt, dHt, dPt)

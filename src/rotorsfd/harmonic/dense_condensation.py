@@ -26,9 +26,12 @@ DENSE_CHUNK = 1 << 13
 def dense_solves(problem: PeriodicProblem, H: int, delta: ComplexArray, M: FloatArray,
                  D: FloatArray, K: FloatArray, dM: FloatArray, dD: FloatArray,
                  dK: FloatArray, w: float, dw: float, F: ComplexArray, dF: ComplexArray,
-                 deriv: bool, sol: ComplexArray, dsol: ComplexArray) -> None:
+                 deriv: bool, sol: ComplexArray, dsol: ComplexArray, k_first: int = 0
+                 ) -> None:
     """Dense complex LU (LAPACK) of Zt_k per harmonic; the same outputs as
-    :func:`rotorsfd.harmonic.banded.condense_banded`.
+    :func:`rotorsfd.harmonic.banded.condense_banded`. ``k_first``: harmonics below it are
+    already in sol and dsol (copied from a condensation of the same problem with the same
+    shift at fewer harmonics) and are left alone: only ``k >= k_first`` are factorised.
 
     The Zt_k are formed a chunk of harmonics at a time (:data:`DENSE_CHUNK` entries:
     all of them for a small model, where the per-harmonic numpy calls cost more than
@@ -44,7 +47,7 @@ def dense_solves(problem: PeriodicProblem, H: int, delta: ComplexArray, M: Float
     block = (slice(None), s[:, None], s[None, :])
     step = max(1, min(H + 1, DENSE_CHUNK // (n * n)))
     Zbuf = np.empty((step, n, n), dtype=complex)
-    for k0 in range(0, H + 1, step):
+    for k0 in range(k_first, H + 1, step):
         ks = np.arange(k0, min(H + 1, k0 + step))
         kw = (ks * w)[:, None, None]
         # C-ordered Z[i], so Z[i].T is Fortran-contiguous: LAPACK factors Z_k^T in place
@@ -61,11 +64,12 @@ def dense_solves(problem: PeriodicProblem, H: int, delta: ComplexArray, M: Float
             sol[k] = getrs(lu, piv, rhs.T, trans=1)[0]          # Z_k x = rhs
             if deriv:
                 rows[k] = getrs(lu, piv, unit, trans=0)[0]      # Z_k^T y = S^T
-    if deriv:
+    if deriv and k_first <= H:
         # dZ_k = dK - (k w)^2 dM - 2 k^2 w w' M + i k (w' D + w dD), applied to sol_k
-        k = np.arange(H + 1)[:, None, None]
+        k = np.arange(k_first, H + 1)[:, None, None]
         kw = k * w
-        r2 = (kw**2 * (dM @ sol) + (2 * dw) * (k * kw) * (M @ sol) - dK @ sol
-              - 1j * k * ((dw * D + w * dD) @ sol))
-        r2[:, :, m] += dF
-        np.matmul(rows.transpose(0, 2, 1), r2, out=dsol)
+        x = sol[k_first:]
+        r2 = (kw**2 * (dM @ x) + (2 * dw) * (k * kw) * (M @ x) - dK @ x
+              - 1j * k * ((dw * D + w * dD) @ x))
+        r2[:, :, m] += dF[k_first:]
+        np.matmul(rows[k_first:].transpose(0, 2, 1), r2, out=dsol[k_first:])

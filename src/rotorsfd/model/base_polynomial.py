@@ -155,10 +155,13 @@ class PolynomialTerms:
         narrow enough for the banded condensation to pay off (``3 (kl + ku + 1) < n``, the
         beam rotor's 7 + 7 + 1 from 46 DOFs on), else :class:`DenseLinearPart` (a full
         modal damping matrix)."""
-        kl, ku = bandwidths((M, *self.D, *self.K))
-        if 3 * (kl + ku + 1) < self.n:
-            return self.banded(M, (kl, ku))
-        return DenseLinearPart(M, self)
+        kl = ku = 0
+        for term in (M, *self.D, *self.K):     # bandwidths() of all, term by term
+            a, b = bandwidths((term,))
+            kl, ku = max(kl, a), max(ku, b)
+            if 3 * (kl + ku + 1) >= self.n:    # too wide already: the rest need not be read
+                return DenseLinearPart(M, self)
+        return self.banded(M, (kl, ku))
 
     @staticmethod
     def _value(terms: tuple, p: float) -> Any:
@@ -175,6 +178,29 @@ class PolynomialTerms:
             return terms[1]
         out = (2.0 * p) * terms[2]
         return out if terms[1] is None else terms[1] + out
+
+    def _dense_value(self, terms: tuple, p: float, slope: bool = False) -> np.ndarray:
+        """Dense ``_value(terms, p)`` (``slope``: ``_slope``) from the dense forms of the
+        stored terms (each built once), in the same order of operations as the sparse sum,
+        so the same numbers (a scaled add of dense arrays instead of a scipy.sparse product
+        and sum per call, 0.3 ms each, and their CSR construction). A constant or zero
+        value is the stored object (or the shared zero) as before."""
+        if slope:
+            if terms[2] is None:
+                return self._as_dense(terms[1])
+            t1, t2 = terms[1], terms[2]
+            out = (2.0 * p) * self._as_dense(t2)
+            return out if t1 is None else self._as_dense(t1) + out
+        if terms[1] is None and terms[2] is None:
+            return self._as_dense(terms[0])
+        out = None if terms[0] is None else self._as_dense(terms[0])
+        if terms[1] is not None:
+            d1 = self._as_dense(terms[1])
+            out = p * d1 if out is None else out + p * d1
+        if terms[2] is not None:
+            d2 = self._as_dense(terms[2])
+            out = (p * p) * d2 if out is None else out + (p * p) * d2
+        return out
 
     def _as_dense(self, a: Any) -> np.ndarray:
         """Dense form of a value: the shared zero for None, the array itself if dense, a
@@ -206,7 +232,7 @@ class PolynomialTerms:
         return self._lowrank_dense
 
     def damping(self, p: float) -> np.ndarray:
-        out = self._as_dense(self._value(self.D, p))
+        out = self._dense_value(self.D, p)
         if self.lowrank is None:
             return out
         if not self._constant(self.D):
@@ -221,17 +247,17 @@ class PolynomialTerms:
         return terms[1] is None and terms[2] is None
 
     def stiffness(self, p: float) -> np.ndarray:
-        return self._as_dense(self._value(self.K, p))
+        return self._dense_value(self.K, p)
 
     def load(self, p: float) -> np.ndarray:
         out = self._value(self.F, p)
         return self.zero_vector if out is None else out
 
     def ddamping(self, p: float) -> np.ndarray:
-        return self._as_dense(self._slope(self.D, p))
+        return self._dense_value(self.D, p, slope=True)
 
     def dstiffness(self, p: float) -> np.ndarray:
-        return self._as_dense(self._slope(self.K, p))
+        return self._dense_value(self.K, p, slope=True)
 
     def dload(self, p: float) -> np.ndarray:
         out = self._slope(self.F, p)

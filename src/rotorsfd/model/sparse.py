@@ -79,10 +79,14 @@ def bandwidths(mats: Iterable[object]) -> tuple[int, int]:
     for a in mats:
         if a is None:
             continue
-        coo = a.tocoo() if sp.issparse(a) else sp.coo_matrix(np.asarray(a))
-        nz = coo.data != 0.0
-        if np.any(nz):
-            d = coo.row[nz].astype(np.int64) - coo.col[nz]
+        if sp.issparse(a):
+            coo = a.tocoo()
+            nz = coo.data != 0.0
+            row, col = coo.row[nz], coo.col[nz]
+        else:                                  # the nonzeros of a dense array, no COO copy
+            row, col = np.nonzero(np.asarray(a))
+        if row.size:
+            d = row.astype(np.int64) - col
             kl, ku = max(kl, int(d.max())), max(ku, int(-d.min()))
     return kl, ku
 

@@ -328,7 +328,8 @@ class RotorSystem:
                     dF[1] = (Fc - 1j * Fs) / U_ref
                 else:
                     key = "speed" if par.kind == "speed" else par.rate_name
-                    dFc, dFs = unbalance_harmonics_derivatives(self.unbalances, r, om, st)[key]
+                    dFc, dFs = unbalance_harmonics_derivatives(self.unbalances, r, om, st,
+                                                                 only=key)[key]
                     dF[1] = scale * (dFc - 1j * dFs)
             return dF
 

@@ -129,9 +129,11 @@ def unbalance_harmonics(unbalances: Sequence[Unbalance], rotor, speed: float,
 
 def unbalance_harmonics_derivatives(
     unbalances: Sequence[Unbalance], rotor, speed: float, state: BaseState | None = None,
+    only: str | None = None,
 ) -> dict[str, tuple[np.ndarray, np.ndarray]]:
-    """d(F_c, F_s)/dp for p in ("speed", "wx", "wy", "wz", "dwx"); F_c, F_s are linear in
-    (A_y, B_y, A_z, B_z), so each derivative is the same map of their derivatives."""
+    """d(F_c, F_s)/dp for p in ("speed", "wx", "wy", "wz", "dwx") (``only``: that p alone,
+    the HB's dforcing needs one per call); F_c, F_s are linear in (A_y, B_y, A_z, B_z), so
+    each derivative is the same map of their derivatives."""
     st = _state_or_fixed(state)
     wx, wy, wz = (float(v) for v in np.asarray(st.w, dtype=float))
     om = float(speed)
@@ -143,7 +145,8 @@ def unbalance_harmonics_derivatives(
         "wz": (2.0 * wz, -wy, 0.0, wy),
         "dwx": (0.0, 1.0, 0.0, 1.0),
     }
-    return {k: _harmonic_vectors(unbalances, rotor.n_dof, *v) for k, v in partials.items()}
+    keys = partials if only is None else (only,)
+    return {k: _harmonic_vectors(unbalances, rotor.n_dof, *partials[k]) for k in keys}
 
 
 @dataclass(frozen=True)

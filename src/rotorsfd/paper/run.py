@@ -252,29 +252,31 @@ def run_cases(cases: Sequence[Case], *, examples: Path | None = None, quick: boo
 COST = {"isola": 15, "chart": 7, "width-sweep": 8, "simulate": 1.5, "fold-curve": 3,
         "response": 1.5, "modal": 1.4}
 #: ... and of every case of the full run [CPU s]: each case's wall time in the full run of
-#: 2026-12-03 (2 workers at load 5-8, before max_multiplier_outside was turned off) times
-#: that run's CPU / wall (682 s / 2086 s); only their order matters (longest first keeps
-#: both workers busy to the end).
-CASE_COST: dict[str, float] = {"fig23-isola": 60.6, "cal-fig24-u360": 42.9, "fig21-cr0.61":
-    34.4, "cal-fig24-u144": 22.4, "cal-fig21-cr0.61": 21.9, "fig19-u360": 18.7,
-    "fig17-u252-w6": 16.1, "fig6": 15.9, "cal-fig21-cr0.728": 15.6, "cal-fig17-u360-w9":
-    15.3, "fig21-cr0.728": 14.7, "cal-fig21-cr0.485": 14, "cal-fig17-u252-w7": 13.7,
-    "fig16-w9": 12.5, "fig17-u360-w6": 11.7, "cal-fig19-u360": 11.4, "fig24-u144": 10.8,
-    "cal-fig19-u252": 10.8, "cal-fig17-u252-w6": 10.2, "fig21-cr0.485": 10.1, "fig12-w8":
-    10.1, "fig17-u360-w0": 10, "cal-fig19-u144": 9.9, "fig16-w6": 9.3, "fig17-u252-w7": 9.2,
-    "fig16-w4": 8.8, "fig23-s1.1": 8.7, "fig23-s1.075": 8.5, "fig23-s1.05": 8.5,
-    "fig23-s1.04": 8.5, "fig23-s1.025": 8.2, "fig17-u252-w9": 8.1, "fig17-u252-w0": 7.9,
-    "fig24-u360": 7.6, "fig19-u252": 7.6, "fig16-w2": 7.1, "fig12-w10": 6.6, "fig19-u144":
-    6.3, "fig17-u360-w7": 6.1, "fig12-w9": 6.1, "fig17-u360-w9": 5.9, "fig12-w6": 5.8,
-    "fig12-w4": 5.7, "cal-fig12-w9": 5.6, "cal-fig23-s1.1": 5.4, "cal-fig23-s1.075": 5.2,
-    "cal-fig23-s1.05": 5.1, "cal-fig12-w10": 5.1, "fig10-w20": 4.6, "sens-rightm": 4.4,
-    "sens-sfdp": 4.3, "fig12-w2": 4.3, "fig12-w0": 4.2, "fig10-w10": 4.2,
-    "fig19-u144-paper-h": 4, "fig19-u252-paper-h": 3.7, "cal-fig23-s1.04": 3.6,
-    "cal-fig12-w8": 3.5, "sens-sfdm": 3.4, "sens-rightp": 3.4, "modal": 3.2,
-    "cal-fig23-s1.025": 3.2, "fig7-u360": 3.1, "cal-fig7-u360": 3.1, "fig7-u72": 3,
-    "fig10-w5": 3, "cal-fig12-w4": 2.9, "cal-fig12-w2": 2.9, "fig10-w0": 2.8, "fig7-u144":
-    2.7, "cal-fig7-u144": 2.6, "fig23-t200-s1.1": 2.4, "fig23-t200-s1.075": 2.3,
-    "fig23-t200-s1.05": 2.3, "fig23-t200-s1.04": 2.1, "fig23-t200-s1.025": 2}
+#: 2026-12-03 on an idle 2-core AMD EPYC (2 workers, 137 s wall) times that run's CPU /
+#: summed case wall (254 s / 264 s), before the dense-path savings of issue 17 item 5
+#: (the calibrated branches 5-15 % less since; a run at load 6 keeps the order); only
+#: their order matters (longest first keeps both workers busy to the end).
+CASE_COST: dict[str, float] = {"fig23-isola": 29.2, "cal-fig24-u360": 19.4,
+    "cal-fig21-cr0.728": 14.3, "fig21-cr0.61": 12.4, "cal-fig21-cr0.61": 11.3, "fig6": 10.4,
+    "cal-fig19-u252": 7.8, "cal-fig19-u360": 7.3, "cal-fig21-cr0.485": 7.2,
+    "cal-fig24-u144": 6.8, "fig19-u360": 6.6, "cal-fig17-u252-w7": 6.3,
+    "cal-fig17-u360-w9": 5.7, "cal-fig19-u144": 4.9, "fig21-cr0.728": 4.7,
+    "cal-fig17-u252-w6": 4.2, "fig19-u252": 3.9, "fig24-u144": 3.5, "fig21-cr0.485": 3.1,
+    "fig19-u252-paper-h": 3.0, "cal-fig7-u360": 2.9, "fig17-u252-w9": 2.8,
+    "cal-fig12-w9": 2.8, "fig19-u144": 2.7, "fig23-s1.1": 2.7, "fig17-u252-w7": 2.4,
+    "cal-fig12-w10": 2.3, "fig19-u144-paper-h": 2.3, "fig24-u360": 2.3,
+    "cal-fig23-s1.025": 2.1, "fig23-s1.075": 2.0, "cal-fig23-s1.04": 2.0,
+    "cal-fig7-u144": 2.0, "cal-fig23-s1.1": 1.9, "fig17-u252-w6": 1.9, "modal": 1.9,
+    "cal-fig12-w8": 1.9, "cal-fig12-w2": 1.9, "cal-fig23-s1.075": 1.8,
+    "cal-fig23-s1.05": 1.7, "fig12-w10": 1.7, "fig23-s1.025": 1.6, "cal-fig12-w4": 1.6,
+    "fig23-s1.04": 1.6, "fig23-s1.05": 1.6, "fig10-w5": 1.4, "fig12-w9": 1.3,
+    "fig12-w4": 1.2, "fig7-u144": 1.2, "fig16-w9": 1.2, "fig17-u360-w6": 1.1,
+    "fig17-u360-w9": 1.1, "fig17-u360-w7": 1.1, "fig16-w2": 1.1, "fig17-u252-w0": 1.1,
+    "fig10-w0": 1.1, "fig7-u72": 1.0, "fig16-w6": 1.0, "fig12-w8": 1.0, "fig16-w4": 1.0,
+    "fig7-u360": 1.0, "fig23-t200-s1.04": 0.9, "fig12-w2": 0.9, "fig17-u360-w0": 0.9,
+    "fig23-t200-s1.075": 0.9, "fig10-w10": 0.9, "fig23-t200-s1.1": 0.8, "sens-sfdp": 0.8,
+    "fig12-w0": 0.8, "sens-rightm": 0.8, "sens-rightp": 0.7, "fig23-t200-s1.05": 0.7,
+    "fig10-w20": 0.7, "sens-sfdm": 0.6, "fig23-t200-s1.025": 0.6, "fig12-w6": 0.5}
 
 
 def case_cost(case: Case) -> float:
