@@ -58,7 +58,7 @@ def torus_hill(problem: TorusProblem, lattice: TorusLattice, X: NDArray[np.compl
     om, wb = problem.frequencies(lam)
     Dc, Kc = problem.coefficients(lam)
     s = problem.nl_dofs
-    M = problem.M
+    M = problem.M if problem.M is not None else problem.bands.M.toarray()   # dense Hill
     K0 = np.real(Kc[0])
     red = craig_bampton(M, np.real(Dc[0]), 0.5 * (K0 + K0.T), s, omega_max=omega_max)
     P = red.basis
