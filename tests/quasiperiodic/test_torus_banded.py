@@ -1,4 +1,5 @@
-"""The torus of a rotor above DENSE_MAX_DOF keeps the band (issue 17 item 2): the linear
+"""The torus of a rotor above DENSE_MAX_DOF keeps the band (issue 17 item 2; below it too
+without modal damping): the linear
 part as the rotor's CSR matrices and the base patterns with their theta2 weights
 (quasiperiodic/torus_bands.py), the condensation from their band entries, no dense n x n
 matrix formed (run under the guard that raises if one is). The reference is the dense
@@ -123,3 +124,25 @@ def test_base_frequency_problem_is_banded(system, monkeypatch):
 def test_modal_damping_above_the_threshold_is_refused():
     with pytest.raises(ConfigError, match="modal damping"):
         torus_problem(_system(0.02))
+
+
+def test_small_rotor_torus_is_banded_and_equals_the_dense_stacks(tmp_path):
+    """Below DENSE_MAX_DOF the band is kept too (as fast or faster, benchmarks/README.md):
+    the 20-DOF rotor of the torus tests, a torus equal to the dense stacks' to 1e-10; with
+    modal damping of a few modes (beside the band) the dense stacks are kept."""
+    from torus_models import small_system
+
+    small = small_system(tmp_path, 'pitching = { law = "harmonic", frequency = "60 rad/s", '
+                                   'angle_amplitude = "0.05 rad" }')
+    assert small.n_dof < DENSE_MAX_DOF
+    lat = TorusLattice(3, 2)
+    banded = torus_problem(small)
+    assert banded.bands is not None
+    got = solve_torus(banded, 613.0, lat, tol=1e-11)
+    ref = solve_torus(torus_problem(small, banded=False), 613.0, lat, tol=1e-11)
+    assert _rel(got.X, ref.X) <= 1e-10
+    assert np.abs(ref.X[:, small.nl_dofs]).max() > 0.05 * small.length_scale
+    raw = uniform_sfd_rotor_raw(40, modal_ratio=0.02)
+    raw["base"] = PITCHING
+    modal = build_system(config_from_dict(raw))
+    assert modal.n_dof < DENSE_MAX_DOF and torus_problem(modal).bands is None

@@ -71,8 +71,8 @@ from rotorsfd.quasiperiodic.torus_linear import (
     TorusCondenser,
     TorusProblem,
     complex_to_real,
+    dense_mass,
 )
-from rotorsfd.quasiperiodic.torus_system import keeps_band
 
 __all__ = ["HarmonicCondenser", "common_period_problem", "dual_spool_problem", "one_sided",
            "spool_ratio"]
@@ -125,7 +125,7 @@ def dual_spool_problem(system: RotorSystem, ratio: float | None = None) -> Torus
     lp1, hp1 = one_sided(own, rot, 1.0), one_sided(hp, rot, r)
     f0, f1 = system.static_force(0.0), system.static_force(1.0)
     bands, M = None, None
-    if keeps_band(system):             # above DENSE_MAX_DOF: CSR terms, no n x n array
+    if n > DENSE_MAX_DOF and hasattr(rot, "G_csr"):   # CSR terms, no n x n array
         bands = spool_bands(system)
         coefficients, dcoefficients = dense_coefficients(bands)
         condenser = BandedHarmonicCondenser
@@ -191,12 +191,6 @@ def spool_bands(system: RotorSystem) -> TorusBands:
                                    np.zeros((1, 3), dtype=complex)))
 
 
-def dense_mass(problem: TorusProblem) -> np.ndarray:
-    """The dense M of ``problem`` (complex), from its bands when it keeps them."""
-    M = problem.M if problem.M is not None else problem.bands.M.toarray()
-    return np.asarray(M, dtype=complex)
-
-
 class HarmonicCondenser(TorusCondenser):
     """The exact condensation of :class:`~rotorsfd.quasiperiodic.torus_linear.
     TorusCondenser` for a time-invariant linear part (b = 0, module docstring): the block
@@ -222,7 +216,7 @@ class HarmonicCondenser(TorusCondenser):
         Dc, Kc = p_.coefficients(lam)
         if Dc.shape[0] != 1:
             raise ValueError("HarmonicCondenser needs a time-invariant linear part (b = 0)")
-        D, K, M = Dc[0], Kc[0], dense_mass(p_)
+        D, K, M = Dc[0], Kc[0], np.asarray(dense_mass(p_), dtype=complex)
         om, wb = p_.frequencies(lam)
         F = block_vectors(lat, p_.forcing(lam, lat))
         if deriv:
@@ -289,7 +283,7 @@ class HarmonicCondenser(TorusCondenser):
         lam = cond.lam
         Dc = p_.coefficients(lam)[0]
         dDc, dKc = p_.dcoefficients(lam)
-        D, dD, dK, M = Dc[0], dDc[0], dKc[0], dense_mass(p_)
+        D, dD, dK, M = Dc[0], dDc[0], dKc[0], np.asarray(dense_mass(p_), dtype=complex)
         om, wb = p_.frequencies(lam)
         dom, dwb = p_.dfrequencies(lam)
         dF = block_vectors(lat, p_.dforcing(lam, lat))

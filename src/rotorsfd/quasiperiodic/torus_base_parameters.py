@@ -30,6 +30,7 @@ import numpy as np
 
 from rotorsfd.errors import ConfigError
 from rotorsfd.model.base_motion import BaseMotion
+from rotorsfd.model.sparse import DENSE_MAX_DOF
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.quasiperiodic.torus_bands import TorusBands, dense_coefficients
 from rotorsfd.quasiperiodic.torus_fourier import TorusLattice
@@ -160,7 +161,8 @@ def base_parameter_problem(system: RotorSystem, parameter: str, speed: float,
     w_b = base_frequency(system)
     return TorusProblem(
         n_dof=system.n_dof, nl_dofs=system.nl_dofs,
-        M=None if bands is not None else system.rotor.M, bands=bands,
+        M=None if bands is not None and system.n_dof > DENSE_MAX_DOF else system.rotor.M,
+        bands=bands,
         coefficients=coefficients, dcoefficients=dcoefficients,
         forcing=lambda lam, lattice: poly(load(lattice), lam, 0),
         dforcing=lambda lam, lattice: poly(load(lattice), lam, 1),

@@ -82,8 +82,9 @@ class TorusProblem:
     :class:`~rotorsfd.elements.ElementSet`: ``force``, ``force_and_jacobian`` over sample
     axes, ``limit``) on ``nl_dofs``; ``scaling`` (n,) the per-DOF length scales.
     ``bands``: the same linear part in sparse storage
-    (:class:`~rotorsfd.quasiperiodic.torus_bands.TorusBands`; then ``M`` may be None and
-    the condenser reads the band entries only, no dense n x n array).
+    (:class:`~rotorsfd.quasiperiodic.torus_bands.TorusBands`): the condenser reads its
+    band entries only, no dense n x n array (``M`` is then None above
+    :data:`~rotorsfd.model.sparse.DENSE_MAX_DOF` DOFs).
     """
 
     n_dof: int
@@ -119,6 +120,12 @@ class TorusProblem:
         return float(self.elements.limit(q_nl))
 
 
+def dense_mass(problem: TorusProblem) -> FloatArray:
+    """The dense M of ``problem`` (from its bands when it keeps them: the dense
+    references and the Hill matrix only)."""
+    return problem.M if problem.M is not None else problem.bands.M.toarray()
+
+
 def column_operator(problem: TorusProblem, lattice: TorusLattice, k1: int, lam: float,
                     deriv: bool = False) -> tuple[ComplexArray, ComplexArray | None]:
     """The block Z of column k1 (p n, p n), p = 2h+1, rows and columns ordered (k2 from
@@ -147,9 +154,10 @@ def column_operator(problem: TorusProblem, lattice: TorusLattice, k1: int, lam: 
             dZ[rr, :, cc, :] = dKj[None] + 1j * (dw[cc, None, None] * Dj[None]
                                                  + w[cc, None, None] * dDj[None])
     diag = np.arange(p)
-    Z[diag, :, diag, :] -= (w**2)[:, None, None] * problem.M[None]
+    M = dense_mass(problem)
+    Z[diag, :, diag, :] -= (w**2)[:, None, None] * M[None]
     if deriv:
-        dZ[diag, :, diag, :] -= (2 * w * dw)[:, None, None] * problem.M[None]
+        dZ[diag, :, diag, :] -= (2 * w * dw)[:, None, None] * M[None]
     shape = (p * n, p * n)
     return Z.reshape(shape), (dZ.reshape(shape) if deriv else None)
 

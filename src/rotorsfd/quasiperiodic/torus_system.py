@@ -33,7 +33,7 @@ import numpy as np
 
 from rotorsfd.errors import ConfigError
 from rotorsfd.model.base_terms import base_coefficients
-from rotorsfd.model.sparse import DENSE_MAX_DOF
+from rotorsfd.model.sparse import DENSE_MAX_DOF, HALF_BAND
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.model.unbalance import unbalance_force
 from rotorsfd.quasiperiodic.torus_bands import TorusBands, dense_coefficients
@@ -95,9 +95,18 @@ def theta2_series(values: np.ndarray, name: str) -> np.ndarray:
 
 def keeps_band(system: RotorSystem) -> bool:
     """True when the torus of ``system`` keeps the rotor's CSR storage
-    (:class:`~rotorsfd.quasiperiodic.torus_bands.TorusBands`): above
-    :data:`~rotorsfd.model.sparse.DENSE_MAX_DOF` DOFs, for a rotor assembled sparse."""
-    return system.n_dof > DENSE_MAX_DOF and hasattr(system.rotor, "G_csr")
+    (:class:`~rotorsfd.quasiperiodic.torus_bands.TorusBands`): a rotor assembled sparse,
+    above :data:`~rotorsfd.model.sparse.DENSE_MAX_DOF` DOFs always (a modal damping of a
+    few modes is then refused), below it when no modal damping widens the band beyond
+    :data:`~rotorsfd.model.sparse.HALF_BAND` (measured as fast as the dense stacks at
+    68-84 DOFs and 1.2-1.5x faster per branch at 196-388 DOFs, benchmarks/README.md)."""
+    r = system.rotor
+    if not hasattr(r, "G_csr"):
+        return False
+    if system.n_dof > DENSE_MAX_DOF:
+        return True
+    return getattr(r, "damping_lowrank", None) is None and \
+        max(getattr(r, "band", (system.n_dof, 0))) <= HALF_BAND
 
 
 def torus_problem(system: RotorSystem, parameter: str = "speed",
@@ -187,7 +196,8 @@ def torus_problem(system: RotorSystem, parameter: str = "speed",
         return (1.0 if parameter == "speed" else 0.0), 0.0
 
     return TorusProblem(
-        n_dof=n, nl_dofs=system.nl_dofs, M=None if bands is not None else system.rotor.M,
+        n_dof=n, nl_dofs=system.nl_dofs,
+        M=None if bands is not None and n > DENSE_MAX_DOF else system.rotor.M,
         coefficients=coefficients, bands=bands,
         dcoefficients=dcoefficients, forcing=forcing, dforcing=dforcing,
         frequencies=frequencies, dfrequencies=dfrequencies,
