@@ -23,6 +23,12 @@ its runs have an address-space limit (:data:`AS_LIMIT_GIB`) and a time limit
 (:data:`TIMEOUT_S`). The CPU is ``time.process_time`` of the workload alone (build
 apart). ``python -m benchmarks.bench_torus_scale [--before DIR] [--out FILE]`` prints one
 JSON line per run and the load average.
+
+``--small``: below DENSE_MAX_DOF, the dense stacks (``torus_problem(banded=False)``)
+against the band (the default there too) in one process, in turn (A B A B): a point
+(median of 5 after a warm-up) and a 10-point branch from it, on the paper rotor
+(examples/paper_harmonic_pitching.toml, 0.9 x 811.3 rad/s) and the stepped rotor at 16,
+48, 96 elements (68, 196, 388 DOF; 0.8 w1), with the largest difference of the points.
 """
 
 from __future__ import annotations
@@ -115,6 +121,40 @@ def one(name: str, n_elements: int) -> dict[str, Any]:
     return out
 
 
+def small() -> list[dict[str, Any]]:
+    """The ``--small`` comparison (module docstring)."""
+    from rotorsfd import api
+    from rotorsfd.io.config import load_config
+    from rotorsfd.quasiperiodic import TorusLattice, continue_torus, solve_torus, torus_problem
+
+    lat = TorusLattice(3, 2)
+    cases = [("paper rotor", api.build_system(load_config(
+        ROOT / "examples" / "paper_harmonic_pitching.toml")), 0.9 * 811.3)]
+    for ne in (16, 48, 96):
+        sysm, _, w1 = build(ne)
+        cases.append((f"stepped {ne} el.", sysm, 0.8 * w1))
+    out = []
+    for label, system, om in cases:
+        res: dict[bool, list[tuple[float, float, Any]]] = {False: [], True: []}
+        for banded in (False, True, False, True):
+            problem = torus_problem(system, banded=banded)
+            solve_torus(problem, om, lat, tol=1e-10)                 # warm-up
+            cpu, _, pt = cpu_timed(lambda p=problem, w=om: solve_torus(p, w, lat, tol=1e-10),
+                                   5)
+            cb, _, _ = cpu_timed(lambda p=problem, x=pt.X, w=om: continue_torus(
+                p, w, 1.1 * w, lat, X0=x, max_points=10))
+            res[banded].append((cpu, cb, pt.X))
+        ref = res[False][0][2]
+        out.append({"case": label, "n_dof": system.n_dof, "load": os.getloadavg()[0],
+                    "dense_point": [r[0] for r in res[False]],
+                    "banded_point": [r[0] for r in res[True]],
+                    "dense_branch": [r[1] for r in res[False]],
+                    "banded_branch": [r[1] for r in res[True]],
+                    "difference": float(np.abs(res[True][0][2] - ref).max()
+                                        / np.abs(ref).max())})
+    return out
+
+
 def run_one(name: str, n_elements: int, src: Path, label: str) -> dict[str, Any]:
     """Workload ``name`` in a fresh process on the tree ``src``: its JSON record (or the
     reason it failed)."""
@@ -138,6 +178,10 @@ def main(argv: list[str]) -> None:
         out = one(argv[1], int(argv[2]))
         out["peak_gib"] = vmhwm_gib()
         print(json.dumps(out))
+        return
+    if argv[:1] == ["--small"]:
+        for rec in small():
+            print(json.dumps(rec), flush=True)
         return
     dest = before = None
     if "--out" in argv:

@@ -99,7 +99,8 @@ def keeps_band(system: RotorSystem) -> bool:
     above :data:`~rotorsfd.model.sparse.DENSE_MAX_DOF` DOFs always (a modal damping of a
     few modes is then refused), below it when no modal damping widens the band beyond
     :data:`~rotorsfd.model.sparse.HALF_BAND` (measured as fast as the dense stacks at
-    68-84 DOFs and 1.2-1.5x faster per branch at 196-388 DOFs, benchmarks/README.md)."""
+    68-196 DOFs, 1.1-1.2x faster per branch at 388: ``python -m
+    benchmarks.bench_torus_scale --small``)."""
     r = system.rotor
     if not hasattr(r, "G_csr"):
         return False
