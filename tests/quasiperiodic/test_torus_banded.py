@@ -146,3 +146,36 @@ def test_small_rotor_torus_is_banded_and_equals_the_dense_stacks(tmp_path):
     raw["base"] = PITCHING
     modal = build_system(config_from_dict(raw))
     assert modal.n_dof < DENSE_MAX_DOF and torus_problem(modal).bands is None
+
+
+def test_response_command_on_the_large_rotor_forms_no_dense_matrix(tmp_path, monkeypatch):
+    """``rotorsfd response`` (the torus branch, stability off) on the 420-DOF rotor under
+    the guard; its first point's 1X line of the SFD journal (node 1, y) equals the dense
+    path's torus at the same speed (units of the clearance) to the command's Newton
+    tolerance (``analysis.response.tolerance``, 1e-6 on the scaled residual: measured
+    1.9e-6 relative)."""
+    import csv
+
+    from rotorsfd.cli import main
+    from rotorsfd.io.config import to_toml
+
+    raw = uniform_sfd_rotor_raw(104)
+    raw["base"] = PITCHING
+    raw["reference"] = {"speed": SPEED}
+    raw["analysis"] = {"response": {"speed_range": {"start": SPEED, "stop": 1.01 * SPEED}},
+                       "stability": {"enabled": False}}
+    path = tmp_path / "big.toml"
+    path.write_text(to_toml(raw))
+    with monkeypatch.context() as m:
+        forbid_dense_rotor_matrices(m)
+        assert main(["response", str(path), "-o", str(tmp_path / "out"), "-q"]) == 0
+    with open(tmp_path / "out" / "torus.csv") as f:
+        first = next(csv.DictReader(f))
+    system = _system()
+    lat = TorusLattice(3, 2)
+    ref = solve_torus(torus_problem(system, banded=False), SPEED, lat, tol=1e-11)
+    y1 = system.rotor.dof_index(1, "y")
+    want = abs(ref.X[lat.index(1, 0), y1]) / system.length_scale
+    got = float(first["amp_1_y_1_0"])
+    print(f"1X line: {got:.6g} C, dense {want:.6g} C")
+    assert want > 1e-3 and abs(got - want) <= 2e-5 * want
