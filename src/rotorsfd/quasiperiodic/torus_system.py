@@ -22,6 +22,12 @@ and transformed by a 2D FFT: it sits at k1 = +-1, |k2| <= b.
 The dependence on the speed is exact: the base coefficients are affine in Omega (their
 derivative is ``c(Omega = 1) - c(Omega = 0)``) and the unbalance force is quadratic in
 Omega (its three polynomial coefficients from three speeds).
+
+Storage (:func:`keeps_band`): the sums above are kept unformed, as the CSR matrices
+``(C, G, K, B_i)`` with their weights in theta2 and Omega
+(:func:`banded_linear_part`, :class:`~rotorsfd.quasiperiodic.torus_bands.TorusBands`):
+the condenser reads their band entries only, no n x n array (issue 17 item 2); the
+dense stacks (:func:`dense_stacks`, ``banded=False``) are the reference.
 """
 
 from __future__ import annotations
