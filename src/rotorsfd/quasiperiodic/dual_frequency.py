@@ -18,7 +18,11 @@ linear part is time-invariant: the coefficient series of
 so every harmonic (k1, k2) of the linear operator is its own block,
 ``Z_k = K + i omega_k D_0 - omega_k^2 M`` with ``omega_k = (k1 + k2 r) Omega``, and the
 condensation is per harmonic (the torus condenser's block of one k1 is block diagonal in
-k2; its banded LU does that work). The loads, one-sided on the half lattice
+k2; its banded LU does that work). Above :data:`~rotorsfd.model.sparse.DENSE_MAX_DOF` DOFs
+the linear part is kept as the rotor's CSR matrices (:func:`spool_bands`) and each
+harmonic condensed from band storage
+(:class:`~rotorsfd.quasiperiodic.dual_frequency_banded.BandedHarmonicCondenser`). The
+loads, one-sided on the half lattice
 (``F = Fc cos + Fs sin = Re((Fc - i Fs) e^{i theta})``):
 
     F_(0,0) = F_0 (gravity, constant base translations),
@@ -43,6 +47,7 @@ import dataclasses
 from fractions import Fraction
 
 import numpy as np
+import scipy.sparse as sp
 from scipy.linalg import lu_factor, lu_solve
 
 from rotorsfd.errors import ConfigError
@@ -50,8 +55,11 @@ from rotorsfd.harmonic.fourier import to_complex
 from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.model.multishaft import check_base_motion
 from rotorsfd.model.multishaft_loads import second_ratio, split_unbalances
+from rotorsfd.model.sparse import DENSE_MAX_DOF
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.model.unbalance import unbalance_harmonics
+from rotorsfd.quasiperiodic.dual_frequency_banded import BandedHarmonicCondenser
+from rotorsfd.quasiperiodic.torus_bands import TorusBands, dense_coefficients
 from rotorsfd.quasiperiodic.torus_fourier import (
     TorusLattice,
     block_real_indices,
@@ -63,6 +71,7 @@ from rotorsfd.quasiperiodic.torus_linear import (
     TorusCondenser,
     TorusProblem,
     complex_to_real,
+    dense_mass,
 )
 
 __all__ = ["HarmonicCondenser", "common_period_problem", "dual_spool_problem", "one_sided",
@@ -107,10 +116,6 @@ def dual_spool_problem(system: RotorSystem, ratio: float | None = None) -> Torus
         raise ConfigError("speed_ratio", r, "must be a finite number > 0 other than 1")
     rot = system.rotor
     n = system.n_dof
-    M = np.asarray(rot.M, dtype=float)
-    G = np.asarray(rot.G, dtype=float)
-    _, D0, K0 = system.matrices(0.0)
-    D0, K0 = np.asarray(D0, dtype=float), np.asarray(K0, dtype=float)
     own, other = split_unbalances(rot, system.unbalances)
     hp = other.get(r, ())
     if set(other) - {r}:
@@ -119,12 +124,23 @@ def dual_spool_problem(system: RotorSystem, ratio: float | None = None) -> Torus
                           f"ratio {r:g} only")
     lp1, hp1 = one_sided(own, rot, 1.0), one_sided(hp, rot, r)
     f0, f1 = system.static_force(0.0), system.static_force(1.0)
+    bands, M = None, None
+    if n > DENSE_MAX_DOF and hasattr(rot, "G_csr"):   # CSR terms, no n x n array
+        bands = spool_bands(system)
+        coefficients, dcoefficients = dense_coefficients(bands)
+        condenser = BandedHarmonicCondenser
+    else:
+        M = np.asarray(rot.M, dtype=float)
+        G = np.asarray(rot.G, dtype=float)
+        _, D0, K0 = system.matrices(0.0)
+        D0, K0 = np.asarray(D0, dtype=float), np.asarray(K0, dtype=float)
+        condenser = HarmonicCondenser
 
-    def coefficients(lam: float):
-        return (D0 + float(lam) * G)[None].astype(complex), K0[None].astype(complex)
+        def coefficients(lam: float):
+            return (D0 + float(lam) * G)[None].astype(complex), K0[None].astype(complex)
 
-    def dcoefficients(lam: float):
-        return G[None].astype(complex), np.zeros((1, n, n), dtype=complex)
+        def dcoefficients(lam: float):
+            return G[None].astype(complex), np.zeros((1, n, n), dtype=complex)
 
     def place(lattice: TorusLattice, static: np.ndarray, lp: np.ndarray, hpv: np.ndarray
               ) -> np.ndarray:
@@ -145,15 +161,34 @@ def dual_spool_problem(system: RotorSystem, ratio: float | None = None) -> Torus
         return place(lattice, f1 - f0, 2 * om * lp1, 2 * om * hp1)
 
     return TorusProblem(
-        n_dof=n, nl_dofs=system.nl_dofs, M=M, coefficients=coefficients,
+        n_dof=n, nl_dofs=system.nl_dofs, M=M, bands=bands, coefficients=coefficients,
         dcoefficients=dcoefficients, forcing=forcing, dforcing=dforcing,
         frequencies=lambda lam: (float(lam), r * float(lam)),
         dfrequencies=lambda lam: (1.0, r),
         elements=system.elements if len(system.elements) else None,
         scaling=system.dof_scale(), name="dual-spool torus in speed",
         info={"speed_ratio": r, "parameter": "speed", "base_band": 0,
-              "condenser": HarmonicCondenser,
+              "condenser": condenser,
               "unbalance_lp": len(own), "unbalance_hp": len(hp)})
+
+
+def spool_bands(system: RotorSystem) -> TorusBands:
+    """The linear part ``D_0 = C + Omega G, K_0 = K`` (module docstring) as CSR terms
+    (C, G, K) with the weights ``a = (1, Omega, 0)``, ``c = (0, 0, 1)``
+    (:class:`~rotorsfd.quasiperiodic.torus_bands.TorusBands`); ConfigError for a damping
+    kept beside the band (modal damping of a few modes)."""
+    M, D0, K0 = system.split_matrices(0.0)
+    if not sp.issparse(D0):
+        raise ConfigError("rotor.damping.kind", "modal", f"the dual-spool torus above "
+                          f"{DENSE_MAX_DOF} DOFs keeps the band and does not take modal "
+                          "damping (a full matrix) yet")
+    G = system.rotor.G_csr
+    one = np.array([[1.0, 0.0, 0.0]], dtype=complex)
+    return TorusBands(M, (D0, G, K0),
+                      lambda lam: (one + float(lam) * np.array([[0.0, 1.0, 0.0]]),
+                                   np.array([[0.0, 0.0, 1.0]], dtype=complex)),
+                      lambda lam: (np.array([[0.0, 1.0, 0.0]], dtype=complex),
+                                   np.zeros((1, 3), dtype=complex)))
 
 
 class HarmonicCondenser(TorusCondenser):
@@ -181,7 +216,7 @@ class HarmonicCondenser(TorusCondenser):
         Dc, Kc = p_.coefficients(lam)
         if Dc.shape[0] != 1:
             raise ValueError("HarmonicCondenser needs a time-invariant linear part (b = 0)")
-        D, K, M = Dc[0], Kc[0], np.asarray(p_.M, dtype=complex)
+        D, K, M = Dc[0], Kc[0], np.asarray(dense_mass(p_), dtype=complex)
         om, wb = p_.frequencies(lam)
         F = block_vectors(lat, p_.forcing(lam, lat))
         if deriv:
@@ -248,7 +283,7 @@ class HarmonicCondenser(TorusCondenser):
         lam = cond.lam
         Dc = p_.coefficients(lam)[0]
         dDc, dKc = p_.dcoefficients(lam)
-        D, dD, dK, M = Dc[0], dDc[0], dKc[0], np.asarray(p_.M, dtype=complex)
+        D, dD, dK, M = Dc[0], dDc[0], dKc[0], np.asarray(dense_mass(p_), dtype=complex)
         om, wb = p_.frequencies(lam)
         dom, dwb = p_.dfrequencies(lam)
         dF = block_vectors(lat, p_.dforcing(lam, lat))

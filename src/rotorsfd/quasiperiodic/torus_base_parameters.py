@@ -30,7 +30,9 @@ import numpy as np
 
 from rotorsfd.errors import ConfigError
 from rotorsfd.model.base_motion import BaseMotion
+from rotorsfd.model.sparse import DENSE_MAX_DOF
 from rotorsfd.model.system import RotorSystem
+from rotorsfd.quasiperiodic.torus_bands import TorusBands, dense_coefficients
 from rotorsfd.quasiperiodic.torus_fourier import TorusLattice
 from rotorsfd.quasiperiodic.torus_linear import TorusProblem
 from rotorsfd.quasiperiodic.torus_system import base_frequency, torus_problem
@@ -98,33 +100,56 @@ def with_base_value(system: RotorSystem, parameter: str, value: float,
 
 
 def base_parameter_problem(system: RotorSystem, parameter: str, speed: float,
-                           hold: str = "angle") -> TorusProblem:
+                           hold: str = "angle", banded: bool | None = None) -> TorusProblem:
     """The torus problem at the fixed ``speed`` [rad/s] continued in the base parameter
-    (lam in its SI unit), by the exact degree-4 interpolation of the module docstring."""
+    (lam in its SI unit), by the exact degree-4 interpolation of the module docstring.
+    ``banded`` (default :func:`~rotorsfd.quasiperiodic.torus_system.keeps_band`): the
+    weights of the CSR terms interpolated (:class:`~rotorsfd.quasiperiodic.torus_bands.
+    TorusBands`, no dense n x n array) instead of the dense stacks."""
     if not speed > 0:
         raise ConfigError("speed", speed, f"continuing in {parameter} needs a speed > 0")
     lam0 = base_parameter_value(system, parameter)
     if lam0 == 0.0:
         raise ConfigError(parameter, 0.0, "continuing needs a nonzero starting value")
     nodes = lam0 * NODES
-    probs = [torus_problem(with_base_value(system, parameter, v, hold)) for v in nodes]
-    mats = [p.coefficients(speed) for p in probs]
-    bw = max(D.shape[0] for D, _ in mats)
-
-    def pad(A: np.ndarray) -> np.ndarray:
-        return np.pad(A, [(0, bw - A.shape[0]), (0, 0), (0, 0)])
-
+    probs = [torus_problem(with_base_value(system, parameter, v, hold), banded=banded)
+             for v in nodes]
     V = np.vander(nodes, 5, increasing=True)
-    Dc = np.linalg.solve(V, np.array([pad(D) for D, _ in mats]).reshape(5, -1))
-    Kc = np.linalg.solve(V, np.array([pad(K) for _, K in mats]).reshape(5, -1))
-    shape = (bw, system.n_dof, system.n_dof)
-    Dc, Kc = Dc.reshape(5, *shape), Kc.reshape(5, *shape)
     powers = np.arange(5)
     loads: dict[TorusLattice, np.ndarray] = {}
 
     def poly(c: np.ndarray, lam: float, d: int) -> np.ndarray:
         w = powers * lam ** np.maximum(powers - 1, 0) if d else lam ** powers
         return np.tensordot(w, c, axes=(0, 0))
+
+    def interpolate(stacks: list[tuple[np.ndarray, np.ndarray]]
+                    ) -> tuple[np.ndarray, np.ndarray]:
+        """Polynomial coefficients (5, ...) of (D, K) stacks (or weights) at the nodes."""
+        bw = max(D.shape[0] for D, _ in stacks)
+
+        def pad(A: np.ndarray) -> np.ndarray:
+            return np.pad(A, [(0, bw - A.shape[0])] + [(0, 0)] * (A.ndim - 1))
+
+        shape = (bw, *stacks[0][0].shape[1:])
+        Dc = np.linalg.solve(V, np.array([pad(D) for D, _ in stacks]).reshape(5, -1))
+        Kc = np.linalg.solve(V, np.array([pad(K) for _, K in stacks]).reshape(5, -1))
+        return Dc.reshape(5, *shape), Kc.reshape(5, *shape)
+
+    bands = probs[0].bands
+    if bands is not None:            # the same CSR terms at every node: their weights
+        Wa, Wc = interpolate([p.bands.weights(speed) for p in probs])
+        bands = TorusBands(bands.M, bands.terms,
+                           lambda lam: (poly(Wa, lam, 0), poly(Wc, lam, 0)),
+                           lambda lam: (poly(Wa, lam, 1), poly(Wc, lam, 1)))
+        coefficients, dcoefficients = dense_coefficients(bands)
+    else:
+        Dc, Kc = interpolate([p.coefficients(speed) for p in probs])
+
+        def coefficients(lam: float):
+            return poly(Dc, lam, 0), poly(Kc, lam, 0)
+
+        def dcoefficients(lam: float):
+            return poly(Dc, lam, 1), poly(Kc, lam, 1)
 
     def load(lattice: TorusLattice) -> np.ndarray:
         if lattice not in loads:
@@ -135,9 +160,10 @@ def base_parameter_problem(system: RotorSystem, parameter: str, speed: float,
     is_frequency = parameter == "base.frequency"
     w_b = base_frequency(system)
     return TorusProblem(
-        n_dof=system.n_dof, nl_dofs=system.nl_dofs, M=system.rotor.M,
-        coefficients=lambda lam: (poly(Dc, lam, 0), poly(Kc, lam, 0)),
-        dcoefficients=lambda lam: (poly(Dc, lam, 1), poly(Kc, lam, 1)),
+        n_dof=system.n_dof, nl_dofs=system.nl_dofs,
+        M=None if bands is not None and system.n_dof > DENSE_MAX_DOF else system.rotor.M,
+        bands=bands,
+        coefficients=coefficients, dcoefficients=dcoefficients,
         forcing=lambda lam, lattice: poly(load(lattice), lam, 0),
         dforcing=lambda lam, lattice: poly(load(lattice), lam, 1),
         frequencies=lambda lam: (float(speed), float(lam) if is_frequency else w_b),

@@ -36,6 +36,7 @@ from numpy.typing import NDArray
 from scipy.linalg import lu_factor, lu_solve
 
 from rotorsfd.harmonic.banded import band_lu, band_solve
+from rotorsfd.quasiperiodic.torus_bands import band_entries, two_sided
 
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
@@ -76,9 +77,7 @@ class ColumnPattern:
     @cached_property
     def band_entries(self) -> tuple[IntArray, IntArray]:
         """(I, J) of the n x n entries with |I - J| <= beta, row-major."""
-        i, j = np.nonzero(np.abs(np.subtract.outer(np.arange(self.n), np.arange(self.n)))
-                          <= self.beta)
-        return i.astype(np.int64), j.astype(np.int64)
+        return band_entries(self.n, self.beta)
 
 
 @lru_cache(maxsize=64)
@@ -90,8 +89,7 @@ def column_pattern(n: int, p: int, b: int, beta: int) -> ColumnPattern:
 def two_sided_band(A: ComplexArray, I: IntArray, J: IntArray) -> ComplexArray:
     """(2b + 1, ne): band entries of A_j for j = -b..b from A (b + 1, n, n), j >= 0
     (``A_{-j} = conj(A_j)``)."""
-    pos = A[:, I, J]
-    return np.concatenate([np.conj(pos[:0:-1]), pos])
+    return two_sided(A[:, I, J])
 
 
 class BandedColumn:

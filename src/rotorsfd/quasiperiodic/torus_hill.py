@@ -31,7 +31,7 @@ from scipy.linalg import eig
 
 from rotorsfd.harmonic.fourier import to_real
 from rotorsfd.quasiperiodic.torus_fourier import TorusAFT, TorusLattice, derivative
-from rotorsfd.quasiperiodic.torus_linear import TorusProblem
+from rotorsfd.quasiperiodic.torus_linear import TorusProblem, dense_mass
 from rotorsfd.stability.reduction import craig_bampton
 
 
@@ -58,7 +58,7 @@ def torus_hill(problem: TorusProblem, lattice: TorusLattice, X: NDArray[np.compl
     om, wb = problem.frequencies(lam)
     Dc, Kc = problem.coefficients(lam)
     s = problem.nl_dofs
-    M = problem.M
+    M = dense_mass(problem)             # the Hill matrix is dense
     K0 = np.real(Kc[0])
     red = craig_bampton(M, np.real(Dc[0]), 0.5 * (K0 + K0.T), s, omega_max=omega_max)
     P = red.basis

@@ -49,6 +49,7 @@ from numpy.typing import NDArray
 
 from rotorsfd.harmonic.fourier import to_complex
 from rotorsfd.harmonic.residual import real_blocks
+from rotorsfd.quasiperiodic.torus_bands import TorusBands, two_sided
 from rotorsfd.quasiperiodic.torus_columns import (
     BandedColumn,
     column_pattern,
@@ -80,6 +81,10 @@ class TorusProblem:
     ``dfrequencies(lam)``. ``elements``: the nonlinear force (an
     :class:`~rotorsfd.elements.ElementSet`: ``force``, ``force_and_jacobian`` over sample
     axes, ``limit``) on ``nl_dofs``; ``scaling`` (n,) the per-DOF length scales.
+    ``bands``: the same linear part in sparse storage
+    (:class:`~rotorsfd.quasiperiodic.torus_bands.TorusBands`): the condenser reads its
+    band entries only, no dense n x n array (``M`` is then None above
+    :data:`~rotorsfd.model.sparse.DENSE_MAX_DOF` DOFs).
     """
 
     n_dof: int
@@ -95,6 +100,7 @@ class TorusProblem:
     scaling: FloatArray | float = 1.0
     name: str = "torus problem"
     info: dict = field(default_factory=dict)
+    bands: TorusBands | None = None
 
     def __post_init__(self) -> None:
         self.nl_dofs = np.atleast_1d(np.asarray(self.nl_dofs, dtype=np.int64))
@@ -112,6 +118,12 @@ class TorusProblem:
         if self.elements is None or not self.m:
             return 0.0
         return float(self.elements.limit(q_nl))
+
+
+def dense_mass(problem: TorusProblem) -> FloatArray:
+    """The dense M of ``problem`` (from its bands when it keeps them: the dense
+    references and the Hill matrix only)."""
+    return problem.M if problem.M is not None else problem.bands.M.toarray()
 
 
 def column_operator(problem: TorusProblem, lattice: TorusLattice, k1: int, lam: float,
@@ -142,9 +154,10 @@ def column_operator(problem: TorusProblem, lattice: TorusLattice, k1: int, lam: 
             dZ[rr, :, cc, :] = dKj[None] + 1j * (dw[cc, None, None] * Dj[None]
                                                  + w[cc, None, None] * dDj[None])
     diag = np.arange(p)
-    Z[diag, :, diag, :] -= (w**2)[:, None, None] * problem.M[None]
+    M = dense_mass(problem)
+    Z[diag, :, diag, :] -= (w**2)[:, None, None] * M[None]
     if deriv:
-        dZ[diag, :, diag, :] -= (2 * w * dw)[:, None, None] * problem.M[None]
+        dZ[diag, :, diag, :] -= (2 * w * dw)[:, None, None] * M[None]
     shape = (p * n, p * n)
     return Z.reshape(shape), (dZ.reshape(shape) if deriv else None)
 
@@ -231,20 +244,11 @@ class TorusCondenser:
         n, m, s = p_.n_dof, p_.m, p_.nl_dofs
         nr = lat.n_real
         F = block_vectors(lat, p_.forcing(lam, lat))
-        D, K = p_.coefficients(lam)
-        dD, dK = p_.dcoefficients(lam)
         om, wb = p_.frequencies(lam)
         if deriv:
             dF = block_vectors(lat, p_.dforcing(lam, lat))
             dom, dwb = p_.dfrequencies(lam)
-        beta = half_bandwidth(p_.M[None], D, K, dD, dK)   # dZ in the same band
-        if m:                                   # the shift's couplings stay in the band
-            a_, b_ = np.nonzero(np.abs(self.Kr) + np.abs(self.Cr))
-            beta = max(beta, int(np.abs(s[a_] - s[b_]).max(initial=0)))
-        b = D.shape[0] - 1
-        I, J = column_pattern(n, 1, b, beta).band_entries
-        Dv, Kv, Mv = two_sided_band(D, I, J), two_sided_band(K, I, J), p_.M[I, J]
-        dbands = (two_sided_band(dD, I, J), two_sided_band(dK, I, J))
+        b, beta, (Dv, Kv, Mv), dbands = self.band_coefficients(lam)
         dDv, dKv = dbands if deriv else (None, None)
         Ht = np.zeros((nr * m, nr * m))
         Pt = np.zeros((nr, m))
@@ -284,6 +288,34 @@ class TorusCondenser:
         out = TorusCondensed(lam, Ht, Pt, us, Cs, dHt, dPt, cols, sols, dbands)
         self._cache = out
         return out
+
+    def band_coefficients(self, lam: float) -> tuple[int, int, tuple[ComplexArray, ...],
+                                                      tuple[ComplexArray, ComplexArray]]:
+        """``(b, beta, (Dv, Kv, Mv), (dDv, dKv))``: the two-sided band entries (2b + 1, ne)
+        of D_j, K_j (and M (ne,)) at lam on ``|I - J| <= beta`` (beta the half bandwidth
+        of the matrices and the shift's couplings), from ``problem.bands`` when set (no
+        n x n array), else read from the dense stacks."""
+        p_ = self.problem
+        s = p_.nl_dofs
+        shift = 0
+        if p_.m:                                # the shift's couplings stay in the band
+            a_, b_ = np.nonzero(np.abs(self.Kr) + np.abs(self.Cr))
+            shift = int(np.abs(s[a_] - s[b_]).max(initial=0))
+        bands = p_.bands
+        if bands is not None:
+            beta = max(bands.beta, shift)
+            D, K = bands.band(lam, beta)
+            dD, dK = bands.band(lam, beta, deriv=True)
+            Mv = bands.entries(beta)[2]
+            return (D.shape[0] - 1, beta, (two_sided(D), two_sided(K), Mv),
+                    (two_sided(dD), two_sided(dK)))
+        D, K = p_.coefficients(lam)
+        dD, dK = p_.dcoefficients(lam)
+        beta = max(half_bandwidth(p_.M[None], D, K, dD, dK), shift)   # dZ in the same band
+        I, J = column_pattern(p_.n_dof, 1, D.shape[0] - 1, beta).band_entries
+        return (D.shape[0] - 1, beta,
+                (two_sided_band(D, I, J), two_sided_band(K, I, J), p_.M[I, J]),
+                (two_sided_band(dD, I, J), two_sided_band(dK, I, J)))
 
     def response_derivative(self, cond: TorusCondensed, g: FloatArray) -> FloatArray:
         """``d(Pt + Ht g)/dlam`` at fixed g (n_real, m), real layout: per k1 column

@@ -22,16 +22,27 @@ and transformed by a 2D FFT: it sits at k1 = +-1, |k2| <= b.
 The dependence on the speed is exact: the base coefficients are affine in Omega (their
 derivative is ``c(Omega = 1) - c(Omega = 0)``) and the unbalance force is quadratic in
 Omega (its three polynomial coefficients from three speeds).
+
+Storage (:func:`keeps_band`): the sums above are kept unformed, as the CSR matrices
+``(C, G, K, B_i)`` with their weights in theta2 and Omega
+(:func:`banded_linear_part`, :class:`~rotorsfd.quasiperiodic.torus_bands.TorusBands`):
+the condenser reads their band entries only, no n x n array (issue 17 item 2); the
+dense stacks (:func:`dense_stacks`, ``banded=False``) are the reference.
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
 from rotorsfd.errors import ConfigError
 from rotorsfd.model.base_terms import base_coefficients
+from rotorsfd.model.sparse import DENSE_MAX_DOF, HALF_BAND
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.model.unbalance import unbalance_force
+from rotorsfd.quasiperiodic.torus_bands import TorusBands, dense_coefficients
 from rotorsfd.quasiperiodic.torus_fourier import TorusLattice
 from rotorsfd.quasiperiodic.torus_linear import TorusProblem
 
@@ -88,11 +99,30 @@ def theta2_series(values: np.ndarray, name: str) -> np.ndarray:
     return c[..., : b + 1]
 
 
+def keeps_band(system: RotorSystem) -> bool:
+    """True when the torus of ``system`` keeps the rotor's CSR storage
+    (:class:`~rotorsfd.quasiperiodic.torus_bands.TorusBands`): a rotor assembled sparse,
+    above :data:`~rotorsfd.model.sparse.DENSE_MAX_DOF` DOFs always (a modal damping of a
+    few modes is then refused), below it when no modal damping widens the band beyond
+    :data:`~rotorsfd.model.sparse.HALF_BAND` (measured as fast as the dense stacks at
+    68-196 DOFs, 1.1-1.2x faster per branch at 388: ``python -m
+    benchmarks.bench_torus_scale --small``)."""
+    r = system.rotor
+    if not hasattr(r, "G_csr"):
+        return False
+    if system.n_dof > DENSE_MAX_DOF:
+        return True
+    return getattr(r, "damping_lowrank", None) is None and \
+        max(getattr(r, "band", (system.n_dof, 0))) <= HALF_BAND
+
+
 def torus_problem(system: RotorSystem, parameter: str = "speed",
-                  speed: float | None = None) -> TorusProblem:
+                  speed: float | None = None, banded: bool | None = None) -> TorusProblem:
     """The torus problem of ``system`` under its harmonic base law, continued in
     ``parameter``: "speed" (lam = Omega [rad/s]) or "unbalance" (lam = the first
-    unbalance's magnitude [kg m], the others scaled with it, at the fixed ``speed``)."""
+    unbalance's magnitude [kg m], the others scaled with it, at the fixed ``speed``).
+    ``banded`` (default :func:`keeps_band`): the linear part as CSR terms and weights
+    (:func:`banded_linear_part`, no dense n x n array) instead of the dense stacks."""
     if parameter not in PARAMETERS:
         raise ConfigError("parameter", parameter, "the torus is continued in " +
                           " or ".join(PARAMETERS))
@@ -104,7 +134,7 @@ def torus_problem(system: RotorSystem, parameter: str = "speed",
                               "(torus) response does not take a force of the acceleration "
                               "yet: set it to false")
     w_b = base_frequency(system)
-    r, basis = system.rotor, system.basis
+    basis = system.basis
     n = system.n_dof
     th2 = 2 * np.pi * np.arange(N_BASE) / N_BASE
     state = system.base.state(th2 / w_b)
@@ -122,14 +152,20 @@ def torus_problem(system: RotorSystem, parameter: str = "speed",
     def pad(c: np.ndarray) -> np.ndarray:
         return np.pad(c, [(0, 0), (0, bw - c.shape[-1])])
 
-    mats = basis.matrices
-    D0 = np.einsum("ij,iab->jab", pad(cC0), mats)
-    D1 = np.einsum("ij,iab->jab", pad(cC1), mats)
-    K0 = np.einsum("ij,iab->jab", pad(cK0), mats)
-    K1 = np.einsum("ij,iab->jab", pad(cK1), mats)
-    D0[0] += r.C
-    D1[0] += r.G
-    K0[0] += r.K
+    def at(lam: float) -> tuple[float, float]:
+        """(speed, unbalance scale) at lam."""
+        return (float(lam), 1.0) if parameter == "speed" else (float(speed), lam / U_ref)
+
+    series_C, series_K = (pad(cC0), pad(cC1)), (pad(cK0), pad(cK1))
+    bands = None
+    if keeps_band(system) if banded is None else banded:
+        bands = banded_linear_part(system, series_C, series_K,
+                                   lambda lam: at(lam)[0], parameter == "speed")
+        coefficients, dcoefficients = dense_coefficients(bands)
+    else:
+        coefficients, dcoefficients = dense_stacks(system, series_C, series_K,
+                                                   lambda lam: at(lam)[0],
+                                                   parameter == "speed")
     Fb0 = np.einsum("ij,ia->ja", pad(cF0), basis.vectors)   # (bw, n) two-sided c_j
     Fb1 = np.einsum("ij,ia->ja", pad(cF1), basis.vectors)
     ub = unbalance_polynomial(system, w_b)
@@ -137,19 +173,6 @@ def torus_problem(system: RotorSystem, parameter: str = "speed",
     if parameter == "unbalance" and U_ref == 0.0:
         raise ConfigError("unbalance", None, "continuing in the unbalance needs a nonzero "
                           "first unbalance")
-
-    def at(lam: float) -> tuple[float, float]:
-        """(speed, unbalance scale) at lam."""
-        return (float(lam), 1.0) if parameter == "speed" else (float(speed), lam / U_ref)
-
-    def coefficients(lam: float):
-        om, _ = at(lam)
-        return D0 + om * D1, K0 + om * K1
-
-    def dcoefficients(lam: float):
-        if parameter == "speed":
-            return D1, K1
-        return np.zeros_like(D1), np.zeros_like(K1)
 
     def place(lattice: TorusLattice, fb: np.ndarray, fu: np.ndarray) -> np.ndarray:
         """One-sided coefficients on the half lattice of a base load (two-sided c_j of
@@ -180,12 +203,81 @@ def torus_problem(system: RotorSystem, parameter: str = "speed",
         return (1.0 if parameter == "speed" else 0.0), 0.0
 
     return TorusProblem(
-        n_dof=n, nl_dofs=system.nl_dofs, M=r.M, coefficients=coefficients,
+        n_dof=n, nl_dofs=system.nl_dofs,
+        M=None if bands is not None and n > DENSE_MAX_DOF else system.rotor.M,
+        coefficients=coefficients, bands=bands,
         dcoefficients=dcoefficients, forcing=forcing, dforcing=dforcing,
         frequencies=frequencies, dfrequencies=dfrequencies,
         elements=system.elements if len(system.elements) else None,
         scaling=system.dof_scale(), name=f"rotor torus in {parameter}",
         info={"base_frequency": w_b, "base_band": bw - 1, "parameter": parameter})
+
+
+Series = tuple[np.ndarray, np.ndarray]
+
+
+def dense_stacks(system: RotorSystem, series_C: Series, series_K: Series,
+                 speed_of: Callable[[float], float], in_speed: bool
+                 ) -> tuple[Callable[[float], Any], Callable[[float], Any]]:
+    """``coefficients, dcoefficients`` as dense stacks (b + 1, n, n) (module docstring):
+    ``D_j = delta_j0 (C + Omega G) + sum_i (cC0 + Omega cC1)_{i,j} B_i``, ``K_j`` alike;
+    ``series_*`` = (value at Omega = 0, slope) of the coefficients (12, b + 1) and
+    ``speed_of(lam)`` = Omega; ``in_speed``: lam is the speed (else dD = dK = 0)."""
+    r, mats = system.rotor, system.basis.matrices
+    D0, D1 = (np.einsum("ij,iab->jab", c, mats) for c in series_C)
+    K0, K1 = (np.einsum("ij,iab->jab", c, mats) for c in series_K)
+    D0[0] += r.C
+    D1[0] += r.G
+    K0[0] += r.K
+
+    def coefficients(lam: float):
+        om = speed_of(lam)
+        return D0 + om * D1, K0 + om * K1
+
+    def dcoefficients(lam: float):
+        if in_speed:
+            return D1, K1
+        return np.zeros_like(D1), np.zeros_like(K1)
+
+    return coefficients, dcoefficients
+
+
+def banded_linear_part(system: RotorSystem, series_C: Series, series_K: Series,
+                       speed_of: Callable[[float], float], in_speed: bool) -> TorusBands:
+    """The linear part of :func:`dense_stacks` as :class:`~rotorsfd.quasiperiodic.
+    torus_bands.TorusBands`: terms ``(C, G, K, B_1..B_12)`` (the rotor's CSR matrices and
+    the base patterns), weights ``a_j = (delta_j0, Omega delta_j0, 0, (cC0 + Omega cC1)_j)``
+    and ``c_j = (0, 0, delta_j0, (cK0 + Omega cK1)_j)``. ConfigError with a modal damping
+    of the rotor (a full matrix: not in the band)."""
+    r = system.rotor
+    if getattr(r, "damping_lowrank", None) is not None:
+        raise ConfigError("rotor.damping.kind", "modal", f"the quasi-periodic (torus) "
+                          f"response above {DENSE_MAX_DOF} DOFs keeps the band and does not "
+                          "take modal damping (a full matrix) yet: use proportional damping")
+    bw = series_C[0].shape[1]
+    e0 = np.zeros(bw)
+    e0[0] = 1.0
+    z = np.zeros(bw)
+
+    def weights(cC: np.ndarray, cK: np.ndarray, d: float, g: float
+                ) -> tuple[np.ndarray, np.ndarray]:
+        """(a, c) (b + 1, 15): (C, G, K, B_i) weights of D_j and K_j."""
+        a = np.column_stack([d * e0, g * e0, z, cC.T])
+        c = np.column_stack([z, z, d * e0, cK.T])
+        return a.astype(complex), c.astype(complex)
+
+    def value(lam: float):
+        om = speed_of(lam)
+        return weights(series_C[0] + om * series_C[1], series_K[0] + om * series_K[1],
+                       1.0, om)
+
+    def slope(lam: float):
+        if in_speed:
+            return weights(series_C[1], series_K[1], 0.0, 1.0)
+        return weights(0 * series_C[1], 0 * series_K[1], 0.0, 0.0)
+
+    return TorusBands(r.M_csr, (r.C_csr, r.G_csr, r.K_csr, *system.basis.sparse_matrices),
+                      value, slope)
 
 
 def unbalance_polynomial(system: RotorSystem, w_b: float) -> np.ndarray:
