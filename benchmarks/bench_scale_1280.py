@@ -40,31 +40,14 @@ if __package__ in (None, ""):  # run as a script: make the repository's `benchma
 
 import numpy as np
 
+from benchmarks.common import cpu_timed, vmhwm_gib, write_jsonl
+
 ROOT = Path(__file__).resolve().parents[1]
 N_ELEMENTS = 1280
 WORKLOADS = ("point", "branch", "stability", "modal-point", "modal-stability", "full-point",
              "full-point-modal", "critical", "modal-cli")
 AS_LIMIT_GIB = 8.0
 TIMEOUT_S = 300.0
-
-
-def vmhwm_gib() -> float:
-    """Peak resident memory of this process [GiB] (``VmHWM``)."""
-    for line in Path("/proc/self/status").read_text().splitlines():
-        if line.startswith("VmHWM:"):
-            return int(line.split()[1]) / 2**20
-    return float("nan")
-
-
-def cpu_timed(fun: Any, repeat: int = 1) -> tuple[float, float, Any]:
-    """Median CPU and wall seconds of ``fun()`` over ``repeat`` calls, the last result."""
-    cpus, walls, out = [], [], None
-    for _ in range(repeat):
-        c0, t0 = time.process_time(), time.perf_counter()
-        out = fun()
-        cpus.append(time.process_time() - c0)
-        walls.append(time.perf_counter() - t0)
-    return float(np.median(cpus)), float(np.median(walls)), out
 
 
 def one(name: str) -> dict[str, Any]:
@@ -166,17 +149,7 @@ def main(argv: list[str]) -> None:
         i = argv.index("--out")
         dest, argv = Path(argv[i + 1]), argv[:i] + argv[i + 2:]
     names = argv or list(WORKLOADS)
-    lines = [json.dumps({"start_utc": time.strftime("%H:%M:%S", time.gmtime()),
-                         "load": os.getloadavg()})]
-    print(lines[0], flush=True)
-    for name in names:
-        lines.append(json.dumps(run_one(name)))
-        print(lines[-1], flush=True)
-    lines.append(json.dumps({"end_utc": time.strftime("%H:%M:%S", time.gmtime()),
-                             "load": os.getloadavg()}))
-    print(lines[-1], flush=True)
-    if dest is not None:
-        dest.write_text("\n".join(lines) + "\n")
+    write_jsonl((run_one(name) for name in names), dest)
 
 
 if __name__ == "__main__":

@@ -34,7 +34,8 @@ from typing import Any
 if __package__ in (None, ""):  # run as a script: make the repository's `benchmarks` importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.bench_scale_1280 import AS_LIMIT_GIB, N_ELEMENTS, cpu_timed, vmhwm_gib
+from benchmarks.bench_scale_1280 import AS_LIMIT_GIB, N_ELEMENTS
+from benchmarks.common import cpu_timed, vmhwm_gib, write_jsonl
 
 ROOT = Path(__file__).resolve().parents[1]
 WORKLOADS = ("ns-blocks", "ns-blocks-dense", "ns-blocks-dense-2", "full-step",
@@ -133,17 +134,7 @@ def main(argv: list[str]) -> None:
     if "--out" in argv:
         i = argv.index("--out")
         dest, argv = Path(argv[i + 1]), argv[:i] + argv[i + 2:]
-    lines = [json.dumps({"start_utc": time.strftime("%H:%M:%S", time.gmtime()),
-                         "load": os.getloadavg()})]
-    print(lines[0], flush=True)
-    for name in argv or list(WORKLOADS):
-        lines.append(json.dumps(run_one(name)))
-        print(lines[-1], flush=True)
-    lines.append(json.dumps({"end_utc": time.strftime("%H:%M:%S", time.gmtime()),
-                             "load": os.getloadavg()}))
-    print(lines[-1], flush=True)
-    if dest is not None:
-        dest.write_text("\n".join(lines) + "\n")
+    write_jsonl((run_one(name) for name in argv or list(WORKLOADS)), dest)
 
 
 if __name__ == "__main__":

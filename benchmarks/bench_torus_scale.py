@@ -47,6 +47,8 @@ if __package__ in (None, ""):  # run as a script: make the repository's `benchma
 
 import numpy as np
 
+from benchmarks.common import cpu_timed, vmhwm_gib, write_jsonl
+
 ROOT = Path(__file__).resolve().parents[1]
 SIZES = (320, 1280)
 WORKLOADS = ("point", "branch")
@@ -55,25 +57,6 @@ AS_LIMIT_GIB = 14.0
 TIMEOUT_S = 900.0
 PITCHING = {"pitching": {"law": "harmonic", "value": 0.0, "frequency": 60.0,
                          "angle_amplitude": 0.005}}
-
-
-def vmhwm_gib() -> float:
-    """Peak resident memory of this process [GiB] (``VmHWM``)."""
-    for line in Path("/proc/self/status").read_text().splitlines():
-        if line.startswith("VmHWM:"):
-            return int(line.split()[1]) / 2**20
-    return float("nan")
-
-
-def cpu_timed(fun: Any, repeat: int = 1) -> tuple[float, float, Any]:
-    """Median CPU and wall seconds of ``fun()`` over ``repeat`` calls, the last result."""
-    cpus, walls, out = [], [], None
-    for _ in range(repeat):
-        c0, t0 = time.process_time(), time.perf_counter()
-        out = fun()
-        cpus.append(time.process_time() - c0)
-        walls.append(time.perf_counter() - t0)
-    return float(np.median(cpus)), float(np.median(walls)), out
 
 
 def build(n_elements: int) -> tuple[Any, Any, float]:
@@ -192,19 +175,8 @@ def main(argv: list[str]) -> None:
         before, argv = Path(argv[i + 1]), argv[:i] + argv[i + 2:]
     sizes = [int(a) for a in argv] or list(SIZES)
     trees = [("after", ROOT / "src")] + ([("before", before / "src")] if before else [])
-    lines = [json.dumps({"start_utc": time.strftime("%H:%M:%S", time.gmtime()),
-                         "load": os.getloadavg()})]
-    print(lines[0], flush=True)
-    for n in sizes:
-        for name in WORKLOADS:
-            for label, src in trees:
-                lines.append(json.dumps(run_one(name, n, src, label)))
-                print(lines[-1], flush=True)
-    lines.append(json.dumps({"end_utc": time.strftime("%H:%M:%S", time.gmtime()),
-                             "load": os.getloadavg()}))
-    print(lines[-1], flush=True)
-    if dest is not None:
-        dest.write_text("\n".join(lines) + "\n")
+    write_jsonl((run_one(name, n, src, label) for n in sizes for name in WORKLOADS
+                 for label, src in trees), dest)
 
 
 if __name__ == "__main__":

@@ -33,6 +33,43 @@ U_TABLE1 = "144.02 g*mm"  # the paper's Table 1 case: branch with the saddle-nod
 ROSS_DIR = Path(__file__).resolve().parent / ".ross"
 
 
+
+def vmhwm_gib() -> float:
+    """Peak resident memory of this process [GiB] (``VmHWM``)."""
+    for line in Path("/proc/self/status").read_text().splitlines():
+        if line.startswith("VmHWM:"):
+            return int(line.split()[1]) / 2**20
+    return float("nan")
+
+
+def cpu_timed(fun: Callable[[], Any], repeat: int = 1) -> tuple[float, float, Any]:
+    """Median CPU and wall seconds of ``fun()`` over ``repeat`` calls, the last result."""
+    cpus, walls, out = [], [], None
+    for _ in range(repeat):
+        c0, t0 = time.process_time(), time.perf_counter()
+        out = fun()
+        cpus.append(time.process_time() - c0)
+        walls.append(time.perf_counter() - t0)
+    return float(np.median(cpus)), float(np.median(walls)), out
+
+
+def write_jsonl(records: Any, dest: Path | None = None) -> None:
+    """Print (and write to ``dest``) one JSON line per record of the iterable
+    ``records``, between a start and an end line with the UTC time and the load."""
+    def stamp(key: str) -> str:
+        return json.dumps({key: time.strftime("%H:%M:%S", time.gmtime()),
+                           "load": os.getloadavg()})
+
+    lines = [stamp("start_utc")]
+    print(lines[0], flush=True)
+    for record in records:
+        lines.append(json.dumps(record))
+        print(lines[-1], flush=True)
+    lines.append(stamp("end_utc"))
+    print(lines[-1], flush=True)
+    if dest is not None:
+        dest.write_text("\n".join(lines) + "\n")
+
 def one_blas_thread() -> Any:
     """Limit BLAS to one thread in this process (threadpoolctl), for every method alike."""
     from threadpoolctl import threadpool_limits
