@@ -367,7 +367,9 @@ def bifurcation_curves(system: RotorSystem, speed_range: tuple[float, float],
             raise ConvergenceError(f"{where} stopped before any bifurcation: "
                                    f"{branch.message}")
         raise ConfigError("--from", range2[0], f"{where} has no saddle-node, period "
-                          "doubling or secondary Hopf; start where the response has one")
+                          "doubling or secondary Hopf" + (f" that its check confirms "
+                          f"({'; '.join(messages)})" if messages else "") +
+                          "; start where the response has one")
     fold = None
     if n_folds:
         fold = fold_curve(system, speed_range, param, range2, H, reference_speed=ref,
