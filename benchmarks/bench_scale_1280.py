@@ -24,9 +24,7 @@ the load of the shared machine, CPU much less. ``python -m benchmarks.bench_scal
 
 from __future__ import annotations
 
-import json
 import os
-import resource
 import subprocess
 import sys
 import tempfile
@@ -40,7 +38,13 @@ if __package__ in (None, ""):  # run as a script: make the repository's `benchma
 
 import numpy as np
 
-from benchmarks.common import cpu_timed, vmhwm_gib, write_jsonl
+from benchmarks.common import (
+    child_record,
+    cpu_timed,
+    fresh_process_record,
+    pop_option,
+    write_jsonl,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 N_ELEMENTS = 1280
@@ -121,35 +125,20 @@ def modal_cli() -> dict[str, Any]:
 def run_one(name: str) -> dict[str, Any]:
     """Workload ``name`` in a fresh process: its JSON record (or the reason it failed)."""
     if name == "modal-cli":
-        out = modal_cli()
-    else:
-        try:
-            proc = subprocess.run([sys.executable, "-m", "benchmarks.bench_scale_1280",
-                                   "--one", name], cwd=ROOT, capture_output=True, text=True,
-                                  timeout=TIMEOUT_S)
-        except subprocess.TimeoutExpired:
-            return {"workload": name, "failed": f"more than {TIMEOUT_S:.0f} s"}
-        if proc.returncode != 0:
-            return {"workload": name, "failed": proc.stderr.strip().splitlines()[-1:]}
-        out = json.loads(proc.stdout.strip().splitlines()[-1])
-    return {"workload": name, "load": os.getloadavg()[0], **out}
+        return {"workload": name, "load": os.getloadavg()[0], **modal_cli()}
+    return {"workload": name,
+            **fresh_process_record("benchmarks.bench_scale_1280", [name], TIMEOUT_S)}
 
 
 def main(argv: list[str]) -> None:
     if len(argv) >= 2 and argv[0] == "--one":
-        if argv[1] == "full-point-modal":      # the dense path of before can exhaust memory
-            lim = int(AS_LIMIT_GIB * 2**30)
-            resource.setrlimit(resource.RLIMIT_AS, (lim, lim))
-        out = one(argv[1])
-        out["peak_gib"] = vmhwm_gib()
-        print(json.dumps(out))
+        # the dense path of before can exhaust memory
+        child_record(lambda: one(argv[1]),
+                     AS_LIMIT_GIB if argv[1] == "full-point-modal" else None)
         return
-    dest = None
-    if "--out" in argv:
-        i = argv.index("--out")
-        dest, argv = Path(argv[i + 1]), argv[:i] + argv[i + 2:]
-    names = argv or list(WORKLOADS)
-    write_jsonl((run_one(name) for name in names), dest)
+    dest, argv = pop_option(argv, "--out")
+    write_jsonl((run_one(name) for name in argv or list(WORKLOADS)),
+                None if dest is None else Path(dest))
 
 
 if __name__ == "__main__":

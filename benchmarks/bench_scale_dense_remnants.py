@@ -22,10 +22,6 @@ line per workload and the load average.
 from __future__ import annotations
 
 import dataclasses
-import json
-import os
-import resource
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -35,7 +31,13 @@ if __package__ in (None, ""):  # run as a script: make the repository's `benchma
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from benchmarks.bench_scale_1280 import AS_LIMIT_GIB, N_ELEMENTS
-from benchmarks.common import cpu_timed, vmhwm_gib, write_jsonl
+from benchmarks.common import (
+    child_record,
+    cpu_timed,
+    fresh_process_record,
+    pop_option,
+    write_jsonl,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 WORKLOADS = ("ns-blocks", "ns-blocks-dense", "ns-blocks-dense-2", "full-step",
@@ -109,32 +111,19 @@ def one(name: str) -> dict[str, Any]:
 
 def run_one(name: str) -> dict[str, Any]:
     """Workload ``name`` in a fresh process: its JSON record (or why it failed)."""
-    try:
-        proc = subprocess.run([sys.executable, "-m", "benchmarks.bench_scale_dense_remnants",
-                               "--one", name], cwd=ROOT, capture_output=True, text=True,
-                              timeout=TIMEOUT_S)
-    except subprocess.TimeoutExpired:
-        return {"workload": name, "failed": f"more than {TIMEOUT_S:.0f} s"}
-    if proc.returncode != 0:
-        return {"workload": name, "failed": proc.stderr.strip().splitlines()[-1:]}
-    return {"workload": name, "load": os.getloadavg()[0],
-            **json.loads(proc.stdout.strip().splitlines()[-1])}
+    return {"workload": name, **fresh_process_record(
+        "benchmarks.bench_scale_dense_remnants", [name], TIMEOUT_S)}
 
 
 def main(argv: list[str]) -> None:
     if len(argv) >= 2 and argv[0] == "--one":
-        if argv[1] == "ns-blocks-dense":     # the batched dense solve can exhaust memory
-            lim = int(AS_LIMIT_GIB * 2**30)
-            resource.setrlimit(resource.RLIMIT_AS, (lim, lim))
-        out = one(argv[1])
-        out["peak_gib"] = vmhwm_gib()
-        print(json.dumps(out))
+        # the batched dense solve can exhaust memory
+        child_record(lambda: one(argv[1]),
+                     AS_LIMIT_GIB if argv[1] == "ns-blocks-dense" else None)
         return
-    dest = None
-    if "--out" in argv:
-        i = argv.index("--out")
-        dest, argv = Path(argv[i + 1]), argv[:i] + argv[i + 2:]
-    write_jsonl((run_one(name) for name in argv or list(WORKLOADS)), dest)
+    dest, argv = pop_option(argv, "--out")
+    write_jsonl((run_one(name) for name in argv or list(WORKLOADS)),
+                None if dest is None else Path(dest))
 
 
 if __name__ == "__main__":

@@ -35,8 +35,6 @@ from __future__ import annotations
 
 import json
 import os
-import resource
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -47,7 +45,13 @@ if __package__ in (None, ""):  # run as a script: make the repository's `benchma
 
 import numpy as np
 
-from benchmarks.common import cpu_timed, vmhwm_gib, write_jsonl
+from benchmarks.common import (
+    child_record,
+    cpu_timed,
+    fresh_process_record,
+    pop_option,
+    write_jsonl,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 SIZES = (320, 1280)
@@ -142,41 +146,25 @@ def run_one(name: str, n_elements: int, src: Path, label: str) -> dict[str, Any]
     """Workload ``name`` in a fresh process on the tree ``src``: its JSON record (or the
     reason it failed)."""
     env = {**os.environ, "PYTHONPATH": str(src), "OPENBLAS_NUM_THREADS": "1"}
-    rec: dict[str, Any] = {"code": label, "workload": name, "n_elements": n_elements}
-    try:
-        proc = subprocess.run([sys.executable, "-m", "benchmarks.bench_torus_scale", "--one",
-                               name, str(n_elements)], cwd=ROOT, capture_output=True,
-                              text=True, timeout=TIMEOUT_S, env=env)
-    except subprocess.TimeoutExpired:
-        return {**rec, "failed": f"more than {TIMEOUT_S:.0f} s"}
-    if proc.returncode != 0:
-        return {**rec, "failed": proc.stderr.strip().splitlines()[-1:]}
-    return {**rec, "load": os.getloadavg()[0], **json.loads(proc.stdout.strip().splitlines()[-1])}
+    return {"code": label, "workload": name, "n_elements": n_elements,
+            **fresh_process_record("benchmarks.bench_torus_scale", [name, str(n_elements)],
+                                   TIMEOUT_S, env)}
 
 
 def main(argv: list[str]) -> None:
     if len(argv) >= 3 and argv[0] == "--one":
-        lim = int(AS_LIMIT_GIB * 2**30)
-        resource.setrlimit(resource.RLIMIT_AS, (lim, lim))
-        out = one(argv[1], int(argv[2]))
-        out["peak_gib"] = vmhwm_gib()
-        print(json.dumps(out))
+        child_record(lambda: one(argv[1], int(argv[2])), AS_LIMIT_GIB)
         return
     if argv[:1] == ["--small"]:
         for rec in small():
             print(json.dumps(rec), flush=True)
         return
-    dest = before = None
-    if "--out" in argv:
-        i = argv.index("--out")
-        dest, argv = Path(argv[i + 1]), argv[:i] + argv[i + 2:]
-    if "--before" in argv:
-        i = argv.index("--before")
-        before, argv = Path(argv[i + 1]), argv[:i] + argv[i + 2:]
+    dest, argv = pop_option(argv, "--out")
+    before, argv = pop_option(argv, "--before")
     sizes = [int(a) for a in argv] or list(SIZES)
-    trees = [("after", ROOT / "src")] + ([("before", before / "src")] if before else [])
+    trees = [("after", ROOT / "src")] + ([("before", Path(before) / "src")] if before else [])
     write_jsonl((run_one(name, n, src, label) for n in sizes for name in WORKLOADS
-                 for label, src in trees), dest)
+                 for label, src in trees), None if dest is None else Path(dest))
 
 
 if __name__ == "__main__":

@@ -15,6 +15,7 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 import datetime  # noqa: E402
 import json  # noqa: E402
 import platform  # noqa: E402
+import resource  # noqa: E402
 import statistics  # noqa: E402
 import subprocess  # noqa: E402
 import sys  # noqa: E402
@@ -69,6 +70,41 @@ def write_jsonl(records: Any, dest: Path | None = None) -> None:
     print(lines[-1], flush=True)
     if dest is not None:
         dest.write_text("\n".join(lines) + "\n")
+
+
+def pop_option(argv: list[str], flag: str) -> tuple[str | None, list[str]]:
+    """(the value after ``flag``, argv without the two) or (None, argv)."""
+    if flag not in argv:
+        return None, argv
+    i = argv.index(flag)
+    return argv[i + 1], argv[:i] + argv[i + 2:]
+
+
+def child_record(fun: Callable[[], dict[str, Any]], limit_gib: float | None = None) -> None:
+    """The ``--one`` side of a fresh-process workload: ``fun()``'s record with the
+    process' peak memory (``peak_gib``) printed as the last line of JSON; the address
+    space capped at ``limit_gib`` first when given (a dense path that can exhaust memory
+    fails there instead of swapping)."""
+    if limit_gib is not None:
+        lim = int(limit_gib * 2**30)
+        resource.setrlimit(resource.RLIMIT_AS, (lim, lim))
+    out = fun()
+    out["peak_gib"] = vmhwm_gib()
+    print(json.dumps(out))
+
+
+def fresh_process_record(module: str, args: list[str], timeout: float,
+                         env: dict[str, str] | None = None) -> dict[str, Any]:
+    """``python -m module --one *args`` in a fresh process (from the repository): the
+    load and its record (:func:`child_record`), or ``failed`` with why."""
+    try:
+        proc = subprocess.run([sys.executable, "-m", module, "--one", *args], cwd=ROOT,
+                              capture_output=True, text=True, timeout=timeout, env=env)
+    except subprocess.TimeoutExpired:
+        return {"failed": f"more than {timeout:.0f} s"}
+    if proc.returncode != 0:
+        return {"failed": proc.stderr.strip().splitlines()[-1:]}
+    return {"load": os.getloadavg()[0], **json.loads(proc.stdout.strip().splitlines()[-1])}
 
 def one_blas_thread() -> Any:
     """Limit BLAS to one thread in this process (threadpoolctl), for every method alike."""
