@@ -76,6 +76,27 @@ def bordered(A: NDArray, b: NDArray, c: NDArray) -> tuple[NDArray, float | compl
     return sol[:n], (complex(sol[n]) if np.iscomplexobj(sol) else float(sol[n]))
 
 
+def bordered_null_vectors(A: NDArray, b: NDArray, c: NDArray
+                          ) -> tuple[NDArray, NDArray, float | complex]:
+    """(v, w, g): the right and left null-vector approximations of the bordered systems
+    ``[A b; c^T 0] [v; g] = [0; 1]`` and ``[A^T c; b^T 0] [w; h] = [0; 1]``, and g."""
+    v, g = bordered(A, b, c)
+    w, _ = bordered(A.T, c, b)
+    return v, w, g
+
+
+def unit_borders(v: NDArray, w: NDArray) -> tuple[NDArray, NDArray] | None:
+    """The borders (c, b) = (conj(v) / |v|, conj(w) / |w|) from the null vectors v, w of
+    :func:`bordered_null_vectors`, or None if either is not finite. ``bordered`` pairs a
+    border with a vector by the bilinear ``c^T v``: conjugated, ``c^T v = |v|``; for a
+    complex v, v itself can give ``v^T v ~ 0``, a near-singular bordered matrix (the
+    paper's C/R = 0.728 % Neimark-Sacker start went to another solution so). For real
+    vectors the conjugate is the vector."""
+    if not (np.all(np.isfinite(v)) and np.all(np.isfinite(w))):
+        return None
+    return np.conj(v) / np.linalg.norm(v), np.conj(w) / np.linalg.norm(w)
+
+
 def null_vectors(A: FloatArray) -> tuple[FloatArray, FloatArray]:
     """Unit right and left singular vectors of the smallest singular value of A."""
     U, _, Vt = np.linalg.svd(A)
@@ -101,9 +122,7 @@ class FoldSystem:
 
     def null_vectors(self, A: FloatArray) -> tuple[FloatArray, FloatArray, float]:
         """(v, w, g) of the bordered systems at A = R_x."""
-        v, g = bordered(A, self.b, self.c)
-        w, _ = bordered(A.T, self.c, self.b)
-        return v, w, g
+        return bordered_null_vectors(A, self.b, self.c)
 
     def evaluate(self, z: FloatArray) -> tuple[FloatArray, FloatArray]:
         n = self.base.n
@@ -120,9 +139,9 @@ class FoldSystem:
     def update_border(self, z: FloatArray) -> None:
         """b, c <- the unit left and right null vectors w, v at z (after a point)."""
         _, J = self.base.evaluate(z)
-        v, w, _ = self.null_vectors(J[:, : self.base.n])
-        if np.all(np.isfinite(v)) and np.all(np.isfinite(w)):
-            self.c, self.b = v / np.linalg.norm(v), w / np.linalg.norm(w)
+        borders = unit_borders(*self.null_vectors(J[:, : self.base.n])[:2])
+        if borders is not None:
+            self.c, self.b = borders
 
 
 @dataclass

@@ -37,7 +37,9 @@ from rotorsfd.continuation.folds import (
     FoldBranch,
     FoldOptions,
     bordered,
+    bordered_null_vectors,
     continue_folds,
+    unit_borders,
 )
 from rotorsfd.continuation.newton import newton_extended
 from rotorsfd.errors import ConvergenceError
@@ -174,17 +176,11 @@ class NeimarkSackerSystem:
         return np.concatenate([R, [g0.real, g0.imag]]), Jn
 
     def update_border(self, z: FloatArray) -> None:
-        """b, c <- the unit left and right null vectors of A at z (bordered solves),
-        conjugated: the border pairs with a null vector by the bilinear ``c^T v`` (as
-        :func:`bordered` writes it), so ``c = conj(v) / |v|`` gives ``c^T v = |v|``; ``v``
-        itself could give ``v^T v ~ 0`` for a complex v, a near-singular bordered matrix
-        (the start of the paper's C/R = 0.728 % curves went to another solution so)."""
-        A = self.hill(z)
-        v, _ = bordered(A, self.b, self.c)
-        w, _ = bordered(A.T, self.c, self.b)
-        if np.all(np.isfinite(v)) and np.all(np.isfinite(w)):
-            self.c = np.conj(v) / np.linalg.norm(v)
-            self.b = np.conj(w) / np.linalg.norm(w)
+        """b, c <- the unit left and right null vectors of A at z (bordered solves,
+        conjugated: :func:`~rotorsfd.continuation.folds.unit_borders`)."""
+        borders = unit_borders(*bordered_null_vectors(self.hill(z), self.b, self.c)[:2])
+        if borders is not None:
+            self.c, self.b = borders
 
 
 #: Largest relative move of lam1 from the given secondary Hopf to the curve's first point

@@ -34,9 +34,10 @@ from rotorsfd.continuation.folds import (
     FD_STEP,
     FoldBranch,
     FoldOptions,
-    bordered,
+    bordered_null_vectors,
     continue_folds,
     null_vectors,
+    unit_borders,
 )
 from rotorsfd.harmonic.branch_switching import doubled_coefficients, period_doubled
 from rotorsfd.harmonic.fold_curve import TwoParameterHB, TwoParameterProblem
@@ -86,9 +87,7 @@ class PeriodDoublingSystem:
         return self.base.admissible(self.embed(z))
 
     def null_vectors(self, A: FloatArray) -> tuple[FloatArray, FloatArray, float]:
-        v, g = bordered(A, self.b, self.c)
-        w, _ = bordered(A.T, self.c, self.b)
-        return v, w, g
+        return bordered_null_vectors(A, self.b, self.c)
 
     def evaluate(self, z: FloatArray) -> tuple[FloatArray, FloatArray]:
         full = self.embed(z)
@@ -106,9 +105,9 @@ class PeriodDoublingSystem:
     def update_border(self, z: FloatArray) -> None:
         """b, c <- the unit left and right null vectors of the odd block at z."""
         _, J = self.base.evaluate(self.embed(z))
-        v, w, _ = self.null_vectors(J[np.ix_(self.crit, self.crit)])
-        if np.all(np.isfinite(v)) and np.all(np.isfinite(w)):
-            self.c, self.b = v / np.linalg.norm(v), w / np.linalg.norm(w)
+        borders = unit_borders(*self.null_vectors(J[np.ix_(self.crit, self.crit)])[:2])
+        if borders is not None:
+            self.c, self.b = borders
 
 
 def period_doubling_problem(problem: TwoParameterProblem) -> TwoParameterProblem:
