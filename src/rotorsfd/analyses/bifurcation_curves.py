@@ -288,16 +288,17 @@ def _merge(fold: FoldCurve | None, pd: dict[str, list]) -> dict[str, NDArray]:
 def at_limit(leg: FoldBranch, hb: TwoParameterHB, system: RotorSystem, limit_max: float
              ) -> FoldBranch:
     """``leg``, or, when it stopped because its last orbit is at an element's validity
-    limit (within 2 % of ``limit_max``, ``analysis.response.max_eccentricity``), the same
+    limit (``ElementSet.at_limit``: within 2 % of ``limit_max``), the same
     points marked a result that ends there (success, the element named), as a response
     branch that ends at the film's limit is."""
     if leg.success or not leg.z.shape[0]:
         return leg
     el = system.elements
     X = hb.coefficients(leg.system.embed(leg.z[-1]))
-    element, value = el.limiting(orbit_samples(X[:, el.nl_dofs])[0])
-    if element is None or value < 0.98 * limit_max:
+    reached = el.at_limit(orbit_samples(X[:, el.nl_dofs])[0], limit_max)
+    if reached is None:
         return leg
+    element, value = reached
     return dataclasses.replace(
         leg, success=True, message=f"ended where {element.describe()} reached "
         f"{element.limit_label} = {value:.3f}, the limit analysis.response.max_eccentricity"

@@ -238,9 +238,10 @@ class ResponseResult:
         limit = self.info.get("limit_max")
         if not len(el) or not b.n_points or limit is None:
             return ""
-        element, value = el.limiting(orbit_samples(b.X[-1][:, el.nl_dofs])[0])
-        if element is None or value < 0.98 * limit:
+        reached = el.at_limit(orbit_samples(b.X[-1][:, el.nl_dofs])[0], limit)
+        if reached is None:
             return ""
+        element, value = reached
         return (f"{element.describe()} reached {element.limit_label} = {value:.3f}, the limit "
                 f"analysis.response.max_eccentricity = {limit:g} (raise it, up to 0.999, to "
                 "follow the branch closer to the housing)")

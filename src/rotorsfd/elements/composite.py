@@ -39,6 +39,10 @@ from rotorsfd.errors import ConfigError
 
 _COMPOSITES: dict[tuple, Any] = {}
 
+#: A last orbit whose largest validity measure is within this fraction of the limit is at
+#: the limit (the corrector stops just short of it).
+NEAR_LIMIT = 0.98
+
 
 class ElementSet:
     """The nonlinear elements of a system, with their union of DOFs and one force law."""
@@ -227,6 +231,16 @@ class ElementSet:
             return self.elements[0].limit(q)
         return max((e.limit(q[..., loc]) for e, loc in zip(self.elements, self.local,
                                                           strict=True)), default=0.0)
+
+    def at_limit(self, q: FloatArray, limit_max: float
+                 ) -> tuple[NonlinearElement, float] | None:
+        """The element whose validity measure over the samples ``q`` is within
+        :data:`NEAR_LIMIT` of ``limit_max`` (``analysis.response.max_eccentricity``) and
+        that measure, or None: a continuation that stopped there ended at the limit."""
+        element, value = self.limiting(q)
+        if element is None or value < NEAR_LIMIT * limit_max:
+            return None
+        return element, value
 
     def limiting(self, q: FloatArray) -> tuple[NonlinearElement | None, float]:
         """The element with the largest validity measure, and that measure."""
