@@ -66,24 +66,13 @@ from rotorsfd.harmonic.synthesis import max_radius, orbit_samples
 from rotorsfd.io import atomic
 from rotorsfd.model import dofs
 from rotorsfd.model.system import RotorSystem
-from rotorsfd.stability.bifurcation_check import (
-    BifurcationCheck,
-    CheckOptions,
-    check_bifurcations,
-)
-from rotorsfd.stability.branch_stability import (
-    BranchStability,
-    StabilityOptions,
-    branch_stability,
-    reported_kind,
-)
+from rotorsfd.stability.bifurcation_check import checks_as_configured
+from rotorsfd.stability.branch_stability import StabilityOptions, branch_stability, reported_kind
 
 if TYPE_CHECKING:
     import xarray as xr
     from matplotlib.figure import Figure
 
-    from rotorsfd.continuation.branch import Branch
-    from rotorsfd.harmonic.problem import PeriodicProblem
     from rotorsfd.io.schema import Config, ResponseAnalysis
 
 FloatArray = NDArray[np.float64]
@@ -305,18 +294,6 @@ def at_limit(leg: FoldBranch, hb: TwoParameterHB, system: RotorSystem, limit_max
         f" = {limit_max:g} (a result up to there; {leg.message})")
 
 
-def start_checks(branch: Branch, problem: PeriodicProblem, stability: BranchStability,
-                 options: StabilityOptions) -> list[BifurcationCheck | None]:
-    """The check of each located bifurcation of the start branch (one per
-    ``stability.bifurcations``, None when ``options.check`` is off), as ``rotorsfd
-    response`` runs it (:mod:`rotorsfd.stability.bifurcation_check`): no curve starts
-    from a bifurcation that vanishes at the check's H and M (a truncation artefact)."""
-    if not (options.check and stability.bifurcations):
-        return [None] * len(stability.bifurcations)
-    return check_bifurcations(branch, problem, stability, options,
-                              CheckOptions(rtol=options.check_rtol))
-
-
 def bifurcation_curves(system: RotorSystem, speed_range: tuple[float, float],
                        second_parameter: str, range2: tuple[float, float], H: int = 3, *,
                        harmonics_factor: int = 4, reference_speed: float | None = None,
@@ -349,7 +326,9 @@ def bifurcation_curves(system: RotorSystem, speed_range: tuple[float, float],
     opts = stability_options or StabilityOptions()
     st = branch_stability(branch, problem, opts)
     found, messages, noted = [], [], {}
-    for b, c in zip(st.bifurcations, start_checks(branch, problem, st, opts), strict=True):
+    # no curve starts from a bifurcation that vanishes at the check's H and M (an artefact)
+    checks = checks_as_configured(branch, problem, st, opts) or [None] * len(st.bifurcations)
+    for b, c in zip(st.bifurcations, checks, strict=True):
         if c is not None and c.vanished:
             messages.append(f"{reported_kind(b)} at {b.lam:.6g} rad/s not continued: "
                             f"{c.message}")

@@ -273,11 +273,10 @@ def _with_branch_stability(result: ResponseResult, problem: Any,
         st = branch_stability(result.branch, problem, options, progress=step)
         if options.check and st.bifurcations:
             # deferred: stability.bifurcation_check (loads 18 more modules)
-            from rotorsfd.stability.bifurcation_check import CheckOptions, check_bifurcations
+            from rotorsfd.stability.bifurcation_check import checks_as_configured
 
             bar.set_description_str("checking bifurcations", refresh=True)
-            st.checks = check_bifurcations(result.branch, problem, st, options,
-                                           CheckOptions(rtol=options.check_rtol))
+            st.checks = checks_as_configured(result.branch, problem, st, options)
         branch, st, added = with_fold_points(result.branch, st,
                                              FloquetEvaluator(problem, options))
         st.messages.extend(added)

@@ -231,6 +231,18 @@ def check_bifurcations(branch: Branch, problem: PeriodicProblem, stability: Bran
     return [_check_one(b, piece, opts, c) for b, piece, opts in out]
 
 
+def checks_as_configured(branch: Branch, problem: PeriodicProblem,
+                         stability: BranchStability, options: StabilityOptions
+                         ) -> list[BifurcationCheck] | None:
+    """:func:`check_bifurcations` of ``stability``'s located bifurcations when
+    ``options.check`` asks for it (``check_rtol`` the tolerance), else None: the check
+    ``rotorsfd response`` reports and ``bifurcation-curves`` starts its curves from."""
+    if not (options.check and stability.bifurcations):
+        return None
+    return check_bifurcations(branch, problem, stability, options,
+                              CheckOptions(rtol=options.check_rtol))
+
+
 def _check_one(b: Bifurcation, piece: _Piece, opts: StabilityOptions, c: CheckOptions
                ) -> BifurcationCheck:
     H_c, M_c = piece.H_c, opts.n_intervals
