@@ -4,10 +4,11 @@
 The CLI cannot express the pumped Mathieu oscillator of tests/stability/test_branch_points
 (no config describes a PeriodicProblem of one's own), so the case is a rotor:
 tests/data/issue21_branch_point.toml (the issue-14 anisotropic rotor, no gravity, so its
-response keeps x(t + T/2) = -x(t)). Its adaptive-H HB equations (H = 13, N_f = 32) have
-two symmetry-breaking pitchforks near Omega~ = 0.307 joined by a loop of symmetry-broken
-orbits (no Floquet multiplier crosses +1 there: they are the truncated equations' branch
-points, and the response's check at H = 20 says so). Checks:
+response keeps x(t + T/2) = -x(t)). Its HB equations at H = 13 and N_f = 32 (fixed in the
+file) have two pairs of symmetry-breaking pitchforks near Omega~ = 0.307-0.312, each pair
+joined by a loop of symmetry-broken orbits (no Floquet multiplier crosses +1 there: they
+are the truncated, coarsely sampled equations' branch points; with the default adaptive
+H and N_f the branch has none). Checks:
 
 - the CLI's branch_bp1.nc = the Python ``switch_branch_point`` at the located point, with
   the same keywords, leg by leg (1e-9; the CLI stops each leg where it closes on itself,
@@ -185,7 +186,7 @@ def test_bp_number_out_of_range_and_untyped_branch_points():
 
 def test_bp_number_too_large_after_the_main_branch(cli_run, tmp_path, capsys):
     out = tmp_path / "o"
-    status = cli.main(["response", str(CASE), "-o", str(out), "-q", "--switch-at", "bp:3"])
+    status = cli.main(["response", str(CASE), "-o", str(out), "-q", "--switch-at", "bp:5"])
     line = one_error_line(capsys)
-    assert status == 2 and "'bp:3'" in line and "bp:1..bp:2" in line
-    assert (out / "branch.csv").exists() and not (out / "branch_bp3.csv").exists()
+    assert status == 2 and "'bp:5'" in line and "bp:1..bp:4" in line
+    assert (out / "branch.csv").exists() and not (out / "branch_bp5.csv").exists()

@@ -16,6 +16,8 @@ se_2 edge (sin 2z, sin 4z: x^2 has no such part) stays a pitchfork.
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
@@ -23,10 +25,16 @@ from scipy.optimize import brentq, fsolve
 from scipy.special import mathieu_a, mathieu_b
 
 from rotorsfd.harmonic.examples import duffing
-from rotorsfd.harmonic.periodic import continue_periodic
+from rotorsfd.harmonic.orbit_branch import continue_both_ways
+from rotorsfd.harmonic.periodic import BORDERED, continue_periodic
 from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.stability.bifurcations import BranchSample
-from rotorsfd.stability.branch_points import bordered_tests, branch_system, switch_branch_point
+from rotorsfd.stability.branch_points import (
+    bordered_tests,
+    branch_system,
+    stored_signs,
+    switch_branch_point,
+)
 from rotorsfd.stability.branch_stability import (
     FloquetEvaluator,
     StabilityOptions,
@@ -209,3 +217,53 @@ def test_branch_points_on_adaptive_harmonics_branches():
     branch = continue_periodic(d, 0.5, 4.0, 3, adaptive_harmonics=True, H_max=15)
     assert len(set(branch.info["harmonics"])) >= 3 and branch.folds().size == 2
     assert branch_point_scan(branch, d).intervals == []
+
+
+def _without_stored_signs(branch):
+    return dataclasses.replace(branch, info={k: v for k, v in branch.info.items()
+                                             if k not in BORDERED})
+
+
+def test_the_continuation_signs_give_the_re_evaluated_scan(first_tongue):
+    """The signs of tau_BP the continuation took at its points (one HB system per run)
+    bracket the same branch points as the scan that re-evaluates every point in one system
+    of the branch's scaling (a second evaluation: the shift fixed at another point), on a
+    fixed-H branch, an adaptive-H branch (pairs across an H change are re-evaluated) and
+    a fold with none; a reversed branch's stale signs are not used."""
+    p, branch, _ = first_tongue
+    stored = branch_point_scan(branch, p)
+    assert np.all(np.isfinite(branch.info["bordered_sign"]))
+    assert stored.systems == {}                          # nothing re-evaluated
+    again = branch_point_scan(_without_stored_signs(branch), p)
+    assert stored.intervals == again.intervals and len(stored.intervals) == 2
+    assert np.all(stored.tests * again.tests > 0) or np.all(stored.tests * again.tests < 0)
+    adaptive = continue_periodic(p, 0.8, 1.6, H, ds=0.02, ds_max=0.05,
+                                 adaptive_harmonics=True, H_min=2, H_max=12)
+    Hs = adaptive.info["harmonics"]
+    assert len(set(Hs)) > 1
+    scan = branch_point_scan(adaptive, p)
+    assert scan.intervals == branch_point_scan(_without_stored_signs(adaptive), p).intervals
+    assert len(scan.intervals) == 2
+    new = np.flatnonzero(np.diff(adaptive.info["bordered_system"]) != 0) + 1
+    Ns = adaptive.info["n_samples"]
+    assert set(scan.systems) <= {(int(Hs[j]), int(Ns[j])) for j in new}
+    d = duffing(c=0.05, k=1.0, k3=1.0, F=0.3)
+    fold = continue_periodic(d, 0.5, 4.0, 5)
+    assert branch_point_scan(fold, d).intervals == [] and fold.folds().size == 2
+    flipped = dataclasses.replace(branch, tangents=-branch.tangents)
+    assert np.all(np.isnan(stored_signs(flipped)[0]))
+    assert branch_point_scan(flipped, p).intervals == stored.intervals
+
+
+def test_signs_of_a_branch_joined_from_legs_both_ways():
+    """A branch continued both ways from a point inside the range (legs joined, the lower
+    one reversed: its tangents and so its signs negated) brackets the pitchforks as the
+    re-evaluated scan does; the junction pair is re-evaluated (two systems)."""
+    p = pumped()
+    X0 = continue_periodic(p, 1.3, 1.31, H).X[0]
+    joined = continue_both_ways(p, 1.3, X0, H, 0.8, 1.6, ds=0.02, ds_max=0.05)
+    assert np.unique(joined.info["bordered_system"]).size == 2
+    assert np.all(np.isfinite(stored_signs(joined)[0]))
+    scan = branch_point_scan(joined, p)
+    assert scan.intervals == branch_point_scan(_without_stored_signs(joined), p).intervals
+    assert len(scan.intervals) == 2 and len(scan.systems) == 1

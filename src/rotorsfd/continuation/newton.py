@@ -139,6 +139,23 @@ def metric(system: object) -> FloatArray:
     return np.ones(system.n + 1) if w is None else np.asarray(w, dtype=float)
 
 
+#: Largest dense J whose bordered-determinant sign :func:`bordered_sign` takes (a sign per
+#: accepted point of a branch costs one LU of the (n+1)-square bordered matrix).
+SIGN_MAX = 512
+
+
+def bordered_sign(J: FloatArray, t: FloatArray, weights: FloatArray | None = None) -> float:
+    """``sign det [J; (W t)^T]``: the sign of the branch-point test function tau_BP
+    (Allgower & Georg, *Numerical Continuation Methods*, 1990, sec. 8.1), which changes at
+    a simple branch point and not at a fold (:mod:`rotorsfd.stability.branch_points`);
+    NaN for a sparse J, one of more than :data:`SIGN_MAX` rows, or a singular matrix."""
+    if not isinstance(J, np.ndarray) or J.shape[0] > SIGN_MAX:
+        return float("nan")
+    w = np.ones(J.shape[1]) if weights is None else weights
+    sign, logdet = np.linalg.slogdet(np.vstack([J, w * t]))
+    return float(sign) if sign != 0 and np.isfinite(logdet) else float("nan")
+
+
 def tangent(J: FloatArray, t_prev: FloatArray, weights: FloatArray | None = None
             ) -> FloatArray:
     """Null vector t of J (n, n+1) of unit W-norm, oriented so that ``t.W.t_prev > 0``.

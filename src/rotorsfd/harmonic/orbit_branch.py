@@ -29,7 +29,12 @@ import numpy as np
 
 from rotorsfd.continuation.branch import Branch, BranchPoint
 from rotorsfd.errors import ConfigError, ConvergenceError
-from rotorsfd.harmonic.periodic import PeriodicSolution, continue_periodic, solve_periodic
+from rotorsfd.harmonic.periodic import (
+    BORDERED,
+    PeriodicSolution,
+    continue_periodic,
+    solve_periodic,
+)
 from rotorsfd.harmonic.problem import PeriodicProblem
 
 __all__ = ["CLOSURE_TOL", "SAME_TOL", "OrbitFit", "continue_both_ways", "correct_orbit",
@@ -266,6 +271,16 @@ def join_segments(segments: list[tuple[Branch, bool]]) -> Branch:
     info = dict(segments[-1][0].info)
     if all(b.info.get("n_samples") is not None for b, _ in segments):
         info["n_samples"] = cat(lambda b: np.asarray(b.info["n_samples"]))
+    for key in BORDERED:
+        info.pop(key, None)
+    if all(np.shape(b.info.get(key)) == (b.n_points,) for b, _ in segments
+           for key in BORDERED):   # a reversed leg: its tangents, so the sign, negated
+        info["bordered_sign"] = cat(lambda b: b.info["bordered_sign"]) * sign
+        info["bordered_dir"] = cat(lambda b: b.info["bordered_dir"]) * sign
+        info["bordered_lam"] = cat(lambda b: b.info["bordered_lam"])
+        info["bordered_system"] = np.concatenate(   # the legs' systems are their own
+            [np.asarray(segments[i][0].info["bordered_system"])[k] * len(segments) + i
+             for i, k, _ in idx])
 
     def resolver(s_: float) -> BranchPoint:
         for off, L, rev, b in spans:

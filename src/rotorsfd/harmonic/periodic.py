@@ -24,7 +24,13 @@ from numpy.typing import NDArray
 
 from rotorsfd.continuation.arclength import ArcLengthOptions, arclength
 from rotorsfd.continuation.branch import Branch, BranchPoint
-from rotorsfd.continuation.newton import NewtonResult, newton_extended, tangent
+from rotorsfd.continuation.newton import (
+    NewtonResult,
+    bordered_sign,
+    metric,
+    newton_extended,
+    tangent,
+)
 from rotorsfd.errors import ConvergenceError
 from rotorsfd.harmonic.blas import single_threaded_blas
 from rotorsfd.harmonic.condensation import CondensedHB
@@ -198,7 +204,7 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
         t_prev, plane = convert_tangent(start_tangent, H, width), True
     if store_jacobians is None:
         store_jacobians = condensed
-    keys = ("lam", "X", "w", "t", "it", "ds", "J", "al", "N", "z", "sys", "H", "te")
+    keys = ("lam", "X", "w", "t", "it", "ds", "J", "al", "N", "z", "sys", "H", "te", "bp")
     out: dict[str, list] = {k: [] for k in keys}
     state: dict = {"refine": False, "coarsen": False, "skip": False, "s": 0.0}
     condensers: dict[int, CondensedHB] = {}   # of the truncation estimate, by H
@@ -265,7 +271,9 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
             w = problem.frequency(lam)
             step = step or state.pop("step", 0.0)
             state["s"] += step
-            vals = (lam, X, w, t, it, step, J, al, system.N, z, system, system.H, te)
+            # the branch-point test's sign in this system, for the scan after Floquet
+            bp = bordered_sign(Jz, t, metric(system))
+            vals = (lam, X, w, t, it, step, J, al, system.N, z, system, system.H, te, bp)
             for key, val in zip(out, vals, strict=True):
                 out[key].append(val)
             stop = False
@@ -353,9 +361,30 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
         info={"n_samples": np.array(out["N"], dtype=np.int64),
               "n_samples_rule": n_samples_rule,
               "alias_tol": alias_tol, "harmonics": Hs, "truncation_error": te,
-              "harmonics_tol": harmonics_tol, "adaptive_harmonics": adaptive_harmonics},
+              "harmonics_tol": harmonics_tol, "adaptive_harmonics": adaptive_harmonics,
+              **bordered_info(out["bp"], out["sys"], out["lam"], out["t"])},
         resolver=_Resolver(problem, out["z"], out["t"], s_all, out["sys"], tol, scale))
 
+
+
+#: The ``Branch.info`` columns of :func:`bordered_info`.
+BORDERED = ("bordered_sign", "bordered_system", "bordered_lam", "bordered_dir")
+
+
+def bordered_info(signs: list[float], systems: list[HBSystem], lam: list[float],
+                  tangents: list[FloatArray]) -> dict[str, NDArray[np.generic]]:
+    """``Branch.info`` columns of the branch-point test at every point: its sign
+    (``bordered_sign``, NaN where not taken), the index of the HB system it was taken in
+    (``bordered_system``: signs compare only within one system; a new one at every change
+    of H or N_f) and, to recognise the point it belongs to, its ``bordered_lam`` and the
+    sign of its tangent's lam component (``bordered_dir``: a reversed branch does not
+    match)."""
+    ids: dict[int, int] = {}
+    return {"bordered_sign": np.array(signs, dtype=float),
+            "bordered_system": np.array([ids.setdefault(id(s), len(ids)) for s in systems],
+                                        dtype=np.int64),
+            "bordered_lam": np.array(lam, dtype=float),
+            "bordered_dir": np.array([np.sign(t[-1]) for t in tangents], dtype=float)}
 
 
 def _coarser_harmonics(system: HBSystem, x: FloatArray, error: float, H_min: int,

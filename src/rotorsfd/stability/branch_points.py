@@ -28,7 +28,8 @@ vector of ``R_x``. Tangents ``alpha t1 + beta e`` of solution curves satisfy::
     a11 alpha^2 + 2 a12 alpha beta + a22 beta^2 = 0,   a_ij = psi . R''[p_i, p_j]
 
 with ``a11 = 0`` (t1 is a solution curve's tangent: ``R''[t1, t1] + J z'' = 0``), so the
-second root is ``t2 ~ a22 t1 - 2 a12 e`` (needs ``a12 != 0``: a simple branch point).
+second root is ``t2 ~ a22 t1 - 2 a12 e`` (needs ``a12 != 0``: a simple branch point),
+oriented towards larger lam (a pitchfork's: its largest component positive).
 ``R''[u, w]`` by central differences of J: ``(J(z + h u) - J(z - h u)) w / 2h``.
 Type: ``symmetry-breaking pitchfork`` when the second branch does not cross the parameter
 (``|t2_lam| <= PITCHFORK_TOL |t1_lam|``: a22 = 0, as a Z2 symmetry forces), else
@@ -50,7 +51,7 @@ from rotorsfd.continuation.newton import metric, newton_extended
 from rotorsfd.errors import ConvergenceError
 from rotorsfd.harmonic.fourier import to_real
 from rotorsfd.harmonic.hb_system import HBSystem, hb_system
-from rotorsfd.harmonic.periodic import continue_periodic
+from rotorsfd.harmonic.periodic import BORDERED, continue_periodic
 from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.harmonic.truncation import convert_tangent
 
@@ -111,6 +112,21 @@ def bordered_test(system: Any, z: FloatArray, t: FloatArray, sign_only: bool = F
     return float(sign * np.linalg.svd(A, compute_uv=False)[-1])
 
 
+def stored_signs(branch: Branch) -> tuple[FloatArray, NDArray[np.int64]] | None:
+    """The signs of the bordered test the continuation took at the branch's points
+    (``Branch.info["bordered_sign"]``, NaN where it did not) and the index of the HB
+    system of each (two signs compare only within one system); a point whose stored
+    ``bordered_lam`` or tangent direction is not its own (points inserted, reordered or
+    reversed since) gets NaN; None without such columns."""
+    info, n = branch.info, branch.n_points
+    cols = [info.get(k) for k in BORDERED]
+    if any(c is None or np.shape(c) != (n,) for c in cols) or branch.tangents.shape[0] != n:
+        return None
+    sign, system, lam, direction = (np.asarray(c) for c in cols)
+    own = (lam == branch.lam) & (direction == np.sign(branch.tangents[:, -1]))
+    return np.where(own, sign, np.nan), system.astype(np.int64)
+
+
 def harmonics_of(branch: Branch) -> NDArray[np.int64]:
     """H of every computed point (adaptive H: ``info['harmonics']``, else ``branch.H``)."""
     Hs = branch.info.get("harmonics")
@@ -119,16 +135,26 @@ def harmonics_of(branch: Branch) -> NDArray[np.int64]:
     return np.full(branch.n_points, branch.H, dtype=np.int64)
 
 
+def samples_of(branch: Branch) -> NDArray[np.int64]:
+    """N_f of every computed point (adaptive N_f: ``info['n_samples']``, else
+    ``branch.n_samples``)."""
+    Ns = branch.info.get("n_samples")
+    if Ns is not None and np.shape(Ns) == (branch.n_points,):
+        return np.asarray(Ns, dtype=np.int64)
+    return np.full(branch.n_points, branch.n_samples, dtype=np.int64)
+
+
 def branch_system(problem: PeriodicProblem, branch: Branch, index: int = 0,
                   H: int | None = None, limit_max: float = 1.0) -> HBSystem:
-    """An HB system of the branch's N_f and scaling with H harmonics (default the H of
-    point ``index``; its condensation shift fixed at that point), in which points of the
-    branch are evaluated. Needs a condensed branch (ValueError otherwise)."""
+    """An HB system of the branch's scaling with the N_f of point ``index`` (the one its
+    point was solved with) and H harmonics (default that point's H too; its condensation
+    shift fixed at that point), in which points of the branch are evaluated. Needs a
+    condensed branch (ValueError otherwise)."""
     if not branch.condensed:
         raise ValueError("branch points are tested on condensed branches")
     H = int(harmonics_of(branch)[index]) if H is None else int(H)
     system, _ = hb_system(problem, H, float(branch.lam[index]), branch.X[index][: H + 1],
-                          int(branch.n_samples), True, branch.lam_scale, limit_max)
+                          int(samples_of(branch)[index]), True, branch.lam_scale, limit_max)
     return system
 
 
@@ -193,7 +219,10 @@ def second_tangent(system: HBSystem, z: FloatArray, t1: FloatArray, h: float = F
                                "is zero")
     t2 = a22 * t1 - 2.0 * a12 * e
     t2 = t2 / np.sqrt(t2 @ (W * t2))
-    return t2, (a11, a12, a22)
+    # the sign of (psi, v) is the SVD's: orient t2 towards larger lam (transcritical), or
+    # its largest component positive (pitchfork, t2_lam ~ 0), the same in any system
+    lead = -1 if abs(t2[-1]) > PITCHFORK_TOL * abs(t1[-1]) else int(np.argmax(np.abs(t2)))
+    return (t2 if t2[lead] >= 0 else -t2), (a11, a12, a22)
 
 
 def locate_branch_point(problem: PeriodicProblem, branch: Branch, i: int,
@@ -201,7 +230,7 @@ def locate_branch_point(problem: PeriodicProblem, branch: Branch, i: int,
                         ) -> LocatedBranchPoint:
     """The branch point between computed points i and i+1 (a sign change of the bordered
     test there), located by Brent in s, with its second tangent and type; ``system``: of
-    the H of point i+1 (the one ``Branch.point_at`` re-solves in between)."""
+    the H and N_f of point i+1 (the ones ``Branch.point_at`` re-solves in between)."""
     system = system or branch_system(problem, branch, i + 1)
     cache: dict[float, Any] = {}
 

@@ -1,8 +1,9 @@
 """Branch points among a branch's located bifurcations: found by the bordered HB
 determinant, located on the HB equations and typed.
 
-:func:`branch_point_scan` evaluates ``tau_BP = det [J; t^T]``
-(:mod:`~rotorsfd.stability.branch_points`) at every computed point and keeps the
+:func:`branch_point_scan` takes the sign of ``tau_BP = det [J; t^T]``
+(:mod:`~rotorsfd.stability.branch_points`) at every computed point (as the continuation
+took it there, where it could) and keeps the
 intervals where it changes sign while dlam/ds does not (a turn is a fold, where tau_BP
 keeps its sign). :func:`type_branch_points` then, for each such interval,
 
@@ -38,6 +39,8 @@ from rotorsfd.stability.branch_points import (
     harmonics_of,
     locate_branch_point,
     point_test,
+    samples_of,
+    stored_signs,
 )
 from rotorsfd.stability.branch_result import reported_kind
 
@@ -47,38 +50,55 @@ SHORT = {"symmetry-breaking pitchfork": "pitchfork", "transcritical": "transcrit
 
 @dataclass
 class BranchPointScan:
-    """The sign of the bordered test at every point (``tests``, in the system of the
-    point's H), the intervals i (points i, i+1) where it changes sign without a turn, and
-    the HB systems it was evaluated in, by H."""
+    """The sign of the bordered test at every point (``tests``: as the continuation took
+    it, else in a system of the point's H), the intervals i (points i, i+1) where it
+    changes sign without a turn, and the HB systems it was re-evaluated in, by (H, N_f)."""
 
     tests: NDArray[np.float64]
     intervals: list[int]
-    systems: dict[int, HBSystem] = field(repr=False)
+    systems: dict[tuple[int, int], HBSystem] = field(repr=False)
 
 
 def branch_point_scan(branch: Branch, problem: PeriodicProblem) -> BranchPointScan | None:
     """:class:`BranchPointScan` of a condensed branch with tangents; None where the test
-    does not apply (a full-HB branch, fewer than 2 points) or cannot be evaluated. An
-    interval whose ends have different H (adaptive harmonics) is tested with both ends
-    in the system of the second's H (the first padded or cut: near a solution, the sign
-    is that of the solution's)."""
+    does not apply (a full-HB branch, fewer than 2 points) or cannot be evaluated. Two
+    neighbours the continuation took the sign at in one HB system
+    (:func:`~rotorsfd.stability.branch_points.stored_signs`) are compared as stored, with
+    no re-evaluation; the others are evaluated in a system of the branch's scaling
+    (:func:`~rotorsfd.stability.branch_points.branch_system`): an interval whose ends
+    have different H or N_f (adaptive harmonics or samples) with both ends in the system
+    of the second's H and N_f (the first padded or cut: near a solution, the sign is that
+    of the solution's)."""
     if branch.n_points < 2 or branch.tangents.size == 0 or not branch.condensed:
         return None
-    Hs = harmonics_of(branch)
-    systems: dict[int, HBSystem] = {}
-    cache: dict[tuple[int, int], float] = {}
+    Hs, Ns = harmonics_of(branch), samples_of(branch)
+    systems: dict[tuple[int, int], HBSystem] = {}
+    cache: dict[tuple[int, int, int], float] = {}
+    stored = stored_signs(branch)
 
-    def test(i: int, H: int) -> float:
-        if (i, H) not in cache:
-            if H not in systems:
-                systems[H] = branch_system(problem, branch, i, H)
-            cache[(i, H)] = point_test(systems[H], problem, branch, i)
-        return cache[(i, H)]
+    def test(i: int, j: int) -> float:   # point i in the system of point j's H and N_f
+        key = (int(Hs[j]), int(Ns[j]))
+        if (i, *key) not in cache:
+            if key not in systems:
+                systems[key] = branch_system(problem, branch, j)
+            cache[(i, *key)] = point_test(systems[key], problem, branch, i)
+        return cache[(i, *key)]
+
+    def pair(i: int) -> tuple[float, float]:
+        if stored is not None:
+            sign, system = stored
+            if system[i] == system[i + 1] and np.isfinite(sign[i] * sign[i + 1]):
+                return float(sign[i]), float(sign[i + 1])
+        return test(i, i + 1), test(i + 1, i + 1)
+
+    def own(i: int) -> float:
+        if stored is not None and np.isfinite(stored[0][i]):
+            return float(stored[0][i])
+        return test(i, i)
 
     try:
-        pairs = [(test(i, int(Hs[i + 1])), test(i + 1, int(Hs[i + 1])))
-                 for i in range(branch.n_points - 1)]
-        tests = np.array([test(i, int(Hs[i])) for i in range(branch.n_points)])
+        pairs = [pair(i) for i in range(branch.n_points - 1)]
+        tests = np.array([own(i) for i in range(branch.n_points)])
     except (ValueError, ArithmeticError, ConvergenceError, np.linalg.LinAlgError):
         return None
     if not np.all(np.isfinite(tests)):
@@ -107,8 +127,8 @@ def type_branch_points(bifs: list[Bifurcation], scan: BranchPointScan, branch: B
     used: set[int] = set()
     for i in scan.intervals:
         try:
-            bp = locate_branch_point(problem, branch, i,
-                                     scan.systems[int(harmonics_of(branch)[i + 1])])
+            bp = locate_branch_point(problem, branch, i, scan.systems.get(
+                (int(harmonics_of(branch)[i + 1]), int(samples_of(branch)[i + 1]))))
         except (ConvergenceError, ArithmeticError, ValueError, np.linalg.LinAlgError) as exc:
             messages.append(f"branch point between lam = {branch.lam[i]:.9g} and "
                             f"{branch.lam[i + 1]:.9g} (the bordered HB determinant changes "
