@@ -29,7 +29,7 @@ from rotorsfd.errors import ConfigError
 from rotorsfd.harmonic.fold_curve import TwoParameterProblem
 from rotorsfd.harmonic.problem import NonlinearLaw, PeriodicProblem
 from rotorsfd.model.base_motion import BaseMotion, BaseState, Constant
-from rotorsfd.model.base_polynomial import PolynomialTerms
+from rotorsfd.model.base_polynomial import BandedTerms, PolynomialTerms
 from rotorsfd.model.base_terms import (
     BaseBasis,
     BaseCoefficients,
@@ -213,7 +213,8 @@ class RotorSystem:
 
     # ---- harmonic balance --------------------------------------------------------------
     def periodic_problem(self, parameter: str = "speed", speed: float | None = None,
-                         assembly: str = "polynomial") -> PeriodicProblem:
+                         assembly: str = "polynomial", bands: BandedTerms | None = None
+                         ) -> PeriodicProblem:
         """The HB problem with continuation parameter ``parameter`` (see PARAMETERS).
 
         For parameters other than the speed, ``speed`` fixes the rotor speed. Every
@@ -225,6 +226,12 @@ class RotorSystem:
         scaled add or two; parameter-free matrices are the same objects at every call.
         ``"direct"``: the base terms recombined from the basis at every call (the
         reference, for tests and benchmarks); equal to round-off.
+
+        ``bands``: this rotor's matrices and base patterns in band storage, formed once
+        (:class:`~rotorsfd.model.base_polynomial.BandedTerms`, e.g. shared by the problems
+        of :meth:`two_parameter_problem`): the polynomial linear part summed from them,
+        the same numbers without the sparse sums and conversions (ignored for another
+        rotor, and where the linear part is dense).
         """
         if assembly not in ("polynomial", "direct"):
             raise ConfigError("assembly", assembly, "must be 'polynomial' or 'direct'")
@@ -266,15 +273,27 @@ class RotorSystem:
             return BaseCoefficients(np.zeros(12), np.zeros(12), np.zeros(8))
 
         if assembly == "polynomial":
-            if par.kind == "base_rate":
-                lin = self.linear_terms(par.name, speed, state0)
+            frozen = par.kind in ("unbalance", "element")  # the linear part is free of lam
+            summed = None
+            if bands is not None and bands.rotor is r:
+                summed = bands.linear_part(
+                    par.rate_name if par.kind == "base_rate" else "speed",
+                    None if fixed_base else state0,
+                    float(speed) if par.kind != "speed" else 0.0,
+                    float(speed) if frozen else None)
+            if summed is not None:
+                matrices, lin = summed
             else:
-                lin = self.linear_terms("speed", state=None if fixed_base else state0)
-            if par.kind in ("unbalance", "element"):   # the linear part is free of lam
-                lin = lin.constant(float(speed))
-            # band storage of (M, D, K): the condensation reads it directly; dense arrays
-            # for the other callers are built on request (dense storage for a wide band)
-            matrices = lin.linear_part(r.M_csr)
+                if par.kind == "base_rate":
+                    lin = self.linear_terms(par.name, speed, state0)
+                else:
+                    lin = self.linear_terms("speed", state=None if fixed_base else state0)
+                if frozen:
+                    lin = lin.constant(float(speed))
+                # band storage of (M, D, K): the condensation reads it directly; dense
+                # arrays for the other callers are built on request (dense storage for a
+                # wide band)
+                matrices = lin.linear_part(r.M_csr)
             dmatrices = matrices.derivatives
 
             def base_load(lam: float) -> np.ndarray:
@@ -445,14 +464,16 @@ class RotorSystem:
             raise ConfigError("parameter", second, "must be one of " + ", ".join(
                 p for p in PARAMETERS if PARAMETERS[p].kind != "speed")
                 + ", elements.<name>.<field>")
-        if par.kind == "base_rate" or not self.base.is_fixed:
-            _ = self.basis   # built once, shared by every copy
+        moving = par.kind == "base_rate" or not self.base.is_fixed
+        # the rotor's matrices and base patterns in band storage once, for every problem
+        # of the family (the basis built once, shared by every copy)
+        bands = BandedTerms(self.rotor, self.basis if moving else None)
 
         def first(value: float) -> PeriodicProblem:
-            return self.with_parameter(second, value).periodic_problem("speed")
+            return self.with_parameter(second, value).periodic_problem("speed", bands=bands)
 
         def across(speed: float) -> PeriodicProblem:
-            return self.periodic_problem(second, speed)
+            return self.periodic_problem(second, speed, bands=bands)
 
         return TwoParameterProblem(first, across, ("speed", second))
 
