@@ -9,8 +9,7 @@ two-parameter family) and the LinearDynamics view of a rotor on a base in a cons
 
 from __future__ import annotations
 
-import functools
-from functools import cached_property
+from functools import cache, cached_property
 from typing import Any
 
 import numpy as np
@@ -62,7 +61,7 @@ def coefficient_polynomial(state: BaseState, speed: float, variable: str
             base_coefficient_derivatives(st0, speed)[variable], _curvature(variable))
 
 
-@functools.lru_cache(maxsize=None)
+@cache
 def _curvature(variable: str) -> BaseCoefficients:
     """c2 of :func:`coefficient_polynomial` for a rate (free of the state: found once per
     rate; read-only arrays)."""
