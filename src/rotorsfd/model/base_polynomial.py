@@ -340,6 +340,7 @@ class BandedTerms:
         self.band = kl, ku = bandwidths((*own, *patterns))
         self.M, self.C, self.G, self.K = (to_band(a, kl, ku) for a in own)
         self.patterns = tuple(to_band(a, kl, ku) for a in patterns)
+        self._used_by_M = np.any(self.M != 0.0, axis=0)   # the diagonals M occupies
 
     def linear_part(self, variable: str, state: BaseState | None = None, speed: float = 0.0,
                     at: float | None = None) -> tuple[BandedLinearPart, PolynomialTerms] | None:
@@ -371,7 +372,7 @@ class BandedTerms:
             D, K = ((value(t + (None,) * (3 - len(t)), at),) for t in (D, K))
             if F:
                 F = (value(F, at),)
-        band = self._nonzero_band((self.M, *D, *K))
+        band = self._nonzero_band((*D, *K))
         kl, ku = band
         if 3 * (kl + ku + 1) >= self.n:
             return None
@@ -380,10 +381,10 @@ class BandedTerms:
                 PolynomialTerms(self.n, F=F))
 
     def _nonzero_band(self, terms: tuple) -> tuple[int, int]:
-        """(kl, ku) of the nonzeros of band-stored terms (what ``bandwidths`` reads from
-        the sparse forms)."""
-        kl, ku = self.band
-        used = np.zeros(kl + ku + 1, dtype=bool)
+        """(kl, ku) of the nonzeros of M and band-stored terms (what ``bandwidths`` reads
+        from the sparse forms)."""
+        ku = self.band[1]
+        used = self._used_by_M.copy()
         for t in terms:
             if used[0] and used[-1]:                   # the whole band: the rest need
                 break                                  # not be read

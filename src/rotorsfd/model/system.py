@@ -233,6 +233,13 @@ class RotorSystem:
         the same numbers without the sparse sums and conversions (ignored for another
         rotor, and where the linear part is dense).
         """
+        return self._periodic_problem(parameter, speed, assembly, bands)
+
+    def _periodic_problem(self, parameter: str, speed: float | None, assembly: str,
+                          bands: BandedTerms | None, state0: BaseState | None = None
+                          ) -> PeriodicProblem:
+        """:meth:`periodic_problem` with ``state0`` the constant base state if known
+        (that of this system's base: a two-parameter family builds it once)."""
         if assembly not in ("polynomial", "direct"):
             raise ConfigError("assembly", assembly, "must be 'polynomial' or 'direct'")
         if not len(self.elements):
@@ -243,7 +250,8 @@ class RotorSystem:
         if par.kind != "speed" and (speed is None or speed <= 0):
             raise ConfigError("speed", speed,
                               f"continuing in {parameter} needs a fixed speed > 0 [rad/s]")
-        state0 = self.constant_base_state()
+        if state0 is None:
+            state0 = self.constant_base_state()
         r = self.rotor
         fixed_base = self.base.is_fixed and par.kind != "base_rate"
         U_ref = self.unbalances[0].magnitude if self.unbalances else 0.0
@@ -462,7 +470,7 @@ class RotorSystem:
         (:class:`~rotorsfd.model.base_polynomial.BandedTerms`): the same numbers as built
         from scratch, at a fraction of the cost (the fold-curve Newton builds two per
         evaluation)."""
-        self.constant_base_state()
+        state0 = self.constant_base_state()
         par = find_parameter(second)
         if par.kind == "speed":
             raise ConfigError("parameter", second, "must be one of " + ", ".join(
@@ -473,11 +481,16 @@ class RotorSystem:
         # of the family (the basis built once, shared by every copy)
         bands = BandedTerms(self.rotor, self.basis if moving else None)
 
+        # the base state once: this system's, and its copies' but in a base rate (their
+        # base is this one)
+        copy_state = None if par.kind == "base_rate" else state0
+
         def first(value: float) -> PeriodicProblem:
-            return self.with_parameter(second, value).periodic_problem("speed", bands=bands)
+            return self.with_parameter(second, value)._periodic_problem(
+                "speed", None, "polynomial", bands, copy_state)
 
         def across(speed: float) -> PeriodicProblem:
-            return self.periodic_problem(second, speed, bands=bands)
+            return self._periodic_problem(second, speed, "polynomial", bands, state0)
 
         return TwoParameterProblem(first, across, ("speed", second))
 
