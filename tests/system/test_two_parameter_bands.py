@@ -1,6 +1,6 @@
 """The problems of a two-parameter family (``RotorSystem.two_parameter_problem``: its
-``first(value)`` and ``second(speed)``, summed from bands formed once,
-``model.base_polynomial.BandedTerms``) are the problems built from scratch at the same
+``first(value)`` and ``second(speed)``, summed from terms stored once,
+``model.base_polynomial.StoredTerms``) are the problems built from scratch at the same
 (speed, value): the same band storage bit for bit, and the condensed residual and its
 Jacobian equal to 1e-12; the independent check is the ``assembly="direct"`` problem (the
 base terms recombined from the basis), equal to round-off."""
@@ -16,11 +16,11 @@ from rotorsfd.harmonic.condensation import CondensedHB
 from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.model import Disk, LinearSupport, Material, Rotor, uniform_shaft
 from rotorsfd.model.base_motion import BaseMotion, BaseState, UniformAcceleration
-from rotorsfd.model.base_polynomial import BandedTerms, PolynomialTerms
+from rotorsfd.model.base_polynomial import PolynomialTerms, StoredTerms, dense_bandwidths
 from rotorsfd.model.base_terms import BaseBasis
 from rotorsfd.model.damping import ModalDamping
 from rotorsfd.model.gravity import Gravity
-from rotorsfd.model.sparse import BandedLinearPart
+from rotorsfd.model.sparse import BandedLinearPart, bandwidths
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.model.unbalance import Unbalance
 
@@ -137,24 +137,31 @@ def test_low_rank_modal_damping(second: str) -> None:
 
 
 @pytest.mark.parametrize("second", ["base.yawing", "elements.sfd.viscosity"])
-def test_dense_linear_part(second: str) -> None:
-    """A rotor too small for the band (28 DOFs): the problems built as before (dense)."""
-    s = system(BASES["all rates, gravity"], n_elements=6)
+@pytest.mark.parametrize("case", ["small rotor", "full modal damping"])
+def test_dense_linear_part(case: str, second: str) -> None:
+    """A rotor too small for the band (28 DOFs) or with modal damping of every mode (C
+    full): the terms stored dense, the problems' linear part dense."""
+    s = (system(BASES["all rates, gravity"], n_elements=6) if case == "small rotor" else
+         system(BASES["all rates, gravity"], damping=ModalDamping(0.02)))
     assert not isinstance(s.two_parameter_problem(second).first(1.0).matrices,
                           BandedLinearPart)
     check_family(s, second)
 
 
-def test_bands_are_formed_once() -> None:
-    """The problems of one family share the rotor's bands (M the same array in each)."""
+def test_terms_are_stored_once() -> None:
+    """The problems of one family share the rotor's stored terms (M the same array in
+    each: the band, or the dense matrix with modal damping of every mode)."""
     family = system(BASES["pitching"]).two_parameter_problem("base.pitching")
-    a, b = family.first(1.0), family.first(2.0)
-    c = family.second(700.0)
+    a, b, c = family.first(1.0), family.first(2.0), family.second(700.0)
     assert a.matrices.M.terms[0] is b.matrices.M.terms[0] is c.matrices.M.terms[0]
+    family = system(BASES["pitching"], damping=ModalDamping(0.02)).two_parameter_problem(
+        "base.pitching")
+    a, b, c = family.first(1.0), family.first(2.0), family.second(700.0)
+    assert a.matrices.M is b.matrices.M is c.matrices.M
 
 
 class _MatrixRotor:
-    """A rotor given by its matrices alone (what BandedTerms reads): a lumped (diagonal)
+    """A rotor given by its matrices alone (what StoredTerms reads): a lumped (diagonal)
     M, so that the band of a problem can be narrower than that of all the terms."""
 
     def __init__(self, n: int, rng: np.random.Generator) -> None:
@@ -170,17 +177,21 @@ class _MatrixRotor:
 
 @pytest.mark.parametrize("variable", ["speed", "wx", "wy", "wz"])
 @pytest.mark.parametrize("at", [None, 0.7])
-def test_banded_terms_equal_polynomial_terms(variable: str, at: float | None) -> None:
-    """BandedTerms.linear_part against PolynomialTerms.of_base(...).plus(...)
+@pytest.mark.parametrize("n", [60, 30])
+def test_stored_terms_equal_polynomial_terms(n: int, variable: str, at: float | None
+                                             ) -> None:
+    """StoredTerms.linear_part against PolynomialTerms.of_base(...).plus(...)
     [.constant(at)].linear_part(M) bit for bit, the band read from the nonzeros of each
-    case: narrower than that of all the terms on a fixed base (patterns up to 5 wide)."""
+    case: narrower than that of all the terms on a fixed base (patterns up to 5 wide).
+    60 DOFs: stored as bands; 30: stored dense (all the terms' band is too wide), the
+    fixed base's problem banded all the same."""
     rng = np.random.default_rng(3)
-    n = 60
     rotor = _MatrixRotor(n, rng)
     wide = sp.diags(rng.standard_normal(n - 5), 5)
     mats = [(k % 3 == 0) * (wide + wide.T) + (0.1 * k) * rotor.G_csr for k in range(12)]
     basis = BaseBasis(mats, rng.standard_normal((8, n)))
-    bands = BandedTerms(rotor, basis)
+    stored = StoredTerms(rotor, basis)
+    assert stored.storage == ("band" if n == 60 else "dense")
     state = BaseState.constant(w=(0.5, -1.5, 2.0), a0=(0.0, 0.3, -0.2), g=(0.0, 0.0, -9.81))
     speed = 0.0 if variable == "speed" else 400.0
     C = rotor.C_csr if variable == "speed" else rotor.C_csr + speed * rotor.G_csr
@@ -196,12 +207,31 @@ def test_banded_terms_equal_polynomial_terms(variable: str, at: float | None) ->
         if at is not None:
             poly = poly.constant(at)
         ref = poly.linear_part(rotor.M_csr)
-        got, load = bands.linear_part(variable, st, speed, at)
-        assert got.band == ref.band
-        assert (got.band != bands.band) == (st is None)
+        got, load = stored.linear_part(variable, st, speed, at)
+        assert type(got) is type(ref)
+        assert isinstance(ref, BandedLinearPart) == (n == 60 or st is None)
+        if isinstance(ref, BandedLinearPart):
+            assert got.band == ref.band
+            assert (got.band != stored.band) == (st is None)
         for lam in (-2.0, 3.5):
-            for x, y in zip(got.banded(lam) + got.dbanded(lam),
-                            ref.banded(lam) + ref.dbanded(lam), strict=True):
+            if isinstance(ref, BandedLinearPart):
+                for x, y in zip(got.banded(lam) + got.dbanded(lam),
+                                ref.banded(lam) + ref.dbanded(lam), strict=True):
+                    assert np.array_equal(x, y)
+            for x, y in zip(got(lam) + got.derivatives(lam),
+                            ref(lam) + ref.derivatives(lam), strict=True):
                 assert np.array_equal(x, y)
             assert np.array_equal(load.load(lam), poly.load(lam))
             assert np.array_equal(load.dload(lam), poly.dload(lam))
+
+
+def test_dense_bandwidths_equal_those_of_the_patterns() -> None:
+    """dense_bandwidths (outermost diagonals first) against sparse.bandwidths."""
+    rng = np.random.default_rng(5)
+    for lower, upper in ((0, 0), (3, 0), (0, 4), (2, 7), (9, 9), (11, 3)):
+        a = np.zeros((12, 12))
+        for o in range(-lower, upper + 1):
+            if o in (-lower, upper) or rng.random() < 0.5:
+                a += np.diag(rng.standard_normal(12 - abs(o)), o)
+        assert dense_bandwidths(a) == bandwidths((a,)) == (lower, upper)
+    assert dense_bandwidths(np.zeros((5, 5))) == dense_bandwidths(None) == (0, 0)

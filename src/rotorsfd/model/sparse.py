@@ -190,7 +190,7 @@ class BandedLinearPart:
         """The same from terms already in band storage (n, kl + ku + 1) of ``band`` (None
         for a zero term; kept as the objects, treat them as read-only): no pattern read,
         no conversion (e.g. terms summed from bands formed once,
-        :class:`~rotorsfd.model.base_polynomial.BandedTerms`)."""
+        :class:`~rotorsfd.model.base_polynomial.StoredTerms`)."""
         out = cls.__new__(cls)
         out._setup(M, D, K, band, lowrank)
         return out

@@ -29,7 +29,7 @@ from rotorsfd.errors import ConfigError
 from rotorsfd.harmonic.fold_curve import TwoParameterProblem
 from rotorsfd.harmonic.problem import NonlinearLaw, PeriodicProblem
 from rotorsfd.model.base_motion import BaseMotion, BaseState, Constant
-from rotorsfd.model.base_polynomial import BandedTerms, PolynomialTerms
+from rotorsfd.model.base_polynomial import PolynomialTerms, StoredTerms
 from rotorsfd.model.base_terms import (
     BaseBasis,
     BaseCoefficients,
@@ -213,7 +213,7 @@ class RotorSystem:
 
     # ---- harmonic balance --------------------------------------------------------------
     def periodic_problem(self, parameter: str = "speed", speed: float | None = None,
-                         assembly: str = "polynomial", bands: BandedTerms | None = None
+                         assembly: str = "polynomial", stored: StoredTerms | None = None
                          ) -> PeriodicProblem:
         """The HB problem with continuation parameter ``parameter`` (see PARAMETERS).
 
@@ -227,16 +227,16 @@ class RotorSystem:
         ``"direct"``: the base terms recombined from the basis at every call (the
         reference, for tests and benchmarks); equal to round-off.
 
-        ``bands``: this rotor's matrices and base patterns in band storage, formed once
-        (:class:`~rotorsfd.model.base_polynomial.BandedTerms`, e.g. shared by the problems
-        of :meth:`two_parameter_problem`): the polynomial linear part summed from them,
-        the same numbers without the sparse sums and conversions (ignored for another
-        rotor, and where the linear part is dense).
+        ``stored``: this rotor's matrices and base patterns stored once in band storage
+        or dense (:class:`~rotorsfd.model.base_polynomial.StoredTerms`, e.g. shared by the
+        problems of :meth:`two_parameter_problem`): the polynomial linear part summed
+        from them, the same numbers without the sparse sums and conversions (ignored for
+        another rotor, and where nothing is stored).
         """
-        return self._periodic_problem(parameter, speed, assembly, bands)
+        return self._periodic_problem(parameter, speed, assembly, stored)
 
     def _periodic_problem(self, parameter: str, speed: float | None, assembly: str,
-                          bands: BandedTerms | None, state0: BaseState | None = None
+                          stored: StoredTerms | None, state0: BaseState | None = None
                           ) -> PeriodicProblem:
         """:meth:`periodic_problem` with ``state0`` the constant base state if known
         (that of this system's base: a two-parameter family builds it once)."""
@@ -283,8 +283,8 @@ class RotorSystem:
         if assembly == "polynomial":
             frozen = par.kind in ("unbalance", "element")  # the linear part is free of lam
             summed = None
-            if bands is not None and bands.rotor is r:
-                summed = bands.linear_part(
+            if stored is not None and stored.rotor is r:
+                summed = stored.linear_part(
                     par.rate_name if par.kind == "base_rate" else "speed",
                     None if fixed_base else state0,
                     float(speed) if par.kind != "speed" else 0.0,
@@ -466,8 +466,8 @@ class RotorSystem:
         ``periodic_problem("speed")`` of :meth:`with_parameter` (second = value), and
         ``second(speed)`` is ``periodic_problem(second, speed)``; both exact in their
         parameter, so ``dR/dspeed`` and ``dR/dsecond`` are exact at every (speed, value).
-        The problems are built from the rotor's bands formed once here
-        (:class:`~rotorsfd.model.base_polynomial.BandedTerms`): the same numbers as built
+        The problems are built from the rotor's terms stored once here
+        (:class:`~rotorsfd.model.base_polynomial.StoredTerms`): the same numbers as built
         from scratch, at a fraction of the cost (the fold-curve Newton builds two per
         evaluation)."""
         state0 = self.constant_base_state()
@@ -477,9 +477,10 @@ class RotorSystem:
                 p for p in PARAMETERS if PARAMETERS[p].kind != "speed")
                 + ", elements.<name>.<field>")
         moving = par.kind == "base_rate" or not self.base.is_fixed
-        # the rotor's matrices and base patterns in band storage once, for every problem
-        # of the family (the basis built once, shared by every copy)
-        bands = BandedTerms(self.rotor, self.basis if moving else None)
+        # the rotor's matrices and base patterns stored once (band storage, or dense for a
+        # full modal damping), for every problem of the family (the basis built once,
+        # shared by every copy)
+        stored = StoredTerms(self.rotor, self.basis if moving else None)
 
         # the base state once: this system's, and its copies' but in a base rate (their
         # base is this one)
@@ -487,10 +488,10 @@ class RotorSystem:
 
         def first(value: float) -> PeriodicProblem:
             return self.with_parameter(second, value)._periodic_problem(
-                "speed", None, "polynomial", bands, copy_state)
+                "speed", None, "polynomial", stored, copy_state)
 
         def across(speed: float) -> PeriodicProblem:
-            return self._periodic_problem(second, speed, "polynomial", bands, state0)
+            return self._periodic_problem(second, speed, "polynomial", stored, state0)
 
         return TwoParameterProblem(first, across, ("speed", second))
 
