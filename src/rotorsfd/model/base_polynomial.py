@@ -1,13 +1,15 @@
 """The linear terms of a rotor on a moving base as polynomials in one parameter, assembled
 once: the speed (degree 1) or a constant base rate (degree 2), for the continuation's
-linear part (:class:`PolynomialTerms`, :class:`DenseLinearPart`) and the LinearDynamics
-view of a rotor on a base in a constant state (:class:`MovingBaseRotor`). The
-coefficients and the basis they multiply are :mod:`rotorsfd.model.base_terms`.
+linear part (:class:`PolynomialTerms`, :class:`DenseLinearPart`; :class:`StoredTerms` the
+same linear part summed from terms stored once, for the many problems of a
+two-parameter family) and the LinearDynamics view of a rotor on a base in a constant state
+(:class:`MovingBaseRotor`). The coefficients and the basis they multiply are
+:mod:`rotorsfd.model.base_terms`.
 """
 
 from __future__ import annotations
 
-from functools import cached_property
+from functools import cache, cached_property
 from typing import Any
 
 import numpy as np
@@ -24,7 +26,13 @@ from rotorsfd.model.base_terms import (
     sum_terms,
 )
 from rotorsfd.model.lowrank import with_lowrank
-from rotorsfd.model.sparse import BandedLinearPart, as_csr, bandwidths
+from rotorsfd.model.sparse import (
+    DENSE_MAX_DOF,
+    BandedLinearPart,
+    as_csr,
+    bandwidths,
+    to_band,
+)
 
 # ---------------------------------------------------------------------------------------
 # polynomial form in one parameter (the linear part of a continuation, assembled once)
@@ -55,14 +63,24 @@ def coefficient_polynomial(state: BaseState, speed: float, variable: str
     w = np.array(state.w, dtype=float)
     w[i] = 0.0
     st0 = BaseState(w, np.asarray(state.dw, dtype=float), state.a0, state.v0, state.g)
+    return (base_coefficients(st0, speed),
+            base_coefficient_derivatives(st0, speed)[variable], _curvature(variable))
+
+
+@cache
+def _curvature(variable: str) -> BaseCoefficients:
+    """c2 of :func:`coefficient_polynomial` for a rate (free of the state: found once per
+    rate; read-only arrays)."""
+    i = RATE_NAMES.index(variable) - 1
     zero = BaseState.fixed()
     unit = BaseState(np.eye(3)[i], np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3))
     d1 = base_coefficient_derivatives(unit, 0.0)[variable]
     d0 = base_coefficient_derivatives(zero, 0.0)[variable]
     c2 = BaseCoefficients(0.5 * (d1.c_C - d0.c_C), 0.5 * (d1.c_K - d0.c_K),
                           0.5 * (d1.c_F - d0.c_F))
-    return (base_coefficients(st0, speed),
-            base_coefficient_derivatives(st0, speed)[variable], c2)
+    for a in (c2.c_C, c2.c_K, c2.c_F):
+        a.setflags(write=False)
+    return c2
 
 
 def _add(a: Any, b: Any) -> Any:
@@ -305,6 +323,141 @@ class DenseLinearPart:
             last[2] = (t.zero, t.ddamping(lam), t.dstiffness(lam))
         return last[2]
 
+
+
+def dense_bandwidths(a: np.ndarray | None) -> tuple[int, int]:
+    """``bandwidths((a,))`` of a dense square array (None: zero), read from the outermost
+    diagonals inwards: a full matrix (modal damping of every mode) in two diagonals of
+    one entry, not a scan of all n^2."""
+    if a is None:
+        return 0, 0
+    n = a.shape[0]
+
+    def outermost(sign: int) -> int:
+        for o in range(n - 1, 0, -1):
+            if np.any(np.diagonal(a, sign * o)):
+                return o
+        return 0
+
+    return outermost(-1), outermost(1)
+
+
+class StoredTerms:
+    """The rotor's linear matrices (M, C, G, K) and the 12 base-motion patterns of
+    ``basis`` (None: a fixed base only), stored once in the form the HB linear part
+    takes: band storage when the band of all of them is narrow (``storage == "band"``),
+    else dense arrays (a full modal damping; ``"dense"``, up to
+    :data:`~rotorsfd.model.sparse.DENSE_MAX_DOF` DOFs; beyond, nothing is stored:
+    ``None``). The HB linear part of any base state (:meth:`linear_part`) is then a few
+    scaled adds of the stored terms: what ``PolynomialTerms.of_base(...).plus(...)
+    .linear_part(M)`` gives (the same operations in the same order on the same numbers,
+    so the same bits, and the same band, read from the nonzeros), without the sparse
+    sums, the pattern scans and the conversions at each new parameter value (the
+    fold-curve Newton builds two problems per evaluation)."""
+
+    def __init__(self, rotor: Any, basis: BaseBasis | None = None) -> None:
+        self.rotor = rotor
+        self.basis = basis
+        self.n = n = int(rotor.n_dof)
+        self.lowrank = getattr(rotor, "damping_lowrank", None)  # modal damping, few modes
+        C = rotor.C_csr if self.lowrank is None else rotor.C_band_csr
+        own = (rotor.M_csr, C, rotor.G_csr, rotor.K_csr)
+        patterns = () if basis is None else basis.sparse_matrices
+        self.band = kl, ku = bandwidths((*own, *patterns))
+        self.storage = ("band" if 3 * (kl + ku + 1) < n else
+                        "dense" if n <= DENSE_MAX_DOF else None)
+        self.M = self.C = self.G = self.K = None
+        self.patterns: Any = ()
+        if self.storage == "band":
+            self.M, self.C, self.G, self.K = (to_band(a, kl, ku) for a in own)
+            self.patterns = tuple(to_band(a, kl, ku) for a in patterns)
+            self._used_by_M = np.any(self.M != 0.0, axis=0)   # the diagonals M occupies
+        elif self.storage == "dense":
+            self.M, self.C, self.G, self.K = (a.toarray() for a in own)
+            self.patterns = () if basis is None else basis.matrices   # the shared stack
+            self._M_band = dense_bandwidths(self.M)
+
+    def linear_part(self, variable: str, state: BaseState | None = None, speed: float = 0.0,
+                    at: float | None = None
+                    ) -> tuple[BandedLinearPart | DenseLinearPart, PolynomialTerms] | None:
+        """``(matrices, load)`` of the linear part in ``variable`` ("speed" or a rate of
+        POLYNOMIAL_VARIABLES, at the fixed ``speed``) about ``state`` (None: a fixed base,
+        no base terms; else the base terms of :meth:`PolynomialTerms.of_base`), frozen
+        at ``at`` if given (:meth:`PolynomialTerms.constant`): ``linear_part(M)`` (a
+        :class:`BandedLinearPart` or :class:`DenseLinearPart`) and the load as
+        PolynomialTerms (its ``load``, ``dload``). None where nothing is stored or the
+        base terms are asked for without a basis."""
+        if self.storage is None or (state is not None and self.basis is None):
+            return None
+        if state is None:
+            D: tuple = (self.C, self.G)
+            K: tuple = (self.K,)
+            F: tuple = ()
+        else:
+            cos = coefficient_polynomial(state, 0.0 if variable == "speed" else speed,
+                                         variable)
+            own = (self.C, self.G) if variable == "speed" else (self.C + speed * self.G,)
+            own += (None,) * (3 - len(own))
+            D = tuple(_add(y, sum_terms(c.c_C, self.patterns))
+                      for c, y in zip(cos, own, strict=True))
+            K = tuple(_add(y, sum_terms(c.c_K, self.patterns))
+                      for c, y in zip(cos, (self.K, None, None), strict=True))
+            F = tuple(sum_terms(c.c_F, self.basis.vectors) for c in cos)
+        D, K = (t + (None,) * (3 - len(t)) for t in (D, K))
+        if at is not None:
+            value = PolynomialTerms._value
+            D, K = ((value(t, at), None, None) for t in (D, K))
+            if F:
+                F = (value(F, at),)
+        if self.storage == "dense":
+            return self._dense_part(D, K, F)
+        band = self._nonzero_band((*D, *K))
+        kl, ku = band
+        if 3 * (kl + ku + 1) >= self.n:
+            return None
+        M, D, K = self._cut(self.M, band), self._cut(D, band), self._cut(K, band)
+        return (BandedLinearPart.of_bands(M, D, K, band, self.lowrank),
+                PolynomialTerms(self.n, F=F))
+
+    def _dense_part(self, D: tuple, K: tuple, F: tuple
+                    ) -> tuple[BandedLinearPart | DenseLinearPart, PolynomialTerms]:
+        """:meth:`PolynomialTerms.linear_part` of dense terms (the band read term by term,
+        banded if it is narrow)."""
+        terms = PolynomialTerms(self.n, D, K, F, self.lowrank)
+        kl, ku = self._M_band
+        for term in (*D, *K):
+            if 3 * (kl + ku + 1) >= self.n:
+                break
+            a, b = dense_bandwidths(term)
+            kl, ku = max(kl, a), max(ku, b)
+        if 3 * (kl + ku + 1) >= self.n:
+            return DenseLinearPart(self.M, terms), terms
+        return BandedLinearPart(self.M, D, K, (kl, ku), self.lowrank), terms
+
+    def _nonzero_band(self, terms: tuple) -> tuple[int, int]:
+        """(kl, ku) of the nonzeros of M and band-stored terms (what ``bandwidths`` reads
+        from the sparse forms)."""
+        ku = self.band[1]
+        used = self._used_by_M.copy()
+        for t in terms:
+            if used[0] and used[-1]:                   # the whole band: the rest need
+                break                                  # not be read
+            if t is not None:
+                used |= np.any(t != 0.0, axis=0)
+        offsets = np.flatnonzero(used) - ku            # i - j of each used diagonal
+        if not offsets.size:
+            return 0, 0
+        return max(0, int(offsets.max())), max(0, int(-offsets.min()))
+
+    def _cut(self, terms: Any, band: tuple[int, int]) -> Any:
+        """Band-stored term(s) in the narrower ``band`` (the same objects if it is the
+        full band)."""
+        if isinstance(terms, tuple):
+            return tuple(self._cut(t, band) for t in terms)
+        if terms is None or band == self.band:
+            return terms
+        lo = self.band[1] - band[1]
+        return np.ascontiguousarray(terms[:, lo: lo + band[0] + band[1] + 1])
 
 
 class MovingBaseRotor:

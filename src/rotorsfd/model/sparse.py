@@ -173,21 +173,41 @@ class BandedLinearPart:
     def __init__(self, M: object, D: Sequence[object | None], K: Sequence[object | None],
                  band: tuple[int, int] | None = None,
                  lowrank: tuple[np.ndarray, np.ndarray] | None = None) -> None:
-        terms = [M, *D, *K]
-        self.lowrank = lowrank
-        self._lowrank_dense: np.ndarray | None = None
-        self.n = int(M.shape[0])
-        self.band = bandwidths(terms) if band is None else band
-        kl, ku = self.band
-        zero = np.zeros((self.n, kl + ku + 1))
-        self.zero = zero
+        band = bandwidths([M, *D, *K]) if band is None else band
+        kl, ku = band
 
         def banded(a: object | None) -> np.ndarray | None:
             return None if a is None else to_band(a, kl, ku)
 
-        self.M = BandedPolynomial([banded(M)], zero)
-        self.D = BandedPolynomial([banded(a) for a in D], zero)
-        self.K = BandedPolynomial([banded(a) for a in K], zero)
+        self._setup(banded(M), [banded(a) for a in D], [banded(a) for a in K], band,
+                    lowrank)
+
+    @classmethod
+    def of_bands(cls, M: np.ndarray, D: Sequence[np.ndarray | None],
+                 K: Sequence[np.ndarray | None], band: tuple[int, int],
+                 lowrank: tuple[np.ndarray, np.ndarray] | None = None
+                 ) -> BandedLinearPart:
+        """The same from terms already in band storage (n, kl + ku + 1) of ``band`` (None
+        for a zero term; kept as the objects, treat them as read-only): no pattern read,
+        no conversion (e.g. terms summed from bands formed once,
+        :class:`~rotorsfd.model.base_polynomial.StoredTerms`)."""
+        out = cls.__new__(cls)
+        out._setup(M, D, K, band, lowrank)
+        return out
+
+    def _setup(self, M: np.ndarray, D: Sequence[np.ndarray | None],
+               K: Sequence[np.ndarray | None], band: tuple[int, int],
+               lowrank: tuple[np.ndarray, np.ndarray] | None) -> None:
+        self.lowrank = lowrank
+        self._lowrank_dense: np.ndarray | None = None
+        self.n = int(M.shape[0])
+        self.band = band
+        kl, ku = band
+        zero = np.zeros((self.n, kl + ku + 1))
+        self.zero = zero
+        self.M = BandedPolynomial([M], zero)
+        self.D = BandedPolynomial(D, zero)
+        self.K = BandedPolynomial(K, zero)
         self._dense: dict[int, tuple[np.ndarray, np.ndarray]] = {}
         self._csr: dict[int, tuple[np.ndarray, sp.csr_matrix]] = {}
         self._last: list = [None, None, None]

@@ -29,7 +29,7 @@ from rotorsfd.errors import ConfigError
 from rotorsfd.harmonic.fold_curve import TwoParameterProblem
 from rotorsfd.harmonic.problem import NonlinearLaw, PeriodicProblem
 from rotorsfd.model.base_motion import BaseMotion, BaseState, Constant
-from rotorsfd.model.base_polynomial import PolynomialTerms
+from rotorsfd.model.base_polynomial import PolynomialTerms, StoredTerms
 from rotorsfd.model.base_terms import (
     BaseBasis,
     BaseCoefficients,
@@ -213,7 +213,8 @@ class RotorSystem:
 
     # ---- harmonic balance --------------------------------------------------------------
     def periodic_problem(self, parameter: str = "speed", speed: float | None = None,
-                         assembly: str = "polynomial") -> PeriodicProblem:
+                         assembly: str = "polynomial", stored: StoredTerms | None = None
+                         ) -> PeriodicProblem:
         """The HB problem with continuation parameter ``parameter`` (see PARAMETERS).
 
         For parameters other than the speed, ``speed`` fixes the rotor speed. Every
@@ -225,7 +226,20 @@ class RotorSystem:
         scaled add or two; parameter-free matrices are the same objects at every call.
         ``"direct"``: the base terms recombined from the basis at every call (the
         reference, for tests and benchmarks); equal to round-off.
+
+        ``stored``: this rotor's matrices and base patterns stored once in band storage
+        or dense (:class:`~rotorsfd.model.base_polynomial.StoredTerms`, e.g. shared by the
+        problems of :meth:`two_parameter_problem`): the polynomial linear part summed
+        from them, the same numbers without the sparse sums and conversions (ignored for
+        another rotor, and where nothing is stored).
         """
+        return self._periodic_problem(parameter, speed, assembly, stored)
+
+    def _periodic_problem(self, parameter: str, speed: float | None, assembly: str,
+                          stored: StoredTerms | None, state0: BaseState | None = None
+                          ) -> PeriodicProblem:
+        """:meth:`periodic_problem` with ``state0`` the constant base state if known
+        (that of this system's base: a two-parameter family builds it once)."""
         if assembly not in ("polynomial", "direct"):
             raise ConfigError("assembly", assembly, "must be 'polynomial' or 'direct'")
         if not len(self.elements):
@@ -236,7 +250,8 @@ class RotorSystem:
         if par.kind != "speed" and (speed is None or speed <= 0):
             raise ConfigError("speed", speed,
                               f"continuing in {parameter} needs a fixed speed > 0 [rad/s]")
-        state0 = self.constant_base_state()
+        if state0 is None:
+            state0 = self.constant_base_state()
         r = self.rotor
         fixed_base = self.base.is_fixed and par.kind != "base_rate"
         U_ref = self.unbalances[0].magnitude if self.unbalances else 0.0
@@ -266,15 +281,27 @@ class RotorSystem:
             return BaseCoefficients(np.zeros(12), np.zeros(12), np.zeros(8))
 
         if assembly == "polynomial":
-            if par.kind == "base_rate":
-                lin = self.linear_terms(par.name, speed, state0)
+            frozen = par.kind in ("unbalance", "element")  # the linear part is free of lam
+            summed = None
+            if stored is not None and stored.rotor is r:
+                summed = stored.linear_part(
+                    par.rate_name if par.kind == "base_rate" else "speed",
+                    None if fixed_base else state0,
+                    float(speed) if par.kind != "speed" else 0.0,
+                    float(speed) if frozen else None)
+            if summed is not None:
+                matrices, lin = summed
             else:
-                lin = self.linear_terms("speed", state=None if fixed_base else state0)
-            if par.kind in ("unbalance", "element"):   # the linear part is free of lam
-                lin = lin.constant(float(speed))
-            # band storage of (M, D, K): the condensation reads it directly; dense arrays
-            # for the other callers are built on request (dense storage for a wide band)
-            matrices = lin.linear_part(r.M_csr)
+                if par.kind == "base_rate":
+                    lin = self.linear_terms(par.name, speed, state0)
+                else:
+                    lin = self.linear_terms("speed", state=None if fixed_base else state0)
+                if frozen:
+                    lin = lin.constant(float(speed))
+                # band storage of (M, D, K): the condensation reads it directly; dense
+                # arrays for the other callers are built on request (dense storage for a
+                # wide band)
+                matrices = lin.linear_part(r.M_csr)
             dmatrices = matrices.derivatives
 
             def base_load(lam: float) -> np.ndarray:
@@ -438,21 +465,33 @@ class RotorSystem:
         :class:`~rotorsfd.harmonic.fold_curve.TwoParameterProblem`: ``first(value)`` is
         ``periodic_problem("speed")`` of :meth:`with_parameter` (second = value), and
         ``second(speed)`` is ``periodic_problem(second, speed)``; both exact in their
-        parameter, so ``dR/dspeed`` and ``dR/dsecond`` are exact at every (speed, value)."""
-        self.constant_base_state()
+        parameter, so ``dR/dspeed`` and ``dR/dsecond`` are exact at every (speed, value).
+        The problems are built from the rotor's terms stored once here
+        (:class:`~rotorsfd.model.base_polynomial.StoredTerms`): the same numbers as built
+        from scratch, at a fraction of the cost (the fold-curve Newton builds two per
+        evaluation)."""
+        state0 = self.constant_base_state()
         par = find_parameter(second)
         if par.kind == "speed":
             raise ConfigError("parameter", second, "must be one of " + ", ".join(
                 p for p in PARAMETERS if PARAMETERS[p].kind != "speed")
                 + ", elements.<name>.<field>")
-        if par.kind == "base_rate" or not self.base.is_fixed:
-            _ = self.basis   # built once, shared by every copy
+        moving = par.kind == "base_rate" or not self.base.is_fixed
+        # the rotor's matrices and base patterns stored once (band storage, or dense for a
+        # full modal damping), for every problem of the family (the basis built once,
+        # shared by every copy)
+        stored = StoredTerms(self.rotor, self.basis if moving else None)
+
+        # the base state once: this system's, and its copies' but in a base rate (their
+        # base is this one)
+        copy_state = None if par.kind == "base_rate" else state0
 
         def first(value: float) -> PeriodicProblem:
-            return self.with_parameter(second, value).periodic_problem("speed")
+            return self.with_parameter(second, value)._periodic_problem(
+                "speed", None, "polynomial", stored, copy_state)
 
         def across(speed: float) -> PeriodicProblem:
-            return self.periodic_problem(second, speed)
+            return self._periodic_problem(second, speed, "polynomial", stored, state0)
 
         return TwoParameterProblem(first, across, ("speed", second))
 
