@@ -39,7 +39,8 @@ from rotorsfd.model.sparse import (
 # polynomial form in one parameter (the linear part of a continuation, assembled once)
 # ---------------------------------------------------------------------------------------
 #: Variables in which the coefficients are polynomials: the speed (degree 1) and a constant
-#: base rate (degree 2), everything else of the base state held.
+#: base rate (degree 2), the rest of the base motion held (in a rate, the origin
+#: acceleration a0 = v0' + w x v0 follows it: affine).
 POLYNOMIAL_VARIABLES: tuple[str, ...] = ("speed", "wx", "wy", "wz")
 
 

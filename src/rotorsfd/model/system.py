@@ -146,7 +146,9 @@ class RotorSystem:
         damping ``C + Omega G + C_base``, stiffness ``K + K_base`` and load ``F_base``
         (film off, no unbalance) in the speed, or in a constant base rate
         (``base.rolling|pitching|yawing``) at the fixed ``speed``; ``state`` (default: the
-        constant base state) with the parameter's own value ignored. See
+        constant base state) with the parameter's own value ignored (in a rate, its
+        origin acceleration follows it: a0 = v0' + w x v0, so a0 must be that of the
+        state's own rates, as ``BaseMotion.state`` gives). See
         :class:`~rotorsfd.model.base_polynomial.PolynomialTerms`."""
         st = self.constant_base_state() if state is None else state
         r = self.rotor
