@@ -291,6 +291,28 @@ class BaseState:
         a0 = np.asarray(self.a0, dtype=float)
         return a0 if self.g is None else a0 - np.asarray(self.g, dtype=float)
 
+    def acceleration_slope(self, axis: int) -> np.ndarray:
+        """d a0 / d w[axis] = e_axis x v0 (eq. 1, the origin velocity v0 held; zero
+        without v0): how the origin acceleration follows a base rate."""
+        if self.v0 is None:
+            return np.zeros(3)
+        return np.cross(np.eye(3)[axis], np.asarray(self.v0, dtype=float), axis=0)
+
+    def with_rate(self, axis: int, value: float) -> BaseState:
+        """This (constant) state with the base rate ``w[axis]`` set to ``value`` and the
+        rest of the base motion held: v0, v0' and g; the origin acceleration
+        a0 = v0' + w x v0 (eq. 1) follows the rate, affine in it,
+        ``a0 + (value - w[axis]) e_axis x v0``. (Gravity stays constant in the base frame
+        only if it is fixed to the base or along the axis: the caller checks that.)"""
+        w = np.array(self.w, dtype=float)
+        step = float(value) - w[axis]
+        w[axis] = value
+        slope = self.acceleration_slope(axis)
+        a0 = self.a0
+        if np.any(slope != 0.0):     # without translation: a0 itself (the same bits)
+            a0 = np.asarray(a0, dtype=float) + step * slope
+        return BaseState(w, np.asarray(self.dw, dtype=float), a0, self.v0, self.g)
+
     @classmethod
     def fixed(cls) -> BaseState:
         """A base at rest, no gravity."""

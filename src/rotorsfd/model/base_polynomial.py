@@ -23,6 +23,7 @@ from rotorsfd.model.base_terms import (
     base_basis,
     base_coefficient_derivatives,
     base_coefficients,
+    base_rate_derivative,
     sum_terms,
 )
 from rotorsfd.model.lowrank import with_lowrank
@@ -38,7 +39,8 @@ from rotorsfd.model.sparse import (
 # polynomial form in one parameter (the linear part of a continuation, assembled once)
 # ---------------------------------------------------------------------------------------
 #: Variables in which the coefficients are polynomials: the speed (degree 1) and a constant
-#: base rate (degree 2), everything else of the base state held.
+#: base rate (degree 2), the rest of the base motion held (in a rate, the origin
+#: acceleration a0 = v0' + w x v0 follows it: affine).
 POLYNOMIAL_VARIABLES: tuple[str, ...] = ("speed", "wx", "wy", "wz")
 
 
@@ -46,7 +48,10 @@ def coefficient_polynomial(state: BaseState, speed: float, variable: str
                            ) -> tuple[BaseCoefficients, BaseCoefficients, BaseCoefficients]:
     """(c0, c1, c2) with coefficients(p) = c0 + p c1 + p^2 c2 exactly (algebraically), p
     the speed or one base rate (``variable`` in POLYNOMIAL_VARIABLES), the rest of
-    (state, speed) held; the value of p in (state, speed) itself is ignored.
+    (state, speed) held; the value of p in (state, speed) itself is ignored. In a rate,
+    the rest of the base motion is held (v0, v0', g) and the origin acceleration
+    a0 = v0' + w x v0 follows it (``BaseState.with_rate``): ``state`` must be consistent
+    (a0 that of its own rates, as ``BaseMotion.state`` gives).
 
     The coefficients (module docstring) are affine in Omega and at most quadratic in each
     rate: c0 is their value at p = 0, c1 their p-derivative there and c2 half the second
@@ -59,12 +64,11 @@ def coefficient_polynomial(state: BaseState, speed: float, variable: str
         c2 = BaseCoefficients(np.zeros(12), np.zeros(12), np.zeros(8))
         return (base_coefficients(state, 0.0),
                 base_coefficient_derivatives(state, 0.0)["speed"], c2)
-    i = RATE_NAMES.index(variable) - 1
-    w = np.array(state.w, dtype=float)
-    w[i] = 0.0
-    st0 = BaseState(w, np.asarray(state.dw, dtype=float), state.a0, state.v0, state.g)
-    return (base_coefficients(st0, speed),
-            base_coefficient_derivatives(st0, speed)[variable], _curvature(variable))
+    # the state at p = 0: the origin acceleration a0 = v0' + w x v0 follows the rate
+    # (affine in it: its slope e_i x v0 is in c1, :func:`base_rate_derivative`)
+    st0 = state.with_rate(RATE_NAMES.index(variable) - 1, 0.0)
+    return (base_coefficients(st0, speed), base_rate_derivative(st0, speed, variable),
+            _curvature(variable))
 
 
 @cache

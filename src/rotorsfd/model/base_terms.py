@@ -189,6 +189,22 @@ def base_coefficient_derivatives(state: BaseState, speed: float) -> dict[str, Ba
     }
 
 
+def base_rate_derivative(state: BaseState, speed: float, rate: str) -> BaseCoefficients:
+    """d(coefficients)/d(w_i) along a constant base rate ``rate`` ("wx", "wy", "wz") with
+    the rest of the base motion held (the origin velocity v0, its derivative and g): the
+    partial derivative of :func:`base_coefficient_derivatives` plus the one through the
+    origin acceleration a0 = v0' + w x v0, ``d a_eff / d w_i = e_i x v0`` (a base that
+    translates while it rotates; through ``ay``, ``az``, the axial component carrying no
+    load)."""
+    d = base_coefficient_derivatives(state, speed)
+    out = d[rate]
+    da = state.acceleration_slope(RATE_NAMES.index(rate) - 1)
+    if np.any(da[1:] != 0.0):      # without translation: the partial one (the same bits)
+        out = BaseCoefficients(out.c_C, out.c_K,
+                               out.c_F + da[1] * d["ay"].c_F + da[2] * d["az"].c_F)
+    return out
+
+
 # ---------------------------------------------------------------------------------------
 # element-level terms
 # ---------------------------------------------------------------------------------------

@@ -36,6 +36,7 @@ from rotorsfd.model.base_terms import (
     base_basis,
     base_coefficient_derivatives,
     base_coefficients,
+    base_rate_derivative,
 )
 from rotorsfd.model.multishaft_loads import check_one_frequency
 from rotorsfd.model.parameters import PARAMETERS, find_parameter
@@ -145,7 +146,9 @@ class RotorSystem:
         damping ``C + Omega G + C_base``, stiffness ``K + K_base`` and load ``F_base``
         (film off, no unbalance) in the speed, or in a constant base rate
         (``base.rolling|pitching|yawing``) at the fixed ``speed``; ``state`` (default: the
-        constant base state) with the parameter's own value ignored. See
+        constant base state) with the parameter's own value ignored (in a rate, its
+        origin acceleration follows it: a0 = v0' + w x v0, so a0 must be that of the
+        state's own rates, as ``BaseMotion.state`` gives). See
         :class:`~rotorsfd.model.base_polynomial.PolynomialTerms`."""
         st = self.constant_base_state() if state is None else state
         r = self.rotor
@@ -252,6 +255,8 @@ class RotorSystem:
                               f"continuing in {parameter} needs a fixed speed > 0 [rad/s]")
         if state0 is None:
             state0 = self.constant_base_state()
+        if par.kind == "base_rate":
+            self._check_base_rate(par)
         r = self.rotor
         fixed_base = self.base.is_fixed and par.kind != "base_rate"
         U_ref = self.unbalances[0].magnitude if self.unbalances else 0.0
@@ -265,19 +270,15 @@ class RotorSystem:
                 return lam, state0, 1.0
             if par.kind == "element":
                 return float(speed), state0, 1.0
-            if par.kind == "base_rate":
-                w = np.array(state0.w, dtype=float)
-                w[par.axis] = lam
-                return float(speed), BaseState(w, np.zeros(3), state0.a0, state0.v0,
-                                               state0.g), 1.0
+            if par.kind == "base_rate":   # a0 = v0' + w x v0 follows the rate
+                return float(speed), state0.with_rate(par.axis, lam), 1.0
             return float(speed), state0, lam / U_ref
 
         def coefficient_derivative(om: float, st: BaseState) -> BaseCoefficients:
-            d = base_coefficient_derivatives(st, om)
             if par.kind == "speed":
-                return d["speed"]
-            if par.kind == "base_rate":
-                return d[par.rate_name]
+                return base_coefficient_derivatives(st, om)["speed"]
+            if par.kind == "base_rate":   # with d a0 / d w_i = e_i x v0
+                return base_rate_derivative(st, om, par.rate_name)
             return BaseCoefficients(np.zeros(12), np.zeros(12), np.zeros(8))
 
         if assembly == "polynomial":
@@ -401,6 +402,41 @@ class RotorSystem:
                               f"{par.field!r} to continue in (it has: "
                               + (", ".join(e.parameters) or "none") + ")")
 
+    def _check_base_rate(self, par) -> None:
+        """ConfigError unless the base stays constant in time at every value of the base
+        rate ``par`` (the rest of the base motion held; the base's own state is constant).
+
+        Inertial gravity is constant in the base frame only while w is parallel to it
+        (dg/dt = -w x g in base components, :mod:`~rotorsfd.model.gravity`): at a
+        constant w off its axis g(t) turns about w with period 2 pi / |w|, a load and
+        (through a_eff) no periodic response at the speed alone. With w parallel to g at
+        the start, w = w_start + (lam - w_start_i) e_i stays parallel to g for every lam
+        only if e_i is: any rate about another axis is refused, unless gravity is fixed
+        to the base. A uniform acceleration of the origin makes a0 = v0' + w x v0 grow
+        in time once the base rotates (``BaseMotion.is_constant``): refused too."""
+        base, axis = self.base, par.axis
+        now = float(base.rates(0.0)[axis])
+        g = base.gravity
+        if (g is not None and g.enabled and g.frame == "inertial"
+                and np.any(np.cross(np.eye(3)[axis], g.vector) != 0.0)):
+            along = [p.name for p in PARAMETERS.values() if p.kind == "base_rate"
+                     and not np.any(np.cross(np.eye(3)[p.axis], g.vector) != 0.0)]
+            raise ConfigError("parameter", par.name, (
+                f"a rate about {'xyz'[axis]} other than its value here ({now:g} rad/s) "
+                "turns the base off inertial gravity g = "
+                f"({', '.join(f'{v:g}' for v in g.vector)}) m/s^2, which then rotates in "
+                "the base frame (dg/dt = -w x g): no periodic response; continue a rate "
+                "about the gravity axis only ("
+                + (", ".join(along) or "gravity is along no base axis")
+                + "), or fix gravity to the base (gravity.frame = 'base')"))
+        for name, law in zip(("x", "y", "z"), base.translation, strict=True):
+            if law.kind == "uniform_acceleration" and law.acceleration != 0.0:
+                raise ConfigError("parameter", par.name, (
+                    f"a rate about {'xyz'[axis]} other than its value here ({now:g} rad/s) "
+                    f"with the uniform acceleration of base.{name} makes the origin "
+                    "acceleration a0 = v0' + w x v0 grow in time: no periodic response; "
+                    "continue a base rate with translations of constant velocity only"))
+
     # ---- the solvers' record ---------------------------------------------------------------
     def second_order(self, speed: float, *, horizon: float | None = None
                      ) -> SecondOrderSystem:
@@ -476,6 +512,8 @@ class RotorSystem:
             raise ConfigError("parameter", second, "must be one of " + ", ".join(
                 p for p in PARAMETERS if PARAMETERS[p].kind != "speed")
                 + ", elements.<name>.<field>")
+        if par.kind == "base_rate":
+            self._check_base_rate(par)
         moving = par.kind == "base_rate" or not self.base.is_fixed
         # the rotor's matrices and base patterns stored once (band storage, or dense for a
         # full modal damping), for every problem of the family (the basis built once,
