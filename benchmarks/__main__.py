@@ -41,8 +41,10 @@ REGISTRY: dict[str, tuple[str, str]] = {
                 "bench_scaling:run"),
     "branch-stability": ("stability of every branch point + bifurcation location",
                          "bench_branch_stability:run"),
-    "branch-points": ("branch_stability with and without the branch-point scan",
-                      "bench_branch_points:run"),
+    "branch-points": ("branch_stability: the branch-point scan on the continuation's "
+                      "signs vs re-evaluating every point vs none", "bench_branch_points:run"),
+    "two-parameter": ("HB problems of a two-parameter family (fold curves): stored terms vs "
+                      "built from scratch", "bench_two_parameter:run"),
     "nf": ("AFT samples N_f along a pitching branch: adaptive vs the old grow-only rule",
            "bench_nf:run"),
     "linear": ("linear part of the HB problem on a moving base: assembled once vs per call",
