@@ -272,7 +272,8 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
             step = step or state.pop("step", 0.0)
             state["s"] += step
             # the branch-point test's sign in this system, for the scan after Floquet
-            bp = bordered_sign(Jz, t, metric(system))
+            # (which tests condensed branches only)
+            bp = bordered_sign(Jz, t, metric(system)) if condensed else np.nan
             vals = (lam, X, w, t, it, step, J, al, system.N, z, system, system.H, te, bp)
             for key, val in zip(out, vals, strict=True):
                 out[key].append(val)
