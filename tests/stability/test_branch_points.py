@@ -267,3 +267,24 @@ def test_signs_of_a_branch_joined_from_legs_both_ways():
     scan = branch_point_scan(joined, p)
     assert scan.intervals == branch_point_scan(_without_stored_signs(joined), p).intervals
     assert len(scan.intervals) == 2 and len(scan.systems) == 1
+
+
+def test_a_joined_adaptive_branch_keeps_its_harmonics_per_point():
+    """The legs' per-point H, N_f and truncation errors are joined with their points (the
+    last leg's alone were kept: a joined adaptive branch looked uniform in H), so the scan
+    tests each interval in its own H."""
+    p = pumped()
+    X0 = continue_periodic(p, 1.3, 1.31, H).X[0]
+    kw = {"ds": 0.02, "ds_max": 0.05, "adaptive_harmonics": True, "H_min": 2, "H_max": 12}
+    joined = continue_both_ways(p, 1.3, X0, H, 0.8, 1.6, **kw)
+    n = joined.n_points
+    for key in ("harmonics", "n_samples", "truncation_error"):
+        assert np.shape(joined.info[key]) == (n,)
+    assert len(set(joined.info["harmonics"])) > 1
+    low = continue_periodic(p, 1.3, 0.8, H, X0, lam_scale=0.8, **kw)   # the lower leg
+    k = low.n_points - 1                         # reversed, without the shared start point
+    assert np.array_equal(joined.lam[:k], low.lam[::-1][:-1])
+    assert list(joined.info["harmonics"][:k]) == list(low.info["harmonics"][::-1][:-1])
+    scan = branch_point_scan(joined, p)
+    assert scan.intervals == branch_point_scan(_without_stored_signs(joined), p).intervals
+    assert len(scan.intervals) == 2

@@ -43,6 +43,10 @@ __all__ = ["CLOSURE_TOL", "SAME_TOL", "OrbitFit", "continue_both_ways", "correct
 #: Default closure tolerance of :func:`continue_both_ways` (units of the length scale).
 CLOSURE_TOL = 0.02
 
+#: Per-point columns of ``Branch.info`` that :func:`join_segments` joins leg by leg (the
+#: branch-point signs apart: a reversed leg's are negated).
+POINT_COLUMNS = ("n_samples", "harmonics", "truncation_error")
+
 #: Largest coefficient difference (length scales) of one orbit seen on another's branch
 #: (:func:`on_branch`): two Newton solutions of one orbit differ by the solver's tolerance
 #: (1e-6 scaled, more at a poorly conditioned unstable orbit), distinct orbits at one speed
@@ -269,8 +273,10 @@ def join_segments(segments: list[tuple[Branch, bool]]) -> Branch:
     if all(b.jacobians is not None for b, _ in segments):
         jac = cat(lambda b: b.jacobians)
     info = dict(segments[-1][0].info)
-    if all(b.info.get("n_samples") is not None for b, _ in segments):
-        info["n_samples"] = cat(lambda b: np.asarray(b.info["n_samples"]))
+    for key in POINT_COLUMNS:   # per-point columns: the legs' joined, else none
+        info.pop(key, None)
+        if all(np.shape(b.info.get(key)) == (b.n_points,) for b, _ in segments):
+            info[key] = cat(lambda b, key=key: np.asarray(b.info[key]))
     for key in BORDERED:
         info.pop(key, None)
     if all(np.shape(b.info.get(key)) == (b.n_points,) for b, _ in segments
