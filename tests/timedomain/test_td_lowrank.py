@@ -2,7 +2,8 @@
 the integrator's inputs keep CSR matrices and the damping as banded + low-rank (no dense
 n x n array); the reduced (Craig-Bampton) step projects the damping from its factors and
 the full step densifies it. Both equal the same runs on the dense matrices (the damping
-formed as one full matrix), 1e-10 of the orbit."""
+formed as one full matrix), 1e-9 of the orbit (measured 7e-12 to 1.5e-10 from run to run:
+the two reductions' bases come from separate eigensolves, which agree to round-off only)."""
 
 from __future__ import annotations
 
@@ -62,8 +63,8 @@ def test_reduced_step_equals_the_dense_damping(model) -> None:
     ra, rb = _run(a, system), _run(b, system)
     scale = np.abs(rb.q).max()
     assert scale > 0
-    assert np.abs(ra.q - rb.q).max() <= 1e-10 * scale
-    assert np.abs(ra.poincare_q - rb.poincare_q).max() <= 1e-10 * scale
+    assert np.abs(ra.q - rb.q).max() <= 1e-9 * scale
+    assert np.abs(ra.poincare_q - rb.poincare_q).max() <= 1e-9 * scale
     # the modal damping acts: without it the orbit differs
     no_modal = dataclasses.replace(inputs, D=inputs.D.band)
     rc = _run(with_reduction(no_modal, "auto"), system)
