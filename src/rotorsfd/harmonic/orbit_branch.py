@@ -31,6 +31,7 @@ from rotorsfd.continuation.branch import Branch, BranchPoint
 from rotorsfd.errors import ConfigError, ConvergenceError
 from rotorsfd.harmonic.periodic import (
     BORDERED,
+    POINT_COLUMNS,
     PeriodicSolution,
     continue_periodic,
     solve_periodic,
@@ -42,10 +43,6 @@ __all__ = ["CLOSURE_TOL", "SAME_TOL", "OrbitFit", "continue_both_ways", "correct
 
 #: Default closure tolerance of :func:`continue_both_ways` (units of the length scale).
 CLOSURE_TOL = 0.02
-
-#: Per-point columns of ``Branch.info`` that :func:`join_segments` joins leg by leg (the
-#: branch-point signs apart: a reversed leg's are negated).
-POINT_COLUMNS = ("n_samples", "harmonics", "truncation_error")
 
 #: Largest coefficient difference (length scales) of one orbit seen on another's branch
 #: (:func:`on_branch`): two Newton solutions of one orbit differ by the solver's tolerance

@@ -368,6 +368,11 @@ def continue_periodic(problem: PeriodicProblem, lam_start: float, lam_end: float
 
 
 
+#: Per-point columns of ``Branch.info`` (one entry per computed point) that follow the
+#: points when branches are joined or points inserted (the branch-point signs apart:
+#: :data:`BORDERED`).
+POINT_COLUMNS = ("n_samples", "harmonics", "truncation_error")
+
 #: The ``Branch.info`` columns of :func:`bordered_info`.
 BORDERED = ("bordered_sign", "bordered_system", "bordered_lam", "bordered_dir")
 

@@ -22,12 +22,10 @@ from numpy.typing import NDArray
 
 from rotorsfd.continuation.branch import Branch, BranchPoint
 from rotorsfd.errors import ConvergenceError
+from rotorsfd.harmonic.periodic import POINT_COLUMNS
 from rotorsfd.harmonic.truncation import convert_tangent, pad_coefficients
 from rotorsfd.stability.branch_stability import BranchStability, reported_kind
 from rotorsfd.stability.floquet import FloquetResult
-
-#: Per-point entries of ``Branch.info`` copied from the nearest computed point.
-_INFO_PER_POINT = ("n_samples", "harmonics", "truncation_error")
 
 
 def fold_points(branch: Branch, stability: BranchStability) -> list[tuple[float, int]]:
@@ -97,7 +95,7 @@ def _merged(branch: Branch, st: BranchStability,
         return out
 
     info = dict(branch.info)
-    for key in _INFO_PER_POINT:
+    for key in POINT_COLUMNS:   # copied from the nearest computed point
         if key in info and np.shape(info[key]) == (n,):
             info[key] = merge(np.asarray(info[key]), [info[key][j] for j in near])
     info["inserted"] = merge(np.zeros(n, dtype=np.int64), [x[1] for x in new])
