@@ -16,11 +16,11 @@ from rotorsfd.harmonic.condensation import CondensedHB
 from rotorsfd.harmonic.problem import PeriodicProblem
 from rotorsfd.model import Disk, LinearSupport, Material, Rotor, uniform_shaft
 from rotorsfd.model.base_motion import BaseMotion, BaseState, UniformAcceleration
-from rotorsfd.model.base_polynomial import PolynomialTerms, StoredTerms, dense_bandwidths
+from rotorsfd.model.base_polynomial import PolynomialTerms, StoredTerms
 from rotorsfd.model.base_terms import BaseBasis
 from rotorsfd.model.damping import ModalDamping
 from rotorsfd.model.gravity import Gravity
-from rotorsfd.model.sparse import BandedLinearPart, bandwidths
+from rotorsfd.model.sparse import BandedLinearPart, bandwidths, dense_bandwidths
 from rotorsfd.model.system import RotorSystem
 from rotorsfd.model.unbalance import Unbalance
 

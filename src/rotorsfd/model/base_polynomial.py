@@ -32,6 +32,7 @@ from rotorsfd.model.sparse import (
     BandedLinearPart,
     as_csr,
     bandwidths,
+    dense_bandwidths,
     to_band,
 )
 
@@ -327,23 +328,6 @@ class DenseLinearPart:
             last[2] = (t.zero, t.ddamping(lam), t.dstiffness(lam))
         return last[2]
 
-
-
-def dense_bandwidths(a: np.ndarray | None) -> tuple[int, int]:
-    """``bandwidths((a,))`` of a dense square array (None: zero), read from the outermost
-    diagonals inwards: a full matrix (modal damping of every mode) in two diagonals of
-    one entry, not a scan of all n^2."""
-    if a is None:
-        return 0, 0
-    n = a.shape[0]
-
-    def outermost(sign: int) -> int:
-        for o in range(n - 1, 0, -1):
-            if np.any(np.diagonal(a, sign * o)):
-                return o
-        return 0
-
-    return outermost(-1), outermost(1)
 
 
 class StoredTerms:

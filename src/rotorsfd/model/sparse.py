@@ -91,6 +91,23 @@ def bandwidths(mats: Iterable[object]) -> tuple[int, int]:
     return kl, ku
 
 
+def dense_bandwidths(a: np.ndarray | None) -> tuple[int, int]:
+    """``bandwidths((a,))`` of a dense square array (None: zero), read from the outermost
+    diagonals inwards: a full matrix (modal damping of every mode) in two diagonals of
+    one entry, not a scan of all n^2."""
+    if a is None:
+        return 0, 0
+    n = a.shape[0]
+
+    def outermost(sign: int) -> int:
+        for o in range(n - 1, 0, -1):
+            if np.any(np.diagonal(a, sign * o)):
+                return o
+        return 0
+
+    return outermost(-1), outermost(1)
+
+
 def to_band(a: object, kl: int, ku: int) -> np.ndarray:
     """Band storage (module docstring) of ``a`` (sparse or dense, n x n); ValueError if
     a nonzero lies outside the band."""
