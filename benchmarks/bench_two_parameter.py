@@ -75,15 +75,7 @@ def run(quick: bool = False, repeat: int = 3) -> list[Row]:
     return rows
 
 
-def main(argv: list[str]) -> int:
-    quick = "--quick" in argv
-    rows = run(quick=quick, repeat=1 if quick else 3)
-    print("| case | method | CPU per pair | ratio |\n|---|---|---:|---:|")
-    for r in rows:
-        ratio = "" if r.ratio is None else f"{r.ratio:.3g}x"
-        print(f"| {r.case} | {r.method} | {r.value:.3f} ms | {ratio} |")
-    return 0
-
-
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1:]))
+    from benchmarks.__main__ import main
+
+    sys.exit(main(["--only", "two-parameter", *sys.argv[1:]]))
