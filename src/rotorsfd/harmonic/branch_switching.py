@@ -61,7 +61,9 @@ def period_n(problem: PeriodicProblem, n: int) -> PeriodicProblem:
         name=f"{problem.name} (period {n})", nl_force_jacobian=problem.nl_force_jacobian,
         nl_kernel=problem.nl_kernel, nl_kernel_params=problem.nl_kernel_params,
         nl_at=problem.nl_at, nl_force_jacobians=problem.nl_force_jacobians,
-        nl_inertial_kernel=problem.nl_inertial_kernel)
+        nl_inertial_kernel=problem.nl_inertial_kernel,
+        frequency_line=None if problem.frequency_line is None
+        else (problem.frequency_line[0] / n, problem.frequency_line[1] / n))
 
 
 def period_doubled(problem: PeriodicProblem) -> PeriodicProblem:

@@ -26,6 +26,7 @@ resonance of the linear part), the Schur form is reported for stability analyses
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -37,6 +38,7 @@ from rotorsfd.harmonic.aft_kernels import condensed_assembly, project
 from rotorsfd.harmonic.banded_lowrank import condense_bands_lowrank
 from rotorsfd.harmonic.dense_condensation import dense_solves
 from rotorsfd.harmonic.fourier import aft_matrices, aliasing_error, to_complex, to_real
+from rotorsfd.harmonic.pencil_condensation import condense_pencils
 from rotorsfd.harmonic.problem import NonlinearLaw, PeriodicProblem
 from rotorsfd.harmonic.residual import nonlinear_coefficients, nonlinear_samples, real_blocks
 
@@ -47,15 +49,32 @@ ComplexArray = NDArray[np.complex128]
 @dataclass
 class Condensed:
     """Condensed operators at one lam: receptance Ht (H+1, m, m), particular response Pt
-    (H+1, m), their lam-derivatives, and u (H+1, n), C (H+1, n, m) for recovery."""
+    (H+1, m), their lam-derivatives, and u (H+1, n), C (H+1, n, m) for recovery (given, or
+    formed on first use by ``recovery() -> (u, C)``: the Newton iterations need Ht, Pt
+    only)."""
 
     lam: float
     Ht: ComplexArray
     Pt: ComplexArray
-    u: ComplexArray
-    C: ComplexArray
+    u_: ComplexArray | None
+    C_: ComplexArray | None
     dHt: ComplexArray | None = None
     dPt: ComplexArray | None = None
+    recovery: Callable[[], tuple[ComplexArray, ComplexArray]] | None = None
+
+    @property
+    def u(self) -> ComplexArray:
+        """Particular response of every DOF (H+1, n)."""
+        if self.u_ is None:
+            self.u_, self.C_ = self.recovery()
+        return self.u_
+
+    @property
+    def C(self) -> ComplexArray:
+        """Receptance columns of every DOF (H+1, n, m)."""
+        if self.C_ is None:
+            self.u_, self.C_ = self.recovery()
+        return self.C_
 
 
 def _c_float(A: FloatArray) -> FloatArray:
@@ -259,6 +278,13 @@ class CondensedHB:
                                                 F, dF, deriv, sol, dsol, Ht, Pt, dHt, dPt,
                                                 banded.refinement_steps(n), k_first)
         else:
+            # a branch on a wide linear part: one eigendecomposition per harmonic instead
+            # of an LU per point (pencil_condensation), once it has seen enough points
+            parts = condense_pencils(p, lam, H, self.delta, w, dw, F, dF, deriv)
+            if parts is not None:
+                pHt, pPt, pdHt, pdPt, recovery = parts
+                self._cache = Condensed(lam, pHt, pPt, None, None, pdHt, pdPt, recovery)
+                return self._cache
             status = self._dense_condense(lam, deriv, w, dw, F, dF, diag, sol, dsol, Ht,
                                           Pt, dHt, dPt, self._reusable(reuse, lam, deriv))
         if status > 0:

@@ -85,6 +85,11 @@ class PeriodicProblem:
         numpy form and its inertial kernel (``kernel(q, v, a, params, F, dFdq, dFdv,
         dFda)``, :mod:`rotorsfd.kernels`); the AFT then samples ``a = w^2 Edd xs`` and
         ``dG/dx`` gains ``P dF/da w^2 Edd`` (:mod:`rotorsfd.harmonic.aft_inertia`).
+    frequency_line : optional ``(w0, w1)`` with ``frequency(lam) = w0 + w1 lam`` exactly;
+        with a linear part that states itself as a polynomial in lam
+        (``matrices.polynomial() -> (M, (D_0, D_1, D_2), (K_0, K_1, K_2))``, None for zero
+        terms) the dense condensation may use one eigendecomposition per harmonic for a
+        branch (:mod:`rotorsfd.harmonic.pencil_condensation`).
     """
 
     n_dof: int
@@ -108,6 +113,7 @@ class PeriodicProblem:
     nl_force_jacobians: Callable[..., tuple[FloatArray, FloatArray, FloatArray, FloatArray]
                                  ] | None = None
     nl_inertial_kernel: Any = None
+    frequency_line: tuple[float, float] | None = None
 
     def __post_init__(self) -> None:
         self.nl_dofs = np.atleast_1d(np.asarray(self.nl_dofs, dtype=np.int64))

@@ -254,6 +254,14 @@ class PolynomialTerms:
             self._lowrank_dense = 0.5 * (full + full.T)
         return self._lowrank_dense
 
+    def dense_terms(self) -> tuple[tuple, tuple]:
+        """The coefficients ``(D_0, D_1, D_2), (K_0, K_1, K_2)`` dense (None: zero), the
+        low-rank damping term added to D_0."""
+        D = [None if a is None else self._as_dense(a) for a in self.D]
+        if self.lowrank is not None:
+            D[0] = self._lowrank() if D[0] is None else D[0] + self._lowrank()
+        return tuple(D), tuple(None if a is None else self._as_dense(a) for a in self.K)
+
     def damping(self, p: float) -> np.ndarray:
         out = self._dense_value(self.D, p)
         if self.lowrank is None:
@@ -327,6 +335,11 @@ class DenseLinearPart:
             t = self.terms
             last[2] = (t.zero, t.ddamping(lam), t.dstiffness(lam))
         return last[2]
+
+    def polynomial(self) -> tuple[np.ndarray, tuple, tuple]:
+        """``(M, (D_0, D_1, D_2), (K_0, K_1, K_2))`` dense (None: a zero term), with
+        ``D(lam) = sum_j lam^j D_j`` (the low-rank damping term in D_0), ``K`` alike."""
+        return (self.M, *self.terms.dense_terms())
 
 
 

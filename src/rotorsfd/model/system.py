@@ -387,7 +387,8 @@ class RotorSystem:
             nl_limit=el.limit if limited else None,
             name=f"rotor response in {parameter}", nl_at=nl_at,
             nl_force_jacobians=el.force_and_jacobians if el.inertial else None,
-            nl_inertial_kernel=el.inertial_kernel)
+            nl_inertial_kernel=el.inertial_kernel,
+            frequency_line=(0.0, 1.0) if par.kind == "speed" else (float(speed), 0.0))
 
     def _check_element_parameter(self, par) -> None:
         """ConfigError unless the element of an ``"element"`` parameter exists and has the
