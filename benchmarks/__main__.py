@@ -45,6 +45,8 @@ REGISTRY: dict[str, tuple[str, str]] = {
                       "signs vs re-evaluating every point vs none", "bench_branch_points:run"),
     "two-parameter": ("HB problems of a two-parameter family (fold curves): stored terms vs "
                       "built from scratch", "bench_two_parameter:run"),
+    "pencil": ("dense condensation of a branch (full modal damping): one eigendecomposition "
+               "per harmonic vs an LU per harmonic and point", "bench_pencil:run"),
     "nf": ("AFT samples N_f along a pitching branch: adaptive vs the old grow-only rule",
            "bench_nf:run"),
     "linear": ("linear part of the HB problem on a moving base: assembled once vs per call",

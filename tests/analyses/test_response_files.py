@@ -99,7 +99,9 @@ def test_deflection_bounds(written):
         r = table[f"defl_{n}"] * C
         assert np.all(r >= np.sqrt(mean_r2) * (1 - 1e-12))
         assert np.all(r >= np.hypot(Xy[:, 0].real, Xz[:, 0].real))
-        assert np.all(r >= np.abs(Xy[:, 1]) * (1 - 1e-12))
+        # at the time where the first harmonic's part of y peaks, y >= |Xy_1| - the rest
+        rest = np.abs(Xy).sum(1) - np.abs(Xy[:, 1])
+        assert np.all(r >= (np.abs(Xy[:, 1]) - rest) * (1 - 1e-12))
         assert np.all(r <= upper * (1 + 1e-12))
         for i in range(0, result.branch.n_points, 7):
             _, q = result.branch.time_series(i, n_t=4096)
