@@ -5,11 +5,12 @@ before, what a user would write with scipy: ``lu_factor`` / ``lu_solve``).
 
 Compared in one run on the calibrated paper rotor (84 DOFs, modal damping on every
 mode: the dense path): (a) one condensation with lam-derivatives at H = 3 and 12, CPU per
-call, and the build of one harmonic's pencil; (b) the calibrated Table 1 branch (U =
-360.04 g mm, the automatic H, stability off) end to end, with the largest difference of
-its two fold speeds between the two paths (relative).
+call, and the build of one harmonic's pencil; (b) the paper case ``cal-fig24-u360``
+(C/R = 0.728 %, U = 360.04 g mm: 2800 condensations at H = 8-12, Floquet stability and
+the bifurcations located) end to end, with the largest difference of
+its bifurcations' speeds between the two paths (relative).
 
-Run: ``python -m benchmarks.bench_pencil [--quick]``.
+Run: ``python -m benchmarks.bench_pencil [--quick] --json benchmarks/results-pencil.json``.
 """
 
 from __future__ import annotations
@@ -23,6 +24,8 @@ from collections.abc import Iterator
 import numpy as np
 
 from benchmarks.common import ROOT, W1, Row, one_blas_thread
+
+CASE = "cal-fig24-u360"
 
 
 @contextlib.contextmanager
@@ -79,16 +82,17 @@ def build_ms(k: int = 5) -> float:
 
 
 def branch(lu: bool) -> tuple[float, list[float]]:
-    """CPU seconds of the calibrated Table 1 branch and its fold speeds."""
-    from rotorsfd.api import run_response
+    """CPU seconds of the paper case ``cal-fig24-u360`` (the calibrated rotor at C/R =
+    0.728 %, U = 360.04 g mm: its branch with stability and bifurcations, H 8-12) and
+    its bifurcations' speeds."""
+    from rotorsfd.paper.cases import CASES
+    from rotorsfd.paper.run import run_case
 
-    config, _ = _system()
     with lu_only() if lu else contextlib.nullcontext():
         t0 = time.process_time()
-        r = run_response(config, search_path=ROOT / "examples", progress=False,
-                         stability_options=False)
+        o = run_case(CASES[CASE])
         cpu = time.process_time() - t0
-    return cpu, sorted(float(r.branch.lam[i]) for i in r.branch.folds())
+    return cpu, [float(b[1]) for b in o.numbers["bifurcations"]]
 
 
 def run(quick: bool = False, repeat: int = 3) -> list[Row]:
@@ -118,12 +122,13 @@ def run(quick: bool = False, repeat: int = 3) -> list[Row]:
             folds = {k: np.array(v[0][1]) for k, v in runs.items()}
             diff = (float(np.max(np.abs(folds["pencil"] - folds["lu"]) / folds["lu"]))
                     if folds["lu"].size == folds["pencil"].size else float("nan"))
-            case = "calibrated Table 1 branch U = 360.04 g mm (auto H, stability off)"
+            case = f"paper case {CASE} (branch, stability, bifurcations)"
             rows.append(Row("pencil", case, "LU of every Zt_k (before)", cpu["lu"],
                             unit="s CPU", repeat=repeat))
             rows.append(Row("pencil", case, "pencils (ours)", cpu["pencil"], unit="s CPU",
                             repeat=repeat, ratio=cpu["pencil"] / cpu["lu"], ref="before",
-                            note=f"fold speeds differ by {diff:.1e} (relative)"))
+                            note=f"{folds['lu'].size} bifurcation speeds, differ by "
+                                 f"{diff:.1e} (relative)"))
     return rows
 
 
