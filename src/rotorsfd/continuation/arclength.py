@@ -53,6 +53,9 @@ class ArcLengthOptions:
     shrink: float = 0.5
     easy_iter: int = 3
     max_halvings: int = 10
+    #: the next step is at most this fraction of the one that turns the tangent by
+    #: max_angle (the turn taken as proportional to the step)
+    angle_aim: float = 0.7
 
 
 @dataclass
@@ -140,8 +143,11 @@ def arclength(system: ContinuationSystem, z0: FloatArray, J0: FloatArray, lam_en
                 False, f"the branch turned back and went {side} the start of its "
                 f"range lam={lam_physical(lam_first):.8g} (towards "
                 f"lam={lam_physical(lam_end):.8g}) at {at(z)}", n_points, ds)
+        used = ds
         if res.iterations <= o.easy_iter:
             ds = min(ds * o.grow, o.ds_max)
         else:
             ds = max(ds * 0.7, o.ds_min)
+        if angle > 0.0:   # aim below the angle cap (a step past it is solved twice)
+            ds = max(min(ds, used * o.angle_aim * o.max_angle / angle), o.ds_min)
     return ArcLengthStatus(False, f"max_points reached at {at(z)}", n_points, ds)

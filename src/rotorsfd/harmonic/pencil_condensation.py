@@ -29,7 +29,7 @@ each harmonic's decomposition is checked against an LU of ``Z_k`` where it is bu
 (:data:`PENCIL_RTOL`, the receptance and its lam-derivative): a harmonic that fails keeps
 the LU (the static one alone; any other: the whole condensation). Used after
 :data:`PENCIL_AFTER` dense condensations of the same linear part (a branch, not a few
-points: one decomposition costs about 150 LUs).
+points).
 """
 
 from __future__ import annotations
@@ -49,8 +49,11 @@ from rotorsfd.harmonic.dense_condensation import dense_solves
 FloatArray = NDArray[np.float64]
 ComplexArray = NDArray[np.complex128]
 
-#: Dense condensations of one linear part before its harmonics are decomposed.
-PENCIL_AFTER = 200
+#: Dense condensations of one linear part before its harmonics are decomposed: a branch
+#: has hundreds, a problem of a fold curve's Newton a few (at most 13 in the paper run;
+#: one decomposition costs about 150 LUs, so a linear part condensed 64 to ~150 times
+#: pays more than it saves, one condensed more often saves).
+PENCIL_AFTER = 64
 #: Largest relative difference (max norm) of the receptance and of its lam-derivative from
 #: an LU of Z_k where a harmonic's decomposition is built; above it the harmonic keeps
 #: the LU.
