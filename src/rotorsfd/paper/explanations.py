@@ -146,7 +146,7 @@ DIAGNOSES: dict[str, str] = {
         "in the literal reading (no damping) our branch has a period-doubling range "
         "1.0266-1.0487 (the time "
         "domain at Omega~ 1.04 confirms the period-2 motion), a weak secondary Hopf at "
-        "1.2821 and contact at 1.3089; no saddle-nodes. In the calibrated reading "
+        "1.2819 and contact at 1.3089; no saddle-nodes. In the calibrated reading "
         "(0.2197 % modal damping, fitted to Table 1 only) the paper's pattern appears: "
         "saddle-nodes at 1.149-1.156 with a secondary Hopf at 1.154 (paper D-F "
         "1.166-1.176, B 1.0982) and an upper fold at 1.2625 (paper C 1.2977), the "
